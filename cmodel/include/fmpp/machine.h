@@ -1,0 +1,77 @@
+// The FMPP golden model: architectural state and the effect of each instruction.
+//
+// Bit-exact with the RTL (rtl/fmpp_tile.sv, fmpp_alu.sv). Timing and the bus are
+// in ModelBus; this class only knows what one queue entry does. Words are stored
+// word-major (all blocks' word w contiguous) and flags one byte per block, so each
+// instruction is one branch-free loop over blocks that the compiler vectorizes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fmpp/isa.h"
+
+namespace fmpp {
+
+struct Config {
+  unsigned blocks = 64;  // NumBlocks, 1 .. map::kMaxBlocks
+  unsigned words = 32;   // NumWords, even, 2 .. map::kMaxWords
+
+  // Throws std::invalid_argument naming the bad value.
+  void validate() const;
+  unsigned tiles() const { return (blocks + map::kLaneW - 1) / map::kLaneW; }
+  // log2 of the WORDS window block stride in bytes.
+  unsigned word_shift() const;
+  std::string str() const;
+};
+
+// Looks up a named configuration of rtl/fmpp_map.json ("small", "large", ...).
+// Throws std::invalid_argument listing the known names.
+Config named_config(const std::string& name);
+
+struct Responders {
+  bool any = false;
+  uint32_t count = 0;
+  uint32_t first = 0;  // lowest selected block; 0 when none
+};
+
+class Machine {
+ public:
+  explicit Machine(const Config& cfg);
+
+  const Config& config() const { return cfg_; }
+
+  // Executes one legal instruction in every block. Precondition: is_legal().
+  void execute(uint64_t raw);
+  // Window writes (queued host writes). strb4: byte enables of the 32-bit word.
+  void write_word(unsigned block, unsigned word, uint32_t data, uint8_t strb4 = 0xF);
+  void write_flags(unsigned block, uint8_t flags);
+
+  uint32_t word(unsigned block, unsigned word) const { return mem_[word * stride_ + block]; }
+  uint8_t flags(unsigned block) const { return flags_[block]; }
+  bool flag(unsigned block, unsigned f) const { return (flags_[block] >> f) & 1; }
+  // Flag f of the 64 blocks of tile t, bit i = block 64t + i.
+  uint64_t plane(unsigned f, unsigned tile) const;
+  uint32_t mask() const { return mask_; }
+  uint64_t instret() const { return instret_; }
+
+  Responders responders() const;
+  bool ovf_any() const;
+
+  // Order-independent digest of words, flags, mask (for fast lockstep checks).
+  uint64_t state_hash() const;
+
+ private:
+  const uint32_t* row(unsigned w) const { return mem_.data() + size_t{w} * stride_; }
+  uint32_t* row(unsigned w) { return mem_.data() + size_t{w} * stride_; }
+
+  Config cfg_;
+  size_t stride_;               // words of one row (blocks, padded)
+  std::vector<uint32_t> mem_;   // [word][block]
+  std::vector<uint8_t> flags_;  // [block], bit f = flag f
+  uint32_t mask_ = 0;
+  uint64_t instret_ = 0;
+};
+
+}  // namespace fmpp

@@ -1,0 +1,94 @@
+// The golden model behind the Bus interface: address decode, access rules, the
+// ERROR/CTRL registers, and the instruction queue with the RTL's exact timing.
+//
+// Timing contract (docs/memory-map.md, "Ordering and timing"), clock by clock:
+// at each rising edge the array pops and executes the queue head if there is one
+// and its GAP counter is zero, then the bus may push. A legal push is accepted at
+// the first edge with room in the queue; every other access at the first edge
+// with the queue empty. cycles() counts edges since reset, as the RTL's CYCLES does,
+// for a bus master that holds BREADY/RREADY high and starts each access as soon as
+// the previous one is accepted (tb/rtl_bus.h drives the RTL that way).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fmpp/bus.h"
+#include "fmpp/machine.h"
+
+namespace fmpp {
+
+// One queued bus write (the RTL's qentry_t).
+struct QueueEntry {
+  enum class Kind : uint8_t { kInstr = 0, kWord = 1, kFlags = 2 };
+  Kind kind = Kind::kInstr;
+  uint32_t block = 0;
+  uint8_t word = 0;
+  uint8_t strb = 0;  // byte enables of a word write
+  uint64_t data = 0;
+};
+
+// Where an address points (the RTL's fmpp_addr_decode).
+struct Decoded {
+  enum class Region : uint8_t { kNone, kReg, kPlane, kFlags, kWord };
+  Region region = Region::kNone;
+  bool aligned = true;
+  uint32_t reg = 0;    // register offset
+  uint32_t block = 0;  // block (FLAGS, WORDS) or tile (PLANES)
+  uint32_t word = 0;
+  uint32_t flag = 0;
+};
+Decoded decode_address(const Config& cfg, uint32_t addr);
+
+struct ErrorState {
+  bool sticky = false;
+  map::Err cause = map::Err::kNone;
+  uint16_t count = 0;
+  uint32_t addr = 0;
+  uint64_t reg() const;  // the ERROR register value
+  void record(map::Err c, uint32_t a);
+  bool operator==(const ErrorState& o) const;
+};
+
+class ModelBus : public Bus {
+ public:
+  explicit ModelBus(const Config& cfg);
+
+  Resp write(uint32_t addr, uint64_t data, uint8_t strb = 0xFF) override;
+  Resp read(uint32_t addr, uint64_t* data) override;
+  uint64_t cycles() const override { return cycle_; }
+  std::string name() const override { return "cmodel"; }
+
+  const Machine& machine() const { return m_; }
+  const Config& config() const { return m_.config(); }
+  const ErrorState& error() const { return err_; }
+  uint8_t gap() const { return gap_; }
+  size_t queue_level() const { return count_; }
+
+  // Called after every queue entry executes (lockstep checking hooks in here).
+  using ExecHook = std::function<void(const QueueEntry&)>;
+  void set_exec_hook(ExecHook h) { exec_hook_ = std::move(h); }
+
+  // Checks a write without performing it: the error cause it would raise (kNone
+  // if legal) and, for a legal push, the queue entry it would create.
+  map::Err check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry* push, bool* is_push) const;
+
+ private:
+  void tick(const QueueEntry* push);  // one rising clock edge
+  void execute(const QueueEntry& e);
+  void drain();
+  uint64_t register_value(uint32_t reg) const;
+
+  Machine m_;
+  std::vector<QueueEntry> ring_;
+  size_t head_ = 0, count_ = 0;
+  uint64_t cycle_ = 0;
+  uint8_t gap_ = 0;       // CTRL.GAP
+  uint8_t gap_cnt_ = 0;   // idle clocks left before the next pop
+  ErrorState err_;
+  ExecHook exec_hook_;
+};
+
+}  // namespace fmpp

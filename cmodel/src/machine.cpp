@@ -1,0 +1,273 @@
+// FMPP golden model: the effect of each instruction on every block.
+//
+// Every loop below is over blocks, reads and writes the same index only, and has
+// no data-dependent branch, so GCC vectorizes it; the hot kernels are compiled
+// for AVX2 and for baseline x86-64, chosen at load time (target_clones).
+#include "fmpp/machine.h"
+
+#include <stdexcept>
+
+namespace fmpp {
+
+void Config::validate() const {
+  if (blocks < 1 || blocks > map::kMaxBlocks) {
+    throw std::invalid_argument("fmpp::Config: blocks = " + std::to_string(blocks) + " outside [1, " +
+                                std::to_string(map::kMaxBlocks) + "]");
+  }
+  if (words < 2 || words > map::kMaxWords || words % 2 != 0) {
+    throw std::invalid_argument("fmpp::Config: words = " + std::to_string(words) + " must be even and in [2, " +
+                                std::to_string(map::kMaxWords) + "]");
+  }
+}
+
+unsigned Config::word_shift() const {
+  unsigned l = 0;
+  while ((1u << l) < words) ++l;
+  return 3 + l;
+}
+
+std::string Config::str() const { return std::to_string(blocks) + "x" + std::to_string(words); }
+
+Config named_config(const std::string& name) {
+  std::string known;
+  for (const auto& c : map::kConfigs) {
+    if (name == c.name) return Config{c.blocks, c.words};
+    known += known.empty() ? c.name : std::string(", ") + c.name;
+  }
+  throw std::invalid_argument("unknown FMPP configuration '" + name + "' (known: " + known + ")");
+}
+
+Machine::Machine(const Config& cfg) : cfg_(cfg) {
+  cfg_.validate();
+  stride_ = (size_t{cfg_.blocks} + 15) & ~size_t{15};
+  mem_.assign(stride_ * cfg_.words, 0);
+  flags_.assign(stride_, 0);
+}
+
+namespace {
+
+constexpr unsigned kC = map::kFlagC;
+constexpr unsigned kV = map::kFlagV;
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define FMPP_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define FMPP_KERNEL
+#endif
+
+FMPP_KERNEL void k_logic(uint32_t* d, const uint32_t* a, const uint32_t* b, uint8_t* fl, size_t n, unsigned p,
+                         unsigned fn) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t m = 0u - ((fl[i] >> p) & 1u);
+    const uint32_t x = a[i], y = b[i];
+    const uint32_t r = fn == 0 ? (x & y) : fn == 1 ? (x | y) : (x ^ y);
+    d[i] = (r & m) | (d[i] & ~m);
+  }
+}
+
+// ADD (sub = false) or SUB (sub = true): C <- carry out, V |= signed overflow.
+FMPP_KERNEL void k_addsub(uint32_t* d, const uint32_t* a, const uint32_t* b, uint8_t* fl, size_t n, unsigned p,
+                          bool sub) {
+  const uint32_t inv = sub ? ~0u : 0u;
+  const uint32_t cin = sub ? 1u : 0u;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t x = a[i], y = b[i] ^ inv;
+    const uint32_t r = x + y + cin;
+    // Carry out of bit 31 of x + y + cin, and signed overflow of that sum.
+    const uint32_t carry = ((x & y) | ((x | y) & ~r)) >> 31;
+    const uint32_t ovf = ((x ^ r) & (y ^ r)) >> 31;
+    const uint8_t f = fl[i];
+    const uint32_t pr = (f >> p) & 1u;
+    const uint32_t m = 0u - pr;
+    d[i] = (r & m) | (d[i] & ~m);
+    fl[i] = static_cast<uint8_t>((f & ~(pr << kC)) | ((carry & pr) << kC) | ((ovf & pr) << kV));
+  }
+}
+
+FMPP_KERNEL void k_shift(uint32_t* d, const uint32_t* a, uint8_t* fl, size_t n, unsigned p, bool left) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t x = a[i];
+    uint32_t r, carry, ovf;
+    if (left) {
+      r = x << 1;
+      carry = x >> 31;
+      ovf = ((x >> 31) ^ (x >> 30)) & 1u;
+    } else {
+      r = static_cast<uint32_t>(static_cast<int32_t>(x) >> 1);
+      carry = x & 1u;
+      ovf = 0;
+    }
+    const uint8_t f = fl[i];
+    const uint32_t pr = (f >> p) & 1u;
+    const uint32_t m = 0u - pr;
+    d[i] = (r & m) | (d[i] & ~m);
+    fl[i] = static_cast<uint8_t>((f & ~(pr << kC)) | ((carry & pr) << kC) | ((ovf & pr) << kV));
+  }
+}
+
+FMPP_KERNEL void k_bitcopy(uint32_t* d, const uint32_t* a, const uint8_t* fl, size_t n, unsigned p, unsigned bi,
+                           unsigned bj) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t m = (0u - ((fl[i] >> p) & 1u)) & (1u << bj);
+    const uint32_t bit = ((a[i] >> bi) & 1u) << bj;
+    d[i] = (bit & m) | (d[i] & ~m);
+  }
+}
+
+FMPP_KERNEL void k_writes(uint32_t* d, const uint8_t* fl, size_t n, unsigned p, uint32_t data, uint32_t mask) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t m = (0u - ((fl[i] >> p) & 1u)) & ~mask;
+    d[i] = (data & m) | (d[i] & ~m);
+  }
+}
+
+// REF on the data part: fd <- combine(flag fs, ((a ^ key) & ~mask) == 0).
+FMPP_KERNEL void k_ref_data(const uint32_t* a, uint8_t* fl, size_t n, uint32_t key, uint32_t care, unsigned fn,
+                            unsigned fs, unsigned fd) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t f = fl[i];
+    const uint32_t match = ((a[i] ^ key) & care) == 0;
+    const uint32_t old = (f >> fs) & 1u;
+    const uint32_t v = fn == 0 ? match : fn == 1 ? (old & match) : (old | match);
+    fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
+  }
+}
+
+}  // namespace
+
+void Machine::execute(uint64_t raw) {
+  const Instr in = Instr::decode(raw);
+  const size_t n = cfg_.blocks;
+  uint8_t* fl = flags_.data();
+  ++instret_;
+  switch (in.op) {
+    case Op::kNop:
+      break;
+    case Op::kMaskset:
+      mask_ = in.imm;
+      break;
+    case Op::kRef: {
+      const unsigned fn = in.x & 3, fs = in.x >> 3, fd = in.f;
+      if (((in.x >> 2) & 1) == map::kRefPartAddr) {
+        for (size_t i = 0; i < n; ++i) {
+          const uint8_t f = fl[i];
+          const uint32_t match = ((static_cast<uint32_t>(i) ^ in.imm) & ~mask_) == 0;
+          const uint32_t old = (f >> fs) & 1u;
+          const uint32_t v = fn == 0 ? match : fn == 1 ? (old & match) : (old | match);
+          fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
+        }
+      } else {
+        k_ref_data(row(in.a), fl, n, in.imm, ~mask_, fn, fs, fd);
+      }
+      break;
+    }
+    case Op::kFunc:
+      k_logic(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.x & 3);
+      break;
+    case Op::kAdd:
+    case Op::kSub:
+      k_addsub(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.op == Op::kSub);
+      break;
+    case Op::kBitcopy:
+      k_bitcopy(row(in.d), row(in.a), fl, n, in.f, in.imm & 31, (in.imm >> 8) & 31);
+      break;
+    case Op::kLshift:
+    case Op::kRshift:
+      k_shift(row(in.d), row(in.a), fl, n, in.f, in.op == Op::kLshift);
+      break;
+    case Op::kWrites:
+      k_writes(row(in.d), fl, n, in.f, in.imm, mask_);
+      break;
+    case Op::kSets:
+      for (size_t i = 0; i < n; ++i) fl[i] |= 1u << map::kFlagSEL;
+      break;
+    case Op::kResets:
+      for (size_t i = 0; i < n; ++i) fl[i] &= static_cast<uint8_t>(~(1u << map::kFlagSEL));
+      break;
+    case Op::kSetsadr:
+      for (size_t i = 0; i < n; ++i) {
+        const uint32_t v = static_cast<uint32_t>(i) == in.imm;
+        fl[i] = static_cast<uint8_t>((fl[i] & ~(1u << map::kFlagSEL)) | (v << map::kFlagSEL));
+      }
+      break;
+    case Op::kFlagop: {
+      const unsigned fa = in.x >> 3, fb = in.x & 7, fd = in.f, lut = in.imm & 0xF;
+      const bool if_any = (in.imm >> 8) & 1;
+      bool any = false;
+      if (if_any) {
+        for (size_t i = 0; i < n; ++i) {
+          any |= (lut >> ((((fl[i] >> fa) & 1u) << 1) | ((fl[i] >> fb) & 1u))) & 1u;
+        }
+        if (!any) break;
+      }
+      for (size_t i = 0; i < n; ++i) {
+        const uint8_t f = fl[i];
+        const uint32_t v = (lut >> ((((f >> fa) & 1u) << 1) | ((f >> fb) & 1u))) & 1u;
+        fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
+      }
+      break;
+    }
+    default:
+      throw std::logic_error("fmpp::Machine::execute: illegal instruction " + disasm(raw));
+  }
+}
+
+void Machine::write_word(unsigned block, unsigned w, uint32_t data, uint8_t strb4) {
+  uint32_t m = 0;
+  for (unsigned k = 0; k < 4; ++k) {
+    if ((strb4 >> k) & 1) m |= 0xFFu << (8 * k);
+  }
+  uint32_t& cell = mem_[w * stride_ + block];
+  cell = (data & m) | (cell & ~m);
+}
+
+void Machine::write_flags(unsigned block, uint8_t f) { flags_[block] = f; }
+
+uint64_t Machine::plane(unsigned f, unsigned tile) const {
+  uint64_t p = 0;
+  for (unsigned l = 0; l < map::kLaneW; ++l) {
+    const unsigned b = tile * map::kLaneW + l;
+    if (b >= cfg_.blocks) break;
+    p |= uint64_t{flag(b, f)} << l;
+  }
+  return p;
+}
+
+Responders Machine::responders() const {
+  Responders r;
+  for (unsigned b = 0; b < cfg_.blocks; ++b) {
+    if (flags_[b] & (1u << map::kFlagSEL)) {
+      if (!r.any) r.first = b;
+      r.any = true;
+      ++r.count;
+    }
+  }
+  return r;
+}
+
+bool Machine::ovf_any() const {
+  for (unsigned b = 0; b < cfg_.blocks; ++b) {
+    if (flags_[b] & (1u << kV)) return true;
+  }
+  return false;
+}
+
+uint64_t Machine::state_hash() const {
+  // FNV-1a over (words in block-major order, flags, mask): a layout-independent
+  // order that the RTL-side extractor reproduces.
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](uint64_t v) {
+    for (int k = 0; k < 8; ++k) {
+      h ^= (v >> (8 * k)) & 0xFF;
+      h *= 1099511628211ull;
+    }
+  };
+  for (unsigned b = 0; b < cfg_.blocks; ++b) {
+    for (unsigned w = 0; w < cfg_.words; ++w) mix(word(b, w));
+    mix(flags_[b]);
+  }
+  mix(mask_);
+  return h;
+}
+
+}  // namespace fmpp

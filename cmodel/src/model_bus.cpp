@@ -1,0 +1,258 @@
+// Golden model of the FMPP bus interface and instruction queue (twin of
+// rtl/fmpp_axil_slave.sv, fmpp_addr_decode.sv, fmpp_fifo.sv and the sequencer in
+// fmpp_array.sv), clock-exact for the bus master described in model_bus.h.
+#include "fmpp/model_bus.h"
+
+#include <stdexcept>
+
+namespace fmpp {
+
+using map::Err;
+
+Decoded decode_address(const Config& cfg, uint32_t addr) {
+  Decoded d;
+  d.aligned = (addr & 7) == 0;
+  if ((addr >> 12) == 0) {
+    d.region = Decoded::Region::kReg;
+    d.reg = addr & 0xFFF;
+    return d;
+  }
+  if (addr >= map::kWinPlanesBase && addr - map::kWinPlanesBase < map::kWinPlanesSize) {
+    const uint32_t off = addr - map::kWinPlanesBase;
+    d.block = (off & ((1u << map::kWinPlanesFlagShift) - 1)) >> 3;
+    d.flag = off >> map::kWinPlanesFlagShift;
+    if (d.block < cfg.tiles()) d.region = Decoded::Region::kPlane;
+    return d;
+  }
+  if (addr >= map::kWinFlagsBase && addr - map::kWinFlagsBase < map::kWinFlagsSize) {
+    d.block = (addr - map::kWinFlagsBase) >> 3;
+    if (d.block < cfg.blocks) d.region = Decoded::Region::kFlags;
+    return d;
+  }
+  if (addr >= map::kWinWordsBase && addr - map::kWinWordsBase < map::kWinWordsSize) {
+    const uint32_t off = addr - map::kWinWordsBase;
+    const unsigned shift = cfg.word_shift();
+    d.block = off >> shift;
+    d.word = (off >> 3) & ((1u << (shift - 3)) - 1);
+    if (d.block < cfg.blocks && d.word < cfg.words) d.region = Decoded::Region::kWord;
+    return d;
+  }
+  return d;
+}
+
+uint64_t ErrorState::reg() const {
+  return (uint64_t{addr} << map::kErrorAddrLsb) | (uint64_t{count} << map::kErrorCountLsb) |
+         (uint64_t{static_cast<uint8_t>(cause)} << map::kErrorCauseLsb) | (sticky ? 1u : 0u);
+}
+
+void ErrorState::record(Err c, uint32_t a) {
+  if (!sticky) {
+    cause = c;
+    addr = a;
+  }
+  sticky = true;
+  if (count != 0xFFFF) ++count;
+}
+
+bool ErrorState::operator==(const ErrorState& o) const {
+  return sticky == o.sticky && cause == o.cause && count == o.count && addr == o.addr;
+}
+
+ModelBus::ModelBus(const Config& cfg) : m_(cfg), ring_(map::kQueueDepth) {}
+
+Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry* push, bool* is_push) const {
+  const Decoded d = decode_address(config(), addr);
+  *is_push = false;
+  if (!d.aligned) return Err::kAlign;
+  switch (d.region) {
+    case Decoded::Region::kReg:
+      switch (d.reg) {
+        case map::kRegQueue:
+          if (strb != 0xFF) return Err::kStrobe;
+          if (!is_legal(data, config().words)) return Err::kIllegal;
+          *is_push = true;
+          *push = QueueEntry{QueueEntry::Kind::kInstr, 0, 0, 0, data};
+          return Err::kNone;
+        case map::kRegCtrl:
+        case map::kRegError:
+          return strb != 0xFF ? Err::kStrobe : Err::kNone;
+        case map::kRegId:
+        case map::kRegConfig:
+        case map::kRegStatus:
+        case map::kRegResp:
+        case map::kRegCycles:
+        case map::kRegInstret:
+        case map::kRegMask:
+          return Err::kReadonly;
+        default:
+          return Err::kUnmapped;
+      }
+    case Decoded::Region::kPlane:
+      return Err::kReadonly;
+    case Decoded::Region::kFlags:
+      if (strb != 0x01) return Err::kStrobe;
+      *is_push = true;
+      *push = QueueEntry{QueueEntry::Kind::kFlags, d.block, 0, 0, data};
+      return Err::kNone;
+    case Decoded::Region::kWord:
+      if ((strb & 0xF0) != 0 || (strb & 0x0F) == 0) return Err::kStrobe;
+      *is_push = true;
+      *push = QueueEntry{QueueEntry::Kind::kWord, d.block, static_cast<uint8_t>(d.word),
+                         static_cast<uint8_t>(strb & 0xF), data};
+      return Err::kNone;
+    case Decoded::Region::kNone:
+      break;
+  }
+  return Err::kUnmapped;
+}
+
+void ModelBus::execute(const QueueEntry& e) {
+  switch (e.kind) {
+    case QueueEntry::Kind::kInstr:
+      m_.execute(e.data);
+      break;
+    case QueueEntry::Kind::kWord:
+      m_.write_word(e.block, e.word, static_cast<uint32_t>(e.data), e.strb);
+      break;
+    case QueueEntry::Kind::kFlags:
+      m_.write_flags(e.block, static_cast<uint8_t>(e.data));
+      break;
+  }
+}
+
+void ModelBus::tick(const QueueEntry* push) {
+  bool popped = false;
+  QueueEntry e;
+  if (count_ > 0 && gap_cnt_ == 0) {
+    e = ring_[head_];
+    head_ = (head_ + 1) % ring_.size();
+    --count_;
+    gap_cnt_ = gap_;
+    execute(e);
+    popped = true;
+  } else if (gap_cnt_ > 0) {
+    --gap_cnt_;
+  }
+  if (push) {
+    if (count_ == ring_.size()) throw std::logic_error("fmpp::ModelBus: push into a full queue");
+    ring_[(head_ + count_) % ring_.size()] = *push;
+    ++count_;
+  }
+  ++cycle_;
+  // The hook sees the state after the whole edge, as the RTL's observer does.
+  if (popped && exec_hook_) exec_hook_(e);
+}
+
+void ModelBus::drain() {
+  while (count_ > 0) tick(nullptr);
+}
+
+Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
+  QueueEntry entry;
+  bool is_push = false;
+  const Err e = check_write(addr, data, strb, &entry, &is_push);
+  if (e == Err::kNone && is_push) {
+    while (count_ == ring_.size()) tick(nullptr);
+    tick(&entry);
+    return Resp::kOkay;
+  }
+  drain();
+  // Accepted at this edge: register effects land with it.
+  if (e != Err::kNone) {
+    err_.record(e, addr);
+  } else if (addr == map::kRegCtrl) {
+    gap_ = static_cast<uint8_t>(data);
+  } else if (addr == map::kRegError && (data & 1)) {
+    err_ = ErrorState{};
+  }
+  tick(nullptr);
+  return e == Err::kNone ? Resp::kOkay : Resp::kSlvErr;
+}
+
+uint64_t ModelBus::register_value(uint32_t reg) const {
+  const Config& c = config();
+  switch (reg) {
+    case map::kRegId:
+      return (uint64_t{map::kMagic} << 32) | (uint64_t{map::kVersionMajor} << 16) | map::kVersionMinor;
+    case map::kRegConfig:
+      return (uint64_t{c.word_shift()} << map::kConfigWshiftLsb) | (uint64_t{map::kLaneW} << map::kConfigLanesLsb) |
+             (uint64_t{map::kQueueDepth} << map::kConfigQdepthLsb) | (uint64_t{c.words} << map::kConfigWordsLsb) |
+             c.blocks;
+    case map::kRegStatus: {
+      const Responders r = m_.responders();
+      return (uint64_t{r.any} << map::kStatusAnyLsb) | (uint64_t{m_.ovf_any()} << map::kStatusOvfLsb) |
+             (uint64_t{err_.sticky} << map::kStatusErrLsb);
+    }
+    case map::kRegError:
+      return err_.reg();
+    case map::kRegCtrl:
+      return gap_;
+    case map::kRegResp: {
+      const Responders r = m_.responders();
+      return (uint64_t{r.any} << map::kRespAnyLsb) | (uint64_t{r.first} << map::kRespFirstLsb) | r.count;
+    }
+    case map::kRegCycles:
+      return cycle_;
+    case map::kRegInstret:
+      return m_.instret();
+    case map::kRegMask:
+      return m_.mask();
+    default:
+      throw std::logic_error("fmpp::ModelBus::register_value: unmapped register");
+  }
+}
+
+Resp ModelBus::read(uint32_t addr, uint64_t* data) {
+  drain();
+  const Decoded d = decode_address(config(), addr);
+  Err e = Err::kNone;
+  uint64_t v = 0;
+  if (!d.aligned) {
+    e = Err::kAlign;
+  } else {
+    switch (d.region) {
+      case Decoded::Region::kReg:
+        switch (d.reg) {
+          case map::kRegId:
+          case map::kRegConfig:
+          case map::kRegStatus:
+          case map::kRegError:
+          case map::kRegCtrl:
+          case map::kRegResp:
+          case map::kRegCycles:
+          case map::kRegInstret:
+          case map::kRegMask:
+            v = register_value(d.reg);
+            break;
+          case map::kRegQueue:
+            e = Err::kWriteonly;
+            break;
+          default:
+            e = Err::kUnmapped;
+            break;
+        }
+        break;
+      case Decoded::Region::kPlane:
+        v = m_.plane(d.flag, d.block);
+        break;
+      case Decoded::Region::kFlags:
+        v = m_.flags(d.block);
+        break;
+      case Decoded::Region::kWord:
+        v = m_.word(d.block, d.word);
+        break;
+      case Decoded::Region::kNone:
+        e = Err::kUnmapped;
+        break;
+    }
+  }
+  if (e != Err::kNone) {
+    err_.record(e, addr);
+    v = 0;
+  }
+  tick(nullptr);
+  *data = v;
+  return e == Err::kNone ? Resp::kOkay : Resp::kSlvErr;
+}
+
+}  // namespace fmpp

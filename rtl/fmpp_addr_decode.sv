@@ -1,0 +1,67 @@
+// fmpp_addr_decode: where a bus address points in the FMPP memory map.
+//
+// Used once for the write address and once for the read address. It only locates
+// the target (register, flag plane, block flags, block word) and says whether that
+// target exists on this machine; the access rules (read-only, strobes, legality)
+// are applied by fmpp_axil_slave. Map: docs/memory-map.md.
+module fmpp_addr_decode #(
+  parameter int unsigned NumBlocks = 64,
+  parameter int unsigned NumWords  = 32
+) (
+  input  logic [fmpp_pkg::AddrW-1:0] addr_i,
+  output logic                       aligned_o,
+  output logic                       is_reg_o,     // register region (offset in reg_o)
+  output logic [11:0]                reg_o,
+  output logic                       is_plane_o,   // PLANES window, mapped
+  output logic                       is_flags_o,   // FLAGS window, mapped
+  output logic                       is_word_o,    // WORDS window, mapped
+  output logic [15:0]                block_o,      // block (FLAGS, WORDS) or tile (PLANES)
+  output logic [5:0]                 word_o,
+  output logic [2:0]                 flag_o
+);
+  localparam int unsigned LaneW    = fmpp_pkg::LaneW;
+  localparam int unsigned NumTiles = (NumBlocks + LaneW - 1) / LaneW;
+  localparam int unsigned WIdxW    = $clog2(NumWords);   // NumWords is even, so >= 1
+  localparam int unsigned WShift   = 3 + WIdxW;          // WORDS block stride = 2^WShift bytes
+  localparam int unsigned AW       = fmpp_pkg::AddrW;
+
+  logic [AW-1:0] off_plane, off_flags, off_words;
+  logic          in_plane, in_flags, in_words;
+  logic [31:0]   plane_tile, flags_block, words_block, words_word;
+
+  assign off_plane = addr_i - fmpp_pkg::WIN_PLANES_BASE;
+  assign off_flags = addr_i - fmpp_pkg::WIN_FLAGS_BASE;
+  assign off_words = addr_i - fmpp_pkg::WIN_WORDS_BASE;
+  assign in_plane  = addr_i >= fmpp_pkg::WIN_PLANES_BASE && off_plane < fmpp_pkg::WIN_PLANES_SIZE;
+  assign in_flags  = addr_i >= fmpp_pkg::WIN_FLAGS_BASE  && off_flags < fmpp_pkg::WIN_FLAGS_SIZE;
+  assign in_words  = addr_i >= fmpp_pkg::WIN_WORDS_BASE  && off_words < fmpp_pkg::WIN_WORDS_SIZE;
+
+  assign plane_tile  = {19'd0, off_plane[12:0]} >> 3;
+  assign flags_block = off_flags >> 3;
+  assign words_block = off_words >> WShift;
+  assign words_word  = {26'd0, off_words[8:3] & 6'((1 << WIdxW) - 1)};
+
+  assign aligned_o  = addr_i[2:0] == 3'b000;
+  assign is_reg_o   = addr_i[AW-1:12] == '0;
+  assign reg_o      = addr_i[11:0];
+  assign is_plane_o = in_plane && plane_tile < NumTiles;
+  assign is_flags_o = in_flags && flags_block < NumBlocks;
+  assign is_word_o  = in_words && words_block < NumBlocks && words_word < NumWords;
+  assign flag_o     = off_plane[15:13];
+
+  always_comb begin
+    block_o = '0;
+    word_o  = '0;
+    if (in_plane) block_o = plane_tile[15:0];
+    if (in_flags) block_o = flags_block[15:0];
+    if (in_words) begin
+      block_o = words_block[15:0];
+      word_o  = words_word[5:0];
+    end
+  end
+
+  logic unused_hi;
+  assign unused_hi = ^{plane_tile[31:16], flags_block[31:16], words_block[31:16], words_word[31:6],
+                       off_plane[AW-1:16], off_flags[2:0], off_words[2:0]};
+
+endmodule

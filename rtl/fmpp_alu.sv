@@ -1,0 +1,83 @@
+// fmpp_alu: the block ALU of the FMPP (logic unit, ripple-carry adder/subtracter,
+// one-bit shifter, bit copy), written once and applied to the Lanes blocks of a tile.
+//
+// Layout: every operand is a word in bit-plane form. Bit k of the word of block
+// (tile base + l) is bit l of plane k, and plane k is a[k*Lanes +: Lanes]. Each
+// expression below therefore reads as the logic of one block's ALU (for Lanes = 1
+// it is exactly that), while computing all Lanes blocks at once. No signal ever
+// crosses lanes: blocks are independent, as in the paper's BPBP organisation.
+//
+// Purely combinational; the tile applies the predicate and writes the result.
+module fmpp_alu #(
+  parameter int unsigned Lanes = 64
+) (
+  input  logic [4:0]                        op_i,      // fmpp_pkg::opcode_e
+  input  logic [1:0]                        fn_i,      // FUNC: AND / OR / XOR
+  input  logic [4:0]                        bit_i_i,   // BITCOPY source bit
+  input  logic [4:0]                        bit_j_i,   // BITCOPY destination bit
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  a_i,       // word A of every lane
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  b_i,       // word B of every lane
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
+  output logic [fmpp_pkg::WordW*Lanes-1:0]  r_o,       // value for word D
+  output logic [Lanes-1:0]                  carry_o,   // new C flag
+  output logic [Lanes-1:0]                  ovf_o,     // signed overflow (ORed into V)
+  output logic                              wr_c_o,    // this op writes C
+  output logic                              wr_v_o     // this op may set V
+);
+  localparam int unsigned W = fmpp_pkg::WordW;
+
+  always_comb begin
+    logic [Lanes-1:0] c;        // carry into the current bit
+    logic [Lanes-1:0] x, y;     // current bit of the two addends
+    r_o     = '0;
+    carry_o = '0;
+    ovf_o   = '0;
+    wr_c_o  = 1'b0;
+    wr_v_o  = 1'b0;
+    c = '0;
+    x = '0;
+    y = '0;
+    unique case (op_i)
+      fmpp_pkg::OP_FUNC: begin
+        unique case (fn_i)
+          fmpp_pkg::FUNC_FN_AND: r_o = a_i & b_i;
+          fmpp_pkg::FUNC_FN_OR:  r_o = a_i | b_i;
+          default:               r_o = a_i ^ b_i;  // XOR; code 3 never reaches here (ILLEGAL at push)
+        endcase
+      end
+      fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB: begin
+        // Ripple carry, one full adder per bit. SUB adds the complement of B with carry-in 1.
+        c = (op_i == fmpp_pkg::OP_SUB) ? {Lanes{1'b1}} : '0;
+        for (int k = 0; k < W; k++) begin
+          x = a_i[k*Lanes +: Lanes];
+          y = (op_i == fmpp_pkg::OP_SUB) ? ~b_i[k*Lanes +: Lanes] : b_i[k*Lanes +: Lanes];
+          r_o[k*Lanes +: Lanes] = x ^ y ^ c;
+          if (k == W - 1) ovf_o = c;  // carry into the sign bit ...
+          c = (x & y) | (c & (x ^ y));
+        end
+        ovf_o   = ovf_o ^ c;          // ... differs from the carry out: signed overflow
+        carry_o = c;                  // SUB: 1 = no borrow (A >= B unsigned)
+        wr_c_o  = 1'b1;
+        wr_v_o  = 1'b1;
+      end
+      fmpp_pkg::OP_BITCOPY: begin
+        r_o = d_i;
+        r_o[bit_j_i*Lanes +: Lanes] = a_i[bit_i_i*Lanes +: Lanes];
+      end
+      fmpp_pkg::OP_LSHIFT: begin
+        r_o     = {a_i[(W-1)*Lanes-1:0], {Lanes{1'b0}}};
+        carry_o = a_i[(W-1)*Lanes +: Lanes];
+        ovf_o   = a_i[(W-1)*Lanes +: Lanes] ^ a_i[(W-2)*Lanes +: Lanes];
+        wr_c_o  = 1'b1;
+        wr_v_o  = 1'b1;
+      end
+      fmpp_pkg::OP_RSHIFT: begin
+        r_o     = {a_i[(W-1)*Lanes +: Lanes], a_i[W*Lanes-1:Lanes]};
+        carry_o = a_i[0 +: Lanes];
+        wr_c_o  = 1'b1;
+      end
+      default: ;  // not an ALU operation
+    endcase
+  end
+
+endmodule

@@ -1,0 +1,363 @@
+// fmpp_axil_slave: the FMPP's only port, an AXI4-Lite slave (64-bit data).
+//
+// Writes to QUEUE and to the WORDS/FLAGS windows are pushes: they are checked
+// here and, if legal, queued for the array in bus order. Every other access
+// (all reads, CTRL and ERROR writes) waits until the queue is empty, so reads see
+// every earlier push. A bad access answers SLVERR, has no other effect, and is
+// recorded in the sticky ERROR register. Rules and timing: docs/memory-map.md.
+//
+// A write is accepted when AWVALID and WVALID are both high (AWREADY = WREADY),
+// a read when ARVALID is high; the response follows one clock later. With
+// BREADY/RREADY held high one access per clock is sustained.
+module fmpp_axil_slave #(
+  parameter int unsigned NumBlocks = 64,
+  parameter int unsigned NumWords  = 32
+) (
+  input  logic                         clk_i,
+  input  logic                         rst_ni,
+
+  // AXI4-Lite
+  input  logic                         awvalid_i,
+  output logic                         awready_o,
+  input  logic [fmpp_pkg::AddrW-1:0]   awaddr_i,
+  input  logic [2:0]                   awprot_i,
+  input  logic                         wvalid_i,
+  output logic                         wready_o,
+  input  logic [63:0]                  wdata_i,
+  input  logic [7:0]                   wstrb_i,
+  output logic                         bvalid_o,
+  input  logic                         bready_i,
+  output logic [1:0]                   bresp_o,
+  input  logic                         arvalid_i,
+  output logic                         arready_o,
+  input  logic [fmpp_pkg::AddrW-1:0]   araddr_i,
+  input  logic [2:0]                   arprot_i,
+  output logic                         rvalid_o,
+  input  logic                         rready_i,
+  output logic [63:0]                  rdata_o,
+  output logic [1:0]                   rresp_o,
+
+  // Instruction queue
+  output logic                         push_o,
+  output fmpp_pkg::qentry_t            push_entry_o,
+  input  logic                         q_full_i,
+  input  logic                         q_empty_i,
+
+  // Array read port, responders and state shown in registers
+  output logic                         rd_en_o,
+  output fmpp_pkg::rkind_e             rd_kind_o,
+  output logic [15:0]                  rd_block_o,
+  output logic [5:0]                   rd_word_o,
+  output logic [2:0]                   rd_flag_o,
+  input  logic [63:0]                  rd_data_i,
+  output logic                         resp_en_o,
+  input  logic                         resp_any_i,
+  input  logic [31:0]                  resp_count_i,
+  input  logic [30:0]                  resp_first_i,
+  input  logic                         ovf_any_i,
+  input  logic [31:0]                  mask_i,
+  input  logic [63:0]                  instret_i,
+  output logic [7:0]                   gap_o
+);
+  localparam logic [1:0] RespOkay   = 2'b00;
+  localparam logic [1:0] RespSlvErr = 2'b10;
+  localparam int unsigned WShift = 3 + $clog2(NumWords);
+
+  // ---------------------------------------------------------------- write decode
+  logic        aw_aligned, aw_is_reg, aw_is_plane, aw_is_flags, aw_is_word;
+  logic [11:0] aw_reg;
+  logic [15:0] aw_block;
+  logic [5:0]  aw_word;
+  logic [2:0]  aw_flag;
+  logic        instr_legal;
+
+  fmpp_addr_decode #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_aw_decode (
+    .addr_i     (awaddr_i),
+    .aligned_o  (aw_aligned),
+    .is_reg_o   (aw_is_reg),
+    .reg_o      (aw_reg),
+    .is_plane_o (aw_is_plane),
+    .is_flags_o (aw_is_flags),
+    .is_word_o  (aw_is_word),
+    .block_o    (aw_block),
+    .word_o     (aw_word),
+    .flag_o     (aw_flag)
+  );
+
+  fmpp_instr_check #(.NumWords(NumWords)) u_instr_check (
+    .instr_i (wdata_i),
+    .legal_o (instr_legal)
+  );
+
+  fmpp_pkg::err_e w_cause;
+  logic           w_push, w_ctrl, w_err_clear;
+  fmpp_pkg::qentry_t w_entry;
+
+  always_comb begin
+    w_cause     = fmpp_pkg::ERR_NONE;
+    w_push      = 1'b0;
+    w_ctrl      = 1'b0;
+    w_err_clear = 1'b0;
+    w_entry.kind  = fmpp_pkg::QE_INSTR;
+    w_entry.block = aw_block;
+    w_entry.word  = aw_word;
+    w_entry.strb  = wstrb_i[3:0];
+    w_entry.data  = wdata_i;
+    if (!aw_aligned) begin
+      w_cause = fmpp_pkg::ERR_ALIGN;
+    end else if (aw_is_reg) begin
+      unique case (aw_reg)
+        fmpp_pkg::REG_QUEUE[11:0]: begin
+          if (wstrb_i != 8'hFF)  w_cause = fmpp_pkg::ERR_STROBE;
+          else if (!instr_legal) w_cause = fmpp_pkg::ERR_ILLEGAL;
+          else                   w_push  = 1'b1;
+        end
+        fmpp_pkg::REG_CTRL[11:0]: begin
+          if (wstrb_i != 8'hFF) w_cause = fmpp_pkg::ERR_STROBE;
+          else                  w_ctrl  = 1'b1;
+        end
+        fmpp_pkg::REG_ERROR[11:0]: begin
+          if (wstrb_i != 8'hFF) w_cause     = fmpp_pkg::ERR_STROBE;
+          else                  w_err_clear = wdata_i[0];
+        end
+        fmpp_pkg::REG_ID[11:0], fmpp_pkg::REG_CONFIG[11:0], fmpp_pkg::REG_STATUS[11:0],
+        fmpp_pkg::REG_RESP[11:0], fmpp_pkg::REG_CYCLES[11:0], fmpp_pkg::REG_INSTRET[11:0],
+        fmpp_pkg::REG_MASK[11:0]:
+          w_cause = fmpp_pkg::ERR_READONLY;
+        default:
+          w_cause = fmpp_pkg::ERR_UNMAPPED;
+      endcase
+    end else if (aw_is_plane) begin
+      w_cause = fmpp_pkg::ERR_READONLY;
+    end else if (aw_is_flags) begin
+      if (wstrb_i != 8'h01) begin
+        w_cause = fmpp_pkg::ERR_STROBE;
+      end else begin
+        w_push       = 1'b1;
+        w_entry.kind = fmpp_pkg::QE_FLAGS;
+      end
+    end else if (aw_is_word) begin
+      if (wstrb_i[7:4] != 4'h0 || wstrb_i[3:0] == 4'h0) begin
+        w_cause = fmpp_pkg::ERR_STROBE;
+      end else begin
+        w_push       = 1'b1;
+        w_entry.kind = fmpp_pkg::QE_WORD;
+      end
+    end else begin
+      w_cause = fmpp_pkg::ERR_UNMAPPED;
+    end
+  end
+
+  // ----------------------------------------------------------------- read decode
+  logic        ar_aligned, ar_is_reg, ar_is_plane, ar_is_flags, ar_is_word;
+  logic [11:0] ar_reg;
+  logic [15:0] ar_block;
+  logic [5:0]  ar_word;
+  logic [2:0]  ar_flag;
+
+  fmpp_addr_decode #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_ar_decode (
+    .addr_i     (araddr_i),
+    .aligned_o  (ar_aligned),
+    .is_reg_o   (ar_is_reg),
+    .reg_o      (ar_reg),
+    .is_plane_o (ar_is_plane),
+    .is_flags_o (ar_is_flags),
+    .is_word_o  (ar_is_word),
+    .block_o    (ar_block),
+    .word_o     (ar_word),
+    .flag_o     (ar_flag)
+  );
+
+  // Sticky error state and registers.
+  // Public for the lockstep checker (tb/), which reads the state directly.
+  logic        err_sticky_q /*verilator public_flat_rd*/;
+  logic [3:0]  err_cause_q /*verilator public_flat_rd*/;
+  logic [15:0] err_count_q /*verilator public_flat_rd*/;
+  logic [31:0] err_addr_q /*verilator public_flat_rd*/;
+  logic [7:0]  gap_q /*verilator public_flat_rd*/;
+  logic [63:0] cycles_q;
+
+  fmpp_pkg::err_e r_cause;
+  logic [63:0]    r_data;
+
+  assign rd_en_o    = arvalid_i && ar_aligned && (ar_is_plane || ar_is_flags || ar_is_word);
+  assign rd_kind_o  = ar_is_plane ? fmpp_pkg::RK_PLANE : (ar_is_flags ? fmpp_pkg::RK_FLAGS : fmpp_pkg::RK_WORD);
+  assign rd_block_o = ar_block;
+  assign rd_word_o  = ar_word;
+  assign rd_flag_o  = ar_flag;
+  assign resp_en_o  = arvalid_i && ar_is_reg &&
+                      (ar_reg == fmpp_pkg::REG_RESP[11:0] || ar_reg == fmpp_pkg::REG_STATUS[11:0]);
+
+  always_comb begin
+    r_cause = fmpp_pkg::ERR_NONE;
+    r_data  = '0;
+    if (!ar_aligned) begin
+      r_cause = fmpp_pkg::ERR_ALIGN;
+    end else if (ar_is_reg) begin
+      unique case (ar_reg)
+        fmpp_pkg::REG_ID[11:0]:      r_data = {fmpp_pkg::Magic, fmpp_pkg::VersionMajor, fmpp_pkg::VersionMinor};
+        fmpp_pkg::REG_CONFIG[11:0]:  r_data = {8'(WShift), 8'(fmpp_pkg::LaneW), 8'(fmpp_pkg::QueueDepth),
+                                               8'(NumWords), 32'(NumBlocks)};
+        fmpp_pkg::REG_STATUS[11:0]:  r_data = {61'd0, resp_any_i, ovf_any_i, err_sticky_q};
+        fmpp_pkg::REG_ERROR[11:0]:   r_data = {err_addr_q, err_count_q, 8'd0, err_cause_q, 3'd0, err_sticky_q};
+        fmpp_pkg::REG_CTRL[11:0]:    r_data = {56'd0, gap_q};
+        fmpp_pkg::REG_RESP[11:0]:    r_data = {resp_any_i, resp_first_i, resp_count_i};
+        fmpp_pkg::REG_CYCLES[11:0]:  r_data = cycles_q;
+        fmpp_pkg::REG_INSTRET[11:0]: r_data = instret_i;
+        fmpp_pkg::REG_MASK[11:0]:    r_data = {32'd0, mask_i};
+        fmpp_pkg::REG_QUEUE[11:0]:   r_cause = fmpp_pkg::ERR_WRITEONLY;
+        default:                     r_cause = fmpp_pkg::ERR_UNMAPPED;
+      endcase
+    end else if (ar_is_plane || ar_is_flags || ar_is_word) begin
+      r_data = rd_data_i;
+    end else begin
+      r_cause = fmpp_pkg::ERR_UNMAPPED;
+    end
+  end
+
+  // ------------------------------------------------------------------ handshakes
+  logic bvalid_q, rvalid_q;
+  logic [1:0] bresp_q, rresp_q;
+  logic [63:0] rdata_q;
+  logic w_err, r_err, w_accept, r_accept;
+
+  assign w_err = w_cause != fmpp_pkg::ERR_NONE;
+  assign r_err = r_cause != fmpp_pkg::ERR_NONE;
+  // A legal push needs room in the queue; every other access waits for it to drain.
+  assign w_accept = awvalid_i && wvalid_i && (!bvalid_q || bready_i) &&
+                    ((w_push && !w_err) ? !q_full_i : q_empty_i);
+  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i;
+
+  assign awready_o    = w_accept;
+  assign wready_o     = w_accept;
+  assign arready_o    = r_accept;
+  assign bvalid_o     = bvalid_q;
+  assign bresp_o      = bresp_q;
+  assign rvalid_o     = rvalid_q;
+  assign rresp_o      = rresp_q;
+  assign rdata_o      = rdata_q;
+  assign push_o       = w_accept && w_push;
+  assign push_entry_o = w_entry;
+  assign gap_o        = gap_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      bvalid_q <= 1'b0;
+      bresp_q  <= RespOkay;
+      rvalid_q <= 1'b0;
+      rresp_q  <= RespOkay;
+      rdata_q  <= '0;
+    end else begin
+      if (w_accept) begin
+        bvalid_q <= 1'b1;
+        bresp_q  <= w_err ? RespSlvErr : RespOkay;
+      end else if (bready_i) begin
+        bvalid_q <= 1'b0;
+      end
+      if (r_accept) begin
+        rvalid_q <= 1'b1;
+        rresp_q  <= r_err ? RespSlvErr : RespOkay;
+        rdata_q  <= r_err ? '0 : r_data;
+      end else if (rready_i) begin
+        rvalid_q <= 1'b0;
+      end
+    end
+  end
+
+  // Error register: a clear (write 1 to STICKY) applies first; then the errors of
+  // this clock are recorded, the write's before the read's.
+  logic        err_sticky_d;
+  logic [3:0]  err_cause_d;
+  logic [15:0] err_count_d;
+  logic [31:0] err_addr_d;
+
+  always_comb begin
+    err_sticky_d = err_sticky_q;
+    err_cause_d  = err_cause_q;
+    err_count_d  = err_count_q;
+    err_addr_d   = err_addr_q;
+    if (w_accept && w_err_clear) begin
+      err_sticky_d = 1'b0;
+      err_cause_d  = '0;
+      err_count_d  = '0;
+      err_addr_d   = '0;
+    end
+    if (w_accept && w_err) begin
+      if (!err_sticky_d) begin
+        err_cause_d = w_cause;
+        err_addr_d  = awaddr_i;
+      end
+      err_sticky_d = 1'b1;
+      if (err_count_d != 16'hFFFF) err_count_d = err_count_d + 1'b1;
+    end
+    if (r_accept && r_err) begin
+      if (!err_sticky_d) begin
+        err_cause_d = r_cause;
+        err_addr_d  = araddr_i;
+      end
+      err_sticky_d = 1'b1;
+      if (err_count_d != 16'hFFFF) err_count_d = err_count_d + 1'b1;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      err_sticky_q <= 1'b0;
+      err_cause_q  <= '0;
+      err_count_q  <= '0;
+      err_addr_q   <= '0;
+    end else begin
+      err_sticky_q <= err_sticky_d;
+      err_cause_q  <= err_cause_d;
+      err_count_q  <= err_count_d;
+      err_addr_q   <= err_addr_d;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      gap_q    <= '0;
+      cycles_q <= '0;
+    end else begin
+      cycles_q <= cycles_q + 1'b1;
+      if (w_accept && w_ctrl) gap_q <= wdata_i[7:0];
+    end
+  end
+
+  logic unused_prot;
+  assign unused_prot = ^{awprot_i, arprot_i, aw_flag};
+
+  // Assertions
+`ifndef SYNTHESIS
+  if (NumWords < 2 || NumWords > fmpp_pkg::MaxWords || NumWords % 2 != 0) begin : g_bad_words
+    $error("fmpp_axil_slave: NumWords = %0d must be even and in [2, %0d]", NumWords, fmpp_pkg::MaxWords);
+  end
+  // What the master must do (AXI4 A3.2.1): hold VALID and the payload until READY.
+  a_aw_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (awvalid_i && !awready_o) |=> (awvalid_i && $stable(awaddr_i)))
+    else $error("AXI: AWVALID dropped or AWADDR changed before AWREADY");
+  a_w_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (wvalid_i && !wready_o) |=> (wvalid_i && $stable(wdata_i) && $stable(wstrb_i)))
+    else $error("AXI: WVALID dropped or WDATA/WSTRB changed before WREADY");
+  a_ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (arvalid_i && !arready_o) |=> (arvalid_i && $stable(araddr_i)))
+    else $error("AXI: ARVALID dropped or ARADDR changed before ARREADY");
+  // What this slave guarantees.
+  a_b_hold: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (bvalid_o && !bready_i) |=> (bvalid_o && $stable(bresp_o)))
+    else $error("AXI: BVALID dropped or BRESP changed before BREADY");
+  a_r_hold: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (rvalid_o && !rready_i) |=> (rvalid_o && $stable(rdata_o) && $stable(rresp_o)))
+    else $error("AXI: RVALID dropped or RDATA/RRESP changed before RREADY");
+  a_aw_w_together: assert property (@(posedge clk_i) disable iff (!rst_ni) awready_o == wready_o)
+    else $error("fmpp_axil_slave: AWREADY and WREADY differ");
+  a_read_ordered: assert property (@(posedge clk_i) disable iff (!rst_ni) r_accept |-> q_empty_i)
+    else $error("fmpp_axil_slave: read accepted while pushes are pending");
+  a_push_room: assert property (@(posedge clk_i) disable iff (!rst_ni) push_o |-> !q_full_i)
+    else $error("fmpp_axil_slave: push into a full queue");
+  a_push_legal: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (push_o && w_entry.kind == fmpp_pkg::QE_INSTR) |-> instr_legal)
+    else $error("fmpp_axil_slave: illegal instruction queued");
+`endif
+
+endmodule

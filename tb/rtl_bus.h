@@ -1,0 +1,80 @@
+// The Verilated FMPP behind the Bus interface: a cycle-driving AXI4-Lite master.
+//
+// Each built configuration (rtl/fmpp_map.json "configs") is a separate Verilated
+// model; make_rtl_bus() picks one by name or by size. The master starts every
+// access as soon as the previous one was accepted and holds BREADY/RREADY high,
+// which is the timing fmpp::ModelBus reproduces. In stress mode it instead waits
+// random idle clocks before each access and drops BREADY/RREADY at random, to
+// exercise the protocol; cycle counts then no longer match the model.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fmpp/bus.h"
+#include "fmpp/machine.h"
+#include "fmpp/model_bus.h"
+
+namespace fmpp::tb {
+
+// The RTL's architectural state, in the golden model's layout.
+struct ArchState {
+  Config cfg;
+  std::vector<uint32_t> words;  // [block * words + word]
+  std::vector<uint8_t> flags;   // [block]
+  uint32_t mask = 0;
+  uint64_t instret = 0;
+  uint8_t gap = 0;
+  ErrorState error;
+  unsigned queue_level = 0;
+
+  uint32_t word(unsigned b, unsigned w) const { return words[size_t{b} * cfg.words + w]; }
+  // Same digest as Machine::state_hash().
+  uint64_t hash() const;
+};
+
+// Reads the golden model's state into the same form.
+ArchState model_state(const ModelBus& m);
+
+// Lists up to `max_diffs` differences, one per line ("block 3 word 7: rtl 0x.. model 0x..").
+std::string diff_states(const ArchState& rtl, const ArchState& model, unsigned max_diffs = 16);
+
+struct RtlOptions {
+  std::string trace_file;      // FST file to write, empty for none
+  uint64_t trace_start = 0;    // first cycle to trace
+  uint64_t trace_end = ~0ull;  // last cycle to trace
+  uint64_t timeout = 1000000;  // clocks an access may wait for READY before failing
+  bool stress = false;         // random idle clocks and READY back-pressure
+  uint64_t stress_seed = 1;
+};
+
+class RtlBus : public Bus {
+ public:
+  ~RtlBus() override = default;
+  std::string name() const override { return "rtl"; }
+
+  virtual const Config& config() const = 0;
+  // Extracts the full architectural state from the Verilated model.
+  virtual ArchState state() const = 0;
+  // Called after each clock edge at which the array executed a queue entry.
+  using ExecHook = std::function<void()>;
+  virtual void set_exec_hook(ExecHook h) = 0;
+  // Clocks the model without any bus access (the array keeps draining its queue).
+  virtual void idle(uint64_t clocks) = 0;
+  // Assertion failures and timeouts seen so far (empty = none).
+  virtual std::string failure() const = 0;
+};
+
+// Names of the configurations built into this binary.
+std::vector<std::string> rtl_configs();
+// Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument.
+std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});
+// Builds the smallest built configuration with at least `blocks` blocks and
+// `words` words. Throws std::invalid_argument listing what is built.
+std::unique_ptr<RtlBus> make_rtl_bus(unsigned blocks, unsigned words, const RtlOptions& opt = {});
+
+}  // namespace fmpp::tb

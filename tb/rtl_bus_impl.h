@@ -1,0 +1,300 @@
+// RtlBus for one Verilated configuration (V = the generated class, e.g. Vfmpp_small).
+// Included only by the generated tb factory (rtl_configs.cpp), once per configuration.
+#pragma once
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+#include <verilated_syms.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "tb/rtl_bus.h"
+
+namespace fmpp::tb {
+
+// A public_flat_rd RTL variable located by scope and name; bits read little-endian.
+class VarView {
+ public:
+  VarView() = default;
+  VarView(VerilatedContext* ctx, const std::string& scope, const char* name) {
+    const VerilatedScopeNameMap* scopes = ctx->scopeNameMap();
+    const auto it = scopes->find(scope.c_str());
+    if (it == scopes->end()) throw std::logic_error("fmpp tb: RTL scope not found: " + scope);
+    const VerilatedVar* v = it->second->varFind(name);
+    if (!v) throw std::logic_error("fmpp tb: RTL variable not public: " + scope + "." + name);
+    data_ = static_cast<const uint8_t*>(v->datap());
+    ent_ = v->entSize();
+  }
+  // Bit `bit` of element `elem` (elem = index of the unpacked dimension, 0 if none).
+  unsigned bit(size_t elem, size_t bit) const { return (data_[elem * ent_ + bit / 8] >> (bit % 8)) & 1u; }
+  uint64_t u64(size_t elem = 0) const {
+    uint64_t v = 0;
+    std::memcpy(&v, data_ + elem * ent_, ent_ < 8 ? ent_ : 8);
+    return ent_ < 8 ? v & ((1ull << (8 * ent_)) - 1) : v;
+  }
+  // 64 bits starting at bit `lsb` (a multiple of 64) of element `elem`.
+  uint64_t plane64(size_t elem, size_t lsb) const {
+    uint64_t v = 0;
+    std::memcpy(&v, data_ + elem * ent_ + lsb / 8, 8);
+    return v;
+  }
+
+ private:
+  const uint8_t* data_ = nullptr;
+  uint32_t ent_ = 0;
+};
+
+template <class V>
+class RtlBusImpl final : public RtlBus {
+ public:
+  RtlBusImpl(const Config& cfg, const RtlOptions& opt) : cfg_(cfg), opt_(opt), rng_(opt.stress_seed) {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->fatalOnError(false);  // an assertion failure is reported by failure(), not abort()
+    ctx_->randReset(0);         // memories start at zero, as in the golden model
+    ctx_->traceEverOn(!opt_.trace_file.empty());
+    top_ = std::make_unique<V>(ctx_.get(), "TOP");
+    if (!opt_.trace_file.empty()) {
+      fst_ = std::make_unique<VerilatedFstC>();
+      top_->trace(fst_.get(), 99);
+      fst_->open(opt_.trace_file.c_str());
+    }
+    const std::string arr = "TOP.fmpp_top.u_array";
+    const std::string slv = "TOP.fmpp_top.u_slave";
+    for (unsigned t = 0; t < cfg_.tiles(); ++t) {
+      const std::string tile = arr + ".g_tile[" + std::to_string(t) + "].u_tile";
+      const unsigned lanes = std::min(map::kLaneW, cfg_.blocks - t * map::kLaneW);
+      tiles_.push_back(Tile{VarView(ctx_.get(), tile, "mem_q"), VarView(ctx_.get(), tile, "flag_q"), lanes});
+    }
+    mask_ = VarView(ctx_.get(), arr, "mask_q");
+    instret_ = VarView(ctx_.get(), arr, "instret_q");
+    pop_ = VarView(ctx_.get(), arr, "pop");
+    gap_ = VarView(ctx_.get(), slv, "gap_q");
+    err_sticky_ = VarView(ctx_.get(), slv, "err_sticky_q");
+    err_cause_ = VarView(ctx_.get(), slv, "err_cause_q");
+    err_count_ = VarView(ctx_.get(), slv, "err_count_q");
+    err_addr_ = VarView(ctx_.get(), slv, "err_addr_q");
+    level_ = VarView(ctx_.get(), "TOP.fmpp_top.u_queue", "level_q");
+    reset();
+  }
+
+  ~RtlBusImpl() override {
+    activate();
+    top_->final();
+    if (fst_) fst_->close();
+  }
+
+  const Config& config() const override { return cfg_; }
+  uint64_t cycles() const override { return cycle_; }
+  void set_exec_hook(ExecHook h) override { hook_ = std::move(h); }
+  std::string failure() const override { return failure_; }
+
+  void idle(uint64_t clocks) override {
+    activate();
+    for (uint64_t i = 0; i < clocks; ++i) clock();
+  }
+
+  Resp write(uint32_t addr, uint64_t data, uint8_t strb) override {
+    activate();
+    if (opt_.stress) stress_idle();
+    top_->s_axil_awvalid_i = 1;
+    top_->s_axil_wvalid_i = 1;
+    top_->s_axil_awaddr_i = addr;
+    top_->s_axil_awprot_i = 0;
+    top_->s_axil_wdata_i = data;
+    top_->s_axil_wstrb_i = strb;
+    wait_accept([this] { return top_->s_axil_awready_o != 0; }, "write", addr);
+    top_->s_axil_awvalid_i = 0;
+    top_->s_axil_wvalid_i = 0;
+    if (!top_->s_axil_bvalid_o) fail("BVALID low after an accepted write", addr);
+    const Resp r = static_cast<Resp>(top_->s_axil_bresp_o);
+    if (opt_.stress) stress_hold(bhold_, &top_->s_axil_bready_i, &top_->s_axil_bvalid_o);
+    return r;
+  }
+
+  Resp read(uint32_t addr, uint64_t* data) override {
+    activate();
+    if (opt_.stress) stress_idle();
+    top_->s_axil_arvalid_i = 1;
+    top_->s_axil_araddr_i = addr;
+    top_->s_axil_arprot_i = 0;
+    wait_accept([this] { return top_->s_axil_arready_o != 0; }, "read", addr);
+    top_->s_axil_arvalid_i = 0;
+    if (!top_->s_axil_rvalid_o) fail("RVALID low after an accepted read", addr);
+    *data = top_->s_axil_rdata_o;
+    const Resp r = static_cast<Resp>(top_->s_axil_rresp_o);
+    if (opt_.stress) stress_hold(rhold_, &top_->s_axil_rready_i, &top_->s_axil_rvalid_o);
+    return r;
+  }
+
+  ArchState state() const override {
+    ArchState s;
+    s.cfg = cfg_;
+    s.words.assign(size_t{cfg_.blocks} * cfg_.words, 0);
+    s.flags.assign(cfg_.blocks, 0);
+    for (unsigned t = 0; t < tiles_.size(); ++t) {
+      const Tile& tile = tiles_[t];
+      const unsigned base = t * map::kLaneW;
+      for (unsigned w = 0; w < cfg_.words; ++w) {
+        for (unsigned k = 0; k < 32; ++k) {
+          const uint64_t plane = plane_bits(tile.mem, w, k, tile.lanes);
+          for (uint64_t p = plane; p != 0; p &= p - 1) {
+            const unsigned l = static_cast<unsigned>(__builtin_ctzll(p));
+            s.words[size_t{base + l} * cfg_.words + w] |= 1u << k;
+          }
+        }
+      }
+      for (unsigned f = 0; f < map::kNumFlags; ++f) {
+        const uint64_t plane = plane_bits(tile.flags, 0, f, tile.lanes);
+        for (uint64_t p = plane; p != 0; p &= p - 1) {
+          s.flags[base + static_cast<unsigned>(__builtin_ctzll(p))] |= static_cast<uint8_t>(1u << f);
+        }
+      }
+    }
+    s.mask = static_cast<uint32_t>(mask_.u64());
+    s.instret = instret_.u64();
+    s.gap = static_cast<uint8_t>(gap_.u64());
+    s.error.sticky = err_sticky_.u64() != 0;
+    s.error.cause = static_cast<map::Err>(err_cause_.u64());
+    s.error.count = static_cast<uint16_t>(err_count_.u64());
+    s.error.addr = static_cast<uint32_t>(err_addr_.u64());
+    s.queue_level = static_cast<unsigned>(level_.u64());
+    return s;
+  }
+
+ private:
+  struct Tile {
+    VarView mem;
+    VarView flags;
+    unsigned lanes;
+  };
+
+  // Plane k (lanes bits) of element `elem` of a tile variable.
+  static uint64_t plane_bits(const VarView& v, size_t elem, unsigned k, unsigned lanes) {
+    if (lanes == 64) return v.plane64(elem, size_t{k} * 64);
+    uint64_t p = 0;
+    for (unsigned l = 0; l < lanes; ++l) p |= uint64_t{v.bit(elem, size_t{k} * lanes + l)} << l;
+    return p;
+  }
+
+  // Parts of the Verilator runtime ($error, scope teardown) use the thread's current
+  // context rather than the model's; point it at ours whenever several models coexist.
+  void activate() { Verilated::threadContextp(ctx_.get()); }
+
+  void reset() {
+    activate();
+    top_->clk_i = 0;
+    top_->rst_ni = 0;
+    top_->s_axil_bready_i = 1;
+    top_->s_axil_rready_i = 1;
+    top_->eval();
+    for (int i = 0; i < 2; ++i) {
+      top_->clk_i = 1;
+      top_->eval();
+      top_->clk_i = 0;
+      top_->eval();
+    }
+    top_->rst_ni = 1;
+    top_->eval();
+    cycle_ = 0;
+  }
+
+  // One clock: settle the inputs with the clock low, then the rising edge.
+  void clock() {
+    settle();
+    rise();
+  }
+
+  void settle() {
+    if (opt_.stress) release_ready();
+    top_->clk_i = 0;
+    top_->eval();
+    dump(cycle_ * 10);
+  }
+
+  void rise() {
+    const bool popping = pop_.u64() != 0;
+    top_->clk_i = 1;
+    top_->eval();
+    dump(cycle_ * 10 + 5);
+    ++cycle_;
+    if (ctx_->gotError() && failure_.empty()) {
+      failure_ = "RTL assertion failed at cycle " + std::to_string(cycle_);
+      if (fst_) fst_->flush();
+    }
+    if (popping && hook_) hook_();
+  }
+
+  void dump(uint64_t t) {
+    if (fst_ && cycle_ >= opt_.trace_start && cycle_ <= opt_.trace_end) fst_->dump(t);
+  }
+
+  template <class Ready>
+  void wait_accept(Ready ready, const char* what, uint32_t addr) {
+    for (uint64_t waited = 0;; ++waited) {
+      settle();
+      const bool accepted = ready();
+      rise();
+      if (accepted) return;
+      if (waited >= opt_.timeout) {
+        fail(std::string(what) + " not accepted within " + std::to_string(opt_.timeout) + " clocks", addr);
+        throw std::runtime_error(failure_);
+      }
+    }
+  }
+
+  // Stress mode: sometimes idle before an access ...
+  void stress_idle() {
+    if (std::uniform_int_distribution<unsigned>(0, 3)(rng_) == 3) {
+      idle(std::uniform_int_distribution<unsigned>(1, 4)(rng_));
+    }
+  }
+
+  // ... and sometimes hold BREADY/RREADY low for a few clocks after a response
+  // appears, possibly into the next access, which must then wait for it.
+  struct Hold {
+    uint8_t* ready = nullptr;
+    const uint8_t* valid = nullptr;
+    unsigned clocks = 0;
+  };
+
+  void stress_hold(Hold& h, uint8_t* ready, const uint8_t* valid) {
+    if (std::uniform_int_distribution<unsigned>(0, 1)(rng_) == 0) return;
+    *ready = 0;
+    h = Hold{ready, valid, std::uniform_int_distribution<unsigned>(1, 4)(rng_)};
+  }
+
+  void release_ready() {
+    for (Hold* h : {&bhold_, &rhold_}) {
+      if (!h->ready) continue;
+      if (!*h->valid) fail("response VALID dropped while READY was low", 0);
+      if (--h->clocks == 0) {
+        *h->ready = 1;
+        h->ready = nullptr;
+      }
+    }
+  }
+
+  void fail(const std::string& msg, uint32_t addr) {
+    if (failure_.empty()) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "0x%08x", addr);
+      failure_ = msg + " (address " + buf + ", cycle " + std::to_string(cycle_) + ")";
+    }
+  }
+
+  Config cfg_;
+  RtlOptions opt_;
+  std::mt19937_64 rng_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> top_;
+  std::unique_ptr<VerilatedFstC> fst_;
+  std::vector<Tile> tiles_;
+  VarView mask_, instret_, pop_, gap_, err_sticky_, err_cause_, err_count_, err_addr_, level_;
+  ExecHook hook_;
+  Hold bhold_, rhold_;  // READY inputs held low (stress mode)
+  uint64_t cycle_ = 0;
+  std::string failure_;
+};
+
+}  // namespace fmpp::tb

@@ -1,0 +1,107 @@
+// Instruction encoding, legality and disassembly.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fmpp/isa.h"
+
+namespace fmpp {
+namespace {
+
+using namespace ins;
+
+TEST(Isa, EncodeDecodeRoundTrip) {
+  const Instr cases[] = {nop(),
+                         maskset(0xDEADBEEF),
+                         ref(RefFn::kAnd, RefPart::kData, 5, 0x80000000u, 3, 2),
+                         ref(RefFn::kOr, RefPart::kAddr, 0, 17, 0, 1),
+                         func(FuncFn::kXor, 1, 2, 3, 4),
+                         add(31, 30, 29, 7),
+                         sub(0, 1, 2),
+                         bitcopy(3, 31, 4, 0, 1),
+                         lshift(6, 6),
+                         rshift(7, 2, 5),
+                         writes(9, 0x12345678, 2),
+                         sets(),
+                         resets(),
+                         setsadr(4095),
+                         flagop(1, 2, 3, lut::kXor, true)};
+  for (const Instr& i : cases) {
+    EXPECT_EQ(Instr::decode(i.encode()), i) << disasm(i.encode());
+    EXPECT_TRUE(is_legal(i.encode(), 32)) << disasm(i.encode());
+  }
+}
+
+TEST(Isa, FieldPositionsMatchTheMap) {
+  // ADD w3 = w1 + w2 predicated on f5: op 4 at [63:59], f at [58:56], d [55:50], a [49:44], b [43:38].
+  const uint64_t raw = add(3, 1, 2, 5).encode();
+  EXPECT_EQ(raw, (uint64_t{4} << 59) | (uint64_t{5} << 56) | (uint64_t{3} << 50) | (uint64_t{1} << 44) |
+                     (uint64_t{2} << 38));
+  EXPECT_EQ(maskset(0xFFFFFFFF).encode(), (uint64_t{1} << 59) | 0xFFFFFFFFull);
+}
+
+TEST(Isa, EncodeRejectsOversizedFields) {
+  Instr i = add(0, 0, 0);
+  i.f = 8;
+  EXPECT_THROW(i.encode(), std::invalid_argument);
+  i = add(64, 0, 0);
+  EXPECT_THROW(i.encode(), std::invalid_argument);
+}
+
+TEST(Isa, LegalityRules) {
+  EXPECT_FALSE(is_legal(uint64_t{14} << 59, 32)) << "unknown opcode";
+  EXPECT_FALSE(is_legal(uint64_t{31} << 59, 32)) << "unknown opcode";
+  EXPECT_FALSE(is_legal(nop().encode() | 1, 32)) << "NOP with an immediate";
+  EXPECT_FALSE(is_legal(sets().encode() | (uint64_t{1} << 56), 32)) << "SETS with a flag";
+  EXPECT_FALSE(is_legal(add(8, 0, 0).encode(), 8)) << "destination past NumWords";
+  EXPECT_TRUE(is_legal(add(7, 0, 0).encode(), 8));
+  EXPECT_FALSE(is_legal(add(0, 8, 0).encode(), 8));
+  EXPECT_FALSE(is_legal(add(0, 0, 8).encode(), 8));
+  EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | 1, 8)) << "ADD with an immediate";
+  EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | (uint64_t{1} << 32), 8)) << "ADD with X set";
+  EXPECT_FALSE(is_legal(lshift(0, 0).encode() | (uint64_t{1} << 38), 8)) << "LSHIFT with B set";
+  EXPECT_TRUE(is_legal(writes(7, ~0u).encode(), 8));
+  EXPECT_FALSE(is_legal(writes(8, 0).encode(), 8));
+  // REF: function code 3 is undefined; the address part names no word.
+  Instr r = ref(RefFn::kThrough, RefPart::kData, 0, 0, 0);
+  r.x = 3;
+  EXPECT_FALSE(is_legal(r.encode(), 8));
+  r = ref(RefFn::kThrough, RefPart::kAddr, 0, 0, 0);
+  EXPECT_TRUE(is_legal(r.encode(), 8));
+  r.a = 1;
+  EXPECT_FALSE(is_legal(r.encode(), 8));
+  EXPECT_FALSE(is_legal(ref(RefFn::kThrough, RefPart::kData, 9, 0, 0).encode(), 8));
+  // FUNC function code 3 and stray X bits.
+  Instr f = func(FuncFn::kAnd, 0, 0, 0);
+  f.x = 3;
+  EXPECT_FALSE(is_legal(f.encode(), 8));
+  f.x = 4;
+  EXPECT_FALSE(is_legal(f.encode(), 8));
+  // BITCOPY and FLAGOP reserved immediate bits.
+  EXPECT_FALSE(is_legal(bitcopy(0, 0, 0, 0).encode() | 0x20, 8));
+  EXPECT_FALSE(is_legal(bitcopy(0, 0, 0, 0).encode() | 0x2000, 8));
+  EXPECT_TRUE(is_legal(bitcopy(0, 31, 0, 31).encode(), 8));
+  EXPECT_FALSE(is_legal(flagop(0, 0, 0, 0).encode() | 0x10, 8));
+  EXPECT_FALSE(is_legal(flagop(0, 0, 0, 0).encode() | 0x200, 8));
+  EXPECT_TRUE(is_legal(flagop(7, 7, 7, 0xF, true).encode(), 8));
+}
+
+TEST(Isa, RandomWordsAreRarelyLegalAndNeverCrashTheDisassembler) {
+  std::mt19937_64 rng(7);
+  unsigned legal = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const uint64_t raw = rng();
+    if (is_legal(raw, 32)) ++legal;
+    EXPECT_FALSE(disasm(raw).empty());
+  }
+  EXPECT_LT(legal, 200u);
+}
+
+TEST(Isa, Disassembly) {
+  EXPECT_EQ(disasm(add(3, 1, 2).encode()), "ADD w3 = w1 + w2 ?f0");
+  EXPECT_EQ(disasm(ref(RefFn::kAnd, RefPart::kAddr, 0, 5, 1, 2).encode()), "REF.and f1 = f2, addr ~ 0x00000005");
+  EXPECT_EQ(disasm(uint64_t{20} << 59), "ILLEGAL(op=20 raw=0xa000000000000000)");
+}
+
+}  // namespace
+}  // namespace fmpp

@@ -1,0 +1,101 @@
+// The lockstep checker itself: it must catch every kind of disagreement, and a
+// random program (also under random bus stalls) must run clean.
+#include <gtest/gtest.h>
+
+#include "tb/lockstep.h"
+#include "tb/progen.h"
+#include "tb/rtl_bus.h"
+
+namespace fmpp::tb {
+namespace {
+
+using namespace ins;
+
+struct Rig {
+  explicit Rig(const std::string& name, LockstepOptions lo = {}, RtlOptions ro = {})
+      : cfg(named_config(name)), rtl(make_rtl_bus(name, ro)), model(cfg), lock(*rtl, model, lo) {}
+  Config cfg;
+  std::unique_ptr<RtlBus> rtl;
+  ModelBus model;
+  Lockstep lock;
+};
+
+TEST(Lockstep, CatchesAStateDifferenceAtTheEntryThatExposesIt) {
+  // Without clock comparison, so that the state check (not the clock check) fires.
+  LockstepOptions lo;
+  lo.compare_cycles = false;
+  Rig r("small", lo);
+  r.lock.write(map::kRegQueue, sets().encode());
+  // Corrupt the RTL behind the checker's back: block 5 word 2 differs from now on.
+  const uint32_t a = map::kWinWordsBase + (5u << r.cfg.word_shift()) + (2u << 3);
+  ASSERT_EQ(r.rtl->write(a, 42, 0x0F), Resp::kOkay);
+  try {
+    r.lock.write(map::kRegQueue, add(3, 2, 2).encode());
+    r.lock.write(map::kRegQueue, nop().encode());
+    r.lock.final_check();
+    FAIL() << "no mismatch reported";
+  } catch (const LockstepMismatch& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("block 5 word 2: rtl 0x0000002a model 0x00000000"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("LOCKSTEP MISMATCH after queue entry #"), std::string::npos) << msg;
+  }
+}
+
+TEST(Lockstep, CatchesReadDataAndClockDifferences) {
+  {
+    Rig r("tiny", LockstepOptions{LockstepOptions::Mode::kOff});
+    ASSERT_EQ(r.rtl->write(map::kWinFlagsBase, 3, 0x01), Resp::kOkay);
+    uint64_t v;
+    EXPECT_THROW(r.lock.read(map::kWinFlagsBase, &v), LockstepMismatch);
+  }
+  {
+    Rig r("tiny", LockstepOptions{LockstepOptions::Mode::kOff});
+    r.rtl->idle(1);
+    EXPECT_THROW(r.lock.write(map::kRegQueue, nop().encode()), LockstepMismatch);
+  }
+  {
+    Rig r("tiny", LockstepOptions{LockstepOptions::Mode::kFast, 1});
+    ASSERT_EQ(r.rtl->write(map::kRegQueue, sets().encode()), Resp::kOkay);
+    ASSERT_EQ(r.model.write(map::kRegQueue, sets().encode()), Resp::kOkay);
+    ASSERT_EQ(r.rtl->write(map::kWinWordsBase, 7, 0x0F), Resp::kOkay);  // RTL only
+    ASSERT_EQ(r.model.write(map::kRegQueue, nop().encode()), Resp::kOkay);
+    EXPECT_THROW(r.lock.write(map::kRegQueue, nop().encode()), LockstepMismatch);
+  }
+}
+
+TEST(Lockstep, RandomProgramRunsCleanInEveryMode) {
+  for (auto mode : {LockstepOptions::Mode::kCheck, LockstepOptions::Mode::kFast}) {
+    Rig r("odd", LockstepOptions{mode, 64});
+    ProgramGenerator gen(r.cfg, 11);
+    for (int k = 0; k < 3000; ++k) gen.step(r.lock);
+    r.lock.final_check();
+    EXPECT_GT(r.lock.state_checks(), 10u);
+    EXPECT_EQ(r.rtl->failure(), "");
+  }
+}
+
+TEST(Lockstep, RandomProgramUnderBusStalls) {
+  RtlOptions ro;
+  ro.stress = true;
+  ro.stress_seed = 3;
+  LockstepOptions lo;
+  lo.compare_cycles = false;
+  Rig r("small", lo, ro);
+  ProgramGenerator gen(r.cfg, 5);
+  for (int k = 0; k < 3000; ++k) gen.step(r.lock);
+  r.lock.final_check();
+  EXPECT_GT(r.rtl->cycles(), r.model.cycles()) << "the stalls cost clocks";
+  EXPECT_EQ(r.rtl->failure(), "");
+}
+
+TEST(Lockstep, ConfigurationsMustMatch) {
+  auto rtl = make_rtl_bus("tiny");
+  ModelBus model(Config{2, 8});
+  EXPECT_THROW(Lockstep(*rtl, model, {}), std::invalid_argument);
+  EXPECT_THROW(make_rtl_bus("nonexistent"), std::invalid_argument);
+  EXPECT_THROW(make_rtl_bus(100000u, 8u), std::invalid_argument);
+  EXPECT_EQ(make_rtl_bus(65u, 10u)->config().blocks, 100u);
+}
+
+}  // namespace
+}  // namespace fmpp::tb

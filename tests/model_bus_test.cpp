@@ -1,0 +1,163 @@
+// Golden model behind the bus: address map, access rules, errors and clock timing.
+#include <gtest/gtest.h>
+
+#include "fmpp/model_bus.h"
+
+namespace fmpp {
+namespace {
+
+using namespace ins;
+using map::Err;
+
+uint32_t word_addr(const Config& c, unsigned block, unsigned word) {
+  return map::kWinWordsBase + (block << c.word_shift()) + (word << 3);
+}
+
+uint64_t rd(Bus& bus, uint32_t addr) {
+  uint64_t v = 0;
+  EXPECT_EQ(bus.read(addr, &v), Resp::kOkay) << std::hex << addr;
+  return v;
+}
+
+TEST(ModelBus, IdentificationAndConfig) {
+  ModelBus bus(Config{100, 16});
+  EXPECT_EQ(rd(bus, map::kRegId), 0x464D505000010000ull);
+  const uint64_t cfg = rd(bus, map::kRegConfig);
+  EXPECT_EQ(cfg & 0xFFFFFFFF, 100u);
+  EXPECT_EQ((cfg >> 32) & 0xFF, 16u);
+  EXPECT_EQ((cfg >> 40) & 0xFF, map::kQueueDepth);
+  EXPECT_EQ((cfg >> 48) & 0xFF, 64u);
+  EXPECT_EQ((cfg >> 56) & 0xFF, 7u);  // 16 words: 128-byte stride
+}
+
+TEST(ModelBus, DecodeAddress) {
+  const Config c{100, 6};
+  EXPECT_EQ(decode_address(c, word_addr(c, 99, 5)).region, Decoded::Region::kWord);
+  EXPECT_EQ(decode_address(c, word_addr(c, 99, 6)).region, Decoded::Region::kNone) << "word 6 of 6";
+  EXPECT_EQ(decode_address(c, word_addr(c, 100, 0)).region, Decoded::Region::kNone);
+  EXPECT_EQ(decode_address(c, map::kWinFlagsBase + 8 * 99).region, Decoded::Region::kFlags);
+  EXPECT_EQ(decode_address(c, map::kWinFlagsBase + 8 * 100).region, Decoded::Region::kNone);
+  const Decoded p = decode_address(c, map::kWinPlanesBase + (7u << 13) + 8);
+  EXPECT_EQ(p.region, Decoded::Region::kPlane);
+  EXPECT_EQ(p.flag, 7u);
+  EXPECT_EQ(p.block, 1u);
+  EXPECT_EQ(decode_address(c, map::kWinPlanesBase + 16).region, Decoded::Region::kNone) << "tile 2 of 2";
+  EXPECT_FALSE(decode_address(c, 0x44).aligned);
+  EXPECT_EQ(decode_address(c, 0x0FF8).region, Decoded::Region::kReg);
+  EXPECT_EQ(decode_address(c, 0x1000).region, Decoded::Region::kNone);
+}
+
+TEST(ModelBus, WordAndFlagWindowsRoundTrip) {
+  const Config c{100, 16};
+  ModelBus bus(c);
+  EXPECT_EQ(bus.write(word_addr(c, 99, 15), 0xCAFEF00D, 0x0F), Resp::kOkay);
+  EXPECT_EQ(bus.write(word_addr(c, 0, 0), 0x12345678, 0x0F), Resp::kOkay);
+  EXPECT_EQ(bus.write(word_addr(c, 0, 0), 0xAABBCCDD, 0x06), Resp::kOkay);
+  EXPECT_EQ(bus.write(map::kWinFlagsBase + 8 * 64, 0x81, 0x01), Resp::kOkay);
+  EXPECT_EQ(rd(bus, word_addr(c, 99, 15)), 0xCAFEF00Dull);
+  EXPECT_EQ(rd(bus, word_addr(c, 0, 0)), 0x12BBCC78ull);
+  EXPECT_EQ(rd(bus, map::kWinFlagsBase + 8 * 64), 0x81ull);
+  EXPECT_EQ(rd(bus, map::kWinPlanesBase + 8), 1ull) << "SEL plane of tile 1";
+  EXPECT_EQ(rd(bus, map::kWinPlanesBase + (7u << 13) + 8), 1ull) << "V plane of tile 1";
+  EXPECT_EQ(rd(bus, map::kRegStatus), 0b110ull) << "ANY and OVF";
+  const uint64_t resp = rd(bus, map::kRegResp);
+  EXPECT_EQ(resp, (1ull << 63) | (64ull << 32) | 1);
+}
+
+struct BadAccess {
+  const char* what;
+  bool write;
+  uint32_t addr;
+  uint64_t data;
+  uint8_t strb;
+  Err cause;
+};
+
+TEST(ModelBus, BadAccessesAnswerSlverrAndAreRecorded) {
+  const Config c{100, 6};
+  const BadAccess cases[] = {
+      {"unknown opcode", true, map::kRegQueue, uint64_t{15} << 59, 0xFF, Err::kIllegal},
+      {"word operand out of range", true, map::kRegQueue, add(6, 0, 0).encode(), 0xFF, Err::kIllegal},
+      {"partial queue strobe", true, map::kRegQueue, 0, 0x0F, Err::kStrobe},
+      {"write ID", true, map::kRegId, 0, 0xFF, Err::kReadonly},
+      {"write RESP", true, map::kRegResp, 0, 0xFF, Err::kReadonly},
+      {"read QUEUE", false, map::kRegQueue, 0, 0, Err::kWriteonly},
+      {"unmapped register", false, 0x0800, 0, 0, Err::kUnmapped},
+      {"unmapped high", true, 0x20000000, 0, 0xFF, Err::kUnmapped},
+      {"misaligned", false, map::kRegId + 4, 0, 0, Err::kAlign},
+      {"block past end", true, word_addr(c, 100, 0), 0, 0x0F, Err::kUnmapped},
+      {"word past end", false, word_addr(c, 3, 7), 0, 0, Err::kUnmapped},
+      {"upper word strobe", true, word_addr(c, 3, 1), 0, 0xF0, Err::kStrobe},
+      {"empty strobe", true, word_addr(c, 3, 1), 0, 0x00, Err::kStrobe},
+      {"flags strobe", true, map::kWinFlagsBase, 0, 0x03, Err::kStrobe},
+      {"plane write", true, map::kWinPlanesBase, 0, 0xFF, Err::kReadonly},
+      {"ctrl strobe", true, map::kRegCtrl, 0, 0x01, Err::kStrobe},
+  };
+  for (const BadAccess& b : cases) {
+    ModelBus bus(c);
+    uint64_t v = 0xDEAD;
+    const Resp r = b.write ? bus.write(b.addr, b.data, b.strb) : bus.read(b.addr, &v);
+    EXPECT_EQ(r, Resp::kSlvErr) << b.what;
+    if (!b.write) {
+      EXPECT_EQ(v, 0u) << b.what;
+    }
+    const uint64_t e = rd(bus, map::kRegError);
+    EXPECT_EQ(e & 1, 1u) << b.what;
+    EXPECT_EQ((e >> 4) & 0xF, static_cast<unsigned>(b.cause)) << b.what;
+    EXPECT_EQ((e >> 16) & 0xFFFF, 1u) << b.what;
+    EXPECT_EQ(e >> 32, b.addr) << b.what;
+    EXPECT_EQ(bus.machine().instret(), 0u) << b.what << ": nothing executed";
+  }
+}
+
+TEST(ModelBus, ErrorKeepsTheFirstCauseCountsAndClears) {
+  ModelBus bus(Config{4, 8});
+  uint64_t v;
+  bus.read(map::kRegQueue, &v);
+  bus.write(map::kRegId, 0);
+  bus.write(map::kRegId, 0);
+  uint64_t e = rd(bus, map::kRegError);
+  EXPECT_EQ((e >> 4) & 0xF, static_cast<unsigned>(Err::kWriteonly));
+  EXPECT_EQ((e >> 16) & 0xFFFF, 3u);
+  EXPECT_EQ(rd(bus, map::kRegStatus) & 1, 1u);
+  EXPECT_EQ(bus.write(map::kRegError, 0), Resp::kOkay);  // writing 0 clears nothing
+  EXPECT_EQ(rd(bus, map::kRegError), e);
+  EXPECT_EQ(bus.write(map::kRegError, 1), Resp::kOkay);
+  EXPECT_EQ(rd(bus, map::kRegError), 0u);
+  // Saturating count.
+  for (int k = 0; k < 70000; ++k) bus.write(map::kRegMask, 0);
+  e = rd(bus, map::kRegError);
+  EXPECT_EQ((e >> 16) & 0xFFFF, 0xFFFFu);
+}
+
+TEST(ModelBus, PushesTakeOneClockAndReadsDrain) {
+  ModelBus bus(Config{4, 8});
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);
+  EXPECT_EQ(bus.cycles(), 10u);
+  EXPECT_EQ(bus.machine().instret(), 9u) << "the last push is still queued";
+  // The read waits one clock for the queue to drain, then is accepted.
+  EXPECT_EQ(rd(bus, map::kRegCycles), 11u);
+  EXPECT_EQ(bus.cycles(), 12u);
+  EXPECT_EQ(rd(bus, map::kRegInstret), 10u);
+}
+
+TEST(ModelBus, GapFillsTheQueueAndBackPressures) {
+  ModelBus bus(Config{4, 8});
+  EXPECT_EQ(bus.write(map::kRegCtrl, 3), Resp::kOkay);  // cycle 1
+  EXPECT_EQ(bus.cycles(), 1u);
+  // Each entry now occupies the array for 4 clocks (pops at clocks 2, 6, 10, ... after
+  // the CTRL write) while pushes arrive every clock: the queue holds t - floor((t + 2) / 4)
+  // entries after clock t and is full after 21 pushes. Pushes 22..40 each wait for a pop:
+  // push 21 + j lands the clock after pop j, at clock 23 + 4 (j - 1); push 40 at clock 95.
+  for (int k = 0; k < 40; ++k) bus.write(map::kRegQueue, nop().encode());
+  EXPECT_EQ(bus.cycles(), 1u + 95u);
+  EXPECT_EQ(bus.queue_level(), map::kQueueDepth) << "full when the last push lands";
+  EXPECT_EQ(bus.machine().instret(), 40u - map::kQueueDepth);
+  const uint64_t before = bus.cycles();
+  EXPECT_EQ(rd(bus, map::kRegInstret), 40u);
+  // Drain: 2 clocks left of the current gap, 16 pops 4 clocks apart, then the read.
+  EXPECT_EQ(bus.cycles() - before, 2u + 1u + 4u * 15 + 1u);
+}
+
+}  // namespace
+}  // namespace fmpp
