@@ -8,6 +8,8 @@
 // crosses lanes: blocks are independent, as in the paper's BPBP organisation.
 //
 // Purely combinational; the tile applies the predicate and writes the result.
+// Plain `case` (distinct constant items, with default) for the reason given in
+// fmpp_tile.sv: every tile must compile to the same C++ body.
 module fmpp_alu #(
   parameter int unsigned Lanes = 64
 ) (
@@ -37,9 +39,9 @@ module fmpp_alu #(
     c = '0;
     x = '0;
     y = '0;
-    unique case (op_i)
+    case (op_i)
       fmpp_pkg::OP_FUNC: begin
-        unique case (fn_i)
+        case (fn_i)
           fmpp_pkg::FUNC_FN_AND: r_o = a_i & b_i;
           fmpp_pkg::FUNC_FN_OR:  r_o = a_i | b_i;
           default:               r_o = a_i ^ b_i;  // XOR; code 3 never reaches here (ILLEGAL at push)
@@ -61,8 +63,13 @@ module fmpp_alu #(
         wr_v_o  = 1'b1;
       end
       fmpp_pkg::OP_BITCOPY: begin
-        r_o = d_i;
-        r_o[bit_j_i*Lanes +: Lanes] = a_i[bit_i_i*Lanes +: Lanes];
+        // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder).
+        for (int k = 0; k < W; k++) begin
+          if (bit_i_i == 5'(k)) x = a_i[k*Lanes +: Lanes];
+        end
+        for (int k = 0; k < W; k++) begin
+          r_o[k*Lanes +: Lanes] = (bit_j_i == 5'(k)) ? x : d_i[k*Lanes +: Lanes];
+        end
       end
       fmpp_pkg::OP_LSHIFT: begin
         r_o     = {a_i[(W-1)*Lanes-1:0], {Lanes{1'b0}}};

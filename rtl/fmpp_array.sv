@@ -54,7 +54,7 @@ module fmpp_array #(
   assign is_instr = head_i.kind == fmpp_pkg::QE_INSTR;
   assign instr    = head_i.data;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       gap_q     <= '0;
       mask_q    <= '0;
@@ -82,7 +82,6 @@ module fmpp_array #(
   logic [2:0]  f;
   logic [5:0]  d, a, b, x;
   logic [31:0] imm;
-  logic [15:0] hw_tile;
 
   assign op  = is_instr ? instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] : fmpp_pkg::OP_NOP;
   assign f   = instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W];
@@ -91,7 +90,6 @@ module fmpp_array #(
   assign b   = instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
   assign x   = instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W];
   assign imm = instr[fmpp_pkg::F_IMM_LSB +: fmpp_pkg::F_IMM_W];
-  assign hw_tile = {6'd0, head_i.block[15:6]};
 
   // Tiles
   logic        t_flagop_any [NumTiles];
@@ -118,15 +116,14 @@ module fmpp_array #(
       .x_i          (x),
       .imm_i        (imm),
       .mask_i       (mask_q),
-      .hw_sel_i     (hw_tile == 16'(t)),
-      .hw_lane_i    (head_i.block[5:0]),
+      .hw_block_i   (head_i.block),
       .hw_strb_i    (head_i.strb),
       .hw_data_i    (head_i.data[31:0]),
       .flagop_any_i (flagop_any),
       .flagop_any_o (t_flagop_any[t]),
-      .rd_sel_i     (rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i : {6'd0, rd_block_i[15:6]}) == 16'(t)),
+      .rd_en_i      (rd_en_i),
       .rd_kind_i    (rd_kind_i),
-      .rd_lane_i    (rd_block_i[5:0]),
+      .rd_block_i   (rd_block_i),
       .rd_word_i    (rd_word_i),
       .rd_flag_i    (rd_flag_i),
       .rd_data_o    (t_rd_data[t]),
@@ -186,6 +183,9 @@ module fmpp_array #(
   a_hw_word: assert property (@(posedge clk_i) disable iff (!rst_ni)
                               (pop && head_i.kind == fmpp_pkg::QE_WORD) |-> 32'(head_i.word) < NumWords)
     else $error("fmpp_array: window write to word %0d of %0d", head_i.word, NumWords);
+  a_hw_lane: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                              (pop && !is_instr) |-> 32'(head_i.block) < NumBlocks)
+    else $error("fmpp_array: window write to block %0d past the last tile's lanes", head_i.block);
   a_kind: assert property (@(posedge clk_i) disable iff (!rst_ni)
                            pop |-> head_i.kind != 2'd3)
     else $error("fmpp_array: queue entry of unknown kind");

@@ -240,7 +240,7 @@ module fmpp_axil_slave #(
   assign push_entry_o = w_entry;
   assign gap_o        = gap_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       bvalid_q <= 1'b0;
       bresp_q  <= RespOkay;
@@ -300,7 +300,7 @@ module fmpp_axil_slave #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       err_sticky_q <= 1'b0;
       err_cause_q  <= '0;
@@ -314,7 +314,7 @@ module fmpp_axil_slave #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       gap_q    <= '0;
       cycles_q <= '0;

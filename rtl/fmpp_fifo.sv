@@ -26,7 +26,7 @@ module fmpp_fifo #(
     next_ptr = (p == PtrW'(Depth - 1)) ? '0 : p + 1'b1;
   endfunction
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       rptr_q  <= '0;
       wptr_q  <= '0;

@@ -10,8 +10,13 @@
 //   - host writes of one word or one block's flags (queued window writes).
 // It also answers the host read port and reports its share of the responders.
 //
-// The tile is deliberately not inlined by Verilator: all full tiles share one
-// C++ body, which keeps a 4096-block build to seconds.
+// The tile is deliberately not inlined by Verilator so that all full tiles share one
+// C++ body: a 4096-block build takes seconds and the simulation stays in the
+// instruction cache. For that the tile's code must not differ between instances:
+// it selects itself by comparing block numbers with base_i (no per-instance port
+// expressions), uses no functions (Verilator numbers their temporaries per call
+// site) and plain `case` (with --assert, `case` checks embed the instance
+// name); every case statement here has distinct constant items and a default.
 module fmpp_tile #(
   parameter int unsigned Lanes    = 64,
   parameter int unsigned NumWords = 32
@@ -21,7 +26,9 @@ module fmpp_tile #(
   /* verilator lint_off SYNCASYNCNET */
   input  logic                         rst_ni,
   /* verilator lint_on SYNCASYNCNET */
-  input  logic [31:0]                  base_i,      // index of lane 0 (a multiple of LaneW)
+  // Index of lane 0 (a multiple of LaneW). Public so that Verilator keeps it a
+  // variable instead of folding each tile's constant into its own copy of the code.
+  input  logic [31:0]                  base_i /*verilator public_flat_rd*/,
 
   // Execute bus: the queue entry popped this cycle (state changes at the clock edge)
   input  logic                         exec_i,      // an entry executes this cycle
@@ -34,17 +41,16 @@ module fmpp_tile #(
   input  logic [5:0]                   x_i,
   input  logic [31:0]                  imm_i,
   input  logic [31:0]                  mask_i,
-  input  logic                         hw_sel_i,    // window write targets this tile
-  input  logic [5:0]                   hw_lane_i,
+  input  logic [15:0]                  hw_block_i,  // block of a window write
   input  logic [3:0]                   hw_strb_i,
   input  logic [31:0]                  hw_data_i,
   input  logic                         flagop_any_i, // FLAGOP: some block in the array has v = 1
   output logic                         flagop_any_o, // FLAGOP: some block in this tile has v = 1
 
-  // Host read port (combinational, only evaluated when rd_sel_i)
-  input  logic                         rd_sel_i,
-  input  fmpp_pkg::qkind_e             rd_kind_i,   // QE_WORD: a word; QE_FLAGS: a block's flags; QE_INSTR: a flag plane
-  input  logic [5:0]                   rd_lane_i,
+  // Host read port (combinational, evaluated only for the addressed tile)
+  input  logic                         rd_en_i,     // a window read is being requested
+  input  fmpp_pkg::rkind_e             rd_kind_i,
+  input  logic [15:0]                  rd_block_i,  // block (WORD, FLAGS) or tile (PLANE)
   input  logic [5:0]                   rd_word_i,
   input  logic [2:0]                   rd_flag_i,
   output logic [63:0]                  rd_data_o,
@@ -80,7 +86,6 @@ module fmpp_tile #(
   logic  alu_wr_c, alu_wr_v;
   word_t wr_data;
   logic  wr_en;
-  logic [5:0] wr_word;
 
   assign opa = mem_q[a_i[WIdxW-1:0]];
   assign opb = mem_q[b_i[WIdxW-1:0]];
@@ -105,49 +110,83 @@ module fmpp_tile #(
     .wr_v_o  (alu_wr_v)
   );
 
-  // Bit k of every lane's block index: low bits from the lane number, high bits from base_i.
-  function automatic lane_t index_plane(input logic [31:0] base, input int k);
-    lane_t p;
-    p = '0;
-    for (int l = 0; l < Lanes; l++) begin
-      p[l] = (k < 6) ? ((l >> k) & 1) == 1 : base[k];
+  // Selections every instruction needs, computed once per clock. (Written as loops
+  // rather than functions: Verilator names function temporaries per call site, which
+  // would stop it from sharing one C++ body among the tiles.)
+  lane_t pred;         // flag F: the predicate
+  lane_t flag_a;       // flag X[5:3]: REF Fs, FLAGOP Fa
+  lane_t flag_b;       // flag X[2:0]: FLAGOP Fb
+  lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
+  lane_t rd_lane_sel;  // one-hot lane of a window read
+  lane_t rd_plane;     // flag rd_flag_i of every lane
+  logic  hw_sel;       // the window write is for this tile
+  logic  rd_sel;       // the window read is for this tile
+  logic [5:0] hw_lane, rd_lane;
+  assign hw_sel  = hw_block_i[15:6] == base_i[15:6];
+  assign hw_lane = hw_block_i[5:0];
+  assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
+                                                              : rd_block_i[15:6] == base_i[15:6]);
+  assign rd_lane = rd_block_i[5:0];
+  always_comb begin
+    pred = '0;
+    flag_a = '0;
+    flag_b = '0;
+    rd_plane = '0;
+    for (int k = 0; k < NF; k++) begin
+      if (f_i == 3'(k))       pred     = flag_q[k*Lanes +: Lanes];
+      if (x_i[5:3] == 3'(k))  flag_a   = flag_q[k*Lanes +: Lanes];
+      if (x_i[2:0] == 3'(k))  flag_b   = flag_q[k*Lanes +: Lanes];
+      if (rd_flag_i == 3'(k)) rd_plane = flag_q[k*Lanes +: Lanes];
     end
-    index_plane = p;
-  endfunction
+    for (int l = 0; l < Lanes; l++) begin
+      hw_lane_sel[l] = hw_lane == 6'(l);
+      rd_lane_sel[l] = rd_lane == 6'(l);
+    end
+  end
+
+  // Bit k of every lane's block index (the ROM address part): low bits from the lane
+  // number, high bits from base_i. Constant for a given tile.
+  word_t index;
+  always_comb begin
+    for (int k = 0; k < W; k++) begin
+      for (int l = 0; l < Lanes; l++) begin
+        index[k*Lanes + l] = (k < 6) ? ((l >> k) & 1) == 1 : base_i[k];
+      end
+    end
+  end
 
   // FLAGOP value: lut[{fa, fb}] in every lane.
   lane_t flagop_v;
   always_comb begin
-    lane_t fa, fb;
-    fa = flag_q[x_i[5:3]*Lanes +: Lanes];
-    fb = flag_q[x_i[2:0]*Lanes +: Lanes];
     flagop_v = '0;
     if (exec_i && kind_i == fmpp_pkg::QE_INSTR && op_i == fmpp_pkg::OP_FLAGOP) begin
-      flagop_v = ({Lanes{imm_i[0]}} & ~fa & ~fb) | ({Lanes{imm_i[1]}} & ~fa & fb) |
-                 ({Lanes{imm_i[2]}} &  fa & ~fb) | ({Lanes{imm_i[3]}} &  fa & fb);
+      flagop_v = ({Lanes{imm_i[0]}} & ~flag_a & ~flag_b) | ({Lanes{imm_i[1]}} & ~flag_a & flag_b) |
+                 ({Lanes{imm_i[2]}} &  flag_a & ~flag_b) | ({Lanes{imm_i[3]}} &  flag_a & flag_b);
     end
   end
   assign flagop_any_o = |flagop_v;
 
-  // Next state.
+  // Next state. At most one flag plane (fl_dst) and one word (D) change per clock,
+  // besides the C and V updates of the ALU.
   always_comb begin
-    lane_t pred, match, old, src;
+    lane_t match, src, fl_new;
     logic [31:0] key_mask;
-    logic addr_part;
+    logic addr_part, fl_we;
+    logic [2:0] fl_dst;
     flag_d   = flag_q;
     wr_en    = 1'b0;
-    wr_word  = d_i;
     wr_data  = opd;
-    pred     = flag_q[f_i*Lanes +: Lanes];
     match    = '0;
-    old      = '0;
     src      = '0;
+    fl_new   = '0;
+    fl_we    = 1'b0;
+    fl_dst   = f_i;
     key_mask = mask_i;
     addr_part = 1'b0;
     if (exec_i) begin
-      unique case (kind_i)
+      case (kind_i)
         fmpp_pkg::QE_INSTR: begin
-          unique case (op_i)
+          case (op_i)
             fmpp_pkg::OP_REF, fmpp_pkg::OP_SETSADR: begin
               // Masked match: every unmasked bit of the source equals the key bit.
               addr_part = (op_i == fmpp_pkg::OP_SETSADR) || x_i[2] == fmpp_pkg::REF_PART_ADDR;
@@ -155,25 +194,30 @@ module fmpp_tile #(
               match = '1;
               for (int k = 0; k < W; k++) begin
                 if (!key_mask[k]) begin
-                  src = addr_part ? index_plane(base_i, k) : opa[k*Lanes +: Lanes];
+                  src = addr_part ? index[k*Lanes +: Lanes] : opa[k*Lanes +: Lanes];
                   match = match & ~(src ^ {Lanes{imm_i[k]}});
                 end
               end
+              fl_we = 1'b1;
               if (op_i == fmpp_pkg::OP_SETSADR) begin
-                flag_d[fmpp_pkg::FlagSEL*Lanes +: Lanes] = match;
+                fl_dst = 3'(fmpp_pkg::FlagSEL);
+                fl_new = match;
               end else begin
-                old = flag_q[x_i[5:3]*Lanes +: Lanes];
-                unique case (x_i[1:0])
-                  fmpp_pkg::REF_FN_AND: flag_d[f_i*Lanes +: Lanes] = old & match;
-                  fmpp_pkg::REF_FN_OR:  flag_d[f_i*Lanes +: Lanes] = old | match;
-                  default:              flag_d[f_i*Lanes +: Lanes] = match;  // THROUGH
+                case (x_i[1:0])
+                  fmpp_pkg::REF_FN_AND: fl_new = flag_a & match;
+                  fmpp_pkg::REF_FN_OR:  fl_new = flag_a | match;
+                  default:              fl_new = match;  // THROUGH
                 endcase
               end
             end
-            fmpp_pkg::OP_SETS:   flag_d[fmpp_pkg::FlagSEL*Lanes +: Lanes] = '1;
-            fmpp_pkg::OP_RESETS: flag_d[fmpp_pkg::FlagSEL*Lanes +: Lanes] = '0;
+            fmpp_pkg::OP_SETS, fmpp_pkg::OP_RESETS: begin
+              fl_we  = 1'b1;
+              fl_dst = 3'(fmpp_pkg::FlagSEL);
+              fl_new = (op_i == fmpp_pkg::OP_SETS) ? '1 : '0;
+            end
             fmpp_pkg::OP_FLAGOP: begin
-              if (!imm_i[8] || flagop_any_i) flag_d[f_i*Lanes +: Lanes] = flagop_v;
+              fl_we  = !imm_i[8] || flagop_any_i;
+              fl_new = flagop_v;
             end
             fmpp_pkg::OP_WRITES: begin
               // Masked parallel write: masked bits and unselected blocks keep their value.
@@ -197,25 +241,34 @@ module fmpp_tile #(
           endcase
         end
         fmpp_pkg::QE_WORD: begin
-          if (hw_sel_i) begin
-            wr_en   = 1'b1;
-            wr_word = d_i;
+          // One word of one block: the lane's word line, byte enables from the strobes.
+          if (hw_sel) begin
+            wr_en = 1'b1;
             for (int k = 0; k < W; k++) begin
-              if (hw_strb_i[k / 8]) wr_data[k*Lanes + {26'd0, hw_lane_i}] = hw_data_i[k];
+              if (hw_strb_i[k / 8]) begin
+                wr_data[k*Lanes +: Lanes] = (opd[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);
+              end
             end
           end
         end
         fmpp_pkg::QE_FLAGS: begin
-          if (hw_sel_i) begin
-            for (int f = 0; f < NF; f++) flag_d[f*Lanes + {26'd0, hw_lane_i}] = hw_data_i[f];
+          if (hw_sel) begin
+            for (int f = 0; f < NF; f++) begin
+              flag_d[f*Lanes +: Lanes] = (flag_q[f*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[f]}} & hw_lane_sel);
+            end
           end
         end
         default: ;
       endcase
     end
+    if (fl_we) begin
+      for (int f = 0; f < NF; f++) begin
+        if (fl_dst == 3'(f)) flag_d[f*Lanes +: Lanes] = fl_new;
+      end
+    end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
+  always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       flag_q <= '0;
     end else begin
@@ -224,24 +277,25 @@ module fmpp_tile #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (wr_en) mem_q[wr_word[WIdxW-1:0]] <= wr_data;
+    if (wr_en) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
 
-  // Host read port.
+  // Host read port: the addressed lane's word (or flags) gathered through a one-hot
+  // lane select, or a whole flag plane.
   always_comb begin
     word_t w;
     rd_data_o = '0;
     w = '0;
-    if (rd_sel_i) begin
-      unique case (rd_kind_i)
-        fmpp_pkg::QE_WORD: begin
+    if (rd_sel) begin
+      case (rd_kind_i)
+        fmpp_pkg::RK_WORD: begin
           w = mem_q[rd_word_i[WIdxW-1:0]];
-          for (int k = 0; k < W; k++) rd_data_o[k] = w[k*Lanes + {26'd0, rd_lane_i}];
+          for (int k = 0; k < W; k++) rd_data_o[k] = |(w[k*Lanes +: Lanes] & rd_lane_sel);
         end
-        fmpp_pkg::QE_FLAGS: begin
-          for (int f = 0; f < NF; f++) rd_data_o[f] = flag_q[f*Lanes + {26'd0, rd_lane_i}];
+        fmpp_pkg::RK_FLAGS: begin
+          for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
         end
-        default: rd_data_o[Lanes-1:0] = flag_q[rd_flag_i*Lanes +: Lanes];  // a flag plane
+        default: rd_data_o[Lanes-1:0] = rd_plane;  // RK_PLANE
       endcase
     end
   end
@@ -260,25 +314,17 @@ module fmpp_tile #(
       sel_any_o   = |sel;
       sel_count_o = $countones(sel);
       lowest      = sel & (~sel + 1'b1);
-      for (int k = 0; k < 6; k++) sel_first_o[k] = |(lowest & index_plane('0, k));
+      for (int k = 0; k < 6; k++) sel_first_o[k] = |(lowest & index[k*Lanes +: Lanes]);
       ovf_any_o   = |flag_q[FV*Lanes +: Lanes];
     end
   end
 
-  // Assertions
+  // Elaboration check. (Run-time properties of the tile's inputs are asserted in
+  // fmpp_array: assertions here would carry each tile's name into its code.)
 `ifndef SYNTHESIS
-  initial begin
-    assert (Lanes >= 1 && Lanes <= fmpp_pkg::LaneW)
-      else $fatal(1, "fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
+  if (Lanes < 1 || Lanes > fmpp_pkg::LaneW) begin : g_bad_lanes
+    $error("fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
   end
-  a_base_aligned: assert property (@(posedge clk_i) base_i[5:0] == 6'd0)
-    else $error("fmpp_tile: base_i = %0d is not a multiple of 64", base_i);
-  a_hw_lane: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                              (exec_i && hw_sel_i && kind_i != fmpp_pkg::QE_INSTR) |-> 32'(hw_lane_i) < Lanes)
-    else $error("fmpp_tile: window write to lane %0d of a %0d-lane tile", hw_lane_i, Lanes);
-  a_words: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                            (exec_i && wr_en) |-> 32'(wr_word) < NumWords)
-    else $error("fmpp_tile: write to word %0d of %0d", wr_word, NumWords);
 `endif
 
 endmodule

@@ -133,6 +133,23 @@ FMPP_KERNEL void k_ref_data(const uint32_t* a, uint8_t* fl, size_t n, uint32_t k
   }
 }
 
+// FLAGOP: fd <- lut[2 fa + fb] as a sum of products (byte-wide, vectorizable).
+// With if_any, nothing changes unless the result is 1 somewhere.
+FMPP_KERNEL void k_flagop(uint8_t* fl, size_t n, unsigned fa, unsigned fb, unsigned fd, unsigned lut, bool if_any) {
+  const uint8_t l0 = (lut & 1) ? 1 : 0, l1 = (lut & 2) ? 1 : 0, l2 = (lut & 4) ? 1 : 0, l3 = (lut & 8) ? 1 : 0;
+  auto value = [&](uint8_t f) -> uint8_t {
+    const uint8_t a = (f >> fa) & 1, b = (f >> fb) & 1, na = a ^ 1, nb = b ^ 1;
+    return static_cast<uint8_t>((l0 & na & nb) | (l1 & na & b) | (l2 & a & nb) | (l3 & a & b));
+  };
+  if (if_any) {
+    uint8_t any = 0;
+    for (size_t i = 0; i < n; ++i) any |= value(fl[i]);
+    if (!any) return;
+  }
+  const uint8_t clear = static_cast<uint8_t>(~(1u << fd));
+  for (size_t i = 0; i < n; ++i) fl[i] = static_cast<uint8_t>((fl[i] & clear) | (value(fl[i]) << fd));
+}
+
 }  // namespace
 
 void Machine::execute(uint64_t raw) {
@@ -190,23 +207,9 @@ void Machine::execute(uint64_t raw) {
         fl[i] = static_cast<uint8_t>((fl[i] & ~(1u << map::kFlagSEL)) | (v << map::kFlagSEL));
       }
       break;
-    case Op::kFlagop: {
-      const unsigned fa = in.x >> 3, fb = in.x & 7, fd = in.f, lut = in.imm & 0xF;
-      const bool if_any = (in.imm >> 8) & 1;
-      bool any = false;
-      if (if_any) {
-        for (size_t i = 0; i < n; ++i) {
-          any |= (lut >> ((((fl[i] >> fa) & 1u) << 1) | ((fl[i] >> fb) & 1u))) & 1u;
-        }
-        if (!any) break;
-      }
-      for (size_t i = 0; i < n; ++i) {
-        const uint8_t f = fl[i];
-        const uint32_t v = (lut >> ((((f >> fa) & 1u) << 1) | ((f >> fb) & 1u))) & 1u;
-        fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
-      }
+    case Op::kFlagop:
+      k_flagop(fl, n, in.x >> 3, in.x & 7, in.f, in.imm & 0xF, (in.imm >> 8) & 1);
       break;
-    }
     default:
       throw std::logic_error("fmpp::Machine::execute: illegal instruction " + disasm(raw));
   }

@@ -1,0 +1,119 @@
+// Benchmarks of the FMPP core (figures go to docs/perf.md, never asserted):
+//   - golden model: block-instructions per second, per instruction kind and size;
+//   - Verilated RTL: clock cycles and block-cycles per second at 1024 and 4096 blocks;
+//   - lockstep: the cost of checking and fast mode over an unchecked RTL run.
+//
+//   build/fmpp_core_bench --benchmark_filter=Model
+//   build/fmpp_core_bench --benchmark_filter='Rtl|Lockstep'
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "fmpp/machine.h"
+#include "fmpp/model_bus.h"
+#include "tb/lockstep.h"
+#include "tb/progen.h"
+#include "tb/rtl_bus.h"
+
+namespace {
+
+using namespace fmpp;
+using namespace fmpp::ins;
+
+// A mix of the instructions the intersection kernels use most.
+std::vector<uint64_t> kernel_mix(unsigned words, size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<unsigned> w(0, words - 1);
+  std::vector<uint64_t> prog;
+  for (size_t i = 0; i < n; ++i) {
+    switch (rng() % 6) {
+      case 0: prog.push_back(add(w(rng), w(rng), w(rng), 1).encode()); break;
+      case 1: prog.push_back(sub(w(rng), w(rng), w(rng)).encode()); break;
+      case 2: prog.push_back(rshift(w(rng), w(rng)).encode()); break;
+      case 3: prog.push_back(ref(RefFn::kAnd, RefPart::kData, w(rng), 1u << (rng() % 32), 1, 0).encode()); break;
+      case 4: prog.push_back(maskset(~(1u << (rng() % 32))).encode()); break;
+      default: prog.push_back(flagop(2, 1, 0, lut::kAnd).encode()); break;
+    }
+  }
+  return prog;
+}
+
+void BM_ModelInstr(benchmark::State& state, Instr instr) {
+  Machine m(Config{static_cast<unsigned>(state.range(0)), 32});
+  m.execute(sets().encode());
+  const uint64_t raw = instr.encode();
+  for (auto _ : state) m.execute(raw);
+  state.counters["block_instr_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * state.range(0), benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(BM_ModelInstr, add, add(3, 1, 2))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, sub, sub(3, 1, 2, 5))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, rshift, rshift(3, 3))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, func, func(FuncFn::kXor, 3, 1, 2))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, ref, ref(RefFn::kAnd, RefPart::kData, 4, 1, 1, 0))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, writes, writes(5, 0x1234))->Arg(4096)->Arg(65536);
+BENCHMARK_CAPTURE(BM_ModelInstr, flagop, flagop(2, 1, 0, lut::kAnd))->Arg(4096)->Arg(65536);
+
+// The kernel mix through the model's bus (queue timing and decode included).
+void BM_ModelBusMix(benchmark::State& state) {
+  const unsigned blocks = static_cast<unsigned>(state.range(0));
+  ModelBus bus(Config{blocks, 32});
+  const auto prog = kernel_mix(32, 4096, 1);
+  size_t i = 0;
+  for (auto _ : state) {
+    bus.write(map::kRegQueue, prog[i]);
+    i = (i + 1) & 4095;
+  }
+  state.counters["block_instr_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * blocks, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ModelBusMix)->Arg(1024)->Arg(4096)->Arg(65536);
+
+// The Verilated RTL running the kernel mix, one push per clock.
+void BM_RtlMix(benchmark::State& state, const char* config) {
+  auto rtl = tb::make_rtl_bus(config);
+  const Config cfg = rtl->config();
+  const auto prog = kernel_mix(cfg.words, 4096, 1);
+  size_t i = 0;
+  const uint64_t c0 = rtl->cycles();
+  for (auto _ : state) {
+    rtl->write(map::kRegQueue, prog[i]);
+    i = (i + 1) & 4095;
+  }
+  const double cycles = static_cast<double>(rtl->cycles() - c0);
+  state.counters["cycles_per_s"] = benchmark::Counter(cycles, benchmark::Counter::kIsRate);
+  state.counters["block_cycles_per_s"] = benchmark::Counter(cycles * cfg.blocks, benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(BM_RtlMix, medium, "medium")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_RtlMix, large, "large")->Unit(benchmark::kMicrosecond);
+
+// Random regression programs: unchecked RTL, then lockstep in each mode.
+void BM_Regression(benchmark::State& state, const char* config, int mode) {
+  auto rtl = tb::make_rtl_bus(config);
+  const Config cfg = rtl->config();
+  ModelBus model(cfg);
+  std::unique_ptr<tb::Lockstep> lock;
+  if (mode >= 0) {
+    tb::LockstepOptions lo;
+    lo.mode = static_cast<tb::LockstepOptions::Mode>(mode);
+    lo.hash_interval = 4096;
+    lock = std::make_unique<tb::Lockstep>(*rtl, model, lo);
+  }
+  Bus& bus = lock ? static_cast<Bus&>(*lock) : static_cast<Bus&>(*rtl);
+  tb::ProgramGenerator gen(cfg, 1);
+  for (auto _ : state) gen.step(bus);
+  state.counters["accesses_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK_CAPTURE(BM_Regression, small_unchecked, "small", -1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, small_check, "small", 0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, small_fast, "small", 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, small_off, "small", 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, medium_unchecked, "medium", -1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, medium_check, "medium", 0)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, medium_fast, "medium", 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Regression, medium_off, "medium", 2)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
