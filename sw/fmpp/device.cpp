@@ -1,0 +1,96 @@
+// Host-side FMPP access over a Bus (see device.h).
+#include "sw/fmpp/device.h"
+
+#include <cstdio>
+
+namespace fmpp {
+
+Device::Device(Bus& bus) : bus_(bus) {
+  const uint64_t id = read_reg(map::kRegId);
+  if ((id >> 32) != map::kMagic) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "fmpp::Device: bus '%s' has no FMPP (ID = 0x%016llx)", bus.name().c_str(),
+                  static_cast<unsigned long long>(id));
+    throw DeviceError(buf);
+  }
+  const uint64_t c = read_reg(map::kRegConfig);
+  cfg_.blocks = static_cast<unsigned>(c & 0xFFFFFFFF);
+  cfg_.words = static_cast<unsigned>((c >> 32) & 0xFF);
+  cfg_.validate();
+}
+
+void Device::fail(const char* what, uint32_t addr) {
+  uint64_t err = 0;
+  bus_.read(map::kRegError, &err);
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "FMPP bus error: %s at 0x%08x answered SLVERR (ERROR = 0x%016llx: cause %u)", what,
+                addr, static_cast<unsigned long long>(err), static_cast<unsigned>((err >> 4) & 0xF));
+  throw DeviceError(buf);
+}
+
+uint64_t Device::read_reg(uint32_t addr) {
+  uint64_t v = 0;
+  if (bus_.read(addr, &v) != Resp::kOkay) fail("register read", addr);
+  return v;
+}
+
+void Device::push(uint64_t raw) {
+  if (bus_.write(map::kRegQueue, raw) != Resp::kOkay) {
+    const std::string what = "push of " + disasm(raw);
+    fail(what.c_str(), map::kRegQueue);
+  }
+}
+
+void Device::push(const std::vector<uint64_t>& prog) {
+  for (uint64_t raw : prog) push(raw);
+}
+
+uint32_t Device::word_addr(unsigned block, unsigned word) const {
+  return map::kWinWordsBase + (block << cfg_.word_shift()) + (word << 3);
+}
+
+void Device::write_word(unsigned block, unsigned word, uint32_t value) {
+  const uint32_t a = word_addr(block, word);
+  if (bus_.write(a, value, 0x0F) != Resp::kOkay) fail("word write", a);
+}
+
+uint32_t Device::read_word(unsigned block, unsigned word) { return static_cast<uint32_t>(read_reg(word_addr(block, word))); }
+
+void Device::write_flags(unsigned block, uint8_t flags) {
+  const uint32_t a = map::kWinFlagsBase + 8 * block;
+  if (bus_.write(a, flags, 0x01) != Resp::kOkay) fail("flags write", a);
+}
+
+uint8_t Device::read_flags(unsigned block) { return static_cast<uint8_t>(read_reg(map::kWinFlagsBase + 8 * block)); }
+
+uint64_t Device::read_plane(unsigned flag, unsigned tile) {
+  return read_reg(map::kWinPlanesBase + (flag << map::kWinPlanesFlagShift) + 8 * tile);
+}
+
+std::vector<bool> Device::read_flag_all(unsigned flag) {
+  std::vector<bool> out(cfg_.blocks);
+  for (unsigned t = 0; t < cfg_.tiles(); ++t) {
+    const uint64_t p = read_plane(flag, t);
+    for (unsigned l = 0; l < map::kLaneW && t * map::kLaneW + l < cfg_.blocks; ++l) out[t * map::kLaneW + l] = (p >> l) & 1;
+  }
+  return out;
+}
+
+Responders Device::responders() {
+  const uint64_t r = read_reg(map::kRegResp);
+  Responders out;
+  out.any = (r >> 63) & 1;
+  out.count = static_cast<uint32_t>(r & 0xFFFFFFFF);
+  out.first = static_cast<uint32_t>((r >> 32) & 0x7FFFFFFF);
+  return out;
+}
+
+bool Device::overflow() { return (read_reg(map::kRegStatus) >> map::kStatusOvfLsb) & 1; }
+
+uint64_t Device::instret() { return read_reg(map::kRegInstret); }
+
+void Device::set_gap(uint8_t gap) {
+  if (bus_.write(map::kRegCtrl, gap) != Resp::kOkay) fail("CTRL write", map::kRegCtrl);
+}
+
+}  // namespace fmpp

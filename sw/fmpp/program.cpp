@@ -1,0 +1,181 @@
+// FMPP programs and microcode (see program.h for the conventions).
+#include "sw/fmpp/program.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace fmpp {
+
+using namespace ins;
+
+Program& Program::operator<<(const Instr& i) {
+  if (i.op == Op::kMaskset) mask_ = i.imm;
+  code_.push_back(i.encode());
+  return *this;
+}
+
+void Program::mask(uint32_t m) {
+  if (mask_ && *mask_ == m) return;
+  *this << maskset(m);
+}
+
+void Program::clear() {
+  code_.clear();
+  mask_.reset();
+}
+
+void Program::append(const Program& p) {
+  code_.insert(code_.end(), p.code_.begin(), p.code_.end());
+  mask_ = p.mask_;
+}
+
+std::vector<int8_t> csd(int64_t x) {
+  std::vector<int8_t> d;
+  while (x != 0) {
+    if (x & 1) {
+      const int8_t digit = ((x & 3) == 1) ? 1 : -1;  // x = 1 or 3 (mod 4)
+      d.push_back(digit);
+      x -= digit;
+    } else {
+      d.push_back(0);
+    }
+    x /= 2;  // exact: x is even here
+  }
+  return d;
+}
+
+unsigned csd_weight(int64_t x) {
+  unsigned w = 0;
+  for (int8_t v : csd(x)) w += v != 0;
+  return w;
+}
+
+void transfer(Program& p, unsigned block, unsigned w, uint32_t v) {
+  p << setsadr(block);
+  p.mask(0);
+  p << writes(w, v);
+}
+
+namespace {
+
+void check_n(unsigned n, const char* who) {
+  if (n < 2 || n > 32) throw std::invalid_argument(std::string(who) + ": multiplier bits n = " + std::to_string(n) + " outside [2, 32]");
+}
+
+// Digits of a constant at positions 0..n-1, checked to fit.
+std::vector<int8_t> digits_of(int64_t c, unsigned n, const char* who) {
+  const int64_t lo = -(int64_t{1} << (n - 1)), hi = (int64_t{1} << (n - 1)) - 1;
+  if (c < lo || c > hi) {
+    throw std::invalid_argument(std::string(who) + ": constant " + std::to_string(c) + " is not an " +
+                                std::to_string(n) + "-bit two's complement value");
+  }
+  std::vector<int8_t> d = csd(c);
+  if (d.size() > n) throw std::logic_error(std::string(who) + ": CSD of " + std::to_string(c) + " longer than n");
+  d.resize(n, 0);
+  return d;
+}
+
+}  // namespace
+
+void mul(Program& p, unsigned r, unsigned x, unsigned y, unsigned n, unsigned active, unsigned tmp) {
+  check_n(n, "fmpp::mul");
+  if (r == x || r == y) throw std::invalid_argument("fmpp::mul: the result word must differ from the operands");
+  p << func(FuncFn::kXor, r, r, r, active);  // R <- 0
+  for (unsigned k = 0; k < n; ++k) {
+    p.mask(~(1u << k));
+    p << ref(RefFn::kAnd, RefPart::kData, x, 1u << k, tmp, active);  // tmp <- active and bit k of X
+    p << (k == n - 1 ? sub(r, r, y, tmp) : add(r, r, y, tmp));       // the sign bit weighs -2^(n-1)
+    p << rshift(r, r, active);
+  }
+}
+
+void mul_const(Program& p, unsigned r, int64_t c, unsigned y, unsigned n, unsigned active) {
+  Row row;
+  row.r = r;
+  row.terms.push_back(Term{y, c, 0});
+  dot_rows_const(p, {row}, n, active);
+}
+
+void nonneg(Program& p, unsigned dst, unsigned src, unsigned w) {
+  p.mask(0x7FFFFFFFu);  // compare the sign bit only
+  p << ref(RefFn::kAnd, RefPart::kData, w, 0, dst, src);
+}
+
+void max_search(Program& p, unsigned cand, unsigned tmp, unsigned w, unsigned bits) {
+  if (bits < 1 || bits > 32) throw std::invalid_argument("fmpp::max_search: bits = " + std::to_string(bits));
+  // From the most significant bit down: candidates with a 1 there beat those with a 0,
+  // if any candidate has a 1.
+  for (int k = static_cast<int>(bits) - 1; k >= 0; --k) {
+    p.mask(~(1u << k));
+    p << ref(RefFn::kAnd, RefPart::kData, w, 1u << k, tmp, cand);
+    p << flagop(cand, tmp, tmp, lut::kA, true);
+  }
+}
+
+void dot_rows(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active, unsigned tmp) {
+  check_n(n, "fmpp::dot_rows");
+  for (const Row& row : rows) {
+    for (const Term& t : row.terms) {
+      if (row.r == t.x || row.r == t.y) throw std::invalid_argument("fmpp::dot_rows: result word is an operand");
+    }
+    p << func(FuncFn::kXor, row.r, row.r, row.r, active);
+  }
+  for (unsigned k = 0; k < n; ++k) {
+    p.mask(~(1u << k));
+    for (const Row& row : rows) {
+      for (const Term& t : row.terms) {
+        p << ref(RefFn::kAnd, RefPart::kData, t.x, 1u << k, tmp, active);
+        p << (k == n - 1 ? sub(row.r, row.r, t.y, tmp) : add(row.r, row.r, t.y, tmp));
+      }
+    }
+    for (const Row& row : rows) p << rshift(row.r, row.r, active);
+  }
+}
+
+void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active) {
+  check_n(n, "fmpp::dot_rows_const");
+  for (const Row& row : rows) {
+    std::vector<std::vector<int8_t>> d;
+    unsigned kmin = n;
+    for (const Term& t : row.terms) {
+      if (row.r == t.y) throw std::invalid_argument("fmpp::dot_rows_const: result word is an operand");
+      d.push_back(digits_of(t.c, n, "fmpp::dot_rows_const"));
+      for (unsigned k = 0; k < n; ++k) {
+        if (d.back()[k] != 0) kmin = std::min(kmin, k);
+      }
+    }
+    if (kmin == n) {  // all constants zero
+      p << func(FuncFn::kXor, row.r, row.r, row.r, active);
+      continue;
+    }
+    bool zero = true;  // R not yet written: the first +1 digit copies instead of adding
+    for (unsigned k = kmin; k < n; ++k) {
+      for (size_t j = 0; j < row.terms.size(); ++j) {
+        const int8_t digit = d[j][k];
+        if (digit == 0) continue;
+        const unsigned y = row.terms[j].y;
+        if (zero && digit > 0) {
+          p << func(FuncFn::kOr, row.r, y, y, active);
+        } else {
+          if (zero) p << func(FuncFn::kXor, row.r, row.r, row.r, active);
+          p << (digit > 0 ? add(row.r, row.r, y, active) : sub(row.r, row.r, y, active));
+        }
+        zero = false;
+      }
+      p << rshift(row.r, row.r, active);
+    }
+  }
+}
+
+int64_t dot_reference(const std::vector<int64_t>& c, const std::vector<int64_t>& y, unsigned n) {
+  __int128 s = 0;
+  for (size_t j = 0; j < c.size(); ++j) s += static_cast<__int128>(c[j]) * y[j];
+  // floor division by 2^n
+  const __int128 d = static_cast<__int128>(1) << n;
+  __int128 q = s / d;
+  if (s % d != 0 && s < 0) --q;
+  return static_cast<int64_t>(q);
+}
+
+}  // namespace fmpp

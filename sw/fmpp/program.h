@@ -1,0 +1,98 @@
+// Instruction sequences for the FMPP and the basic operations of the paper's
+// Table 1 (data transfer, multiply, sign test, maximum search), as microcode.
+//
+// Conventions shared by all microcode here:
+//  - word arguments are word addresses inside the block, flag arguments flag indices;
+//  - `active` is the flag of the blocks that take part (usually SEL); blocks without
+//    it are never written, so their V flag cannot pick up spurious overflows;
+//  - products are fixed-point: mul(x, y) = floor(x * y / 2^n) for an n-bit two's
+//    complement multiplier x and a multiplicand |y| < 2^30. The partial sum is shifted
+//    right after each multiplier digit (LSB first), so nothing leaves 32 bits; and the
+//    result is the same floor whatever digits represent x (binary bits or canonical
+//    signed digits), because nested floor divisions by 2 compose. That is what makes
+//    the constant-specialised multiply bit-identical to the generic one.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "fmpp/isa.h"
+
+namespace fmpp {
+
+// A straight-line FMPP program. Tracks the mask register so MASKSET is emitted only
+// when the mask changes.
+class Program {
+ public:
+  Program& operator<<(const Instr& i);
+  // Sets the mask, unless it is known to hold `m` already.
+  void mask(uint32_t m);
+  // The mask is no longer known (after code emitted elsewhere ran on the device).
+  void forget_mask() { mask_.reset(); }
+  const std::vector<uint64_t>& code() const { return code_; }
+  size_t size() const { return code_.size(); }
+  void clear();
+  void append(const Program& p);
+
+ private:
+  std::vector<uint64_t> code_;
+  std::optional<uint32_t> mask_;
+};
+
+// Canonical signed digits of x: digits[k] in {-1, 0, 1}, x = sum digits[k] 2^k, no two
+// adjacent non-zero digits (the fewest non-zero digits of any signed-digit form).
+std::vector<int8_t> csd(int64_t x);
+// Non-zero digits of the CSD form.
+unsigned csd_weight(int64_t x);
+
+// ---- Table 1 -----------------------------------------------------------------------
+
+// Data transfer in instructions: word `w` of block `b` <- v (SETSADR, MASKSET, WRITES;
+// leaves SEL = block b only). The host can also write the word through the WORDS
+// window in one bus cycle.
+void transfer(Program& p, unsigned block, unsigned w, uint32_t v);
+
+// R <- floor(X * Y / 2^n) where X holds an n-bit two's complement multiplier.
+// 4n + 1 instructions. Uses flag `tmp`. R must differ from X and Y.
+void mul(Program& p, unsigned r, unsigned x, unsigned y, unsigned n, unsigned active, unsigned tmp);
+
+// R <- floor(c * Y / 2^n) for a constant c, |c| < 2^(n-1) or c = -2^(n-1): one ADD or SUB
+// per non-zero CSD digit and one RSHIFT per digit position from the lowest non-zero one.
+void mul_const(Program& p, unsigned r, int64_t c, unsigned y, unsigned n, unsigned active);
+
+// F_dst <- F_src and (W >= 0): a sign test (MASKSET, REF).
+void nonneg(Program& p, unsigned dst, unsigned src, unsigned w);
+
+// Among the blocks with flag `cand`, keep only those whose word W, read as an unsigned
+// `bits`-bit number (bits above are zero), is largest: 3 * bits + 1 instructions with
+// no host round trip (FLAGOP.any keeps a candidate set only if it is not empty).
+// Afterwards RESP.FIRST is the lowest-index maximum. Uses flag `tmp`.
+void max_search(Program& p, unsigned cand, unsigned tmp, unsigned w, unsigned bits);
+
+// ---- Fused dot products ------------------------------------------------------------
+
+// One term of a dot product: multiplicand word `y` times either a constant `c`
+// (constant mode) or the multiplier word `x` (generic mode).
+struct Term {
+  unsigned y = 0;
+  int64_t c = 0;
+  unsigned x = 0;
+};
+struct Row {
+  unsigned r = 0;  // result word
+  std::vector<Term> terms;
+};
+
+// Generic: for each row, R <- floor(sum X * Y / 2^n), all rows sharing one MASKSET per
+// bit: (1 + 2 * terms) per bit plus one RSHIFT per row per bit.
+void dot_rows(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active, unsigned tmp);
+
+// Constant multipliers: same results, one ADD/SUB per non-zero CSD digit and one RSHIFT
+// per row per digit position from the row's lowest non-zero digit.
+void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active);
+
+// Reference arithmetic for the above: floor(sum c_j * y_j / 2^n) in exact integers.
+int64_t dot_reference(const std::vector<int64_t>& c, const std::vector<int64_t>& y, unsigned n);
+
+}  // namespace fmpp
