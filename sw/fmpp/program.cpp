@@ -113,6 +113,23 @@ void max_search(Program& p, unsigned cand, unsigned tmp, unsigned w, unsigned bi
   }
 }
 
+void select_below(Program& p, uint32_t count, uint32_t num_blocks) {
+  if (count >= num_blocks) {
+    p << sets();
+    return;
+  }
+  p << resets();
+  // index < count  <=>  for some bit k set in count: index agrees with count above k
+  // and has 0 at k (lower bits free).
+  for (int k = 31; k >= 0; --k) {
+    if (!((count >> k) & 1)) continue;
+    const uint32_t low = (k == 0) ? 0 : ((1u << k) - 1);
+    const uint32_t key = count & ~low & ~(1u << k);
+    p.mask(low);
+    p << ref(RefFn::kOr, RefPart::kAddr, 0, key, map::kFlagSEL, map::kFlagSEL);
+  }
+}
+
 void dot_rows(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active, unsigned tmp) {
   check_n(n, "fmpp::dot_rows");
   for (const Row& row : rows) {

@@ -30,6 +30,8 @@ class Program {
   void mask(uint32_t m);
   // The mask is no longer known (after code emitted elsewhere ran on the device).
   void forget_mask() { mask_.reset(); }
+  // The program will run after code that left the mask at `m` (emits nothing).
+  void assume_mask(uint32_t m) { mask_ = m; }
   const std::vector<uint64_t>& code() const { return code_; }
   size_t size() const { return code_.size(); }
   void clear();
@@ -69,6 +71,10 @@ void nonneg(Program& p, unsigned dst, unsigned src, unsigned w);
 // no host round trip (FLAGOP.any keeps a candidate set only if it is not empty).
 // Afterwards RESP.FIRST is the lowest-index maximum. Uses flag `tmp`.
 void max_search(Program& p, unsigned cand, unsigned tmp, unsigned w, unsigned bits);
+
+// SEL <- (block index < count), by masked matches on the address part: one REF.or per
+// 1 bit of `count` (at most 17 instructions), or SETS when count covers every block.
+void select_below(Program& p, uint32_t count, uint32_t num_blocks);
 
 // ---- Fused dot products ------------------------------------------------------------
 

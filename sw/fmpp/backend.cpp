@@ -1,0 +1,58 @@
+// Backend selection by name (see backend.h).
+#include "sw/fmpp/backend.h"
+
+#include <stdexcept>
+
+namespace fmpp {
+
+std::vector<std::string> backend_names() { return {"cmodel", "rtl", "lockstep"}; }
+
+void Backend::finish() {
+  if (lock_) lock_->final_check();
+}
+
+namespace {
+
+std::unique_ptr<tb::RtlBus> exact_rtl(const Config& cfg, const BackendOptions& opt) {
+  tb::RtlOptions ro;
+  ro.trace_file = opt.trace_file;
+  ro.trace_start = opt.trace_start;
+  ro.trace_end = opt.trace_end;
+  std::string built;
+  for (const std::string& n : tb::rtl_configs()) {
+    const Config c = named_config(n);
+    if (c.blocks == cfg.blocks && c.words == cfg.words) return tb::make_rtl_bus(n, ro);
+    built += (built.empty() ? "" : ", ") + n + " " + c.str();
+  }
+  throw std::invalid_argument("no Verilated FMPP of " + cfg.str() + " (blocks x words) is built; built: " + built);
+}
+
+}  // namespace
+
+std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg, const BackendOptions& opt) {
+  cfg.validate();
+  auto b = std::unique_ptr<Backend>(new Backend);
+  b->name_ = name;
+  b->cfg_ = cfg;
+  if (name == "cmodel") {
+    b->model_ = std::make_unique<ModelBus>(cfg);
+    b->bus_ = b->model_.get();
+  } else if (name == "rtl") {
+    b->rtl_ = exact_rtl(cfg, opt);
+    b->bus_ = b->rtl_.get();
+  } else if (name == "lockstep") {
+    b->rtl_ = exact_rtl(cfg, opt);
+    b->model_ = std::make_unique<ModelBus>(cfg);
+    tb::LockstepOptions lo;
+    lo.mode = tb::parse_lockstep_mode(opt.lockstep_mode);
+    b->lock_ = std::make_unique<tb::Lockstep>(*b->rtl_, *b->model_, lo);
+    b->bus_ = b->lock_.get();
+  } else {
+    std::string known;
+    for (const auto& n : backend_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("backend '" + name + "' is not one of " + known);
+  }
+  return b;
+}
+
+}  // namespace fmpp

@@ -1,0 +1,51 @@
+// Choosing the machine behind the Bus by name, as every command-line tool does:
+//   cmodel    the golden model
+//   rtl       the Verilated RTL (a configuration built into this binary)
+//   lockstep  the RTL and the golden model together, every access cross-checked
+// (The SystemC platform adds "systemc" when it is built.)
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fmpp/model_bus.h"
+#include "tb/lockstep.h"
+#include "tb/rtl_bus.h"
+
+namespace fmpp {
+
+struct BackendOptions {
+  std::string trace_file;  // FST waveform (rtl, lockstep)
+  uint64_t trace_start = 0;
+  uint64_t trace_end = ~0ull;
+  std::string lockstep_mode = "fast";  // lockstep: check | fast | off
+};
+
+class Backend {
+ public:
+  Bus& bus() { return *bus_; }
+  const std::string& name() const { return name_; }
+  const Config& config() const { return cfg_; }
+  // Lockstep only: compares the final state; throws tb::LockstepMismatch.
+  void finish();
+
+  friend std::unique_ptr<Backend> make_backend(const std::string&, const Config&, const BackendOptions&);
+
+ private:
+  std::string name_;
+  Config cfg_;
+  std::unique_ptr<ModelBus> model_;
+  std::unique_ptr<tb::RtlBus> rtl_;
+  std::unique_ptr<tb::Lockstep> lock_;
+  Bus* bus_ = nullptr;
+};
+
+// Names accepted by make_backend.
+std::vector<std::string> backend_names();
+
+// Builds the named backend with exactly `cfg` blocks and words. For rtl and lockstep the
+// configuration must be one of the built ones; the error lists them.
+std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg, const BackendOptions& opt = {});
+
+}  // namespace fmpp

@@ -1,0 +1,26 @@
+// Plain-text triangle and ray files for fmpp-intersect.
+//   triangles: one per line, "x1 y1 z1 x2 y2 z2 x3 y3 z3"
+//   rays:      one per line, "ox oy oz dx dy dz"
+// '#' starts a comment; blank lines are skipped. Any other content is an error that
+// names the file and line (ParseError).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sw/isect/geometry.h"
+
+namespace fmpp::isect {
+
+class ParseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::vector<Triangle> read_triangles(const std::string& path);
+std::vector<Ray> read_rays(const std::string& path);
+// One line per ray: "triangle_index t", "-1 inf" for a miss, in input order.
+void write_hits(const std::string& path, const std::vector<Hit>& hits);
+
+}  // namespace fmpp::isect

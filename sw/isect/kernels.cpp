@@ -1,0 +1,498 @@
+// Ray-triangle intersection kernels for the FMPP (see kernels.h, docs/intersection.md).
+#include "sw/isect/kernels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "sw/fmpp/program.h"
+#include "sw/isect/reference.h"
+
+namespace fmpp::isect {
+
+using namespace ins;
+
+Mapping parse_mapping(const std::string& s) {
+  if (s == "ray") return Mapping::kRay;
+  if (s == "object") return Mapping::kObject;
+  throw std::invalid_argument("mapping '" + s + "' is not one of ray, object");
+}
+MulMode parse_mul_mode(const std::string& s) {
+  if (s == "generic") return MulMode::kGeneric;
+  if (s == "const") return MulMode::kConst;
+  throw std::invalid_argument("multiply '" + s + "' is not one of generic, const");
+}
+const char* to_string(Mapping m) { return m == Mapping::kRay ? "ray" : "object"; }
+const char* to_string(MulMode m) { return m == MulMode::kGeneric ? "generic" : "const"; }
+
+void KernelStats::add(const KernelStats& o) {
+  cycles += o.cycles;
+  load_cycles += o.load_cycles;
+  compute_cycles += o.compute_cycles;
+  readback_cycles += o.readback_cycles;
+  instructions += o.instructions;
+  broadcasts += o.broadcasts;
+  passes += o.passes;
+  groups += o.groups;
+  broadcast_steps += o.broadcast_steps;
+  overflow_rays += o.overflow_rays;
+  overflow_triangles += o.overflow_triangles;
+  host_triangles += o.host_triangles;
+  host_tests += o.host_tests;
+}
+
+namespace {
+
+// Flags.
+constexpr unsigned kSel = 0, kHit = 1, kWin = 2, kTmp = 3, kLoaded = 4;
+
+// Ray-parallel words.
+// kRCnt counts the broadcasts of a pass (the best's ordinal is copied from it, so no
+// WRITES and no mask change is needed per broadcast); kROne holds 1.
+constexpr unsigned kRV = 0, kRT = 3, kRS = 6, kRBest = 7, kRIdx = 8, kRD = 9, kRCnt = 10, kROne = 11, kRX = 12;
+// Object-parallel words.
+constexpr unsigned kOX = 0, kOY = 9, kOT = 12, kOS = 15, kOV = 16;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+unsigned effective_cond_bits(const KernelOptions& o) {
+  if (o.cond_bits >= 0) return static_cast<unsigned>(o.cond_bits);
+  return (o.mapping == Mapping::kRay ? o.n : o.mbits) - 3;
+}
+
+double inf_norm(const glm::dmat3& a) {
+  double m = 0;
+  for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
+  return m;
+}
+
+// P^-1 for the triangle seen from `o`, with T_i = sum_j m[i][j] V_j. False if the
+// triangle is singular or too ill-conditioned from o for the fixed-point format.
+bool inverse_from(const Triangle& t, const glm::dvec3& o, double cond_limit, double m[3][3]) {
+  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);  // columns
+  const double det = glm::determinant(P);
+  if (det == 0 || !std::isfinite(det)) return false;
+  const glm::dmat3 M = glm::inverse(P);
+  const double cond = inf_norm(P) * inf_norm(M);
+  if (!std::isfinite(cond) || cond > cond_limit) return false;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m[i][j] = M[j][i];  // glm is column-major: M[col][row]
+  }
+  return true;
+}
+
+// Exponent e with max|v| < 2^e, and mantissas round(v * 2^(bits - e)) below 2^bits.
+int mantissas(const double* v, int count, unsigned bits, int64_t* out) {
+  double m = 0;
+  for (int k = 0; k < count; ++k) m = std::max(m, std::abs(v[k]));
+  int e = (m > 0) ? static_cast<int>(std::floor(std::log2(m))) + 1 : 0;
+  const int64_t lim = (int64_t{1} << bits) - 1;
+  for (;;) {
+    bool ok = true;
+    for (int k = 0; k < count; ++k) {
+      out[k] = std::llround(std::ldexp(v[k], static_cast<int>(bits) - e));
+      ok = ok && std::llabs(out[k]) <= lim;
+    }
+    if (ok) return e;
+    ++e;
+  }
+}
+
+int32_t quantize(double v, double scale, int64_t limit, const char* what) {
+  const double q = std::nearbyint(v / scale);
+  if (!(std::abs(q) <= static_cast<double>(limit))) {
+    throw std::logic_error(std::string("fmpp::isect: ") + what + " out of range after scaling");
+  }
+  return static_cast<int32_t>(q);
+}
+
+// Merges host-side results for some triangles into `hit` (nearest wins, ties to the lower index).
+void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
+                KernelStats* st) {
+  for (int k : host) {
+    const double t = intersect_reference(r, tris[k]);
+    ++st->host_tests;
+    if (t < hit->t || (t == hit->t && k < hit->tri)) {
+      hit->t = t;
+      hit->tri = k;
+    }
+  }
+}
+
+class Group {
+ public:
+  Group(Device& dev, const KernelOptions& opt, const std::vector<Triangle>& tris, const glm::dvec3& origin,
+        KernelStats* st)
+      : dev_(dev), opt_(opt), tris_(tris), o_(origin), st_(st), cfg_(dev.config()) {}
+
+  // Results for rays[idx[k]] go to out[idx[k]].
+  void run(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
+    if (opt_.mapping == Mapping::kRay) {
+      run_ray_parallel(rays, idx, out);
+    } else {
+      run_object_parallel(rays, idx, out);
+    }
+  }
+
+ private:
+  uint64_t push(const Program& p) {
+    const uint64_t c0 = dev_.cycles();
+    dev_.push(p.code());
+    st_->instructions += p.size();
+    return dev_.cycles() - c0;
+  }
+
+  // ---------------------------------------------------------------- ray-parallel
+  void run_ray_parallel(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
+    const unsigned n = opt_.n;
+    const double cond_limit = std::ldexp(1.0, static_cast<int>(effective_cond_bits(opt_)));
+    // Scale of the ray components: the largest becomes 2^vbits.
+    double vmax = 0, vlen = 0;
+    for (size_t i : idx) {
+      const glm::dvec3& d = rays[i].d;
+      vmax = std::max({vmax, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+      vlen = std::max(vlen, glm::length(d));
+    }
+    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+    const double sv = vmax / std::ldexp(1.0, static_cast<int>(opt_.vbits));
+    // Common exponent E for the compared sums: S = 1/lambda <= |V|max / dmin, and S_c =
+    // S / (2^(E+1) sv) must stay below 2^29.
+    const DistanceRange dr = distance_range(tris_, o_);
+    const double dmin = std::max(dr.min, dr.max * std::ldexp(1.0, -20));
+    const int E = static_cast<int>(std::ceil(std::log2((vlen / sv) / (dmin * std::ldexp(1.0, 29))))) - 1;
+
+    // Per-triangle programs (the same in every pass).
+    std::vector<Program> progs;
+    std::vector<int> host;
+    std::vector<int> fmpp_tris;
+    for (size_t k = 0; k < tris_.size(); ++k) {
+      double m[3][3];
+      int64_t x[9];
+      if (!inverse_from(tris_[k], o_, cond_limit, m)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      const int e = mantissas(&m[0][0], 9, n - 1, x);
+      progs.push_back(ray_program(x, e - E));
+      fmpp_tris.push_back(static_cast<int>(k));
+    }
+    st_->host_triangles += host.size();
+
+    const unsigned B = cfg_.blocks;
+    for (size_t base = 0; base < idx.size(); base += B) {
+      const unsigned count = static_cast<unsigned>(std::min<size_t>(B, idx.size() - base));
+      ++st_->passes;
+      // Load: ray components into words 0..2, then select the blocks holding rays.
+      uint64_t c0 = dev_.cycles();
+      for (unsigned b = 0; b < count; ++b) {
+        const glm::dvec3& d = rays[idx[base + b]].d;
+        const int64_t lim = int64_t{1} << opt_.vbits;
+        dev_.write_word(b, kRV + 0, static_cast<uint32_t>(quantize(d.x, sv, lim, "ray component")));
+        dev_.write_word(b, kRV + 1, static_cast<uint32_t>(quantize(d.y, sv, lim, "ray component")));
+        dev_.write_word(b, kRV + 2, static_cast<uint32_t>(quantize(d.z, sv, lim, "ray component")));
+      }
+      Program init;
+      select_below(init, count, B);
+      init << flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
+      init.mask(0);
+      init << writes(kRBest, 0, kSel) << writes(kRIdx, 0, kSel) << writes(kRCnt, 0, kSel) << writes(kROne, 1, kSel);
+      init.mask(0x7FFFFFFFu);  // the broadcasts keep this mask throughout
+      push(init);
+      st_->load_cycles += dev_.cycles() - c0;
+
+      // Broadcast every triangle.
+      c0 = dev_.cycles();
+      for (const Program& p : progs) {
+        push(p);
+        st_->broadcast_steps += p.size();
+        ++st_->broadcasts;
+      }
+      st_->compute_cycles += dev_.cycles() - c0;
+
+      // Read back: overflow flags, then each block's best S (0: no hit) and index.
+      c0 = dev_.cycles();
+      std::vector<bool> ovf(count, false);
+      if (dev_.overflow()) {
+        const std::vector<bool> v = dev_.read_flag_all(map::kFlagV);
+        for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
+      }
+      for (unsigned b = 0; b < count; ++b) {
+        if (ovf[b]) continue;
+        const uint32_t s = dev_.read_word(b, kRBest);
+        Hit h;
+        if (s != 0) {
+          const uint32_t ordinal = dev_.read_word(b, kRIdx);  // 1-based broadcast number
+          if (ordinal < 1 || ordinal > fmpp_tris.size()) {
+            throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
+                                   std::to_string(ordinal) + " of " + std::to_string(fmpp_tris.size()));
+          }
+          h.tri = fmpp_tris[ordinal - 1];
+          h.t = 1.0 / (static_cast<double>(s) * std::ldexp(1.0, E + 1) * sv);
+        }
+        out[idx[base + b]] = h;
+      }
+      st_->readback_cycles += dev_.cycles() - c0;
+
+      // Host work: overflowed rays completely, and the host triangles for every ray.
+      for (unsigned b = 0; b < count; ++b) {
+        const size_t i = idx[base + b];
+        if (ovf[b]) {
+          ++st_->overflow_rays;
+          out[i] = Hit{};
+          merge_host(rays[i], tris_, fmpp_tris, &out[i], st_);
+        }
+        merge_host(rays[i], tris_, host, &out[i], st_);
+      }
+    }
+  }
+
+  // One triangle broadcast: T = X V, inside test, S = T1+T2+T3 scaled by 2^shift to the
+  // common exponent, compare with the block's best and keep the larger.
+  Program ray_program(const int64_t x[9], int shift) const {
+    Program p;
+    p.assume_mask(0x7FFFFFFFu);  // set by the pass's init, and kept by every broadcast
+    p << add(kRCnt, kRCnt, kROne, kSel);
+    std::vector<Row> rows(3);
+    for (unsigned i = 0; i < 3; ++i) {
+      rows[i].r = kRT + i;
+      for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kRV + j, x[3 * i + j], kRX + 3 * i + j});
+    }
+    if (opt_.mul == MulMode::kGeneric) {
+      p.mask(0);
+      for (unsigned k = 0; k < 9; ++k) p << writes(kRX + k, static_cast<uint32_t>(x[k]), kSel);
+      dot_rows(p, rows, opt_.n, kSel, kTmp);
+    } else {
+      p.mask(0x7FFFFFFFu);
+      dot_rows_const(p, rows, opt_.n, kSel);
+    }
+    nonneg(p, kHit, kSel, kRT + 0);
+    nonneg(p, kHit, kHit, kRT + 1);
+    nonneg(p, kHit, kHit, kRT + 2);
+    p << add(kRS, kRT + 0, kRT + 1, kHit) << add(kRS, kRS, kRT + 2, kHit);
+    for (int s = 0; s < shift; ++s) p << lshift(kRS, kRS, kHit);  // overflow sets V
+    for (int s = 0; s > shift; --s) p << rshift(kRS, kRS, kHit);
+    // win <- hit and best - S < 0 (S > best >= 0; a tie keeps the earlier, lower index)
+    p << sub(kRD, kRBest, kRS, kHit);
+    p.mask(0x7FFFFFFFu);
+    p << ref(RefFn::kAnd, RefPart::kData, kRD, 0x80000000u, kWin, kHit);
+    p << func(FuncFn::kOr, kRBest, kRS, kRS, kWin);
+    p << func(FuncFn::kOr, kRIdx, kRCnt, kRCnt, kWin);
+    return p;
+  }
+
+  // ------------------------------------------------------------- object-parallel
+  void run_object_parallel(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
+    const unsigned n = opt_.n, mb = opt_.mbits;
+    const double cond_limit = std::ldexp(1.0, static_cast<int>(effective_cond_bits(opt_)));
+    double vmax = 0;
+    for (size_t i : idx) {
+      const glm::dvec3& d = rays[i].d;
+      vmax = std::max({vmax, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    }
+    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+    const int64_t vlim = (int64_t{1} << (n - 1)) - 1;
+    const double sv = vmax / static_cast<double>(vlim);
+
+    // Triangle data: X = mantissas of P^-1 (own exponent), Y = mantissas of its column
+    // sums (S = sum_j s_j V_j) with one exponent for all triangles.
+    struct Tri {
+      int index;
+      int64_t x[9];
+      double s[3];
+    };
+    std::vector<Tri> data;
+    std::vector<int> host;
+    double smax = 0;
+    for (size_t k = 0; k < tris_.size(); ++k) {
+      double m[3][3];
+      if (!inverse_from(tris_[k], o_, cond_limit, m)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      Tri t;
+      t.index = static_cast<int>(k);
+      mantissas(&m[0][0], 9, mb, t.x);
+      for (int j = 0; j < 3; ++j) {
+        t.s[j] = m[0][j] + m[1][j] + m[2][j];
+        smax = std::max(smax, std::abs(t.s[j]));
+      }
+      data.push_back(t);
+    }
+    st_->host_triangles += host.size();
+    const int Es = (smax > 0) ? static_cast<int>(std::floor(std::log2(smax))) + 1 : 0;
+    const double yscale = std::ldexp(1.0, static_cast<int>(mb) - Es);
+    // S_c = floor(sum v_j y_j / 2^n) = S * yscale / (sv * 2^n); S_c < 1.5 * 2^mb.
+    const unsigned sbits = mb + 1;
+
+    std::vector<Hit> best(idx.size());
+    std::vector<double> best_s(idx.size(), 0);
+    const unsigned B = cfg_.blocks;
+    for (size_t base = 0; base < data.size(); base += B) {
+      const unsigned count = static_cast<unsigned>(std::min<size_t>(B, data.size() - base));
+      ++st_->passes;
+      uint64_t c0 = dev_.cycles();
+      for (unsigned b = 0; b < count; ++b) {
+        const Tri& t = data[base + b];
+        for (unsigned k = 0; k < 9; ++k) dev_.write_word(b, kOX + k, static_cast<uint32_t>(t.x[k]));
+        for (unsigned j = 0; j < 3; ++j) {
+          const int64_t y = std::llround(t.s[j] * yscale);
+          dev_.write_word(b, kOY + j, static_cast<uint32_t>(y));
+        }
+      }
+      Program init;
+      select_below(init, count, B);
+      init << flagop(kLoaded, kSel, kSel, lut::kA) << flagop(map::kFlagV, 0, 0, lut::kZero);
+      push(init);
+      st_->load_cycles += dev_.cycles() - c0;
+
+      std::vector<int32_t> v(3);
+      for (size_t r = 0; r < idx.size(); ++r) {
+        const glm::dvec3& d = rays[idx[r]].d;
+        v[0] = quantize(d.x, sv, vlim, "ray component");
+        v[1] = quantize(d.y, sv, vlim, "ray component");
+        v[2] = quantize(d.z, sv, vlim, "ray component");
+        const Program p = object_program(v, sbits);
+        c0 = dev_.cycles();
+        push(p);
+        st_->broadcast_steps += p.size();
+        ++st_->broadcasts;
+        st_->compute_cycles += dev_.cycles() - c0;
+        c0 = dev_.cycles();
+        const Responders resp = dev_.responders();
+        if (resp.any) {
+          const uint32_t s = dev_.read_word(resp.first, kOS);
+          // Strictly larger: an earlier pass (lower triangle indices) keeps a tie.
+          if (static_cast<double>(s) > best_s[r]) {
+            best_s[r] = s;
+            best[r].tri = data[base + resp.first].index;
+          }
+        }
+        st_->readback_cycles += dev_.cycles() - c0;
+      }
+      // Overflow in a block taints that triangle: redo it on the host for every ray.
+      c0 = dev_.cycles();
+      if (dev_.overflow()) {
+        const std::vector<bool> f = dev_.read_flag_all(map::kFlagV);
+        for (unsigned b = 0; b < count; ++b) {
+          if (!f[b]) continue;
+          ++st_->overflow_triangles;
+          host.push_back(data[base + b].index);
+          for (size_t r = 0; r < idx.size(); ++r) {
+            if (best[r].tri == data[base + b].index) {  // its win is not trusted: redo the ray
+              best[r] = Hit{};
+              best_s[r] = -1;  // recomputed below
+            }
+          }
+        }
+      }
+      st_->readback_cycles += dev_.cycles() - c0;
+    }
+    const double s_to_inv_t = sv * std::ldexp(1.0, static_cast<int>(n)) / yscale;
+    for (size_t r = 0; r < idx.size(); ++r) {
+      const size_t i = idx[r];
+      Hit h = best[r];
+      if (best_s[r] < 0) {  // a tainted winner: redo the whole ray on the host
+        ++st_->overflow_rays;
+        h = Hit{};
+        std::vector<int> all(tris_.size());
+        for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+        merge_host(rays[i], tris_, all, &h, st_);
+      } else {
+        if (h.hit()) h.t = 1.0 / (best_s[r] * s_to_inv_t);
+        merge_host(rays[i], tris_, host, &h, st_);
+      }
+      out[i] = h;
+    }
+  }
+
+  // One ray broadcast: T = X v and S = Y v in every loaded block, inside test, then the
+  // maximum search; SEL ends as the blocks holding the nearest hit.
+  Program object_program(const std::vector<int32_t>& v, unsigned sbits) const {
+    Program p;
+    std::vector<Row> rows(4);
+    for (unsigned i = 0; i < 4; ++i) {
+      rows[i].r = (i < 3) ? kOT + i : kOS;
+      for (unsigned j = 0; j < 3; ++j) {
+        const unsigned y = (i < 3) ? kOX + 3 * i + j : kOY + j;
+        rows[i].terms.push_back(Term{y, v[j], kOV + j});
+      }
+    }
+    if (opt_.mul == MulMode::kGeneric) {
+      p.mask(0);
+      for (unsigned j = 0; j < 3; ++j) p << writes(kOV + j, static_cast<uint32_t>(v[j]), kLoaded);
+      dot_rows(p, rows, opt_.n, kLoaded, kTmp);
+    } else {
+      dot_rows_const(p, rows, opt_.n, kLoaded);
+    }
+    nonneg(p, kHit, kLoaded, kOT + 0);
+    nonneg(p, kHit, kHit, kOT + 1);
+    nonneg(p, kHit, kHit, kOT + 2);
+    nonneg(p, kHit, kHit, kOS);
+    p.mask(0);
+    p << ref(RefFn::kAnd, RefPart::kData, kOS, 0, kTmp, kHit);  // S = 0: not in front of the origin
+    p << flagop(kHit, kHit, kTmp, lut::kAndNotB);
+    max_search(p, kHit, kTmp, kOS, sbits);
+    p << flagop(kSel, kHit, kHit, lut::kA);
+    return p;
+  }
+
+  Device& dev_;
+  const KernelOptions& opt_;
+  const std::vector<Triangle>& tris_;
+  glm::dvec3 o_;
+  KernelStats* st_;
+  Config cfg_;
+};
+
+}  // namespace
+
+void KernelOptions::validate(const Config& cfg) const {
+  if (n < 2 || n > 32) throw std::invalid_argument("multiplier bits n = " + std::to_string(n) + " outside [2, 32]");
+  if (vbits < 2 || vbits > 28) throw std::invalid_argument("vbits = " + std::to_string(vbits) + " outside [2, 28]");
+  if (mbits < 2 || mbits > 28) throw std::invalid_argument("mbits = " + std::to_string(mbits) + " outside [2, 28]");
+  if (cond_bits > 60) throw std::invalid_argument("cond_bits = " + std::to_string(cond_bits) + " above 60");
+  if (cfg.words < words_needed(*this)) {
+    throw std::invalid_argument(std::string(to_string(mapping)) + "-parallel " + to_string(mul) + " needs " +
+                                std::to_string(words_needed(*this)) + " words per block; the FMPP has " +
+                                std::to_string(cfg.words));
+  }
+}
+
+unsigned words_needed(const KernelOptions& opt) {
+  if (opt.mapping == Mapping::kRay) return opt.mul == MulMode::kGeneric ? kRX + 9 : kRX;
+  return opt.mul == MulMode::kGeneric ? kOV + 3 : kOV;
+}
+
+std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                                const KernelOptions& opt, KernelStats* stats) {
+  opt.validate(dev.config());
+  KernelStats local;
+  KernelStats& st = stats ? *stats : local;
+  const uint64_t c0 = dev.cycles();
+  std::vector<Hit> out(rays.size());
+  // Group rays by origin: each group has its own inverse matrices.
+  std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    if (!std::isfinite(r.o.x + r.o.y + r.o.z + r.d.x + r.d.y + r.d.z)) {
+      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
+    }
+    if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
+    groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
+  }
+  for (const Triangle& t : tris) {
+    for (const glm::dvec3& p : t.p) {
+      if (!std::isfinite(p.x + p.y + p.z)) throw std::invalid_argument("fmpp::isect: a triangle vertex is not finite");
+    }
+  }
+  for (const auto& [origin, idx] : groups) {
+    ++st.groups;
+    Group g(dev, opt, tris, glm::dvec3(std::get<0>(origin), std::get<1>(origin), std::get<2>(origin)), &st);
+    g.run(rays, idx, out);
+  }
+  st.cycles += dev.cycles() - c0;
+  return out;
+}
+
+}  // namespace fmpp::isect

@@ -1,0 +1,79 @@
+// Ray-triangle intersection on the FMPP, as in the paper: every ray direction V is
+// tested against every triangle by T = P^-1 V (P: the triangle's vertices relative to
+// the ray origin, as columns); the ray hits iff T1, T2, T3 >= 0, and the nearest hit
+// has the largest S = T1 + T2 + T3 (the hit point is O + V / S).
+//
+// Two mappings:
+//  - ray-parallel: one ray per block; each triangle's inverse matrix is broadcast
+//    (in constant mode, as the adds and shifts its canonical signed digits call for);
+//    each block keeps its best S and triangle index. Rays beyond NumBlocks run in passes.
+//  - object-parallel: one triangle per block; each ray is broadcast; the nearest
+//    triangle is found by a maximum search over blocks and read from the responders.
+//    Triangles beyond NumBlocks run in passes and the host keeps each ray's best.
+// Load and readback cycles are counted with the rest.
+//
+// Numbers (docs/intersection.md): rays with a common origin share one set of inverse
+// matrices, computed by the host in double and quantized to fixed point: per triangle
+// an exponent and n-bit (ray-parallel) or mbits-bit (object-parallel) mantissas.
+// Overflow is detected in the FMPP (flag V) and such rays or triangles are redone on
+// the host; so are triangles too ill-conditioned for the format. All are counted.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/isect/geometry.h"
+
+namespace fmpp::isect {
+
+enum class Mapping { kRay, kObject };
+enum class MulMode { kGeneric, kConst };
+
+Mapping parse_mapping(const std::string& s);    // "ray" | "object"
+MulMode parse_mul_mode(const std::string& s);   // "generic" | "const"
+const char* to_string(Mapping m);
+const char* to_string(MulMode m);
+
+struct KernelOptions {
+  Mapping mapping = Mapping::kRay;
+  MulMode mul = MulMode::kConst;
+  unsigned n = 24;      // multiplier bits: matrix mantissas (ray-parallel), ray components (object-parallel)
+  unsigned vbits = 28;  // ray-parallel: |V| components quantized to at most 2^vbits
+  unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
+  // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
+  // intersected on the host instead. Negative: n - 3 (ray-parallel), mbits - 3 (object).
+  int cond_bits = -1;
+  // Checks every option against the device; throws std::invalid_argument naming it.
+  void validate(const Config& cfg) const;
+};
+
+struct KernelStats {
+  uint64_t cycles = 0;           // FMPP bus clocks for the whole call
+  uint64_t load_cycles = 0;      // writing rays or triangles into blocks, selecting blocks
+  uint64_t compute_cycles = 0;   // broadcasts
+  uint64_t readback_cycles = 0;  // reading results, flags and responders
+  uint64_t instructions = 0;
+  uint64_t broadcasts = 0;       // triangles (ray-parallel) or rays (object-parallel) sent
+  uint64_t passes = 0;
+  uint64_t groups = 0;           // distinct ray origins
+  uint64_t broadcast_steps = 0;  // instructions in all broadcasts (for steps per broadcast)
+  uint64_t overflow_rays = 0;    // rays redone on the host after an overflow
+  uint64_t overflow_triangles = 0;
+  uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
+  uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
+  double steps_per_broadcast() const {
+    return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
+  }
+  void add(const KernelStats& o);
+};
+
+// Words each mapping needs per block.
+unsigned words_needed(const KernelOptions& opt);
+
+// Nearest hit of each ray, computed on the FMPP behind `dev`.
+std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                                const KernelOptions& opt, KernelStats* stats);
+
+}  // namespace fmpp::isect

@@ -1,0 +1,24 @@
+// Ground truth: a double-precision, watertight ray-triangle test (shear the ray to the
+// +z axis, signed edge functions in the ray's plane, so that an edge shared by two
+// triangles is evaluated identically from both and no ray slips through or hits both
+// on the same side). Nearest hit wins; equal distances go to the lowest index.
+#pragma once
+
+#include <vector>
+
+#include "sw/isect/geometry.h"
+
+namespace fmpp::isect {
+
+// Returns t > 0 if the ray hits the triangle (edges and vertices included), else +inf.
+// Degenerate triangles (zero area as seen from the ray) never hit.
+double intersect_reference(const Ray& r, const Triangle& t);
+
+// Nearest hit of each ray over all triangles.
+std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
+
+// Ray-triangle tests per second of the brute-force loop above on one core, for the
+// CPU baseline of the paper reproduction (runs about `seconds`).
+double reference_tests_per_second(double seconds);
+
+}  // namespace fmpp::isect

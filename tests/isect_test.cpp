@@ -1,0 +1,282 @@
+// Ray-triangle intersection: the double reference, and the FMPP kernels of both
+// mappings and both multiplies against it, on the golden model and on the RTL.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include "sw/fmpp/backend.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/io.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/reference.h"
+
+namespace fmpp::isect {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Triangle tri(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return Triangle{{a, b, c}}; }
+
+TEST(Reference, HitsMissesEdgesAndDegenerates) {
+  const Triangle t = tri({-1, -1, 5}, {1, -1, 5}, {0, 1, 5});
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, t), 5.0);
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 2}}, t), 2.5) << "t is in units of D";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, -1}}, t), kInf) << "behind";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0.5, 0, 1}}, t), kInf) << "beside";
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, -1.0 / 5, 1}}, t), 5.0) << "on an edge";
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {1.0 / 5, -1.0 / 5, 1}}, t), 5.0) << "on a vertex";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, tri({-1, 0, 5}, {0, 0, 5}, {1, 0, 5})), kInf)
+      << "collinear vertices";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, tri({0, 0, 5}, {0, 0, 5}, {1, 1, 5})), kInf)
+      << "repeated vertex";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 5}, {0, 0, 1}}, t), kInf) << "origin on the triangle";
+}
+
+TEST(Reference, SharedEdgeIsHitExactlyOnce) {
+  // Two triangles sharing the diagonal of a square; rays along the diagonal.
+  const std::vector<Triangle> tris = {tri({0, 0, 3}, {1, 0, 3}, {1, 1, 3}), tri({0, 0, 3}, {1, 1, 3}, {0, 1, 3})};
+  for (int k = 1; k < 50; ++k) {
+    const double u = k / 50.0;
+    const Ray r{{0, 0, 0}, {u / 3, u / 3, 1}};
+    int hits = 0;
+    for (const Triangle& t : tris) hits += std::isfinite(intersect_reference(r, t));
+    EXPECT_GE(hits, 1) << "crack at u=" << u;
+    EXPECT_EQ(nearest_reference({r}, tris)[0].tri, 0) << "tie goes to the lower index";
+  }
+}
+
+// A camera at `eye` looking along +z at random triangles.
+struct Scene {
+  std::vector<Triangle> tris;
+  std::vector<Ray> rays;
+};
+
+Scene random_scene(unsigned ntri, unsigned side, uint64_t seed, glm::dvec3 eye = {0, 0, 0}) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Scene s;
+  for (unsigned k = 0; k < ntri; ++k) {
+    const glm::dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
+    Triangle t;
+    for (auto& p : t.p) p = c + 0.8 * glm::dvec3(u(rng), u(rng), u(rng));
+    s.tris.push_back(t);
+  }
+  for (unsigned y = 0; y < side; ++y) {
+    for (unsigned x = 0; x < side; ++x) {
+      s.rays.push_back(Ray{eye, {(x + 0.5) / side - 0.5, (y + 0.5) / side - 0.5, 1}});
+    }
+  }
+  return s;
+}
+
+std::vector<Hit> run(const std::string& backend, const Config& cfg, const Scene& s, const KernelOptions& o,
+                     KernelStats* st) {
+  auto be = make_backend(backend, cfg);
+  Device dev(be->bus());
+  auto hits = intersect_fmpp(dev, s.rays, s.tris, o, st);
+  be->finish();
+  return hits;
+}
+
+void expect_close_to_reference(const std::vector<Hit>& got, const std::vector<Hit>& ref, double rel) {
+  ASSERT_EQ(got.size(), ref.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].tri, ref[i].tri) << "ray " << i;
+    if (ref[i].hit() && got[i].tri == ref[i].tri) EXPECT_NEAR(got[i].t, ref[i].t, rel * ref[i].t) << "ray " << i;
+  }
+}
+
+class Kernels : public ::testing::TestWithParam<std::tuple<Mapping, MulMode>> {
+ protected:
+  KernelOptions opts(unsigned n = 24) const {
+    KernelOptions o;
+    o.mapping = std::get<0>(GetParam());
+    o.mul = std::get<1>(GetParam());
+    o.n = n;
+    return o;
+  }
+};
+
+TEST_P(Kernels, MatchReferenceOnTheModelInOneAndManyPasses) {
+  const Scene s = random_scene(150, 24, 5);
+  const auto ref = nearest_reference(s.rays, s.tris);
+  KernelStats one, many;
+  const auto a = run("cmodel", Config{1024, 32}, s, opts(), &one);
+  const auto b = run("cmodel", Config{64, 32}, s, opts(), &many);
+  expect_close_to_reference(a, ref, 1e-4);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].tri, b[i].tri);
+    EXPECT_EQ(a[i].t, b[i].t) << "passes change nothing";
+  }
+  EXPECT_EQ(one.passes, 1u);
+  EXPECT_GT(many.passes, 1u);
+  EXPECT_EQ(one.overflow_rays + one.overflow_triangles + one.host_triangles, 0u);
+  EXPECT_EQ(one.cycles, one.load_cycles + one.compute_cycles + one.readback_cycles);
+  EXPECT_GT(many.load_cycles, one.load_cycles) << "reloading costs cycles";
+}
+
+TEST_P(Kernels, RtlGivesTheModelsResultsAndCycles) {
+  const Scene s = random_scene(40, 12, 9);
+  KernelStats m, r;
+  const auto a = run("cmodel", Config{64, 32}, s, opts(16), &m);
+  const auto b = run("lockstep", Config{64, 32}, s, opts(16), &r);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].tri, b[i].tri);
+    EXPECT_EQ(a[i].t, b[i].t);
+  }
+  EXPECT_EQ(m.cycles, r.cycles);
+  EXPECT_EQ(m.instructions, r.instructions);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, Kernels,
+                         ::testing::Combine(::testing::Values(Mapping::kRay, Mapping::kObject),
+                                            ::testing::Values(MulMode::kGeneric, MulMode::kConst)),
+                         [](const auto& info) {
+                           return std::string(to_string(std::get<0>(info.param))) + "_" +
+                                  to_string(std::get<1>(info.param));
+                         });
+
+TEST(KernelsConstVsGeneric, BitIdenticalResultsFewerSteps) {
+  const Scene s = random_scene(120, 20, 11);
+  for (Mapping m : {Mapping::kRay, Mapping::kObject}) {
+    for (unsigned n : {8u, 16u, 32u}) {
+      KernelOptions o;
+      o.mapping = m;
+      o.n = n;
+      o.cond_bits = 60;  // no host fallback: compare the raw machine results
+      KernelStats g, c;
+      o.mul = MulMode::kGeneric;
+      const auto a = run("cmodel", Config{1024, 32}, s, o, &g);
+      o.mul = MulMode::kConst;
+      const auto b = run("cmodel", Config{1024, 32}, s, o, &c);
+      for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].tri, b[i].tri) << to_string(m) << " n=" << n;
+        EXPECT_EQ(a[i].t, b[i].t) << to_string(m) << " n=" << n;
+      }
+      EXPECT_LT(c.steps_per_broadcast(), 0.6 * g.steps_per_broadcast()) << to_string(m) << " n=" << n;
+    }
+  }
+}
+
+TEST(KernelsNumerics, StepsPerBroadcastBeatThePaper) {
+  // Ray-parallel at n = 32: the paper's sequence takes 36n + 95 steps per broadcast.
+  const Scene s = random_scene(100, 8, 13);
+  KernelOptions o;
+  o.n = 32;
+  for (MulMode mul : {MulMode::kGeneric, MulMode::kConst}) {
+    o.mul = mul;
+    KernelStats st;
+    run("cmodel", Config{64, 32}, s, o, &st);
+    EXPECT_LE(st.steps_per_broadcast(), 36.0 * 32 + 95) << to_string(mul);
+  }
+}
+
+TEST(KernelsNumerics, OverflowIsDetectedAndRedoneOnTheHost) {
+  Scene s = random_scene(30, 10, 17);
+  // A small, well-conditioned triangle right in front of the eye: nearer than the
+  // common scale allows (2^-20 of the scene's extent), so its sums overflow (flag V).
+  s.tris.push_back(tri({-1e-7, -1e-7, 1e-7}, {1e-7, -1e-7, 1e-7}, {0, 1.5e-7, 1e-7}));
+  const auto ref = nearest_reference(s.rays, s.tris);
+  for (Mapping m : {Mapping::kRay, Mapping::kObject}) {
+    KernelOptions o;
+    o.mapping = m;
+    KernelStats st;
+    const auto got = run("cmodel", Config{128, 32}, s, o, &st);
+    for (size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].tri, ref[i].tri) << to_string(m) << " ray " << i;
+    if (m == Mapping::kRay) EXPECT_GT(st.overflow_rays, 0u);
+    EXPECT_EQ(st.host_triangles, 0u);
+  }
+}
+
+TEST(KernelsNumerics, IllConditionedTrianglesGoToTheHost) {
+  Scene s = random_scene(20, 10, 19);
+  // A needle far away: condition number ~ distance / width = 1e6.
+  s.tris.push_back(tri({-1, 0, 100}, {1, 0, 100}, {0, 2e-4, 100}));
+  const auto ref = nearest_reference(s.rays, s.tris);
+  KernelOptions o;
+  o.n = 16;
+  KernelStats st;
+  const auto got = run("cmodel", Config{128, 32}, s, o, &st);
+  EXPECT_EQ(st.host_triangles, 1u);
+  for (size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].tri, ref[i].tri);
+}
+
+TEST(KernelsNumerics, RaysAreGroupedByOrigin) {
+  Scene s = random_scene(50, 6, 23);
+  const size_t n = s.rays.size();
+  for (size_t i = 0; i < n; ++i) {
+    Ray r = s.rays[i];
+    r.o = glm::dvec3(0.3 * (i % 3), -0.2 * (i % 2), 0);
+    s.rays.push_back(r);
+  }
+  const auto ref = nearest_reference(s.rays, s.tris);
+  for (Mapping m : {Mapping::kRay, Mapping::kObject}) {
+    KernelOptions o;
+    o.mapping = m;
+    KernelStats st;
+    const auto got = run("cmodel", Config{64, 32}, s, o, &st);
+    expect_close_to_reference(got, ref, 1e-4);
+    EXPECT_EQ(st.groups, 6u);
+  }
+}
+
+TEST(KernelsNumerics, BadInputIsRejected) {
+  auto be = make_backend("cmodel", Config{64, 8});
+  Device dev(be->bus());
+  const Scene s = random_scene(5, 2, 1);
+  KernelOptions o;
+  try {
+    intersect_fmpp(dev, s.rays, s.tris, o, nullptr);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("needs 12 words per block; the FMPP has 8"), std::string::npos) << e.what();
+  }
+  auto be2 = make_backend("cmodel", Config{64, 32});
+  Device dev2(be2->bus());
+  std::vector<Ray> bad = {Ray{{0, 0, 0}, {0, 0, 0}}};
+  EXPECT_THROW(intersect_fmpp(dev2, bad, s.tris, o, nullptr), std::invalid_argument);
+  o.n = 40;
+  EXPECT_THROW(intersect_fmpp(dev2, s.rays, s.tris, o, nullptr), std::invalid_argument);
+  EXPECT_THROW(make_backend("rtl", Config{65, 32}), std::invalid_argument);
+  EXPECT_THROW(make_backend("gpu", Config{64, 32}), std::invalid_argument);
+}
+
+TEST(Io, ParseErrorsNameFileAndLine) {
+  const std::string path = ::testing::TempDir() + "/bad.tri";
+  {
+    std::ofstream f(path);
+    f << "# comment\n0 0 0 1 0 0 0 1 0\n\n0 0 0 1 0 0 0 1\n";
+  }
+  try {
+    read_triangles(path);
+    FAIL();
+  } catch (const ParseError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":4: a triangle needs 9 numbers, found 8");
+  }
+  {
+    std::ofstream f(path);
+    f << "0 0 0 1 0 0 0 1 zero\n";
+  }
+  EXPECT_THROW(read_triangles(path), ParseError);
+  {
+    std::ofstream f(path);
+    f << "0 0 0 0 0 0 # zero direction\n";
+  }
+  try {
+    read_rays(path);
+    FAIL();
+  } catch (const ParseError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":1: ray direction is zero");
+  }
+  EXPECT_THROW(read_rays(path + ".missing"), ParseError);
+  {
+    std::ofstream f(path);
+    f << "0 0 0 1 0 nan\n";
+  }
+  EXPECT_THROW(read_rays(path), ParseError);
+}
+
+}  // namespace
+}  // namespace fmpp::isect
