@@ -8,6 +8,7 @@
 
 #include "sw/fmpp/backend.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/cpu_baseline.h"
 #include "sw/isect/io.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
@@ -241,6 +242,19 @@ TEST(KernelsNumerics, BadInputIsRejected) {
   EXPECT_THROW(intersect_fmpp(dev2, s.rays, s.tris, o, nullptr), std::invalid_argument);
   EXPECT_THROW(make_backend("rtl", Config{65, 32}), std::invalid_argument);
   EXPECT_THROW(make_backend("gpu", Config{64, 32}), std::invalid_argument);
+}
+
+TEST(CpuBaseline, AgreesWithTheReference) {
+  const Scene s = random_scene(300, 32, 31);
+  const auto ref = nearest_reference(s.rays, s.tris);
+  const CpuBaseline cpu(s.tris);
+  size_t agree = 0;
+  for (size_t i = 0; i < s.rays.size(); ++i) {
+    const Hit h = cpu.nearest(s.rays[i]);
+    agree += h.tri == ref[i].tri;
+    if (h.tri == ref[i].tri && h.hit()) EXPECT_NEAR(h.t, ref[i].t, 1e-4 * ref[i].t);
+  }
+  EXPECT_GE(agree, s.rays.size() * 995 / 1000) << "single precision may differ only at edges";
 }
 
 TEST(Io, ParseErrorsNameFileAndLine) {

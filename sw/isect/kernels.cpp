@@ -36,6 +36,7 @@ void KernelStats::add(const KernelStats& o) {
   passes += o.passes;
   groups += o.groups;
   broadcast_steps += o.broadcast_steps;
+  test_steps += o.test_steps;
   overflow_rays += o.overflow_rays;
   overflow_triangles += o.overflow_triangles;
   host_triangles += o.host_triangles;
@@ -164,6 +165,7 @@ class Group {
 
     // Per-triangle programs (the same in every pass).
     std::vector<Program> progs;
+    std::vector<size_t> test_sizes;
     std::vector<int> host;
     std::vector<int> fmpp_tris;
     for (size_t k = 0; k < tris_.size(); ++k) {
@@ -174,7 +176,9 @@ class Group {
         continue;
       }
       const int e = mantissas(&m[0][0], 9, n - 1, x);
-      progs.push_back(ray_program(x, e - E));
+      size_t test_size = 0;
+      progs.push_back(ray_program(x, e - E, &test_size));
+      test_sizes.push_back(test_size);
       fmpp_tris.push_back(static_cast<int>(k));
     }
     st_->host_triangles += host.size();
@@ -203,9 +207,10 @@ class Group {
 
       // Broadcast every triangle.
       c0 = dev_.cycles();
-      for (const Program& p : progs) {
-        push(p);
-        st_->broadcast_steps += p.size();
+      for (size_t k = 0; k < progs.size(); ++k) {
+        push(progs[k]);
+        st_->broadcast_steps += progs[k].size();
+        st_->test_steps += test_sizes[k];
         ++st_->broadcasts;
       }
       st_->compute_cycles += dev_.cycles() - c0;
@@ -249,7 +254,8 @@ class Group {
 
   // One triangle broadcast: T = X V, inside test, S = T1+T2+T3 scaled by 2^shift to the
   // common exponent, compare with the block's best and keep the larger.
-  Program ray_program(const int64_t x[9], int shift) const {
+  // *test_size gets the instructions up to the inside test (the paper's count).
+  Program ray_program(const int64_t x[9], int shift, size_t* test_size) const {
     Program p;
     p.assume_mask(0x7FFFFFFFu);  // set by the pass's init, and kept by every broadcast
     p << add(kRCnt, kRCnt, kROne, kSel);
@@ -269,6 +275,7 @@ class Group {
     nonneg(p, kHit, kSel, kRT + 0);
     nonneg(p, kHit, kHit, kRT + 1);
     nonneg(p, kHit, kHit, kRT + 2);
+    *test_size = p.size();
     p << add(kRS, kRT + 0, kRT + 1, kHit) << add(kRS, kRS, kRT + 2, kHit);
     for (int s = 0; s < shift; ++s) p << lshift(kRS, kRS, kHit);  // overflow sets V
     for (int s = 0; s > shift; --s) p << rshift(kRS, kRS, kHit);
@@ -352,10 +359,12 @@ class Group {
         v[0] = quantize(d.x, sv, vlim, "ray component");
         v[1] = quantize(d.y, sv, vlim, "ray component");
         v[2] = quantize(d.z, sv, vlim, "ray component");
-        const Program p = object_program(v, sbits);
+        size_t test_size = 0;
+        const Program p = object_program(v, sbits, &test_size);
         c0 = dev_.cycles();
         push(p);
         st_->broadcast_steps += p.size();
+        st_->test_steps += test_size;
         ++st_->broadcasts;
         st_->compute_cycles += dev_.cycles() - c0;
         c0 = dev_.cycles();
@@ -408,7 +417,7 @@ class Group {
 
   // One ray broadcast: T = X v and S = Y v in every loaded block, inside test, then the
   // maximum search; SEL ends as the blocks holding the nearest hit.
-  Program object_program(const std::vector<int32_t>& v, unsigned sbits) const {
+  Program object_program(const std::vector<int32_t>& v, unsigned sbits, size_t* test_size) const {
     Program p;
     std::vector<Row> rows(4);
     for (unsigned i = 0; i < 4; ++i) {
@@ -428,6 +437,7 @@ class Group {
     nonneg(p, kHit, kLoaded, kOT + 0);
     nonneg(p, kHit, kHit, kOT + 1);
     nonneg(p, kHit, kHit, kOT + 2);
+    *test_size = p.size();
     nonneg(p, kHit, kHit, kOS);
     p.mask(0);
     p << ref(RefFn::kAnd, RefPart::kData, kOS, 0, kTmp, kHit);  // S = 0: not in front of the origin

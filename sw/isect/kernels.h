@@ -59,12 +59,16 @@ struct KernelStats {
   uint64_t passes = 0;
   uint64_t groups = 0;           // distinct ray origins
   uint64_t broadcast_steps = 0;  // instructions in all broadcasts (for steps per broadcast)
+  uint64_t test_steps = 0;       // of those, the ones up to the T >= 0 test (the paper's count)
   uint64_t overflow_rays = 0;    // rays redone on the host after an overflow
   uint64_t overflow_triangles = 0;
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
+  }
+  double test_steps_per_broadcast() const {
+    return broadcasts ? static_cast<double>(test_steps) / static_cast<double>(broadcasts) : 0;
   }
   void add(const KernelStats& o);
 };
