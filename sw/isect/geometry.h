@@ -13,10 +13,13 @@ struct Triangle {
   glm::dvec3 p[3];
 };
 
-// A ray O + t D, t > 0. D need not be normalized; t is in units of D.
+// A ray O + t D, t > tmin. D need not be normalized; t is in units of D. A secondary
+// ray leaving a surface names its triangle in `exclude` so it cannot hit it again.
 struct Ray {
   glm::dvec3 o;
   glm::dvec3 d;
+  double tmin = 0;
+  int exclude = -1;
 };
 
 struct Hit {

@@ -23,6 +23,13 @@ MulMode parse_mul_mode(const std::string& s) {
   if (s == "const") return MulMode::kConst;
   throw std::invalid_argument("multiply '" + s + "' is not one of generic, const");
 }
+Origins parse_origins(const std::string& s) {
+  if (s == "auto") return Origins::kAuto;
+  if (s == "group") return Origins::kGroup;
+  if (s == "general") return Origins::kGeneral;
+  throw std::invalid_argument("origins '" + s + "' is not one of auto, group, general");
+}
+const char* to_string(Origins o) { return o == Origins::kAuto ? "auto" : o == Origins::kGroup ? "group" : "general"; }
 const char* to_string(Mapping m) { return m == Mapping::kRay ? "ray" : "object"; }
 const char* to_string(MulMode m) { return m == MulMode::kGeneric ? "generic" : "const"; }
 
@@ -35,6 +42,7 @@ void KernelStats::add(const KernelStats& o) {
   broadcasts += o.broadcasts;
   passes += o.passes;
   groups += o.groups;
+  general_rays += o.general_rays;
   broadcast_steps += o.broadcast_steps;
   test_steps += o.test_steps;
   overflow_rays += o.overflow_rays;
@@ -112,8 +120,10 @@ int32_t quantize(double v, double scale, int64_t limit, const char* what) {
 void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
                 KernelStats* st) {
   for (int k : host) {
+    if (k == r.exclude) continue;
     const double t = intersect_reference(r, tris[k]);
     ++st->host_tests;
+    if (t <= r.tmin) continue;
     if (t < hit->t || (t == hit->t && k < hit->tri)) {
       hit->t = t;
       hit->tri = k;
@@ -455,6 +465,242 @@ class Group {
   Config cfg_;
 };
 
+// ---------------------------------------------------------- arbitrary origins
+// Ray-parallel with a different origin in every block (docs/intersection.md, "Rays
+// with their own origins"). With A = P1 - O etc., T_i det(P - O) = c_i . V + e_i . L,
+// where c_i = P_j x P_k and e_i = P_k - P_j depend on the triangle only and L = O x V
+// (the ray's Pluecker moment) on the ray only. The hit needs the three A_i and their sum
+// nv = n . V to share the sign of det = n . (P1 - O); its distance is t = det / nv,
+// which each hitting block computes by restoring division into a q-bit quotient.
+class General {
+ public:
+  General(Device& dev, const KernelOptions& opt, const std::vector<Triangle>& tris, KernelStats* st)
+      : dev_(dev), opt_(opt), tris_(tris), st_(st), cfg_(dev.config()) {}
+
+  void run(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
+    const unsigned n = opt_.n, q = opt_.qbits;
+    st_->general_rays += idx.size();
+    // Work relative to the scene's centre: smaller coordinates, less cancellation.
+    glm::dvec3 lo(kInf), hi(-kInf);
+    for (const Triangle& t : tris_) {
+      for (const glm::dvec3& p : t.p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+      }
+    }
+    const glm::dvec3 c = 0.5 * (lo + hi);
+    double vmax = 0, lmax = 0, omax = 0, lambda_max = 0;
+    for (size_t i : idx) {
+      const Ray& r = rays[i];
+      const glm::dvec3 o = r.o - c, l = glm::cross(o, r.d);
+      vmax = std::max(vmax, max_abs(r.d));
+      lmax = std::max(lmax, max_abs(l));
+      omax = std::max(omax, max_abs(o));
+      // No hit is farther than the farthest corner of the scene box.
+      double far = 0;
+      for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        far = std::max(far, glm::length(corner - r.o));
+      }
+      lambda_max = std::max(lambda_max, 1.25 * far / glm::length(r.d));
+    }
+    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+    const double unit = std::ldexp(1.0, kBits);
+    const double sv = vmax / unit, sl = lmax > 0 ? lmax / unit : 1, so = omax > 0 ? omax / unit : 1;
+    const double u = lambda_max / std::ldexp(1.0, static_cast<int>(q));  // quotient unit
+
+    std::vector<Program> progs;
+    std::vector<size_t> test_sizes;
+    std::vector<int> order;  // triangle of each broadcast
+    for (size_t k = 0; k < tris_.size(); ++k) {
+      const glm::dvec3 p1 = tris_[k].p[0] - c, p2 = tris_[k].p[1] - c, p3 = tris_[k].p[2] - c;
+      const glm::dvec3 cc[3] = {glm::cross(p2, p3), glm::cross(p3, p1), glm::cross(p1, p2)};
+      const glm::dvec3 ee[3] = {p3 - p2, p1 - p3, p2 - p1};
+      const glm::dvec3 nrm = cc[0] + cc[1] + cc[2];
+      if (nrm == glm::dvec3(0)) continue;  // degenerate: no ray can hit it, nor can the reference
+      double a[18];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          a[6 * i + j] = cc[i][j] * sv;
+          a[6 * i + 3 + j] = ee[i][j] * sl;
+        }
+      }
+      int64_t xa[18];
+      const int ea = mantissas(a, 18, n - 1, xa);
+      // det row, pre-scaled so that its value N makes floor(N 2^(q-1) / nv) = t / u.
+      const double K = std::ldexp(1.0, 1 - static_cast<int>(q) - (1 + ea)) / u;
+      const double d[4] = {-nrm.x * so * K, -nrm.y * so * K, -nrm.z * so * K, glm::dot(nrm, p1) / unit * K};
+      int64_t xd[4];
+      const int ed = mantissas(d, 4, n - 1, xd);
+      order.push_back(static_cast<int>(k));
+      size_t test_size = 0;
+      progs.push_back(program(static_cast<uint32_t>(order.size()), xa, xd, ed + 1, &test_size));
+      test_sizes.push_back(test_size);
+    }
+
+    const unsigned B = cfg_.blocks;
+    const int64_t lim = int64_t{1} << kBits;
+    for (size_t base = 0; base < idx.size(); base += B) {
+      const unsigned count = static_cast<unsigned>(std::min<size_t>(B, idx.size() - base));
+      ++st_->passes;
+      uint64_t c0 = dev_.cycles();
+      for (unsigned b = 0; b < count; ++b) {
+        const Ray& r = rays[idx[base + b]];
+        const glm::dvec3 o = r.o - c, l = glm::cross(o, r.d);
+        for (int j = 0; j < 3; ++j) {
+          dev_.write_word(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sv, lim, "ray direction")));
+          dev_.write_word(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl, lim, "ray moment")));
+          dev_.write_word(b, kO + j, static_cast<uint32_t>(quantize(o[j], so, lim, "ray origin")));
+        }
+        const double qmin = std::ceil(r.tmin / u);
+        dev_.write_word(b, kQmin, static_cast<uint32_t>(std::min(qmin, std::ldexp(1.0, 30))));
+        uint32_t excl = 0;  // broadcast number of the excluded triangle, 0 for none
+        for (size_t k = 0; k < order.size(); ++k) {
+          if (order[k] == r.exclude) excl = static_cast<uint32_t>(k + 1);
+        }
+        dev_.write_word(b, kExcl, excl);
+      }
+      Program init;
+      select_below(init, count, B);
+      init << flagop(map::kFlagV, 0, 0, lut::kZero);
+      init.mask(0);
+      init << writes(kBest, 0x7FFFFFFFu, kSel) << writes(kIdx, 0, kSel) << writes(kCnt, 0, kSel)
+           << writes(kOne, 1, kSel) << writes(kZero, 0, kSel) << writes(kUnit, 1u << kBits, kSel);
+      init.mask(0x7FFFFFFFu);
+      push(init);
+      st_->load_cycles += dev_.cycles() - c0;
+
+      c0 = dev_.cycles();
+      for (size_t k = 0; k < progs.size(); ++k) {
+        push(progs[k]);
+        st_->broadcast_steps += progs[k].size();
+        st_->test_steps += test_sizes[k];
+        ++st_->broadcasts;
+      }
+      st_->compute_cycles += dev_.cycles() - c0;
+
+      c0 = dev_.cycles();
+      std::vector<bool> ovf(count, false);
+      if (dev_.overflow()) {
+        const std::vector<bool> v = dev_.read_flag_all(map::kFlagV);
+        for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
+      }
+      for (unsigned b = 0; b < count; ++b) {
+        if (ovf[b]) continue;
+        const uint32_t qv = dev_.read_word(b, kBest);
+        Hit h;
+        if (qv != 0x7FFFFFFFu) {
+          const uint32_t ordinal = dev_.read_word(b, kIdx);
+          if (ordinal < 1 || ordinal > order.size()) {
+            throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
+                                   std::to_string(ordinal) + " of " + std::to_string(order.size()));
+          }
+          h.tri = order[ordinal - 1];
+          h.t = (qv + 0.5) * u;
+        }
+        out[idx[base + b]] = h;
+      }
+      st_->readback_cycles += dev_.cycles() - c0;
+      std::vector<int> all;
+      for (unsigned b = 0; b < count; ++b) {
+        if (!ovf[b]) continue;
+        const size_t i = idx[base + b];
+        ++st_->overflow_rays;
+        if (all.empty()) {
+          for (size_t k = 0; k < tris_.size(); ++k) all.push_back(static_cast<int>(k));
+        }
+        out[i] = Hit{};
+        merge_host(rays[i], tris_, all, &out[i], st_);
+      }
+    }
+  }
+
+ private:
+  static constexpr int kBits = 25;  // ray data magnitudes: 6-term rows stay below 2^31
+  // Words.
+  static constexpr unsigned kV = 0, kL = 3, kO = 6, kA = 9, kDet = 12, kNv = 13, kTmp = 14, kQ = 15, kBest = 16,
+                            kIdx = 17, kCnt = 18, kOne = 19, kZero = 20, kUnit = 21, kQmin = 22, kExcl = 23;
+  // Flags (kSel, kHit, kWin, kTmp from the file scope; 4 = det < 0).
+  static constexpr unsigned kNeg = 4;
+
+ public:
+  static constexpr unsigned kWords = 24;
+
+ private:
+  static double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+  uint64_t push(const Program& p) {
+    const uint64_t c0 = dev_.cycles();
+    dev_.push(p.code());
+    st_->instructions += p.size();
+    return dev_.cycles() - c0;
+  }
+
+  Program program(uint32_t ordinal, const int64_t xa[18], const int64_t xd[4], int dshift, size_t* test_size) const {
+    const unsigned flag_tmp = isect::kTmp;
+    Program p;
+    p.assume_mask(0x7FFFFFFFu);
+    p << add(kCnt, kCnt, kOne, kSel);
+    std::vector<Row> rows(4);
+    for (unsigned i = 0; i < 3; ++i) {
+      rows[i].r = kA + i;
+      for (unsigned j = 0; j < 3; ++j) {
+        rows[i].terms.push_back(Term{kV + j, xa[6 * i + j], 0});
+        rows[i].terms.push_back(Term{kL + j, xa[6 * i + 3 + j], 0});
+      }
+    }
+    rows[3].r = kDet;
+    for (unsigned j = 0; j < 3; ++j) rows[3].terms.push_back(Term{kO + j, xd[j], 0});
+    rows[3].terms.push_back(Term{kUnit, xd[3], 0});
+    dot_rows_const(p, rows, opt_.n, kSel);
+    p << add(kNv, kA + 0, kA + 1, kSel) << add(kNv, kNv, kA + 2, kSel);
+    // Where det < 0, negate det, the A_i and nv: then det > 0, A_i >= 0 and nv > 0 mean a hit.
+    p << ref(RefFn::kAnd, RefPart::kData, kDet, 0x80000000u, kNeg, kSel);
+    for (unsigned w : {kDet, kA + 0, kA + 1, kA + 2, kNv}) p << sub(w, kZero, w, kNeg);
+    nonneg(p, kHit, kSel, kA + 0);
+    nonneg(p, kHit, kHit, kA + 1);
+    nonneg(p, kHit, kHit, kA + 2);
+    *test_size = p.size();
+    for (unsigned w : {kDet, kNv}) {  // strictly positive: w - 1 >= 0
+      p << sub(kTmp, w, kOne, kHit);
+      nonneg(p, kHit, kHit, kTmp);
+    }
+    // The ray's own triangle (a secondary ray leaving its surface) never counts.
+    p.mask(0);
+    p << ref(RefFn::kAnd, RefPart::kData, kExcl, ordinal, flag_tmp, kHit);
+    p << flagop(kHit, kHit, flag_tmp, lut::kAndNotB);
+    p.mask(0x7FFFFFFFu);
+    for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kHit);
+    for (int k = 0; k > dshift; --k) p << rshift(kDet, kDet, kHit);
+    // t must be below the range of the quotient: det < 2 nv. Otherwise flag the ray (V) for the host.
+    p << sub(kTmp, kDet, kNv, kHit) << sub(kTmp, kTmp, kNv, kHit);
+    nonneg(p, flag_tmp, kHit, kTmp);
+    p << flagop(map::kFlagV, map::kFlagV, flag_tmp, lut::kOr) << flagop(kHit, kHit, flag_tmp, lut::kAndNotB);
+    // Restoring division: Q = floor(det 2^(q-1) / nv), the remainder in det.
+    p << func(FuncFn::kXor, kQ, kQ, kQ, kHit);
+    for (int j = static_cast<int>(opt_.qbits) - 1; j >= 0; --j) {
+      p << sub(kTmp, kDet, kNv, kHit);
+      nonneg(p, flag_tmp, kHit, kTmp);
+      p << func(FuncFn::kOr, kDet, kTmp, kTmp, flag_tmp);
+      p << lshift(kQ, kQ, kHit) << add(kQ, kQ, kOne, flag_tmp);
+      if (j > 0) p << lshift(kDet, kDet, kHit);
+    }
+    // Beyond the ray's tmin, and nearer than the best so far.
+    p << sub(kTmp, kQ, kQmin, kHit);
+    nonneg(p, kHit, kHit, kTmp);
+    p << sub(kTmp, kQ, kBest, kHit);
+    p << ref(RefFn::kAnd, RefPart::kData, kTmp, 0x80000000u, kWin, kHit);
+    p << func(FuncFn::kOr, kBest, kQ, kQ, kWin) << func(FuncFn::kOr, kIdx, kCnt, kCnt, kWin);
+    return p;
+  }
+
+  Device& dev_;
+  const KernelOptions& opt_;
+  const std::vector<Triangle>& tris_;
+  KernelStats* st_;
+  Config cfg_;
+};
+
 }  // namespace
 
 void KernelOptions::validate(const Config& cfg) const {
@@ -481,25 +727,56 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const
   KernelStats& st = stats ? *stats : local;
   const uint64_t c0 = dev.cycles();
   std::vector<Hit> out(rays.size());
-  // Group rays by origin: each group has its own inverse matrices.
-  std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const Ray& r = rays[i];
-    if (!std::isfinite(r.o.x + r.o.y + r.o.z + r.d.x + r.d.y + r.d.z)) {
-      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
-    }
-    if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
-    groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
-  }
   for (const Triangle& t : tris) {
     for (const glm::dvec3& p : t.p) {
       if (!std::isfinite(p.x + p.y + p.z)) throw std::invalid_argument("fmpp::isect: a triangle vertex is not finite");
+    }
+  }
+  // Group rays by origin: a group shares one set of inverse matrices (the paper's method).
+  std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
+  std::vector<size_t> general;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    if (!std::isfinite(r.o.x + r.o.y + r.o.z + r.d.x + r.d.y + r.d.z) || !(r.tmin >= 0) || !std::isfinite(r.tmin)) {
+      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
+    }
+    if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
+    const bool special = r.tmin > 0 || r.exclude >= 0;
+    if (opt.mapping == Mapping::kObject && special) {
+      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) +
+                                  " has tmin or an excluded triangle, which the object-parallel mapping does not support");
+    }
+    if (opt.mapping == Mapping::kRay && (special || opt.origins == Origins::kGeneral)) {
+      general.push_back(i);
+    } else {
+      groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
+    }
+  }
+  if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
+    // Small groups would leave most blocks idle: send them through the general kernel.
+    const size_t min_group = std::max<size_t>(16, dev.config().blocks / 8);
+    const bool several = groups.size() > 1 || !general.empty();
+    for (auto it = groups.begin(); it != groups.end();) {
+      if (it->second.size() < min_group && several) {
+        general.insert(general.end(), it->second.begin(), it->second.end());
+        it = groups.erase(it);
+      } else {
+        ++it;
+      }
     }
   }
   for (const auto& [origin, idx] : groups) {
     ++st.groups;
     Group g(dev, opt, tris, glm::dvec3(std::get<0>(origin), std::get<1>(origin), std::get<2>(origin)), &st);
     g.run(rays, idx, out);
+  }
+  if (!general.empty()) {
+    if (dev.config().words < General::kWords) {
+      throw std::invalid_argument("rays with their own origins need " + std::to_string(General::kWords) +
+                                  " words per block; the FMPP has " + std::to_string(dev.config().words));
+    }
+    General g(dev, opt, tris, &st);
+    g.run(rays, general, out);
   }
   st.cycles += dev.cycles() - c0;
   return out;

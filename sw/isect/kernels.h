@@ -30,11 +30,19 @@ namespace fmpp::isect {
 
 enum class Mapping { kRay, kObject };
 enum class MulMode { kGeneric, kConst };
+// How rays with different origins are handled in the ray-parallel mapping:
+//   group:   one set of inverse matrices per distinct origin (the paper's method);
+//   general: every ray through the arbitrary-origin (Pluecker) formulation;
+//   auto:    the paper's method for origins shared by many rays, general for the rest,
+//            and general for rays with tmin > 0 or an excluded triangle.
+enum class Origins { kAuto, kGroup, kGeneral };
 
 Mapping parse_mapping(const std::string& s);    // "ray" | "object"
 MulMode parse_mul_mode(const std::string& s);   // "generic" | "const"
+Origins parse_origins(const std::string& s);    // "auto" | "group" | "general"
 const char* to_string(Mapping m);
 const char* to_string(MulMode m);
+const char* to_string(Origins o);
 
 struct KernelOptions {
   Mapping mapping = Mapping::kRay;
@@ -42,6 +50,8 @@ struct KernelOptions {
   unsigned n = 24;      // multiplier bits: matrix mantissas (ray-parallel), ray components (object-parallel)
   unsigned vbits = 28;  // ray-parallel: |V| components quantized to at most 2^vbits
   unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
+  unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
+  Origins origins = Origins::kAuto;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
   // intersected on the host instead. Negative: n - 3 (ray-parallel), mbits - 3 (object).
   int cond_bits = -1;
@@ -57,7 +67,8 @@ struct KernelStats {
   uint64_t instructions = 0;
   uint64_t broadcasts = 0;       // triangles (ray-parallel) or rays (object-parallel) sent
   uint64_t passes = 0;
-  uint64_t groups = 0;           // distinct ray origins
+  uint64_t groups = 0;           // distinct ray origins run with the paper's method
+  uint64_t general_rays = 0;     // rays run with the arbitrary-origin formulation
   uint64_t broadcast_steps = 0;  // instructions in all broadcasts (for steps per broadcast)
   uint64_t test_steps = 0;       // of those, the ones up to the T >= 0 test (the paper's count)
   uint64_t overflow_rays = 0;    // rays redone on the host after an overflow

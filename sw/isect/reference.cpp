@@ -69,7 +69,9 @@ std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vect
   for (size_t i = 0; i < rays.size(); ++i) {
     const Sheared s = shear(rays[i]);
     for (size_t k = 0; k < tris.size(); ++k) {
+      if (static_cast<int>(k) == rays[i].exclude) continue;
       const double t = intersect_sheared(s, tris[k]);
+      if (t <= rays[i].tmin) continue;
       if (t < out[i].t) {  // strict: the lowest index keeps a tie
         out[i].t = t;
         out[i].tri = static_cast<int>(k);

@@ -14,7 +14,7 @@ namespace fmpp::isect {
 // Degenerate triangles (zero area as seen from the ray) never hit.
 double intersect_reference(const Ray& r, const Triangle& t);
 
-// Nearest hit of each ray over all triangles.
+// Nearest hit of each ray over all triangles (t > ray.tmin, triangle != ray.exclude).
 std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
 // Ray-triangle tests per second of the brute-force loop above on one core, for the
