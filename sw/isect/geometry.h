@@ -15,11 +15,15 @@ struct Triangle {
 
 // A ray O + t D, t > tmin. D need not be normalized; t is in units of D. A secondary
 // ray leaving a surface names its triangle in `exclude` so it cannot hit it again.
+// Hits at t >= tmax are of no interest to the caller (a shadow ray only asks what lies
+// before its point): the result may then report them or not, which lets the FMPP skip
+// triangles out of reach.
 struct Ray {
   glm::dvec3 o;
   glm::dvec3 d;
   double tmin = 0;
   int exclude = -1;
+  double tmax = std::numeric_limits<double>::infinity();
 };
 
 struct Hit {

@@ -49,6 +49,7 @@ void KernelStats::add(const KernelStats& o) {
   overflow_triangles += o.overflow_triangles;
   host_triangles += o.host_triangles;
   host_tests += o.host_tests;
+  culled += o.culled;
 }
 
 namespace {
@@ -131,6 +132,72 @@ void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vect
   }
 }
 
+// ------------------------------------------------------------------- culling
+struct Sphere {
+  glm::dvec3 c;
+  double r;
+};
+
+std::vector<Sphere> bounding_spheres(const std::vector<Triangle>& tris) {
+  std::vector<Sphere> out;
+  for (const Triangle& t : tris) {
+    const glm::dvec3 c = (t.p[0] + t.p[1] + t.p[2]) / 3.0;
+    double r = 0;
+    for (const glm::dvec3& p : t.p) r = std::max(r, glm::length(p - c));
+    out.push_back(Sphere{c, r});
+  }
+  return out;
+}
+
+// The region the rays of a pass can reach: a cone of their directions, with its apex
+// fattened to a ball holding all their origins, cut at the farthest tmax.
+struct Cone {
+  bool all = true;  // no useful bound
+  glm::dvec3 apex{0};
+  double apex_r = 0;
+  glm::dvec3 axis{0};
+  double half_angle = 0;
+  double reach = kInf;
+};
+
+Cone pass_cone(const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t begin, size_t end) {
+  Cone c;
+  glm::dvec3 lo(kInf), hi(-kInf), sum(0);
+  for (size_t k = begin; k < end; ++k) {
+    const Ray& r = rays[idx[k]];
+    lo = glm::min(lo, r.o);
+    hi = glm::max(hi, r.o);
+    sum += glm::normalize(r.d);
+  }
+  if (glm::length(sum) < 1e-9) return c;
+  c.all = false;
+  c.apex = 0.5 * (lo + hi);
+  c.apex_r = 0.5 * glm::length(hi - lo);
+  c.axis = glm::normalize(sum);
+  double reach = 0;
+  for (size_t k = begin; k < end; ++k) {
+    const Ray& r = rays[idx[k]];
+    c.half_angle = std::max(c.half_angle, std::acos(std::clamp(glm::dot(glm::normalize(r.d), c.axis), -1.0, 1.0)));
+    reach = std::max(reach, glm::length(r.o - c.apex) + r.tmax * glm::length(r.d));
+  }
+  c.reach = reach;
+  return c;
+}
+
+// Conservative: false only if no point of the sphere is within the cone (plus an
+// angular margin far above the fixed-point error, so no false hit is culled either).
+bool may_hit(const Cone& c, const Sphere& s, double margin) {
+  if (c.all) return true;
+  const glm::dvec3 d = s.c - c.apex;
+  const double dist = glm::length(d), rr = s.r + c.apex_r;
+  if (dist <= rr) return true;
+  if (dist - rr > c.reach) return false;
+  const double phi = std::acos(std::clamp(glm::dot(d, c.axis) / dist, -1.0, 1.0));
+  return phi <= c.half_angle + std::asin(std::min(1.0, rr / dist)) + margin;
+}
+
+double cull_margin(const KernelOptions& o) { return 1e-3 + std::ldexp(1.0, 12 - static_cast<int>(o.n)); }
+
 class Group {
  public:
   Group(Device& dev, const KernelOptions& opt, const std::vector<Triangle>& tris, const glm::dvec3& origin,
@@ -193,10 +260,22 @@ class Group {
     }
     st_->host_triangles += host.size();
 
+    const std::vector<Sphere> spheres = bounding_spheres(tris_);
     const unsigned B = cfg_.blocks;
+    const uint64_t planned = (idx.size() + B - 1) / B;
     for (size_t base = 0; base < idx.size(); base += B) {
       const unsigned count = static_cast<unsigned>(std::min<size_t>(B, idx.size() - base));
       ++st_->passes;
+      // The triangles this pass broadcasts.
+      std::vector<size_t> pass_order;
+      const Cone cone = opt_.cull ? pass_cone(rays, idx, base, base + count) : Cone{};
+      for (size_t k = 0; k < progs.size(); ++k) {
+        if (may_hit(cone, spheres[fmpp_tris[k]], cull_margin(opt_))) {
+          pass_order.push_back(k);
+        } else {
+          ++st_->culled;
+        }
+      }
       // Load: ray components into words 0..2, then select the blocks holding rays.
       uint64_t c0 = dev_.cycles();
       for (unsigned b = 0; b < count; ++b) {
@@ -215,9 +294,9 @@ class Group {
       push(init);
       st_->load_cycles += dev_.cycles() - c0;
 
-      // Broadcast every triangle.
+      // Broadcast every triangle the pass can reach.
       c0 = dev_.cycles();
-      for (size_t k = 0; k < progs.size(); ++k) {
+      for (size_t k : pass_order) {
         push(progs[k]);
         st_->broadcast_steps += progs[k].size();
         st_->test_steps += test_sizes[k];
@@ -238,11 +317,11 @@ class Group {
         Hit h;
         if (s != 0) {
           const uint32_t ordinal = dev_.read_word(b, kRIdx);  // 1-based broadcast number
-          if (ordinal < 1 || ordinal > fmpp_tris.size()) {
+          if (ordinal < 1 || ordinal > pass_order.size()) {
             throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
-                                   std::to_string(ordinal) + " of " + std::to_string(fmpp_tris.size()));
+                                   std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
           }
-          h.tri = fmpp_tris[ordinal - 1];
+          h.tri = fmpp_tris[pass_order[ordinal - 1]];
           h.t = 1.0 / (static_cast<double>(s) * std::ldexp(1.0, E + 1) * sv);
         }
         out[idx[base + b]] = h;
@@ -259,6 +338,7 @@ class Group {
         }
         merge_host(rays[i], tris_, host, &out[i], st_);
       }
+      if (opt_.progress) opt_.progress(base / B + 1, planned);
     }
   }
 
@@ -510,8 +590,8 @@ class General {
     const double u = lambda_max / std::ldexp(1.0, static_cast<int>(q));  // quotient unit
 
     std::vector<Program> progs;
-    std::vector<size_t> test_sizes;
-    std::vector<int> order;  // triangle of each broadcast
+    std::vector<size_t> test_sizes, excl_pos;
+    std::vector<int> order;  // triangle of each program
     for (size_t k = 0; k < tris_.size(); ++k) {
       const glm::dvec3 p1 = tris_[k].p[0] - c, p2 = tris_[k].p[1] - c, p3 = tris_[k].p[2] - c;
       const glm::dvec3 cc[3] = {glm::cross(p2, p3), glm::cross(p3, p1), glm::cross(p1, p2)};
@@ -533,16 +613,30 @@ class General {
       int64_t xd[4];
       const int ed = mantissas(d, 4, n - 1, xd);
       order.push_back(static_cast<int>(k));
-      size_t test_size = 0;
-      progs.push_back(program(static_cast<uint32_t>(order.size()), xa, xd, ed + 1, &test_size));
+      size_t test_size = 0, pos = 0;
+      progs.push_back(program(xa, xd, ed + 1, &test_size, &pos));
       test_sizes.push_back(test_size);
+      excl_pos.push_back(pos);
     }
 
+    const std::vector<Sphere> spheres = bounding_spheres(tris_);
     const unsigned B = cfg_.blocks;
+    const uint64_t planned = (idx.size() + B - 1) / B;
     const int64_t lim = int64_t{1} << kBits;
     for (size_t base = 0; base < idx.size(); base += B) {
       const unsigned count = static_cast<unsigned>(std::min<size_t>(B, idx.size() - base));
       ++st_->passes;
+      std::vector<size_t> pass_order;  // programs this pass broadcasts
+      std::vector<uint32_t> ordinal_of(progs.size(), 0);
+      const Cone cone = opt_.cull ? pass_cone(rays, idx, base, base + count) : Cone{};
+      for (size_t k = 0; k < progs.size(); ++k) {
+        if (may_hit(cone, spheres[order[k]], cull_margin(opt_))) {
+          pass_order.push_back(k);
+          ordinal_of[k] = static_cast<uint32_t>(pass_order.size());
+        } else {
+          ++st_->culled;
+        }
+      }
       uint64_t c0 = dev_.cycles();
       for (unsigned b = 0; b < count; ++b) {
         const Ray& r = rays[idx[base + b]];
@@ -554,9 +648,9 @@ class General {
         }
         const double qmin = std::ceil(r.tmin / u);
         dev_.write_word(b, kQmin, static_cast<uint32_t>(std::min(qmin, std::ldexp(1.0, 30))));
-        uint32_t excl = 0;  // broadcast number of the excluded triangle, 0 for none
+        uint32_t excl = 0;  // broadcast number of the excluded triangle in this pass, 0 for none
         for (size_t k = 0; k < order.size(); ++k) {
-          if (order[k] == r.exclude) excl = static_cast<uint32_t>(k + 1);
+          if (order[k] == r.exclude) excl = ordinal_of[k];
         }
         dev_.write_word(b, kExcl, excl);
       }
@@ -571,9 +665,14 @@ class General {
       st_->load_cycles += dev_.cycles() - c0;
 
       c0 = dev_.cycles();
-      for (size_t k = 0; k < progs.size(); ++k) {
-        push(progs[k]);
-        st_->broadcast_steps += progs[k].size();
+      std::vector<uint64_t> code;
+      for (size_t k : pass_order) {
+        // The exclusion test compares with this broadcast's number in the pass.
+        code = progs[k].code();
+        code[excl_pos[k]] = (code[excl_pos[k]] & ~uint64_t{0xFFFFFFFF}) | ordinal_of[k];
+        dev_.push(code);
+        st_->instructions += code.size();
+        st_->broadcast_steps += code.size();
         st_->test_steps += test_sizes[k];
         ++st_->broadcasts;
       }
@@ -591,11 +690,11 @@ class General {
         Hit h;
         if (qv != 0x7FFFFFFFu) {
           const uint32_t ordinal = dev_.read_word(b, kIdx);
-          if (ordinal < 1 || ordinal > order.size()) {
+          if (ordinal < 1 || ordinal > pass_order.size()) {
             throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
-                                   std::to_string(ordinal) + " of " + std::to_string(order.size()));
+                                   std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
           }
-          h.tri = order[ordinal - 1];
+          h.tri = order[pass_order[ordinal - 1]];
           h.t = (qv + 0.5) * u;
         }
         out[idx[base + b]] = h;
@@ -612,6 +711,7 @@ class General {
         out[i] = Hit{};
         merge_host(rays[i], tris_, all, &out[i], st_);
       }
+      if (opt_.progress) opt_.progress(base / B + 1, planned);
     }
   }
 
@@ -636,7 +736,8 @@ class General {
     return dev_.cycles() - c0;
   }
 
-  Program program(uint32_t ordinal, const int64_t xa[18], const int64_t xd[4], int dshift, size_t* test_size) const {
+  // *excl_pos gets the index of the REF whose key must be set to the broadcast's number.
+  Program program(const int64_t xa[18], const int64_t xd[4], int dshift, size_t* test_size, size_t* excl_pos) const {
     const unsigned flag_tmp = isect::kTmp;
     Program p;
     p.assume_mask(0x7FFFFFFFu);
@@ -667,7 +768,8 @@ class General {
     }
     // The ray's own triangle (a secondary ray leaving its surface) never counts.
     p.mask(0);
-    p << ref(RefFn::kAnd, RefPart::kData, kExcl, ordinal, flag_tmp, kHit);
+    *excl_pos = p.size();
+    p << ref(RefFn::kAnd, RefPart::kData, kExcl, 0, flag_tmp, kHit);
     p << flagop(kHit, kHit, flag_tmp, lut::kAndNotB);
     p.mask(0x7FFFFFFFu);
     for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kHit);
@@ -741,12 +843,10 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const
       throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
     }
     if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
+    // Rays with tmin or an excluded triangle take the general (ray-parallel) kernel in
+    // either mapping: the object-parallel maximum search has no per-ray exclusion.
     const bool special = r.tmin > 0 || r.exclude >= 0;
-    if (opt.mapping == Mapping::kObject && special) {
-      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) +
-                                  " has tmin or an excluded triangle, which the object-parallel mapping does not support");
-    }
-    if (opt.mapping == Mapping::kRay && (special || opt.origins == Origins::kGeneral)) {
+    if (special || (opt.mapping == Mapping::kRay && opt.origins == Origins::kGeneral)) {
       general.push_back(i);
     } else {
       groups[{r.o.x, r.o.y, r.o.z}].push_back(i);

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,12 @@ struct KernelOptions {
   unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
   unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
   Origins origins = Origins::kAuto;
+  // Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach
+  // (outside the cone of its directions, fattened by the spread of its origins, or
+  // beyond every ray's tmax). Exact culling can only drop triangles the rays miss.
+  bool cull = true;
+  // Called after each pass with (passes done, passes planned in this call).
+  std::function<void(uint64_t, uint64_t)> progress;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
   // intersected on the host instead. Negative: n - 3 (ray-parallel), mbits - 3 (object).
   int cond_bits = -1;
@@ -75,6 +82,7 @@ struct KernelStats {
   uint64_t overflow_triangles = 0;
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
+  uint64_t culled = 0;           // broadcasts skipped by culling
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }

@@ -26,8 +26,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
   std::string tri_file, ray_file, out_file = "-", report_file, backend = "cmodel", mapping = "ray", mul = "const";
   unsigned bits = 24, blocks = 64, words = 0;
-  std::string config;
+  std::string config, origins = "auto";
   int cond_bits = -1;
+  unsigned qbits = 20;
   app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line")->required();
   app.add_option("--rays", ray_file, "ray file: ox oy oz dx dy dz per line")->required();
   app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep");
@@ -39,6 +40,11 @@ int main(int argc, char** argv) {
   app.add_option("--words", words, "words per block (default: what the mapping needs)")->check(CLI::Range(2u, 64u));
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
   app.add_option("--cond-bits", cond_bits, "triangles with condition number above 2^this go to the host");
+  app.add_option("--origins", origins,
+                 "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
+                 "general formulation for the rest) | group | general")
+      ->check(CLI::IsMember({"auto", "group", "general"}));
+  app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")->check(CLI::Range(4u, 28u));
   app.add_option("--out", out_file, "hits file ('-' for stdout)");
   app.add_option("--report", report_file, "JSON summary");
   CLI11_PARSE(app, argc, argv);
@@ -60,6 +66,8 @@ int main(int argc, char** argv) {
       opt.mul = parse_mul_mode(mul);
       opt.n = bits;
       opt.cond_bits = cond_bits;
+      opt.origins = parse_origins(origins);
+      opt.qbits = qbits;
       Config cfg{blocks, words ? words : ((words_needed(opt) + 1) & ~1u)};
       if (!config.empty()) cfg = named_config(config);
       auto be = make_backend(backend, cfg);
@@ -80,6 +88,7 @@ int main(int argc, char** argv) {
       rep["broadcasts"] = st.broadcasts;
       rep["steps_per_broadcast"] = st.steps_per_broadcast();
       rep["origin_groups"] = st.groups;
+      rep["general_rays"] = st.general_rays;
       rep["overflow_rays"] = st.overflow_rays;
       rep["overflow_triangles"] = st.overflow_triangles;
       rep["overflow_count"] = st.overflow_rays + st.overflow_triangles;

@@ -1,0 +1,45 @@
+// Image tone mapping, PNG output and comparison (see image.h).
+#include "sw/rt/image.h"
+
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace rt {
+
+std::vector<uint8_t> Image::to_rgb8() const {
+  std::vector<uint8_t> out(px_.size() * 3);
+  for (size_t i = 0; i < px_.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double v = std::pow(std::clamp(px_[i][c], 0.0, 1.0), 1.0 / 2.2);
+      out[3 * i + c] = static_cast<uint8_t>(std::lround(v * 255.0));
+    }
+  }
+  return out;
+}
+
+void Image::write_png(const std::string& path) const {
+  const std::vector<uint8_t> rgb = to_rgb8();
+  if (!stbi_write_png(path.c_str(), w_, h_, 3, rgb.data(), w_ * 3)) {
+    throw std::runtime_error(path + ": cannot write PNG");
+  }
+}
+
+ImageDiff compare(const Image& a, const Image& b, int tolerance) {
+  if (a.width() != b.width() || a.height() != b.height()) throw std::invalid_argument("rt::compare: image sizes differ");
+  const std::vector<uint8_t> x = a.to_rgb8(), y = b.to_rgb8();
+  ImageDiff d;
+  for (size_t i = 0; i < x.size(); i += 3) {
+    int m = 0;
+    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(static_cast<int>(x[i + c]) - static_cast<int>(y[i + c])));
+    d.pixels += m > 0;
+    d.pixels_over += m > tolerance;
+    d.max_delta = std::max(d.max_delta, m);
+  }
+  return d;
+}
+
+}  // namespace rt

@@ -1,0 +1,79 @@
+// The Whitted ray tracer. The host generates rays, shades hits and spawns new rays;
+// every intersection goes to an Intersector: the double-precision reference, or the
+// FMPP over any Bus (golden model, Verilated RTL, lockstep, SystemC).
+//
+// Rays travel in batches, one ray type per call, so the FMPP sees what suits it:
+//  - primary rays share the eye as origin (the paper's inverse matrices);
+//  - shadow rays are cast *from* each point light towards the shaded points, so they
+//    share the light as origin too; a point is lit unless something lies between;
+//  - reflection and refraction rays have their own origins (the general formulation)
+//    and exclude the triangle they leave.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/isect/kernels.h"
+#include "sw/rt/image.h"
+#include "sw/rt/scene.h"
+
+namespace rt {
+
+enum class RayKind { kPrimary = 0, kShadow = 1, kReflection = 2, kRefraction = 3 };
+inline constexpr int kNumRayKinds = 4;
+const char* to_string(RayKind k);
+
+class Intersector {
+ public:
+  virtual ~Intersector() = default;
+  // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
+  virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
+};
+
+class ReferenceIntersector : public Intersector {
+ public:
+  explicit ReferenceIntersector(const std::vector<fmpp::isect::Triangle>& tris) : tris_(tris) {}
+  std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
+
+ private:
+  const std::vector<fmpp::isect::Triangle>& tris_;
+};
+
+class FmppIntersector : public Intersector {
+ public:
+  FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
+                  const fmpp::isect::KernelOptions& opt)
+      : dev_(dev), tris_(tris), opt_(opt) {}
+  std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
+  const fmpp::isect::KernelStats& stats() const { return stats_; }
+
+ private:
+  fmpp::Device& dev_;
+  const std::vector<fmpp::isect::Triangle>& tris_;
+  fmpp::isect::KernelOptions opt_;
+  fmpp::isect::KernelStats stats_;
+};
+
+struct RenderOptions {
+  int width = 64;
+  int height = 64;
+  int max_depth = -1;  // -1: the scene's
+  // Called after each batch of rays: (rays traced so far, a description of the batch).
+  std::function<void(uint64_t, const std::string&)> progress;
+};
+
+struct RenderStats {
+  uint64_t rays[kNumRayKinds] = {};
+  uint64_t batches = 0;
+  double intersect_seconds = 0;
+  double shade_seconds = 0;
+};
+
+// Renders the scene; the image is linear radiance.
+Image render(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats);
+
+}  // namespace rt

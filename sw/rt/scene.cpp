@@ -1,0 +1,259 @@
+// Scene loading: nlohmann-json for the scene file, tinyobjloader for the meshes, with
+// every error naming the file and the line or field (see scene.h).
+#include "sw/rt/scene.h"
+
+#include <nlohmann/json.hpp>
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace rt {
+namespace {
+
+using json = nlohmann::json;
+
+[[noreturn]] void field_error(const std::string& file, const std::string& field, const std::string& what) {
+  throw SceneError(file + ": field '" + field + "': " + what);
+}
+
+const json& require(const json& j, const char* key, const std::string& file, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) field_error(file, where.empty() ? key : where + "." + key, "missing");
+  return j.at(key);
+}
+
+double number(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
+  if (!j.is_number()) field_error(file, field, "expected a number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v) || v < lo || v > hi) {
+    std::ostringstream o;
+    o << "value " << v << " outside [" << lo << ", " << hi << "]";
+    field_error(file, field, o.str());
+  }
+  return v;
+}
+
+glm::dvec3 vec3(const json& j, const std::string& file, const std::string& field, double lo = -1e9, double hi = 1e9) {
+  if (!j.is_array() || j.size() != 3) field_error(file, field, "expected an array of 3 numbers");
+  glm::dvec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = number(j[k], file, field + "[" + std::to_string(k) + "]", lo, hi);
+  return v;
+}
+
+void reject_unknown(const json& j, std::initializer_list<const char*> known, const std::string& file,
+                    const std::string& where) {
+  for (const auto& [key, value] : j.items()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || key == k;
+    if (!ok) field_error(file, where.empty() ? key : where + "." + key, "unknown field");
+  }
+}
+
+// Checks the OBJ line by line before tinyobjloader parses it: tinyobjloader accepts
+// malformed numbers and dangling indices quietly.
+void validate_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path + ": cannot open mesh");
+  std::string line;
+  size_t lineno = 0, nv = 0, nvn = 0, nvt = 0;
+  auto fail = [&](const std::string& what) { throw SceneError(path + ":" + std::to_string(lineno) + ": " + what); };
+  while (std::getline(in, line)) {
+    ++lineno;
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream ss(line);
+    std::string tag;
+    if (!(ss >> tag)) continue;
+    if (tag == "v" || tag == "vn" || tag == "vt") {
+      const int need = tag == "vt" ? 2 : 3;
+      std::string tok;
+      int count = 0;
+      while (ss >> tok) {
+        char* end = nullptr;
+        const double x = std::strtod(tok.c_str(), &end);
+        if (end == tok.c_str() || *end != '\0' || !std::isfinite(x)) fail("'" + tok + "' is not a finite number");
+        ++count;
+      }
+      if (count < need) fail(tag + " needs " + std::to_string(need) + " numbers, found " + std::to_string(count));
+      (tag == "v" ? nv : tag == "vn" ? nvn : nvt)++;
+    } else if (tag == "f") {
+      std::string tok;
+      int count = 0;
+      while (ss >> tok) {
+        // v, v/vt, v//vn or v/vt/vn; negative indices count from the end.
+        size_t pos = 0;
+        for (int part = 0; part < 3 && pos <= tok.size(); ++part) {
+          const size_t slash = tok.find('/', pos);
+          const std::string s = tok.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
+          if (!s.empty()) {
+            char* end = nullptr;
+            const long idx = std::strtol(s.c_str(), &end, 10);
+            const size_t have = part == 0 ? nv : part == 1 ? nvt : nvn;
+            if (end == s.c_str() || *end != '\0' || idx == 0) fail("bad index '" + s + "' in face");
+            const long abs_idx = idx > 0 ? idx : static_cast<long>(have) + idx + 1;
+            if (abs_idx < 1 || static_cast<size_t>(abs_idx) > have) {
+              fail("face index " + s + " refers to a missing " +
+                   std::string(part == 0 ? "vertex" : part == 1 ? "texture coordinate" : "normal"));
+            }
+          } else if (part == 0) {
+            fail("face corner '" + tok + "' has no vertex");
+          }
+          if (slash == std::string::npos) break;
+          pos = slash + 1;
+        }
+        ++count;
+      }
+      if (count < 3) fail("a face needs at least 3 corners, found " + std::to_string(count));
+    } else if (tag != "o" && tag != "g" && tag != "s" && tag != "usemtl" && tag != "mtllib" && tag != "l" &&
+               tag != "p") {
+      fail("unknown statement '" + tag + "'");
+    }
+  }
+}
+
+void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
+               const std::filesystem::path& dir) {
+  const std::string where = "meshes[" + std::to_string(index) + "]";
+  reject_unknown(m, {"file", "material", "groups"}, file, where);
+  const json& f = require(m, "file", file, where);
+  if (!f.is_string()) field_error(file, where + ".file", "expected a string");
+  const std::string path = (dir / f.get<std::string>()).string();
+  auto material = [&](const json& name, const std::string& field) {
+    if (!name.is_string()) field_error(file, field, "expected a material name");
+    const auto it = mats.find(name.get<std::string>());
+    if (it == mats.end()) field_error(file, field, "no material '" + name.get<std::string>() + "'");
+    return it->second;
+  };
+  const int def = material(require(m, "material", file, where), where + ".material");
+  std::map<std::string, int> group_mat;
+  if (m.contains("groups")) {
+    if (!m["groups"].is_object()) field_error(file, where + ".groups", "expected an object of group: material");
+    for (const auto& [g, name] : m["groups"].items()) group_mat[g] = material(name, where + ".groups." + g);
+  }
+  validate_obj(path);
+  tinyobj::ObjReaderConfig cfg;
+  cfg.triangulate = true;
+  cfg.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, cfg)) throw SceneError(path + ": " + reader.Error());
+  const auto& at = reader.GetAttrib();
+  std::map<std::string, bool> used;
+  for (const auto& shape : reader.GetShapes()) {
+    int mat = def;
+    const auto it = group_mat.find(shape.name);
+    if (it != group_mat.end()) {
+      mat = it->second;
+      used[shape.name] = true;
+    }
+    const auto& idx = shape.mesh.indices;
+    for (size_t k = 0; k + 2 < idx.size(); k += 3) {
+      fmpp::isect::Triangle t;
+      std::array<glm::dvec3, 3> nrm;
+      bool has_n = true;
+      for (int c = 0; c < 3; ++c) {
+        const auto& ix = idx[k + c];
+        t.p[c] = glm::dvec3(at.vertices[3 * ix.vertex_index], at.vertices[3 * ix.vertex_index + 1],
+                            at.vertices[3 * ix.vertex_index + 2]);
+        if (ix.normal_index >= 0) {
+          nrm[c] = glm::dvec3(at.normals[3 * ix.normal_index], at.normals[3 * ix.normal_index + 1],
+                              at.normals[3 * ix.normal_index + 2]);
+        } else {
+          has_n = false;
+        }
+      }
+      if (!has_n) {
+        glm::dvec3 fn = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+        const double len = glm::length(fn);
+        fn = len > 0 ? fn / len : glm::dvec3(0, 0, 1);  // degenerate faces are kept; nothing can hit them
+        nrm = {fn, fn, fn};
+      } else {
+        for (auto& n : nrm) n = glm::length(n) > 0 ? glm::normalize(n) : n;
+      }
+      s.triangles.push_back(t);
+      s.material_of.push_back(mat);
+      s.normals.push_back(nrm);
+    }
+  }
+  for (const auto& [g, m2] : group_mat) {
+    if (!used.count(g)) field_error(file, where + ".groups." + g, "no group '" + g + "' in " + path);
+  }
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& json_path) {
+  std::ifstream in(json_path);
+  if (!in) throw SceneError(json_path + ": cannot open scene");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    size_t line = 1;
+    for (size_t k = 0; k < e.byte && k < text.size(); ++k) line += text[k] == '\n';
+    throw SceneError(json_path + ":" + std::to_string(line) + ": JSON syntax error: " + e.what());
+  }
+  const std::string& f = json_path;
+  if (!j.is_object()) throw SceneError(f + ": the scene must be a JSON object");
+  reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
+  Scene s;
+  s.path = json_path;
+  if (j.contains("description") && j["description"].is_string()) s.description = j["description"];
+
+  const json& cam = require(j, "camera", f, "");
+  reject_unknown(cam, {"eye", "look_at", "up", "fov_y_deg"}, f, "camera");
+  s.camera.eye = vec3(require(cam, "eye", f, "camera"), f, "camera.eye");
+  s.camera.look_at = vec3(require(cam, "look_at", f, "camera"), f, "camera.look_at");
+  s.camera.up = vec3(require(cam, "up", f, "camera"), f, "camera.up");
+  s.camera.fov_y_deg = number(require(cam, "fov_y_deg", f, "camera"), f, "camera.fov_y_deg", 1, 170);
+  if (glm::length(s.camera.look_at - s.camera.eye) == 0) field_error(f, "camera.look_at", "equals camera.eye");
+  if (glm::length(glm::cross(s.camera.look_at - s.camera.eye, s.camera.up)) == 0) {
+    field_error(f, "camera.up", "is parallel to the viewing direction");
+  }
+  if (j.contains("background")) s.background = vec3(j["background"], f, "background", 0, 100);
+  if (j.contains("ambient")) s.ambient = vec3(j["ambient"], f, "ambient", 0, 100);
+  if (j.contains("max_depth")) s.max_depth = static_cast<int>(number(j["max_depth"], f, "max_depth", 1, 16));
+
+  const json& lights = require(j, "lights", f, "");
+  if (!lights.is_array() || lights.empty()) field_error(f, "lights", "expected a non-empty array");
+  for (size_t k = 0; k < lights.size(); ++k) {
+    const std::string w = "lights[" + std::to_string(k) + "]";
+    reject_unknown(lights[k], {"position", "color"}, f, w);
+    Light l;
+    l.position = vec3(require(lights[k], "position", f, w), f, w + ".position");
+    if (lights[k].contains("color")) l.color = vec3(lights[k]["color"], f, w + ".color", 0, 100);
+    s.lights.push_back(l);
+  }
+
+  std::map<std::string, int> mats;
+  const json& jm = require(j, "materials", f, "");
+  if (!jm.is_object() || jm.empty()) field_error(f, "materials", "expected an object of named materials");
+  for (const auto& [name, m] : jm.items()) {
+    const std::string w = "materials." + name;
+    reject_unknown(m, {"diffuse", "specular", "shininess", "reflectivity", "transparency", "ior"}, f, w);
+    Material mat;
+    mat.name = name;
+    if (m.contains("diffuse")) mat.diffuse = vec3(m["diffuse"], f, w + ".diffuse", 0, 1);
+    if (m.contains("specular")) mat.specular = number(m["specular"], f, w + ".specular", 0, 1);
+    if (m.contains("shininess")) mat.shininess = number(m["shininess"], f, w + ".shininess", 1, 10000);
+    if (m.contains("reflectivity")) mat.reflectivity = number(m["reflectivity"], f, w + ".reflectivity", 0, 1);
+    if (m.contains("transparency")) mat.transparency = number(m["transparency"], f, w + ".transparency", 0, 1);
+    if (m.contains("ior")) mat.ior = number(m["ior"], f, w + ".ior", 1, 4);
+    if (mat.reflectivity + mat.transparency > 1) field_error(f, w, "reflectivity + transparency exceeds 1");
+    mats[name] = static_cast<int>(s.materials.size());
+    s.materials.push_back(mat);
+  }
+
+  const json& meshes = require(j, "meshes", f, "");
+  if (!meshes.is_array() || meshes.empty()) field_error(f, "meshes", "expected a non-empty array");
+  const std::filesystem::path dir = std::filesystem::path(json_path).parent_path();
+  for (size_t k = 0; k < meshes.size(); ++k) load_mesh(s, meshes[k], k, mats, f, dir);
+  if (s.triangles.empty()) field_error(f, "meshes", "the meshes hold no triangles");
+  return s;
+}
+
+}  // namespace rt
