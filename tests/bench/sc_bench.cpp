@@ -4,7 +4,9 @@
 // initiator socket -> b_transport -> target -> the same kind of Bus:
 //   - Push: instruction pushes of the kernel mix, one per clock (as BM_RtlMix);
 //   - Program: the regression's random programs (reads, window writes, errors, GAP);
-//   - the model rows isolate the SystemC cost per access, which the RTL rows hide.
+//   - the model rows isolate the SystemC cost per access, which the RTL rows hide;
+//     systemc_model_sync hands the time to the SystemC kernel (sc_start) after every
+//     access instead of once per 10 us quantum.
 //
 //   build/fmpp_sc_bench
 //   build/fmpp_sc_bench --benchmark_filter='Program/.*/medium'
@@ -23,7 +25,7 @@ namespace {
 using namespace fmpp;
 using namespace fmpp::ins;
 
-enum class Backend { kRtl, kSystemCRtl, kModel, kSystemCModel };
+enum class Backend { kRtl, kSystemCRtl, kModel, kSystemCModel, kSystemCModelSync };
 
 std::unique_ptr<Bus> make(Backend b, const std::string& config) {
   switch (b) {
@@ -31,6 +33,11 @@ std::unique_ptr<Bus> make(Backend b, const std::string& config) {
     case Backend::kSystemCRtl: return sc::make_systemc_bus(tb::make_rtl_bus(config));
     case Backend::kModel: return std::make_unique<ModelBus>(named_config(config));
     case Backend::kSystemCModel: return sc::make_systemc_bus(std::make_unique<ModelBus>(named_config(config)));
+    case Backend::kSystemCModelSync: {
+      sc::ScOptions opt;
+      opt.quantum_ps = 0;  // sc_start() after every access
+      return sc::make_systemc_bus(std::make_unique<ModelBus>(named_config(config)), opt);
+    }
   }
   return nullptr;
 }
@@ -86,6 +93,8 @@ FMPP_SC_PAIR(BM_Push, small);
 FMPP_SC_PAIR(BM_Push, medium);
 FMPP_SC_PAIR(BM_Program, small);
 FMPP_SC_PAIR(BM_Program, medium);
+BENCHMARK_CAPTURE(BM_Push, systemc_model_sync/small, Backend::kSystemCModelSync, "small")
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
