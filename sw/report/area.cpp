@@ -296,7 +296,7 @@ void write_area_report(const SynthData& data, unsigned words, std::ostream& out)
     out << "| " << what << " | " << grouped(c) << " | " << grouped(t) << " | " << grouped(f) << " |\n";
   };
   row("fixed: AXI slave, 16-entry queue, responder tree roots", fc.fixed, ft.fixed, ff.fixed);
-  row("fixed, per word of the configuration (decode)", fc.per_word_fixed, ft.per_word_fixed, ff.per_word_fixed);
+  row("fixed, per word of the configuration", fc.per_word_fixed, ft.per_word_fixed, ff.per_word_fixed);
   row("**block** without its words: ALU, 8 flags, match, predicate, write select", fc.per_block, ft.per_block,
       ff.per_block);
   row("**word** of a block: 32 bits, their write enables and read multiplexers", fc.per_block_word,
@@ -344,7 +344,10 @@ void write_area_report(const SynthData& data, unsigned words, std::ostream& out)
   out << "\n## Beside the paper\n\n";
   out << "The paper (section 5.1 and Table 3) counts 18 transistors per CAM bit (SRAM cell with match logic) and "
          "about 1000 per block ALU, one processor per pixel, "
-      << kPaperWordsRayParallel << " words per processor in the ray-parallel mapping.\n\n";
+      << kPaperWordsRayParallel << " words per processor in the ray-parallel mapping. Below, this RTL's processor has "
+      << words << " words";
+  if (words % 2 != 0) out << " (the RTL needs an even NumWords: the cost model interpolates)";
+  out << " and its 8 flags; the paper's words are 40 bits, 32 data and 8 status flags.\n\n";
   out << "| | paper | this RTL | this RTL / paper |\n| --- | ---: | ---: | ---: |\n";
   out << "| transistors per stored bit | " << kPaperCamTransistorsPerBit << " | " << fixed(bit, 1) << " | "
       << ratio(bit / kPaperCamTransistorsPerBit) << " |\n";
