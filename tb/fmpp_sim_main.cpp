@@ -5,9 +5,18 @@
 // summary line and exits 0 only if nothing differed, no RTL assertion fired and
 // every opcode and error cause was exercised.
 //
+// --backend systemc sends the RTL side's accesses through the SystemC TLM-2.0
+// platform (tb/sc/: initiator socket -> b_transport -> target -> RTL) instead of
+// driving the RTL directly; the golden model stays the reference.
+// --inject-at N demonstrates a mismatch: before access N it writes a wrong value
+// into one word of the RTL only (the model gets the word's current value, so both
+// sides spend the same clocks) and the lockstep must report it (docs/debugging.md).
+//
 //   fmpp-sim --config small --seed 1 --ops 100000 --mode check
 //   fmpp-sim --config large --mode fast --hash-interval 2000 --stress
 //   fmpp-sim --config small --ops 500 --trace sim.fst
+//   fmpp-sim --config small --backend systemc --ops 100000
+//   fmpp-sim --config odd --ops 3000 --inject-at 2000 --trace inject.fst
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -17,8 +26,40 @@
 #include "tb/lockstep.h"
 #include "tb/progen.h"
 #include "tb/rtl_bus.h"
+#ifdef FMPP_HAVE_SYSTEMC
+#include "tb/sc/systemc_bus.h"
+#endif
 
 using namespace fmpp;
+
+namespace {
+
+// The RTL side of the lockstep: the Verilated model, directly or behind SystemC.
+std::unique_ptr<tb::RtlBus> make_backend(const std::string& backend, const std::string& config,
+                                         const tb::RtlOptions& ro) {
+  auto rtl = tb::make_rtl_bus(config, ro);
+  if (backend == "rtl") return rtl;
+#ifdef FMPP_HAVE_SYSTEMC
+  if (backend == "systemc") return sc::make_systemc_rtl_bus(std::move(rtl));
+#endif
+  throw std::invalid_argument("backend '" + backend + "' is not built into this fmpp-sim (SystemC not found?)");
+}
+
+// Writes `bad` into word `word` of block `block` on the RTL side only; the model gets
+// the word's current value, so the two sides stay in step in time but differ in state.
+void inject_fault(tb::RtlBus& rtl, ModelBus& model, unsigned block, unsigned word, uint32_t bad) {
+  const Config& c = model.config();
+  const uint32_t addr = map::kWinWordsBase + (block << c.word_shift()) + (word << 3);
+  const uint32_t keep = model.machine().word(block, word);
+  const uint32_t wrong = bad != keep ? bad : ~bad;
+  std::fprintf(stderr, "inject: block %u word %u: RTL <- 0x%08x, model <- 0x%08x (its value now)\n", block, word,
+               wrong, keep);
+  const Resp r = rtl.write(addr, wrong, 0x0F);
+  const Resp m = model.write(addr, keep, 0x0F);
+  if (r != Resp::kOkay || m != Resp::kOkay) throw std::logic_error("inject: the word write was refused");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"FMPP RTL regression: random programs, RTL in lockstep with the golden model"};
@@ -31,6 +72,11 @@ int main(int argc, char** argv) {
   std::string trace;
   uint64_t trace_start = 0, trace_end = ~0ull;
   bool list = false;
+  std::string backend = "rtl";
+  uint64_t inject_at = 0;
+  int64_t inject_block = -1;
+  unsigned inject_word = 0;
+  uint32_t inject_value = 0xDEADBEEF;
   app.add_option("--config", config, "named configuration (see --list)");
   app.add_option("--seed", seed, "random seed");
   app.add_option("--ops", ops, "bus accesses to generate")->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
@@ -43,6 +89,15 @@ int main(int argc, char** argv) {
   app.add_option("--trace-start", trace_start, "first cycle to trace");
   app.add_option("--trace-end", trace_end, "last cycle to trace");
   app.add_flag("--list", list, "list the built configurations and exit");
+  app.add_option("--backend", backend, "RTL side of the lockstep: rtl (direct) or systemc (through TLM-2.0)")
+      ->check(CLI::IsMember({"rtl", "systemc"}));
+  auto* inject_opt = app.add_option("--inject-at", inject_at,
+                                    "before access N, write a wrong word into the RTL only (mismatch demo)")
+                         ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
+  app.add_option("--inject-block", inject_block, "block of the injected word (default: the last block)")
+      ->needs(inject_opt);
+  app.add_option("--inject-word", inject_word, "word of the injected word (default 0)")->needs(inject_opt);
+  app.add_option("--inject-value", inject_value, "value the RTL gets (default 0xDEADBEEF)")->needs(inject_opt);
   CLI11_PARSE(app, argc, argv);
 
   if (list) {
@@ -58,7 +113,14 @@ int main(int argc, char** argv) {
     ro.trace_end = trace_end;
     ro.stress = stress;
     ro.stress_seed = seed ^ 0x5EEDull;
-    auto rtl = tb::make_rtl_bus(config, ro);
+    const bool inject = inject_opt->count() > 0;
+    const unsigned iblock = inject_block < 0 ? cfg.blocks - 1 : static_cast<unsigned>(inject_block);
+    if (inject && (inject_at >= ops || iblock >= cfg.blocks || inject_word >= cfg.words)) {
+      throw std::invalid_argument("--inject-at " + std::to_string(inject_at) + " block " + std::to_string(iblock) +
+                                  " word " + std::to_string(inject_word) + " is outside the run (" +
+                                  std::to_string(ops) + " accesses, " + cfg.str() + ")");
+    }
+    auto rtl = make_backend(backend, config, ro);
     ModelBus model(cfg);
     tb::LockstepOptions lo;
     lo.mode = tb::parse_lockstep_mode(mode);
@@ -71,7 +133,10 @@ int main(int argc, char** argv) {
     uint64_t mismatches = 0;
     std::string report;
     try {
-      for (uint64_t i = 0; i < ops; ++i) gen.step(lock);
+      for (uint64_t i = 0; i < ops; ++i) {
+        if (inject && i == inject_at) inject_fault(*rtl, model, iblock, inject_word, inject_value);
+        gen.step(lock);
+      }
       lock.final_check();
     } catch (const tb::LockstepMismatch& e) {
       mismatches = 1;
@@ -80,17 +145,32 @@ int main(int argc, char** argv) {
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const tb::GenStats& st = gen.stats();
     std::printf(
-        "config=%s blocks=%u words=%u seed=%llu mode=%s%s accesses=%llu instructions=%llu entries=%llu "
+        "config=%s blocks=%u words=%u backend=%s seed=%llu mode=%s%s accesses=%llu instructions=%llu entries=%llu "
         "cycles=%llu state_checks=%llu bad_accesses=%llu mismatches=%llu seconds=%.1f\n",
-        config.c_str(), cfg.blocks, cfg.words, static_cast<unsigned long long>(seed), mode.c_str(),
+        config.c_str(), cfg.blocks, cfg.words, backend.c_str(), static_cast<unsigned long long>(seed), mode.c_str(),
         stress ? "+stress" : "", static_cast<unsigned long long>(st.accesses),
         static_cast<unsigned long long>(st.instructions), static_cast<unsigned long long>(lock.entries()),
         static_cast<unsigned long long>(rtl->cycles()), static_cast<unsigned long long>(lock.state_checks()),
         static_cast<unsigned long long>(st.bad), static_cast<unsigned long long>(mismatches), secs);
     if (mismatches) {
+      std::string again = " --backend " + backend + (stress ? " --stress" : "");
+      if (inject) {
+        char value[16];
+        std::snprintf(value, sizeof value, "0x%08x", inject_value);
+        again += " --inject-at " + std::to_string(inject_at) + " --inject-block " + std::to_string(iblock) +
+                 " --inject-word " + std::to_string(inject_word) + " --inject-value " + value;
+      }
       std::fprintf(stderr, "%s\nreproduce: fmpp-sim --config %s --seed %llu --ops %llu --mode check%s\n",
                    report.c_str(), config.c_str(), static_cast<unsigned long long>(seed),
-                   static_cast<unsigned long long>(ops), stress ? " --stress" : "");
+                   static_cast<unsigned long long>(ops), again.c_str());
+      if (!trace.empty()) {
+        // The harness dumps clock low at 10c and the rising edge at 10c + 5 (tb/rtl_bus_impl.h),
+        // so the state after the edge that made cycles() = c is visible from 10c - 5.
+        const uint64_t c = lock.last_entry_cycle();
+        std::fprintf(stderr, "waveform: %s, the entry executed at the clock edge at t = %llu (cycle %llu)\n",
+                     trace.c_str(), static_cast<unsigned long long>(c ? 10 * c - 5 : 0),
+                     static_cast<unsigned long long>(c));
+      }
       return 1;
     }
     const std::string missing = st.missing();

@@ -44,6 +44,7 @@ Lockstep::Lockstep(RtlBus& rtl, ModelBus& model, const LockstepOptions& opt) : r
   model_.set_exec_hook([this, check](const QueueEntry& e) {
     ++model_entries_;
     last_entry_ = e;
+    last_entry_cycle_ = model_.cycles();
     if (!check) return;
     if (rtl_snapshots_.empty()) mismatch("the model executed this entry but the RTL has not");
     ArchState r = std::move(rtl_snapshots_.front());
@@ -58,7 +59,8 @@ Lockstep::Lockstep(RtlBus& rtl, ModelBus& model, const LockstepOptions& opt) : r
 
 void Lockstep::mismatch(const std::string& what) {
   std::string msg = "LOCKSTEP MISMATCH after queue entry #" + std::to_string(model_entries_) + " (" +
-                    describe(last_entry_) + ") at cycle " + std::to_string(rtl_.cycles()) + ": " + what;
+                    describe(last_entry_) + ", executed at cycle " + std::to_string(last_entry_cycle_) +
+                    ") at cycle " + std::to_string(rtl_.cycles()) + ": " + what;
   if (!rtl_.failure().empty()) msg += "\nRTL: " + rtl_.failure();
   throw LockstepMismatch(msg);
 }

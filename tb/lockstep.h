@@ -6,7 +6,8 @@
 //   - fast mode: by hash every `hash_interval` entries, at access boundaries;
 //   - off: bus responses, read data and clocks only.
 // The first mismatch stops the run: the access throws LockstepMismatch whose
-// message names the entry index, the entry (disassembled) and the differing state.
+// message names the entry index, the entry (disassembled), the clock edge at which
+// it executed, the clock at which the difference was seen and the differing state.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +48,9 @@ class Lockstep : public Bus {
   std::string name() const override { return "lockstep"; }
 
   uint64_t entries() const { return model_entries_; }   // queue entries executed (model side)
+  // Clock edge (cycles since reset, 1 = the first edge) at which the model executed
+  // the last queue entry: where a mismatch report's entry shows up in a waveform.
+  uint64_t last_entry_cycle() const { return last_entry_cycle_; }
   uint64_t state_checks() const { return state_checks_; }
   // Compares the full state now (after draining both queues with a read of ID).
   void final_check();
@@ -65,6 +69,7 @@ class Lockstep : public Bus {
   uint64_t last_hash_entries_ = 0;
   uint64_t state_checks_ = 0;
   QueueEntry last_entry_;
+  uint64_t last_entry_cycle_ = 0;
   bool in_read_ = false;
 };
 

@@ -1,0 +1,101 @@
+// Benchmarks of the SystemC TLM-2.0 platform (tb/sc/) against the direct drivers
+// (figures go to docs/perf.md, never asserted). Each pair runs the same access
+// sequence on the same configuration, once on the direct Bus and once through
+// initiator socket -> b_transport -> target -> the same kind of Bus:
+//   - Push: instruction pushes of the kernel mix, one per clock (as BM_RtlMix);
+//   - Program: the regression's random programs (reads, window writes, errors, GAP);
+//   - the model rows isolate the SystemC cost per access, which the RTL rows hide;
+//     systemc_model_sync hands the time to the SystemC kernel (sc_start) after every
+//     access instead of once per 10 us quantum.
+//
+//   build/fmpp_sc_bench
+//   build/fmpp_sc_bench --benchmark_filter='Program/.*/medium'
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <random>
+
+#include "fmpp/model_bus.h"
+#include "tb/progen.h"
+#include "tb/rtl_bus.h"
+#include "tb/sc/systemc_bus.h"
+
+namespace {
+
+using namespace fmpp;
+using namespace fmpp::ins;
+
+enum class Backend { kRtl, kSystemCRtl, kModel, kSystemCModel, kSystemCModelSync };
+
+std::unique_ptr<Bus> make(Backend b, const std::string& config) {
+  switch (b) {
+    case Backend::kRtl: return tb::make_rtl_bus(config);
+    case Backend::kSystemCRtl: return sc::make_systemc_bus(tb::make_rtl_bus(config));
+    case Backend::kModel: return std::make_unique<ModelBus>(named_config(config));
+    case Backend::kSystemCModel: return sc::make_systemc_bus(std::make_unique<ModelBus>(named_config(config)));
+    case Backend::kSystemCModelSync: {
+      sc::ScOptions opt;
+      opt.quantum_ps = 0;  // sc_start() after every access
+      return sc::make_systemc_bus(std::make_unique<ModelBus>(named_config(config)), opt);
+    }
+  }
+  return nullptr;
+}
+
+// The instructions the intersection kernels use most (the mix of core_bench.cpp).
+std::vector<uint64_t> kernel_mix(unsigned words, size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<unsigned> w(0, words - 1);
+  std::vector<uint64_t> prog;
+  for (size_t i = 0; i < n; ++i) {
+    switch (rng() % 6) {
+      case 0: prog.push_back(add(w(rng), w(rng), w(rng), 1).encode()); break;
+      case 1: prog.push_back(sub(w(rng), w(rng), w(rng)).encode()); break;
+      case 2: prog.push_back(rshift(w(rng), w(rng)).encode()); break;
+      case 3: prog.push_back(ref(RefFn::kAnd, RefPart::kData, w(rng), 1u << (rng() % 32), 1, 0).encode()); break;
+      case 4: prog.push_back(maskset(~(1u << (rng() % 32))).encode()); break;
+      default: prog.push_back(flagop(2, 1, 0, lut::kAnd).encode()); break;
+    }
+  }
+  return prog;
+}
+
+void BM_Push(benchmark::State& state, Backend backend, const char* config) {
+  auto bus = make(backend, config);
+  const auto prog = kernel_mix(named_config(config).words, 4096, 1);
+  size_t i = 0;
+  const uint64_t c0 = bus->cycles();
+  for (auto _ : state) {
+    bus->write(map::kRegQueue, prog[i]);
+    i = (i + 1) & 4095;
+  }
+  state.counters["accesses_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["cycles_per_s"] =
+      benchmark::Counter(static_cast<double>(bus->cycles() - c0), benchmark::Counter::kIsRate);
+}
+
+void BM_Program(benchmark::State& state, Backend backend, const char* config) {
+  auto bus = make(backend, config);
+  tb::ProgramGenerator gen(named_config(config), 1);
+  for (auto _ : state) gen.step(*bus);
+  state.counters["accesses_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+#define FMPP_SC_PAIR(fn, config)                                                                        \
+  BENCHMARK_CAPTURE(fn, rtl/config, Backend::kRtl, #config)->Unit(benchmark::kMicrosecond);            \
+  BENCHMARK_CAPTURE(fn, systemc/config, Backend::kSystemCRtl, #config)->Unit(benchmark::kMicrosecond); \
+  BENCHMARK_CAPTURE(fn, model/config, Backend::kModel, #config)->Unit(benchmark::kMicrosecond);        \
+  BENCHMARK_CAPTURE(fn, systemc_model/config, Backend::kSystemCModel, #config)->Unit(benchmark::kMicrosecond)
+
+FMPP_SC_PAIR(BM_Push, small);
+FMPP_SC_PAIR(BM_Push, medium);
+FMPP_SC_PAIR(BM_Program, small);
+FMPP_SC_PAIR(BM_Program, medium);
+BENCHMARK_CAPTURE(BM_Push, systemc_model_sync/small, Backend::kSystemCModelSync, "small")
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
