@@ -57,6 +57,18 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Render,
                                            Case{"spheres_10k", 16}),
                          [](const auto& info) { return std::string(info.param.scene); });
 
+#ifdef FMPP_HAVE_SYSTEMC
+// The same render over the SystemC TLM-2.0 platform matches the direct RTL bit for bit.
+TEST(RenderSystemC, MatchesTheRtlImage) {
+  const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/cornell.json");
+  fmpp::isect::KernelStats a, b;
+  const Image rtl = render_on("rtl", s, 24, &a);
+  const Image sc = render_on("systemc", s, 24, &b);
+  EXPECT_EQ(rtl.to_rgb8(), sc.to_rgb8());
+  EXPECT_EQ(a.cycles, b.cycles);
+}
+#endif
+
 TEST(RenderCulling, SameImageFewerBroadcasts) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");
   std::vector<uint8_t> img[2];

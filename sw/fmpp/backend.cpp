@@ -3,9 +3,19 @@
 
 #include <stdexcept>
 
+#ifdef FMPP_HAVE_SYSTEMC
+#include "tb/sc/systemc_bus.h"
+#endif
+
 namespace fmpp {
 
-std::vector<std::string> backend_names() { return {"cmodel", "rtl", "lockstep"}; }
+std::vector<std::string> backend_names() {
+#ifdef FMPP_HAVE_SYSTEMC
+  return {"cmodel", "rtl", "lockstep", "systemc"};
+#else
+  return {"cmodel", "rtl", "lockstep"};
+#endif
+}
 
 void Backend::finish() {
   if (lock_) lock_->final_check();
@@ -47,6 +57,11 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg
     lo.mode = tb::parse_lockstep_mode(opt.lockstep_mode);
     b->lock_ = std::make_unique<tb::Lockstep>(*b->rtl_, *b->model_, lo);
     b->bus_ = b->lock_.get();
+#ifdef FMPP_HAVE_SYSTEMC
+  } else if (name == "systemc") {
+    b->owned_ = sc::make_systemc_bus(exact_rtl(cfg, opt));
+    b->bus_ = b->owned_.get();
+#endif
   } else {
     std::string known;
     for (const auto& n : backend_names()) known += (known.empty() ? "" : ", ") + n;

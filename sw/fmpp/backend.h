@@ -2,7 +2,7 @@
 //   cmodel    the golden model
 //   rtl       the Verilated RTL (a configuration built into this binary)
 //   lockstep  the RTL and the golden model together, every access cross-checked
-// (The SystemC platform adds "systemc" when it is built.)
+//   systemc   the Verilated RTL behind the SystemC TLM-2.0 platform (when SystemC is built)
 #pragma once
 
 #include <memory>
@@ -38,6 +38,7 @@ class Backend {
   std::unique_ptr<ModelBus> model_;
   std::unique_ptr<tb::RtlBus> rtl_;
   std::unique_ptr<tb::Lockstep> lock_;
+  std::unique_ptr<Bus> owned_;  // other wrappers (SystemC)
   Bus* bus_ = nullptr;
 };
 

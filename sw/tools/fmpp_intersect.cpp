@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   unsigned qbits = 20;
   app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line")->required();
   app.add_option("--rays", ray_file, "ray file: ox oy oz dx dy dz per line")->required();
-  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep");
+  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep | systemc");
   app.add_option("--mapping", mapping, "ray | object")->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
       ->check(CLI::IsMember({"const", "generic"}));

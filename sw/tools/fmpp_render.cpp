@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   double clock_mhz = 50;
   bool compare = false, no_cull = false, quiet = false;
   app.add_option("--scene", scene_file, "scene JSON file");
-  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep");
+  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep | systemc");
   app.add_option("--width", width, "image width")->check(CLI::Range(1, 16384));
   app.add_option("--height", height, "image height")->check(CLI::Range(1, 16384));
   app.add_option("--mapping", mapping, "ray | object (secondary rays always ray-parallel)")
