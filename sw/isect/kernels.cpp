@@ -50,6 +50,7 @@ void KernelStats::add(const KernelStats& o) {
   host_triangles += o.host_triangles;
   host_tests += o.host_tests;
   culled += o.culled;
+  snapped_degenerate += o.snapped_degenerate;
 }
 
 namespace {
@@ -245,7 +246,11 @@ class Group {
     std::vector<size_t> test_sizes;
     std::vector<int> host;
     std::vector<int> fmpp_tris;
-    for (size_t k = 0; k < tris_.size(); ++k) {
+    double t_scale = std::ldexp(1.0, E + 1) * sv;  // 1/t = S_c * t_scale
+    if (opt_.watertight) {
+      t_scale = watertight_programs(sv, &progs, &test_sizes, &fmpp_tris);
+    }
+    for (size_t k = 0; k < tris_.size() && !opt_.watertight; ++k) {
       double m[3][3];
       int64_t x[9];
       if (!inverse_from(tris_[k], o_, cond_limit, m)) {
@@ -322,7 +327,7 @@ class Group {
                                    std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
           }
           h.tri = fmpp_tris[pass_order[ordinal - 1]];
-          h.t = 1.0 / (static_cast<double>(s) * std::ldexp(1.0, E + 1) * sv);
+          h.t = 1.0 / (static_cast<double>(s) * t_scale);
         }
         out[idx[base + b]] = h;
       }
@@ -344,6 +349,91 @@ class Group {
 
   // One triangle broadcast: T = X V, inside test, S = T1+T2+T3 scaled by 2^shift to the
   // common exponent, compare with the block's best and keep the larger.
+  // Watertight programs: vertices relative to the origin snapped to a grid of b-bit
+  // integers (b = (n - 3) / 2, so that the edge constants c_i = P_j x P_k fit n bits),
+  // rows A_i = floor(c_i . V / 2^n), whose signs are exact (floor(x / 2^n) >= 0 iff
+  // x >= 0); c_i are negated for triangles seen clockwise, so a shared edge gets
+  // complementary constants. The compared sum S comes from a fourth row, (sum c_i) / det
+  // with one exponent for all triangles. Returns the scale with 1/t = S_c * scale.
+  double watertight_programs(double sv, std::vector<Program>* progs, std::vector<size_t>* test_sizes,
+                             std::vector<int>* fmpp_tris) {
+    const unsigned n = opt_.n;
+    const int b = (static_cast<int>(n) - 3) / 2;
+    double pmax = 0;
+    for (const Triangle& t : tris_) {
+      for (const glm::dvec3& p : t.p) pmax = std::max({pmax, std::abs(p.x - o_.x), std::abs(p.y - o_.y), std::abs(p.z - o_.z)});
+    }
+    if (!(pmax > 0)) pmax = 1;
+    const double sp = pmax / std::ldexp(1.0, b);
+    struct W {
+      int index;
+      int64_t c[3][3];
+      double w[3];
+    };
+    std::vector<W> ws;
+    double wmax = 0;
+    for (size_t k = 0; k < tris_.size(); ++k) {
+      int64_t q[3][3];
+      for (int v = 0; v < 3; ++v) {
+        for (int j = 0; j < 3; ++j) q[v][j] = std::llround((tris_[k].p[v][j] - o_[j]) / sp);
+      }
+      W w;
+      w.index = static_cast<int>(k);
+      for (int i = 0; i < 3; ++i) {
+        const int64_t* a = q[(i + 1) % 3];
+        const int64_t* c = q[(i + 2) % 3];
+        w.c[i][0] = a[1] * c[2] - a[2] * c[1];
+        w.c[i][1] = a[2] * c[0] - a[0] * c[2];
+        w.c[i][2] = a[0] * c[1] - a[1] * c[0];
+      }
+      const __int128 det = static_cast<__int128>(q[0][0]) * w.c[0][0] + static_cast<__int128>(q[0][1]) * w.c[0][1] +
+                           static_cast<__int128>(q[0][2]) * w.c[0][2];
+      if (det == 0) {
+        ++st_->snapped_degenerate;  // no ray can hit it on the grid
+        continue;
+      }
+      const int sign = det > 0 ? 1 : -1;
+      for (auto& row : w.c) {
+        for (auto& v : row) v *= sign;
+      }
+      for (int j = 0; j < 3; ++j) {
+        w.w[j] = static_cast<double>(w.c[0][j] + w.c[1][j] + w.c[2][j]) / (static_cast<double>(det) * sign);
+        wmax = std::max(wmax, std::abs(w.w[j]));
+      }
+      ws.push_back(w);
+    }
+    const int Ew = wmax > 0 ? static_cast<int>(std::floor(std::log2(wmax))) + 1 : 0;
+    const double wscale = std::ldexp(1.0, static_cast<int>(n) - 1 - Ew);
+    for (const W& w : ws) {
+      Program p;
+      p.assume_mask(0x7FFFFFFFu);
+      p << add(kRCnt, kRCnt, kROne, kSel);
+      std::vector<Row> rows(4);
+      for (unsigned i = 0; i < 4; ++i) {
+        rows[i].r = i < 3 ? kRT + i : kRS;
+        for (unsigned j = 0; j < 3; ++j) {
+          const int64_t c = i < 3 ? w.c[i][j] : std::llround(w.w[j] * wscale);
+          rows[i].terms.push_back(Term{kRV + j, c, 0});
+        }
+      }
+      dot_rows_const(p, rows, n, kSel);
+      nonneg(p, kHit, kSel, kRT + 0);
+      nonneg(p, kHit, kHit, kRT + 1);
+      nonneg(p, kHit, kHit, kRT + 2);
+      test_sizes->push_back(p.size());
+      // win <- hit and S > best (best >= 0; S <= 0 never wins)
+      p << sub(kRD, kRBest, kRS, kHit);
+      p << ref(RefFn::kAnd, RefPart::kData, kRD, 0x80000000u, kWin, kHit);
+      p << func(FuncFn::kOr, kRBest, kRS, kRS, kWin);
+      p << func(FuncFn::kOr, kRIdx, kRCnt, kRCnt, kWin);
+      progs->push_back(p);
+      fmpp_tris->push_back(w.index);
+    }
+    // S_c = floor(sum w_q V_q / 2^n) = (w . V) / (2^(Ew+1) sv) in grid units; the grid
+    // shrinks distances by sp, so 1/t = S_c 2^(Ew+1) sv / sp.
+    return std::ldexp(1.0, Ew + 1) * sv / sp;
+  }
+
   // *test_size gets the instructions up to the inside test (the paper's count).
   Program ray_program(const int64_t x[9], int shift, size_t* test_size) const {
     Program p;

@@ -57,6 +57,10 @@ struct KernelOptions {
   // (outside the cone of its directions, fattened by the spread of its origins, or
   // beyond every ray's tmax). Exact culling can only drop triangles the rays miss.
   bool cull = true;
+  // Watertight test for rays sharing an origin (ray-parallel): vertices snapped to an
+  // integer grid, edge functions (P_j x P_k) . V with exact integer constants, so an
+  // edge shared by two triangles gets complementary signs and no ray slips through.
+  bool watertight = false;
   // Called after each pass with (passes done, passes planned in this call).
   std::function<void(uint64_t, uint64_t)> progress;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
@@ -83,6 +87,7 @@ struct KernelStats {
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
+  uint64_t snapped_degenerate = 0;  // watertight: triangles that became degenerate on the grid
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }

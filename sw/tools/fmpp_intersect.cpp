@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
                  "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
                  "general formulation for the rest) | group | general")
       ->check(CLI::IsMember({"auto", "group", "general"}));
+  bool watertight = false;
+  app.add_flag("--watertight", watertight, "exact-integer edge functions for rays sharing an origin (no cracks)");
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")->check(CLI::Range(4u, 28u));
   app.add_option("--out", out_file, "hits file ('-' for stdout)");
   app.add_option("--report", report_file, "JSON summary");
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
       opt.cond_bits = cond_bits;
       opt.origins = parse_origins(origins);
       opt.qbits = qbits;
+      opt.watertight = watertight;
       Config cfg{blocks, words ? words : ((words_needed(opt) + 1) & ~1u)};
       if (!config.empty()) cfg = named_config(config);
       auto be = make_backend(backend, cfg);
@@ -89,6 +92,8 @@ int main(int argc, char** argv) {
       rep["steps_per_broadcast"] = st.steps_per_broadcast();
       rep["origin_groups"] = st.groups;
       rep["general_rays"] = st.general_rays;
+      rep["watertight"] = watertight;
+      rep["snapped_degenerate"] = st.snapped_degenerate;
       rep["overflow_rays"] = st.overflow_rays;
       rep["overflow_triangles"] = st.overflow_triangles;
       rep["overflow_count"] = st.overflow_rays + st.overflow_triangles;

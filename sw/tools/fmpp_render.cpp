@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   int width = 128, height = 128, depth = -1;
   unsigned blocks = 4096, words = 32, bits = 24;
   double clock_mhz = 50;
-  bool compare = false, no_cull = false, quiet = false;
+  bool compare = false, no_cull = false, quiet = false, watertight = false;
   app.add_option("--scene", scene_file, "scene JSON file");
   app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep | systemc");
   app.add_option("--width", width, "image width")->check(CLI::Range(1, 16384));
@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")->check(CLI::Range(1.0, 1e5));
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
+  app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
   app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep)");
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
@@ -105,13 +106,14 @@ int main(int argc, char** argv) {
       ko.mul = isect::parse_mul_mode(mul);
       ko.n = bits;
       ko.cull = !no_cull;
+      ko.watertight = watertight;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       rt::FmppIntersector fi(dev, scene.triangles, ko);
       img = std::make_unique<rt::Image>(rt::render(scene, fi, ro, &rs));
       be->finish();
       const isect::KernelStats& st = fi.stats();
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
-                     {"bits", bits}, {"cull", !no_cull}};
+                     {"bits", bits}, {"cull", !no_cull}, {"watertight", watertight}};
       rep["cycles"] = st.cycles;
       rep["load_cycles"] = st.load_cycles;
       rep["compute_cycles"] = st.compute_cycles;
