@@ -73,6 +73,9 @@ struct RenderStats {
   double shade_seconds = 0;
 };
 
+// The primary rays of a width x height image, row by row from the top (pixel y*w + x).
+std::vector<fmpp::isect::Ray> primary_rays(const Scene& scene, int width, int height);
+
 // Renders the scene; the image is linear radiance.
 Image render(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats);
 

@@ -16,6 +16,7 @@
 #include <fstream>
 
 #include "sw/fmpp/backend.h"
+#include "sw/rt/plan.h"
 #include "sw/rt/render.h"
 
 using namespace fmpp;
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
   std::string scene_file = "scenes/cornell.json", backend = "rtl", mapping = "ray", mul = "const", config, out = "render.png",
               report_file, trace;
   int width = 128, height = 128, depth = -1;
-  unsigned blocks = 4096, words = 32, bits = 24;
+  unsigned blocks = 4096, words = 32, bits = 24;  // defaults shown in --help; the plan decides unless given
   double clock_mhz = 50;
   bool compare = false, no_cull = false, quiet = false, watertight = false;
   app.add_option("--scene", scene_file, "scene JSON file");
@@ -63,7 +64,10 @@ int main(int argc, char** argv) {
   app.add_option("--blocks", blocks, "FMPP blocks")->check(CLI::Range(1u, map::kMaxBlocks));
   app.add_option("--words", words, "FMPP words per block")->check(CLI::Range(2u, 64u));
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
-  app.add_option("--bits", bits, "multiplier bits n (precision)")->check(CLI::Range(4u, 32u));
+  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(CLI::Range(4u, 32u));
+  double target = 0.002;
+  app.add_option("--error-target", target, "precision plan: wrong-triangle rate allowed per primary ray")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(CLI::Range(1, 16));
   app.add_option("--out", out, "output PNG");
   app.add_option("--report", report_file, "JSON report");
@@ -95,8 +99,34 @@ int main(int argc, char** argv) {
       rt::ReferenceIntersector ref(scene.triangles);
       img = std::make_unique<rt::Image>(rt::render(scene, ref, ro, &rs));
     } else {
-      Config cfg{blocks, words};
-      if (!config.empty()) cfg = named_config(config);
+      // The precision plan chooses what the options leave open.
+      rt::PlanRequest pr;
+      pr.width = width;
+      pr.height = height;
+      pr.max_depth = depth;
+      pr.target_wrong_rate = target;
+      pr.rtl = backend != "cmodel";
+      pr.base.mapping = isect::parse_mapping(mapping);
+      pr.base.mul = isect::parse_mul_mode(mul);
+      pr.base.watertight = watertight;
+      if (app.count("--bits")) pr.bits = bits;
+      if (!config.empty()) {
+        const Config c = named_config(config);
+        pr.blocks = c.blocks;
+        pr.words = c.words;
+      }
+      if (app.count("--blocks")) pr.blocks = blocks;
+      if (app.count("--words")) pr.words = words;
+      const rt::Plan plan = rt::make_plan(scene, pr);
+      const Config cfg = plan.config;
+      bits = plan.options.n;
+      rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
+                     {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target}};
+      for (const auto& c : plan.candidates) {
+        rep["plan"]["candidates"].push_back(
+            {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"sample_cycles", c.sample_cycles}});
+      }
+      if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       BackendOptions bo;
       bo.trace_file = trace;
       auto be = make_backend(backend, cfg, bo);

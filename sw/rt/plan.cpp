@@ -1,0 +1,161 @@
+// The precision plan (see plan.h).
+#include "sw/rt/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "fmpp/model_bus.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/reference.h"
+#include "sw/rt/render.h"
+#include "tb/rtl_bus.h"
+
+namespace rt {
+
+namespace {
+
+using fmpp::isect::Hit;
+using fmpp::isect::Ray;
+
+// Condition number of P (vertices relative to o) in the infinity norm, inf if singular.
+double condition(const fmpp::isect::Triangle& t, const glm::dvec3& o) {
+  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);
+  const double det = glm::determinant(P);
+  if (det == 0 || !std::isfinite(det)) return std::numeric_limits<double>::infinity();
+  auto norm = [](const glm::dmat3& a) {
+    double m = 0;
+    for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
+    return m;
+  };
+  return norm(P) * norm(glm::inverse(P));
+}
+
+std::string pct(double v) {
+  std::ostringstream o;
+  o.precision(3);
+  o << 100 * v << " %";
+  return o.str();
+}
+
+}  // namespace
+
+Plan make_plan(const Scene& scene, const PlanRequest& req) {
+  Plan plan;
+  plan.options = req.base;
+  const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+
+  // Words.
+  bool secondary = false;
+  if (depth > 1) {
+    for (int m : scene.material_of) {
+      secondary = secondary || scene.materials[m].reflectivity > 0 || scene.materials[m].transparency > 0;
+    }
+  }
+  const unsigned need = secondary ? 24 : (fmpp::isect::words_needed(req.base) + 1) & ~1u;
+  unsigned words = req.words.value_or(need);
+  if (req.words) {
+    plan.why_words = "set by the user";
+  } else {
+    plan.why_words = secondary ? "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin "
+                                 "kernel, which needs 24 words per block"
+                               : "all rays share an origin (eye or light): the kernel needs " + std::to_string(need) +
+                                     " words per block";
+  }
+
+  // Blocks.
+  unsigned blocks = req.blocks.value_or(static_cast<unsigned>(std::min<size_t>(pixels, fmpp::map::kMaxBlocks)));
+  if (req.blocks) {
+    plan.why_blocks = "set by the user";
+  } else {
+    plan.why_blocks = "one block per primary ray (" + std::to_string(pixels) +
+                      " rays): one pass, so every triangle is broadcast once per batch";
+  }
+  if (req.rtl) {
+    // The RTL exists only in its built configurations.
+    std::string best;
+    fmpp::Config best_cfg{0, 0}, largest{0, 0};
+    std::string largest_name;
+    for (const std::string& name : fmpp::tb::rtl_configs()) {
+      const fmpp::Config c = fmpp::named_config(name);
+      if (c.words < words) continue;
+      if (c.blocks > largest.blocks) {
+        largest = c;
+        largest_name = name;
+      }
+      if (c.blocks >= blocks && (best.empty() || c.blocks < best_cfg.blocks)) {
+        best = name;
+        best_cfg = c;
+      }
+    }
+    if (best.empty()) {
+      if (largest_name.empty()) throw std::invalid_argument("no built RTL configuration has " + std::to_string(words) + " words");
+      best = largest_name;
+      best_cfg = largest;
+      plan.why_blocks += "; the largest built RTL configuration with " + std::to_string(words) + " words is '" + best +
+                         "' (" + best_cfg.str() + "), so " +
+                         std::to_string((pixels + best_cfg.blocks - 1) / best_cfg.blocks) + " passes";
+    } else {
+      plan.why_blocks += "; the smallest built RTL configuration that holds it is '" + best + "' (" + best_cfg.str() + ")";
+    }
+    blocks = best_cfg.blocks;
+    words = best_cfg.words;
+  }
+  plan.config = fmpp::Config{blocks, words};
+  plan.config.validate();
+
+  // Precision.
+  if (req.bits) {
+    plan.options.n = *req.bits;
+    plan.why_bits = "set by the user";
+    return plan;
+  }
+  // Sample: every k-th primary ray of the frame.
+  const std::vector<Ray> all = primary_rays(scene, req.width, req.height);
+  const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
+  std::vector<Ray> sample;
+  for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
+  const std::vector<Hit> ref = fmpp::isect::nearest_reference(sample, scene.triangles);
+  std::vector<double> cond;
+  for (const auto& t : scene.triangles) cond.push_back(condition(t, scene.camera.eye));
+  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
+  std::ostringstream why;
+  for (unsigned n : {8u, 10u, 12u, 16u, 20u, 24u, 28u, 32u}) {
+    PlanCandidate c;
+    c.n = n;
+    size_t over = 0;
+    for (double k : cond) over += !(k <= std::ldexp(1.0, static_cast<int>(n) - 3));
+    c.host_share = static_cast<double>(over) / static_cast<double>(cond.size());
+    fmpp::ModelBus bus(sample_cfg);
+    fmpp::Device dev(bus);
+    fmpp::isect::KernelOptions o = req.base;
+    o.n = n;
+    o.cond_bits = 60;  // the machine's own answers, no host fallback
+    o.progress = nullptr;
+    fmpp::isect::KernelStats st;
+    const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
+    size_t wrong = 0;
+    for (size_t i = 0; i < got.size(); ++i) wrong += got[i].tri != ref[i].tri;
+    c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
+    c.sample_cycles = st.cycles;
+    plan.candidates.push_back(c);
+    if (c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share) {
+      plan.options.n = n;
+      why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
+          << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << " and " << pct(c.host_share)
+          << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share);
+      if (plan.candidates.size() > 1) {
+        const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
+        why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned)";
+      }
+      plan.why_bits = why.str();
+      return plan;
+    }
+  }
+  plan.options.n = 32;
+  plan.why_bits = "no candidate met the target; using the widest format, n = 32";
+  return plan;
+}
+
+}  // namespace rt
