@@ -8,19 +8,8 @@
 namespace fmpp::tb {
 
 uint64_t ArchState::hash() const {
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](uint64_t v) {
-    for (int k = 0; k < 8; ++k) {
-      h ^= (v >> (8 * k)) & 0xFF;
-      h *= 1099511628211ull;
-    }
-  };
-  for (unsigned b = 0; b < cfg.blocks; ++b) {
-    for (unsigned w = 0; w < cfg.words; ++w) mix(word(b, w));
-    mix(flags[b]);
-  }
-  mix(mask);
-  return h;
+  return state_digest(
+      cfg, [this](unsigned b, unsigned w) { return word(b, w); }, [this](unsigned b) { return flags[b]; }, mask);
 }
 
 ArchState model_state(const ModelBus& m) {

@@ -256,21 +256,8 @@ bool Machine::ovf_any() const {
 }
 
 uint64_t Machine::state_hash() const {
-  // FNV-1a over (words in block-major order, flags, mask): a layout-independent
-  // order that the RTL-side extractor reproduces.
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](uint64_t v) {
-    for (int k = 0; k < 8; ++k) {
-      h ^= (v >> (8 * k)) & 0xFF;
-      h *= 1099511628211ull;
-    }
-  };
-  for (unsigned b = 0; b < cfg_.blocks; ++b) {
-    for (unsigned w = 0; w < cfg_.words; ++w) mix(word(b, w));
-    mix(flags_[b]);
-  }
-  mix(mask_);
-  return h;
+  return state_digest(
+      cfg_, [this](unsigned b, unsigned w) { return word(b, w); }, [this](unsigned b) { return flags_[b]; }, mask_);
 }
 
 }  // namespace fmpp

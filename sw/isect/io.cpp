@@ -26,11 +26,9 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
     std::istringstream ss(line);
     std::string tok;
     v.clear();
+    double x = 0;
     while (ss >> tok) {
-      errno = 0;
-      char* end = nullptr;
-      const double x = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x)) {
+      if (!parse_finite(tok, &x)) {
         throw ParseError(path + ":" + std::to_string(lineno) + ": '" + tok + "' is not a finite number");
       }
       v.push_back(x);
@@ -45,6 +43,15 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
 }
 
 }  // namespace
+
+bool parse_finite(const std::string& tok, double* out) {
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(tok.c_str(), &end);
+  if (end == tok.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x)) return false;
+  *out = x;
+  return true;
+}
 
 std::vector<Triangle> read_triangles(const std::string& path) {
   std::vector<Triangle> out;

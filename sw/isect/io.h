@@ -18,6 +18,9 @@ class ParseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// True if `tok` is a whole finite number (no trailing characters, no overflow).
+bool parse_finite(const std::string& tok, double* out);
+
 std::vector<Triangle> read_triangles(const std::string& path);
 std::vector<Ray> read_rays(const std::string& path);
 // One line per ray: "triangle_index t", "-1 inf" for a miss, in input order.

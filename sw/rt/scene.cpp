@@ -2,6 +2,8 @@
 // every error naming the file and the line or field (see scene.h).
 #include "sw/rt/scene.h"
 
+#include "sw/isect/io.h"
+
 #include <nlohmann/json.hpp>
 #include <tiny_obj_loader.h>
 
@@ -72,10 +74,9 @@ void validate_obj(const std::string& path) {
       const int need = tag == "vt" ? 2 : 3;
       std::string tok;
       int count = 0;
+      double x = 0;
       while (ss >> tok) {
-        char* end = nullptr;
-        const double x = std::strtod(tok.c_str(), &end);
-        if (end == tok.c_str() || *end != '\0' || !std::isfinite(x)) fail("'" + tok + "' is not a finite number");
+        if (!fmpp::isect::parse_finite(tok, &x)) fail("'" + tok + "' is not a finite number");
         ++count;
       }
       if (count < need) fail(tag + " needs " + std::to_string(need) + " numbers, found " + std::to_string(count));

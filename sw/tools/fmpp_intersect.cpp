@@ -18,6 +18,7 @@
 #include "sw/isect/io.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
+#include "sw/isect/stats_json.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
@@ -82,24 +83,8 @@ int main(int argc, char** argv) {
       rep["mapping"] = mapping;
       rep["multiply"] = mul;
       rep["bits"] = bits;
-      rep["cycles"] = st.cycles;
-      rep["load_cycles"] = st.load_cycles;
-      rep["compute_cycles"] = st.compute_cycles;
-      rep["readback_cycles"] = st.readback_cycles;
-      rep["instructions"] = st.instructions;
-      rep["passes"] = st.passes;
-      rep["broadcasts"] = st.broadcasts;
-      rep["steps_per_broadcast"] = st.steps_per_broadcast();
-      rep["origin_groups"] = st.groups;
-      rep["general_rays"] = st.general_rays;
       rep["watertight"] = watertight;
-      rep["snapped_degenerate"] = st.snapped_degenerate;
-      rep["overflow_rays"] = st.overflow_rays;
-      rep["overflow_triangles"] = st.overflow_triangles;
-      rep["overflow_count"] = st.overflow_rays + st.overflow_triangles;
-      rep["host_triangles"] = st.host_triangles;
-      rep["host_tests"] = st.host_tests;
-      rep["simulated_seconds_at_50MHz"] = static_cast<double>(st.cycles) / 50e6;
+      rep.update(stats_json(st));
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t nhit = 0;

@@ -16,6 +16,7 @@
 #include <fstream>
 
 #include "sw/fmpp/backend.h"
+#include "sw/isect/stats_json.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/render.h"
 
@@ -144,20 +145,7 @@ int main(int argc, char** argv) {
       const isect::KernelStats& st = fi.stats();
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"watertight", watertight}};
-      rep["cycles"] = st.cycles;
-      rep["load_cycles"] = st.load_cycles;
-      rep["compute_cycles"] = st.compute_cycles;
-      rep["readback_cycles"] = st.readback_cycles;
-      rep["instructions"] = st.instructions;
-      rep["broadcasts"] = st.broadcasts;
-      rep["culled_broadcasts"] = st.culled;
-      rep["passes"] = st.passes;
-      rep["general_rays"] = st.general_rays;
-      rep["overflow_count"] = st.overflow_rays + st.overflow_triangles;
-      rep["host_triangles"] = st.host_triangles;
-      rep["host_tests"] = st.host_tests;
-      rep["clock_mhz"] = clock_mhz;
-      rep["simulated_seconds"] = static_cast<double>(st.cycles) / (clock_mhz * 1e6);
+      rep.update(isect::stats_json(st, clock_mhz));
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;

@@ -36,6 +36,26 @@ struct Responders {
   uint32_t first = 0;  // lowest selected block; 0 when none
 };
 
+// FNV-1a digest of an architectural state visited block by block (its words in order,
+// then its flags), then the mask. A layout-independent order: Machine::state_hash and
+// the RTL state extractor (tb/) both feed it, so equal states give equal digests.
+template <class WordAt, class FlagsAt>
+uint64_t state_digest(const Config& cfg, WordAt word, FlagsAt flags, uint32_t mask) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](uint64_t v) {
+    for (int k = 0; k < 8; ++k) {
+      h ^= (v >> (8 * k)) & 0xFF;
+      h *= 1099511628211ull;
+    }
+  };
+  for (unsigned b = 0; b < cfg.blocks; ++b) {
+    for (unsigned w = 0; w < cfg.words; ++w) mix(word(b, w));
+    mix(flags(b));
+  }
+  mix(mask);
+  return h;
+}
+
 class Machine {
  public:
   explicit Machine(const Config& cfg);
