@@ -50,6 +50,11 @@ int main(int argc, char** argv) {
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")->check(CLI::Range(4u, 28u));
   app.add_option("--out", out_file, "hits file ('-' for stdout)");
   app.add_option("--report", report_file, "JSON summary");
+  std::string trace;
+  uint64_t trace_start = 0, trace_end = ~0ull;
+  app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep, systemc)");
+  app.add_option("--trace-start", trace_start, "first clock cycle to trace");
+  app.add_option("--trace-end", trace_end, "last clock cycle to trace");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -74,7 +79,11 @@ int main(int argc, char** argv) {
       opt.watertight = watertight;
       Config cfg{blocks, words ? words : ((words_needed(opt) + 1) & ~1u)};
       if (!config.empty()) cfg = named_config(config);
-      auto be = make_backend(backend, cfg);
+      BackendOptions bo;
+      bo.trace_file = trace;
+      bo.trace_start = trace_start;
+      bo.trace_end = trace_end;
+      auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       KernelStats st;
       hits = intersect_fmpp(dev, rays, tris, opt, &st);

@@ -76,7 +76,10 @@ int main(int argc, char** argv) {
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
   app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
-  app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep)");
+  uint64_t trace_start = 0, trace_end = ~0ull;
+  app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep, systemc)");
+  app.add_option("--trace-start", trace_start, "first clock cycle to trace");
+  app.add_option("--trace-end", trace_end, "last clock cycle to trace");
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
 
@@ -130,6 +133,8 @@ int main(int argc, char** argv) {
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       BackendOptions bo;
       bo.trace_file = trace;
+      bo.trace_start = trace_start;
+      bo.trace_end = trace_end;
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       isect::KernelOptions ko;
