@@ -67,6 +67,9 @@ class RtlBus : public Bus {
   virtual void idle(uint64_t clocks) = 0;
   // Assertion failures and timeouts seen so far (empty = none).
   virtual std::string failure() const = 0;
+  // For testing the RTL's protocol assertions only: presents a write for one clock and
+  // withdraws it whether or not it was accepted (a master must not do that).
+  virtual void withdraw_write_for_test(uint32_t addr, uint64_t data) = 0;
 };
 
 // Names of the configurations built into this binary.

@@ -112,6 +112,19 @@ class RtlBusImpl final : public RtlBus {
     return r;
   }
 
+  void withdraw_write_for_test(uint32_t addr, uint64_t data) override {
+    activate();
+    top_->s_axil_awvalid_i = 1;
+    top_->s_axil_wvalid_i = 1;
+    top_->s_axil_awaddr_i = addr;
+    top_->s_axil_wdata_i = data;
+    top_->s_axil_wstrb_i = 0xFF;
+    clock();
+    top_->s_axil_awvalid_i = 0;
+    top_->s_axil_wvalid_i = 0;
+    clock();
+  }
+
   Resp read(uint32_t addr, uint64_t* data) override {
     activate();
     if (opt_.stress) stress_idle();
@@ -214,6 +227,7 @@ class RtlBusImpl final : public RtlBus {
 
   void rise() {
     const bool popping = pop_.u64() != 0;
+    ctx_->time(cycle_ * 10 + 5);  // so assertion messages carry the time (10 units per clock)
     top_->clk_i = 1;
     top_->eval();
     dump(cycle_ * 10 + 5);

@@ -88,6 +88,17 @@ TEST(Lockstep, RandomProgramUnderBusStalls) {
   EXPECT_EQ(r.rtl->failure(), "");
 }
 
+// The SVA assertions run in every simulation: a master that withdraws a write the
+// slave has not accepted (here: into a full queue) is caught.
+TEST(RtlAssertions, ProtocolViolationIsReported) {
+  auto rtl = make_rtl_bus("small");
+  ASSERT_EQ(rtl->write(map::kRegCtrl, 200), Resp::kOkay);  // a slow array: the queue fills
+  for (unsigned k = 0; k < map::kQueueDepth + 1; ++k) ASSERT_EQ(rtl->write(map::kRegQueue, nop().encode()), Resp::kOkay);
+  EXPECT_EQ(rtl->failure(), "");
+  rtl->withdraw_write_for_test(map::kRegQueue, nop().encode());
+  EXPECT_NE(rtl->failure().find("RTL assertion failed"), std::string::npos) << rtl->failure();
+}
+
 TEST(Lockstep, ConfigurationsMustMatch) {
   auto rtl = make_rtl_bus("tiny");
   ModelBus model(Config{2, 8});

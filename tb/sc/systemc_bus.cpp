@@ -171,6 +171,10 @@ class SystemCRtlBus final : public tb::RtlBus {
     bus_.advance(clocks);
   }
   std::string failure() const override { return rtl_->failure(); }
+  void withdraw_write_for_test(uint32_t addr, uint64_t data) override {
+    rtl_->withdraw_write_for_test(addr, data);
+    bus_.advance(2);
+  }
 
  private:
   tb::RtlBus* rtl_;  // owned by bus_ (initialized first: declared first)
