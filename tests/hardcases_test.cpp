@@ -440,6 +440,47 @@ TEST_P(HardCases, BehindAndStraddlingTheEye) {
 }
 
 // --------------------------------------------------------------------- ties
+// The same triangle listed six times, with its vertices in every order (groups of six
+// random triangles): a ray meets all copies at the same point, a tie, which goes to the
+// lowest index of the group, on the reference and on every FMPP form.
+TEST_P(HardCases, DuplicatesTieToTheLowestIndexInAnyVertexOrder) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris;
+  std::vector<Ray> rays;
+  for (int k = 0; k < 6; ++k) {
+    const dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
+    Triangle t;
+    for (dvec3& p : t.p) p = c + 0.8 * dvec3(u(rng), u(rng), u(rng));
+    const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+    for (const auto& o : orders) tris.push_back(tri(t.p[o[0]], t.p[o[1]], t.p[o[2]]));
+    for (int r = 0; r < 8; ++r) {
+      const double a = 0.05 + 0.1 * r, b = 0.3 * (1 - a);
+      rays.push_back(aim(dvec3(0), bary(t, 1 - a - b, a, b)));
+    }
+  }
+  // A ray may meet another group first; whichever group it meets, the first copy wins.
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_TRUE(ref[i].hit());
+    EXPECT_EQ(ref[i].tri % 6, 0) << "reference, ray " << i << " hit copy " << ref[i].tri;
+  }
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    const Result r = run(rays, tris, form);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_EQ(r.hits[i].tri, ref[i].tri - ref[i].tri % 6) << form.name << ", ray " << i;
+    }
+  }
+  // The watertight form: the same on its snapped mesh (where the copies stay copies).
+  const std::vector<Hit> gref = nearest_reference(rays, snapped(tris, dvec3(0), 24));
+  const Result w = run(rays, tris, kWatertightForm);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const int first = gref[i].hit() ? gref[i].tri - gref[i].tri % 6 : -1;
+    EXPECT_EQ(gref[i].tri, first) << "reference on the snapped mesh, ray " << i;
+    EXPECT_EQ(w.hits[i].tri, first) << "watertight, ray " << i;
+  }
+}
+
 // Coplanar overlapping triangles and z-fighting pairs.
 // - Overlap in the plane z = 4 (exact coordinates): every copy is met at exactly the same
 //   distance; the reference, the object-parallel form (one exponent for all S) and the
