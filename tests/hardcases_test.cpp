@@ -415,6 +415,63 @@ TEST(HardCasesLeakRate, PaperFormLeakRateFallsWithN) {
   }
 }
 
+// ------------------------------------------------------------------ degenerate
+// Degenerate triangles (collinear vertices, a repeated vertex, a point) are never hit,
+// even by rays aimed exactly at them: the rays hit the wall behind, as in the
+// reference. Their det is exactly 0 (the coordinates are exact in double), so the
+// paper's form sends them to the host even with cond_bits = 60.
+// The watertight form snaps vertices to its grid, where collinear vertices generally
+// stop being collinear: the triangle becomes a sliver at most one grid step wide, which
+// a ray through the old segment may hit. That is the form's contract (exact on the
+// snapped mesh, where such a sliver keeps a closed mesh closed), so for it the asserted
+// behaviour is: a repeated vertex or a point is never hit, and a collinear triangle is
+// hit only by rays passing within a grid step of it.
+TEST_P(HardCases, DegenerateTrianglesAreNeverHit) {
+  const std::vector<Triangle> tris = {
+      tri({-100, -100, 30}, {100, -100, 30}, {0, 100, 30}),     // 0: the wall
+      tri({1, 2, 5}, {2, 3, 6}, {3, 4, 7}),                     // 1: collinear, integers
+      tri({0.5, -0.25, 4}, {0.75, -0.5, 4.5}, {1.25, -1, 5.5}),  // 2: collinear, dyadic
+      tri({-1, -1, 5}, {-1, -1, 5}, {-2, 1, 6}),                // 3: a repeated vertex
+      tri({-0.5, 0.5, 4}, {-0.5, 0.5, 4}, {-0.5, 0.5, 4}),      // 4: a point
+  };
+  std::vector<Ray> at_segment;
+  for (int k = 1; k <= 4; ++k) {
+    for (int e = 0; e < 3; ++e) {
+      for (double f : {0.0, 0.3, 0.5}) {
+        at_segment.push_back(aim(dvec3(0), tris[k].p[e] + f * (tris[k].p[(e + 1) % 3] - tris[k].p[e])));
+      }
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(at_segment, tris);
+  for (size_t i = 0; i < ref.size(); ++i) EXPECT_EQ(ref[i].tri, 0) << "reference, ray " << i;
+  for (const Form& form : {kRayForm, kObjectForm, kRawRayForm, kRawObjectForm}) {
+    const Result r = run(at_segment, tris, form);
+    expect_reference(r.hits, ref, at_segment, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+    EXPECT_EQ(r.st.host_triangles, 4u) << form.name << ": the degenerate triangles are the host's";
+  }
+  for (unsigned n : {16u, 24u}) {
+    const Result w = run(at_segment, tris, kWatertightForm, n);
+    for (size_t i = 0; i < at_segment.size(); ++i) {
+      EXPECT_TRUE(w.hits[i].tri == 0 || w.hits[i].tri == 1 || w.hits[i].tri == 2)
+          << label(kWatertightForm, n) << ", ray " << i << " hit " << w.hits[i].tri;
+    }
+    // Rays passing 3 grid steps beside the collinear triangles never hit them.
+    const double sp = grid_step(tris, dvec3(0), n);
+    std::vector<Ray> beside;
+    for (int k = 1; k <= 2; ++k) {
+      const dvec3 dir = glm::normalize(tris[k].p[2] - tris[k].p[0]);
+      const dvec3 side = glm::normalize(glm::cross(dir, tris[k].p[1]));
+      for (double f : {0.2, 0.5, 0.8}) {
+        const dvec3 p = tris[k].p[0] + f * (tris[k].p[2] - tris[k].p[0]);
+        beside.push_back(aim(dvec3(0), p + 3 * sp * side));
+        beside.push_back(aim(dvec3(0), p - 3 * sp * side));
+      }
+    }
+    const Result b = run(beside, tris, kWatertightForm, n);
+    for (size_t i = 0; i < beside.size(); ++i) EXPECT_EQ(b.hits[i].tri, 0) << label(kWatertightForm, n) << ", beside " << i;
+  }
+}
+
 // ------------------------------------------------------ behind and straddling
 // Triangles behind the eye and straddling its plane, rays forward and backward through
 // interior points: hits only in front (t > 0), as in the reference, in every form.

@@ -13,7 +13,8 @@
 namespace fmpp::isect {
 
 // Returns t > 0 if the ray hits the triangle (edges and vertices included), else +inf.
-// Degenerate triangles (zero area as seen from the ray) never hit.
+// Degenerate triangles (collinear or repeated vertices, or zero area as seen from the
+// ray) never hit.
 double intersect_reference(const Ray& r, const Triangle& t);
 
 // Nearest hit of each ray over all triangles (t > ray.tmin, triangle != ray.exclude).
