@@ -472,6 +472,29 @@ TEST_P(HardCases, DegenerateTrianglesAreNeverHit) {
   }
 }
 
+// ------------------------------------------------------------ ray lengths
+// Ray directions of very different lengths in one call (rays aimed at points from 5 to
+// 1e5 away: t is in units of each ray's own direction). Each ray keeps its precision:
+// the hits equal the reference's, and t times |D| is the distance.
+TEST_P(HardCases, RaysOfVeryDifferentLengths) {
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({-0.5, -0.3, 5}, {0.5, -0.3, 5.3}, {0.5 - 1e-3, -0.3 + 1e-3, 5.3}),
+      tri({-1e6, -1e6, 1e5}, {1e6, -1e6, 1e5}, {0, 1e6, 1e5}),
+  };
+  std::vector<Ray> rays;
+  for (int k = 0; k < 3; ++k) {
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.45, 0.45, 0.1), dvec3(0.1, 0.2, 0.7)}) {
+      rays.push_back(aim(dvec3(0), bary(tris[k], b.x, b.y, b.z)));
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+  }
+}
+
 // ------------------------------------------------------ behind and straddling
 // Triangles behind the eye and straddling its plane, rays forward and backward through
 // interior points: hits only in front (t > 0), as in the reference, in every form.
