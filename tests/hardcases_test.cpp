@@ -472,6 +472,44 @@ TEST_P(HardCases, DegenerateTrianglesAreNeverHit) {
   }
 }
 
+// ----------------------------------------------------------- needles and slivers
+// Aspect ratio 1e4: a needle (one short edge) and a sliver (one tiny height), tilted in
+// depth, in front of a wall. Rays at interior points and just beside the long edges:
+// every form equals the reference. cond is 2e4 to 2e5, so n = 16 (limit 2^13) sends
+// them to the host, n = 24 (limit 2^21) keeps them on the FMPP: the handling shows in
+// host_triangles, which must count exactly the triangles above the limit, in both
+// mappings (the limit follows the coarser operand: the n-bit ray components of the
+// object-parallel mapping too).
+TEST_P(HardCases, NeedlesAndSlivers) {
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({-0.5, -0.3, 5}, {0.5, -0.3, 5.3}, {0.5 - 1e-4, -0.3 + 1e-4, 5.3}),  // needle
+      tri({-0.5, 0.3, 5}, {0.5, 0.3, 5.2}, {0.05, 0.3 + 1e-4, 5.1}),           // sliver
+      tri({0.9, -0.5, 6}, {0.9 + 1e-4, 0.5, 6.3}, {0.9, 0.5, 6.3}),            // needle, tilted in depth
+  };
+  std::vector<Ray> rays;
+  for (int k = 1; k <= 3; ++k) {
+    const Triangle& t = tris[k];
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.45, 0.45, 0.1), dvec3(0.1, 0.2, 0.7)}) {
+      rays.push_back(aim(dvec3(0), bary(t, b.x, b.y, b.z)));
+    }
+    // Beside the triangle, outside its long edges by one width: the wall.
+    rays.push_back(aim(dvec3(0), bary(t, 1.5, -0.25, -0.25)));
+    rays.push_back(aim(dvec3(0), bary(t, -0.5, 0.75, 0.75)));
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (unsigned n : {16u, 24u}) {
+    for (const Form& form : {kRayForm, kObjectForm}) {
+      const Result r = run(rays, tris, form, n);
+      expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, dvec3(0)), label(form, n));
+      unsigned above = 0;
+      for (const Triangle& t : tris) above += condition(t, dvec3(0)) > std::ldexp(1.0, effective_bits(n) - 3);
+      EXPECT_EQ(r.st.host_triangles, above) << label(form, n);
+      EXPECT_EQ(above, n == 16 ? 3u : 0u) << "n = " << n;
+    }
+  }
+}
+
 // ------------------------------------------------------------ ray lengths
 // Ray directions of very different lengths in one call (rays aimed at points from 5 to
 // 1e5 away: t is in units of each ray's own direction). Each ray keeps its precision:

@@ -67,9 +67,13 @@ constexpr unsigned kOX = 0, kOY = 9, kOT = 12, kOS = 15, kOV = 16;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The relative error of T is about cond(P) times that of the coarser of the two
+// operands of its products: the n-bit multiplier and the other one (ray components,
+// vbits, ray-parallel; matrix mantissas, mbits, object-parallel). Beyond 2^(bits - 3)
+// the test could be wrong by more than an eighth.
 unsigned effective_cond_bits(const KernelOptions& o) {
   if (o.cond_bits >= 0) return static_cast<unsigned>(o.cond_bits);
-  return (o.mapping == Mapping::kRay ? o.n : o.mbits) - 3;
+  return std::min(o.n, o.mapping == Mapping::kRay ? o.vbits : o.mbits) - 3;
 }
 
 double inf_norm(const glm::dmat3& a) {

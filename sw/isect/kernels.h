@@ -64,7 +64,8 @@ struct KernelOptions {
   // Called after each pass with (passes done, passes planned in this call).
   std::function<void(uint64_t, uint64_t)> progress;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
-  // intersected on the host instead. Negative: n - 3 (ray-parallel), mbits - 3 (object).
+  // intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),
+  // min(n, mbits) - 3 (object-parallel).
   int cond_bits = -1;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
