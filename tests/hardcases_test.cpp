@@ -415,6 +415,59 @@ TEST(HardCasesLeakRate, PaperFormLeakRateFallsWithN) {
   }
 }
 
+// ------------------------------------------------------------- the eye's plane
+// The eye exactly in a triangle's plane (P singular), inside the triangle, and nearly
+// in the plane (P nearly singular): handled, never a garbage hit. With the default
+// fallback every form equals the reference; the singular triangle goes to the host even
+// with cond_bits = 60 (det = 0 is never broadcast), and nearly singular ones are counted
+// as host triangles. A wall behind makes a wrong miss visible as a wrong hit.
+TEST_P(HardCases, EyeInATrianglesPlane) {
+  const Triangle wall = tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30});
+  const Triangle flat = tri({-1, 0, 4}, {1, 0, 4}, {0.2, 0, 6});  // in the plane y = 0
+  for (double h : {0.0, 1e-12, 1e-6, 1e-3}) {
+    const dvec3 eye(0, h, 0);
+    const std::vector<Triangle> tris = {wall, flat};
+    std::vector<Ray> rays;
+    for (const dvec3& b : {dvec3(0.2, 0.3, 0.5), dvec3(0.6, 0.2, 0.2), dvec3(0.1, 0.1, 0.8)}) {
+      rays.push_back(aim(eye, bary(flat, b.x, b.y, b.z)));
+    }
+    rays.push_back(Ray{eye, {0, 0, 1}});     // in (or just above) the plane, past the triangle: the wall
+    rays.push_back(Ray{eye, {0.1, -1e-3, 1}});  // below the plane before the triangle starts: the wall
+    rays.push_back(Ray{eye, {-0.2, 0.05, 1}});
+    const std::vector<Hit> ref = nearest_reference(rays, tris);
+    std::ostringstream where_s;
+    where_s << "h=" << h;
+    const std::string where = where_s.str();
+    for (const Form& form : {kRayForm, kObjectForm}) {
+      for (unsigned n : {16u, 24u}) {
+        const Result r = run(rays, tris, form, n);
+        expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, eye), where + ", " + label(form, n));
+        if (!form.watertight && h <= 1e-6) {
+          EXPECT_GE(r.st.host_triangles, 1u) << where << ", " << label(form, n);
+        }
+      }
+    }
+    if (h == 0) {
+      for (const Form& form : {kRawRayForm, kRawObjectForm}) {
+        const Result r = run(rays, tris, form);
+        expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, eye), where + ", " + form.name);
+        EXPECT_EQ(r.st.host_triangles, 1u) << "the singular triangle goes to the host even with " << form.name;
+      }
+    }
+  }
+  // The eye inside a triangle (in its plane): that triangle can never be hit.
+  const Triangle around = tri({-1, 0, -1}, {1, 0, -1}, {0.2, 0, 2});
+  const std::vector<Triangle> tris = {wall, around};
+  std::vector<Ray> rays = {Ray{dvec3(0), {0, 0, 1}}, Ray{dvec3(0), {0.3, 0, 1}}, Ray{dvec3(0), {0.1, 0.1, 1}},
+                           Ray{dvec3(0), {0.2, 0, -1}}};
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Hit& x : ref) EXPECT_NE(x.tri, 1) << "reference hit the triangle holding the eye";
+  for (const Form& form : {kRayForm, kObjectForm, kRawRayForm, kRawObjectForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), std::string("eye in triangle, ") + form.name);
+  }
+}
+
 // ------------------------------------------------------------------ degenerate
 // Degenerate triangles (collinear vertices, a repeated vertex, a point) are never hit,
 // even by rays aimed exactly at them: the rays hit the wall behind, as in the
@@ -507,6 +560,42 @@ TEST_P(HardCases, NeedlesAndSlivers) {
       EXPECT_EQ(r.st.host_triangles, above) << label(form, n);
       EXPECT_EQ(above, n == 16 ? 3u : 0u) << "n = " << n;
     }
+  }
+}
+
+// ------------------------------------------------------------ tiny and huge
+// A tiny triangle (1e-6) at distance 1 (cond 7e6: the host's at n = 24), a tiny
+// triangle right in front of the eye (1e-7 away, well conditioned), and a huge one (1e6
+// wide, 1e5 away) behind a wall. Every form equals the reference, and the handling is
+// visible in the counts:
+// - ray-parallel: the near one's sums overflow the common exponent (flag V): its rays
+//   are redone on the host (overflow_rays); the far one is a host triangle;
+// - object-parallel: one exponent serves every S, and the scene spans 1e-7 to 1e6; the
+//   near one's column sums (1e7) are above the cap that keeps every hit 10 bits of S:
+//   both tiny ones are host triangles;
+// Unit directions: the lengths do not matter here (RaysOfVeryDifferentLengths).
+TEST_P(HardCases, TinyAndHugeTriangles) {
+  const dvec3 c = 1e-7 * dvec3(-0.6, 0.6, 1);
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({0.2, 0, 1}, {0.2 + 1e-6, 0, 1}, {0.2, 1e-6, 1}),
+      tri(c + dvec3(-2e-8, -2e-8, 0), c + dvec3(2e-8, -2e-8, 0), c + dvec3(0, 3e-8, 0)),
+      tri({-1e6, -1e6, 1e5}, {1e6, -1e6, 1e5}, {0, 1e6, 1e5}),
+  };
+  std::vector<Ray> rays;
+  for (int k = 0; k < 4; ++k) {
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.6, 0.3, 0.1)}) {
+      rays.push_back(Ray{dvec3(0), glm::normalize(bary(tris[k], b.x, b.y, b.z))});
+    }
+  }
+  rays.push_back(Ray{dvec3(0), glm::normalize(dvec3(0.9, 0.5, 1))});  // beside the wall: the huge one
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+    const bool paper_ray = form.mapping == Mapping::kRay && !form.watertight;
+    EXPECT_EQ(r.st.host_triangles, paper_ray ? 1u : 2u) << form.name;
+    EXPECT_EQ(r.st.overflow_rays > 0, paper_ray) << form.name;
   }
 }
 

@@ -187,8 +187,14 @@ TEST(KernelsNumerics, OverflowIsDetectedAndRedoneOnTheHost) {
     KernelStats st;
     const auto got = run("cmodel", Config{128, 32}, s, o, &st);
     for (size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].tri, ref[i].tri) << to_string(m) << " ray " << i;
-    if (m == Mapping::kRay) EXPECT_GT(st.overflow_rays, 0u);
-    EXPECT_EQ(st.host_triangles, 0u);
+    if (m == Mapping::kRay) {
+      EXPECT_GT(st.overflow_rays, 0u);
+      EXPECT_EQ(st.host_triangles, 0u);
+    } else {
+      // Object-parallel has one exponent for every triangle's S: a triangle this near
+      // (column sums ~1e7) would leave the others no bits, so it is the host's.
+      EXPECT_EQ(st.host_triangles, 1u);
+    }
   }
 }
 

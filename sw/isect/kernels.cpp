@@ -499,6 +499,14 @@ class Group {
     };
     std::vector<Tri> data;
     std::vector<int> host;
+    // The one exponent of Y is set by the largest column sums s_max, and a hit at distance
+    // d has S_c ~ 2^(mb-2) / (s_max d) or more (S >= 1/d per unit of the ray's largest
+    // component). Capping s_max at 2^(mb-12) / d_max (d_max: the farthest vertex) leaves
+    // every possible hit 10 bits of S_c or more. A triangle above the cap has its plane
+    // close to the eye (S of its hits is a small difference of large terms); on the FMPP
+    // it would take the bits of S from every other triangle, silently (their hits compare
+    // wrongly or vanish at S_c = 0), so it goes to the host like an ill-conditioned one.
+    const double s_limit = std::ldexp(1.0, static_cast<int>(mb) - 12) / distance_range(tris_, o_).max;
     double smax = 0;
     for (size_t k = 0; k < tris_.size(); ++k) {
       double m[3][3];
@@ -509,10 +517,16 @@ class Group {
       Tri t;
       t.index = static_cast<int>(k);
       mantissas(&m[0][0], 9, mb, t.x);
+      double tmax = 0;
       for (int j = 0; j < 3; ++j) {
         t.s[j] = m[0][j] + m[1][j] + m[2][j];
-        smax = std::max(smax, std::abs(t.s[j]));
+        tmax = std::max(tmax, std::abs(t.s[j]));
       }
+      if (!(tmax <= s_limit)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      smax = std::max(smax, tmax);
       data.push_back(t);
     }
     st_->host_triangles += host.size();
