@@ -438,7 +438,7 @@ TEST_P(HardCases, EyeInATrianglesPlane) {
     std::ostringstream where_s;
     where_s << "h=" << h;
     const std::string where = where_s.str();
-    for (const Form& form : {kRayForm, kObjectForm}) {
+    for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
       for (unsigned n : {16u, 24u}) {
         const Result r = run(rays, tris, form, n);
         expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, eye), where + ", " + label(form, n));
@@ -462,7 +462,7 @@ TEST_P(HardCases, EyeInATrianglesPlane) {
                            Ray{dvec3(0), {0.2, 0, -1}}};
   const std::vector<Hit> ref = nearest_reference(rays, tris);
   for (const Hit& x : ref) EXPECT_NE(x.tri, 1) << "reference hit the triangle holding the eye";
-  for (const Form& form : {kRayForm, kObjectForm, kRawRayForm, kRawObjectForm}) {
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm, kRawRayForm, kRawObjectForm}) {
     const Result r = run(rays, tris, form);
     expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), std::string("eye in triangle, ") + form.name);
   }
@@ -533,6 +533,10 @@ TEST_P(HardCases, DegenerateTrianglesAreNeverHit) {
 // host_triangles, which must count exactly the triangles above the limit, in both
 // mappings (the limit follows the coarser operand: the n-bit ray components of the
 // object-parallel mapping too).
+// The watertight grid step (2^-11 of the scene here) is far wider than them: the
+// needles snap to nothing and go to the host; the sliver, nearly horizontal, snaps to a
+// horizontal triangle a grid step lower, which the rays aimed at it pass over. That
+// form is checked against the reference on its snapped mesh, where it is exact.
 TEST_P(HardCases, NeedlesAndSlivers) {
   const std::vector<Triangle> tris = {
       tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
@@ -560,6 +564,12 @@ TEST_P(HardCases, NeedlesAndSlivers) {
       EXPECT_EQ(r.st.host_triangles, above) << label(form, n);
       EXPECT_EQ(above, n == 16 ? 3u : 0u) << "n = " << n;
     }
+    const std::vector<Triangle> grid = snapped(tris, dvec3(0), n);
+    const Result w = run(rays, tris, kWatertightForm, n);
+    expect_reference(w.hits, nearest_reference(rays, grid), rays, grid, tolerance(kWatertightForm, n, grid, dvec3(0), true),
+                     label(kWatertightForm, n) + " against its snapped mesh");
+    EXPECT_GE(w.st.snapped_degenerate, 1u) << "a needle snaps to nothing";
+    EXPECT_EQ(w.st.host_triangles, w.st.snapped_degenerate) << label(kWatertightForm, n);
   }
 }
 
@@ -573,6 +583,8 @@ TEST_P(HardCases, NeedlesAndSlivers) {
 // - object-parallel: one exponent serves every S, and the scene spans 1e-7 to 1e6; the
 //   near one's column sums (1e7) are above the cap that keeps every hit 10 bits of S:
 //   both tiny ones are host triangles;
+// - watertight: the huge triangle sets the grid step (~1400): both tiny ones and the
+//   wall snap to nothing and are host triangles.
 // Unit directions: the lengths do not matter here (RaysOfVeryDifferentLengths).
 TEST_P(HardCases, TinyAndHugeTriangles) {
   const dvec3 c = 1e-7 * dvec3(-0.6, 0.6, 1);
@@ -590,11 +602,11 @@ TEST_P(HardCases, TinyAndHugeTriangles) {
   }
   rays.push_back(Ray{dvec3(0), glm::normalize(dvec3(0.9, 0.5, 1))});  // beside the wall: the huge one
   const std::vector<Hit> ref = nearest_reference(rays, tris);
-  for (const Form& form : {kRayForm, kObjectForm}) {
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
     const Result r = run(rays, tris, form);
     expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
     const bool paper_ray = form.mapping == Mapping::kRay && !form.watertight;
-    EXPECT_EQ(r.st.host_triangles, paper_ray ? 1u : 2u) << form.name;
+    EXPECT_EQ(r.st.host_triangles, paper_ray ? 1u : form.watertight ? 3u : 2u) << form.name;
     EXPECT_EQ(r.st.overflow_rays > 0, paper_ray) << form.name;
   }
 }
@@ -616,7 +628,7 @@ TEST_P(HardCases, RaysOfVeryDifferentLengths) {
     }
   }
   const std::vector<Hit> ref = nearest_reference(rays, tris);
-  for (const Form& form : {kRayForm, kObjectForm}) {
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
     const Result r = run(rays, tris, form);
     expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
   }

@@ -257,7 +257,7 @@ class Group {
     std::vector<int> fmpp_tris;
     double t_scale = std::ldexp(1.0, E + 1);  // 1/t = S_c * t_scale * sv_i for ray i
     if (opt_.watertight) {
-      t_scale = watertight_programs(&progs, &test_sizes, &fmpp_tris);
+      t_scale = watertight_programs(&progs, &test_sizes, &fmpp_tris, &host);
     }
     for (size_t k = 0; k < tris_.size() && !opt_.watertight; ++k) {
       double m[3][3];
@@ -364,10 +364,10 @@ class Group {
   // rows A_i = floor(c_i . V / 2^n), whose signs are exact (floor(x / 2^n) >= 0 iff
   // x >= 0); c_i are negated for triangles seen clockwise, so a shared edge gets
   // complementary constants. The compared sum S comes from a fourth row, (sum c_i) / det
-  // with one exponent for all triangles. Returns the scale with 1/t = S_c * scale * sv
-  // (sv: the ray's scale).
+  // with one exponent for all triangles. Triangles the grid makes degenerate go to
+  // `host`. Returns the scale with 1/t = S_c * scale * sv (sv: the ray's scale).
   double watertight_programs(std::vector<Program>* progs, std::vector<size_t>* test_sizes,
-                             std::vector<int>* fmpp_tris) {
+                             std::vector<int>* fmpp_tris, std::vector<int>* host) {
     const unsigned n = opt_.n;
     const int b = (static_cast<int>(n) - 3) / 2;
     double pmax = 0;
@@ -400,7 +400,12 @@ class Group {
       const __int128 det = static_cast<__int128>(q[0][0]) * w.c[0][0] + static_cast<__int128>(q[0][1]) * w.c[0][1] +
                            static_cast<__int128>(q[0][2]) * w.c[0][2];
       if (det == 0) {
-        ++st_->snapped_degenerate;  // no ray can hit it on the grid
+        // Smaller than the grid (or seen edge-on from the origin once snapped): the grid
+        // cannot represent it, but the reference may still hit it (a tiny triangle near
+        // the eye covers many rays). The host tests the exact triangle; that only adds
+        // hits, so no ray can leak through where the snapped mesh was closed.
+        ++st_->snapped_degenerate;
+        host->push_back(static_cast<int>(k));
         continue;
       }
       const int sign = det > 0 ? 1 : -1;

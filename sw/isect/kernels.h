@@ -88,7 +88,7 @@ struct KernelStats {
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
-  uint64_t snapped_degenerate = 0;  // watertight: triangles that became degenerate on the grid
+  uint64_t snapped_degenerate = 0;  // watertight: triangles the grid made degenerate (tested on the host)
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }
