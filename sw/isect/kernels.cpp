@@ -972,6 +972,9 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const
       groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
     }
   }
+  // No triangle: every ray misses. (The scales below are derived from the scene's
+  // extent, which an empty scene does not have.)
+  if (tris.empty()) return out;
   if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
     // Small groups would leave most blocks idle: send them through the general kernel.
     const size_t min_group = std::max<size_t>(16, dev.config().blocks / 8);
