@@ -61,6 +61,24 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+std::vector<Ray> primary_rays(const Camera& cam, int width, int height) {
+  // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
+  // its culling frustum is thin.
+  const glm::dvec3 fwd = glm::normalize(cam.look_at - cam.eye);
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up));
+  const glm::dvec3 upv = glm::cross(right, fwd);
+  const double th = std::tan(glm::radians(cam.fov_y_deg) / 2), aspect = double(width) / height;
+  std::vector<Ray> rays;
+  rays.reserve(static_cast<size_t>(width) * height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const double u = (2 * (x + 0.5) / width - 1) * th * aspect, v = (1 - 2 * (y + 0.5) / height) * th;
+      rays.push_back(Ray{cam.eye, fwd + u * right + v * upv});
+    }
+  }
+  return rays;
+}
+
 Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, RenderStats* stats) {
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384) {
     throw std::invalid_argument("rt::render: resolution " + std::to_string(opt.width) + "x" +
@@ -81,22 +99,9 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   }
   const double eps = 1e-5 * glm::length(hi - lo);
 
-  // Primary rays through pixel centres, row by row from the top (so a pass of the
-  // ray-parallel FMPP is a band of rows and its culling frustum is thin).
-  const Camera& cam = sc.camera;
-  const glm::dvec3 fwd = glm::normalize(cam.look_at - cam.eye);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up));
-  const glm::dvec3 upv = glm::cross(right, fwd);
-  const double th = std::tan(glm::radians(cam.fov_y_deg) / 2), aspect = double(opt.width) / opt.height;
-  std::vector<Ray> rays;
+  std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height);
   std::vector<Path> paths;
-  for (int y = 0; y < opt.height; ++y) {
-    for (int x = 0; x < opt.width; ++x) {
-      const double u = (2 * (x + 0.5) / opt.width - 1) * th * aspect, v = (1 - 2 * (y + 0.5) / opt.height) * th;
-      rays.push_back(Ray{cam.eye, fwd + u * right + v * upv});
-      paths.push_back(Path{static_cast<uint32_t>(y * opt.width + x), glm::dvec3(1), RayKind::kPrimary});
-    }
-  }
+  for (size_t i = 0; i < rays.size(); ++i) paths.push_back(Path{static_cast<uint32_t>(i), glm::dvec3(1), RayKind::kPrimary});
 
   uint64_t traced = 0;
   for (int level = 0; level < depth && !rays.empty(); ++level) {
