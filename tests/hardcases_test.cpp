@@ -48,15 +48,15 @@ double condition(const Triangle& t, const dvec3& o) {
   return inf_norm(P) * inf_norm(glm::inverse(P));
 }
 
-// Bits the paper's form keeps: n for the multiplier, at most 28 for the other operand
-// (ray components, vbits; matrix mantissas, mbits), so n beyond 28 gains nothing.
+// Bits the paper's form keeps: n for the multiplier, 28 for the other operand (ray
+// components, vbits; matrix mantissas, mbits), so the coarser one has min(n, 28).
 int effective_bits(unsigned n) { return std::min(static_cast<int>(n), 28); }
 
 // How far inside a triangle (as a fraction of its height over the edge) a point must be
 // for the paper's form to see it inside: its tests T = P^-1 V carry a relative error of
-// about cond(P) 2^-bits, which measured on the closed sphere (cond up to 48) is a crack
-// half-width below 1 x cond 2^-bits for n = 12..24 and below 4 x at n = 32. Asserted
-// with 2x margin over the worst: 8 cond 2^-bits.
+// about cond(P) 2^-bits. Measured on the closed sphere (cond up to 48): rays 0.5 cond
+// 2^-bits inside still crack at n = 12..24, rays 1 cond 2^-bits inside never do (at
+// n = 32 the 28-bit operand sets the width). Asserted with a margin: 8 cond 2^-bits.
 double paper_margin(const Triangle& t, const dvec3& o, unsigned n) {
   return 8 * condition(t, o) * std::ldexp(1.0, -effective_bits(n));
 }
@@ -336,7 +336,7 @@ TEST_P(HardCases, FanSharedEdgesAndVertex) {
 // vertices: every ray must hit. The watertight form never leaks (asserted for several
 // n). The paper's form leaks where every triangle at the edge rounds the ray outside:
 // on exact edges that does not get rarer with n (the rays are on the edge to within
-// double rounding, below any n), measured 6-25 % for n = 8..32; asserted below 35 %,
+// double rounding, below any n), measured 5-25 % for n = 8..32; asserted below 35 %,
 // and rays a margin inside (8 cond 2^-bits of the height) never leak.
 TEST_P(HardCases, ClosedSphereAroundTheEye) {
   const std::vector<Triangle> tris = closed_sphere(SphereMeshOptions{});
@@ -388,7 +388,7 @@ TEST_P(HardCases, ClosedSphereAroundTheEye) {
 
 // The leak rate of the paper's form for rays in all directions: a ray leaks only within
 // the crack half-width (about cond 2^-n of a triangle's height) of an edge, so the rate
-// falls as 2^-n. Measured 4.3-4.9 x 2^-n on this mesh for n = 8..12 and 0 of 12000
+// falls as 2^-n. Measured 4.3-5.5 x 2^-n on this mesh for n = 8..12 and 0 of 12000
 // rays from n = 16; asserted at most 16 x 2^-n. The watertight form never leaks.
 TEST(HardCasesLeakRate, PaperFormLeakRateFallsWithN) {
   const std::vector<Triangle> tris = closed_sphere(SphereMeshOptions{});
