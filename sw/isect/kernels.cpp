@@ -67,9 +67,13 @@ constexpr unsigned kOX = 0, kOY = 9, kOT = 12, kOS = 15, kOV = 16;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The relative error of T is about cond(P) times that of the coarser of the two
+// operands of its products: the n-bit multiplier and the other one (ray components,
+// vbits, ray-parallel; matrix mantissas, mbits, object-parallel). Beyond 2^(bits - 3)
+// the test could be wrong by more than an eighth.
 unsigned effective_cond_bits(const KernelOptions& o) {
   if (o.cond_bits >= 0) return static_cast<unsigned>(o.cond_bits);
-  return (o.mapping == Mapping::kRay ? o.n : o.mbits) - 3;
+  return std::min(o.n, o.mapping == Mapping::kRay ? o.vbits : o.mbits) - 3;
 }
 
 double inf_norm(const glm::dmat3& a) {
@@ -109,6 +113,11 @@ int mantissas(const double* v, int count, unsigned bits, int64_t* out) {
     ++e;
   }
 }
+
+// Largest component magnitude of a direction: each ray's components are quantized with
+// their own scale (the largest becomes the format's limit), so a short direction in a
+// batch of long ones keeps all its bits; t is corrected per ray on the host.
+double max_component(const glm::dvec3& d) { return std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}); }
 
 int32_t quantize(double v, double scale, int64_t limit, const char* what) {
   const double q = std::nearbyint(v / scale);
@@ -226,29 +235,29 @@ class Group {
   void run_ray_parallel(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
     const unsigned n = opt_.n;
     const double cond_limit = std::ldexp(1.0, static_cast<int>(effective_cond_bits(opt_)));
-    // Scale of the ray components: the largest becomes 2^vbits.
-    double vmax = 0, vlen = 0;
+    // Scale of each ray's components: its largest becomes 2^vbits (sv_i = max_i / 2^vbits),
+    // so every ray's V_q has the same magnitude whatever the length of its direction.
+    double vq_len = 0;  // largest |V_q|
     for (size_t i : idx) {
       const glm::dvec3& d = rays[i].d;
-      vmax = std::max({vmax, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
-      vlen = std::max(vlen, glm::length(d));
+      if (!(max_component(d) > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+      vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
     }
-    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
-    const double sv = vmax / std::ldexp(1.0, static_cast<int>(opt_.vbits));
-    // Common exponent E for the compared sums: S = 1/lambda <= |V|max / dmin, and S_c =
-    // S / (2^(E+1) sv) must stay below 2^29.
+    auto ray_scale = [&](const glm::dvec3& d) { return max_component(d) / std::ldexp(1.0, static_cast<int>(opt_.vbits)); };
+    // Common exponent E for the compared sums: S = 1/lambda <= |V_q| / dmin (lambda in
+    // units of V_q), and S_c = S / 2^(E+1) must stay below 2^29.
     const DistanceRange dr = distance_range(tris_, o_);
     const double dmin = std::max(dr.min, dr.max * std::ldexp(1.0, -20));
-    const int E = static_cast<int>(std::ceil(std::log2((vlen / sv) / (dmin * std::ldexp(1.0, 29))))) - 1;
+    const int E = static_cast<int>(std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, 29))))) - 1;
 
     // Per-triangle programs (the same in every pass).
     std::vector<Program> progs;
     std::vector<size_t> test_sizes;
     std::vector<int> host;
     std::vector<int> fmpp_tris;
-    double t_scale = std::ldexp(1.0, E + 1) * sv;  // 1/t = S_c * t_scale
+    double t_scale = std::ldexp(1.0, E + 1);  // 1/t = S_c * t_scale * sv_i for ray i
     if (opt_.watertight) {
-      t_scale = watertight_programs(sv, &progs, &test_sizes, &fmpp_tris);
+      t_scale = watertight_programs(&progs, &test_sizes, &fmpp_tris, &host);
     }
     for (size_t k = 0; k < tris_.size() && !opt_.watertight; ++k) {
       double m[3][3];
@@ -286,6 +295,7 @@ class Group {
       for (unsigned b = 0; b < count; ++b) {
         const glm::dvec3& d = rays[idx[base + b]].d;
         const int64_t lim = int64_t{1} << opt_.vbits;
+        const double sv = ray_scale(d);
         dev_.write_word(b, kRV + 0, static_cast<uint32_t>(quantize(d.x, sv, lim, "ray component")));
         dev_.write_word(b, kRV + 1, static_cast<uint32_t>(quantize(d.y, sv, lim, "ray component")));
         dev_.write_word(b, kRV + 2, static_cast<uint32_t>(quantize(d.z, sv, lim, "ray component")));
@@ -327,7 +337,7 @@ class Group {
                                    std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
           }
           h.tri = fmpp_tris[pass_order[ordinal - 1]];
-          h.t = 1.0 / (static_cast<double>(s) * t_scale);
+          h.t = 1.0 / (static_cast<double>(s) * t_scale * ray_scale(rays[idx[base + b]].d));
         }
         out[idx[base + b]] = h;
       }
@@ -354,9 +364,10 @@ class Group {
   // rows A_i = floor(c_i . V / 2^n), whose signs are exact (floor(x / 2^n) >= 0 iff
   // x >= 0); c_i are negated for triangles seen clockwise, so a shared edge gets
   // complementary constants. The compared sum S comes from a fourth row, (sum c_i) / det
-  // with one exponent for all triangles. Returns the scale with 1/t = S_c * scale.
-  double watertight_programs(double sv, std::vector<Program>* progs, std::vector<size_t>* test_sizes,
-                             std::vector<int>* fmpp_tris) {
+  // with one exponent for all triangles. Triangles the grid makes degenerate go to
+  // `host`. Returns the scale with 1/t = S_c * scale * sv (sv: the ray's scale).
+  double watertight_programs(std::vector<Program>* progs, std::vector<size_t>* test_sizes,
+                             std::vector<int>* fmpp_tris, std::vector<int>* host) {
     const unsigned n = opt_.n;
     const int b = (static_cast<int>(n) - 3) / 2;
     double pmax = 0;
@@ -389,7 +400,12 @@ class Group {
       const __int128 det = static_cast<__int128>(q[0][0]) * w.c[0][0] + static_cast<__int128>(q[0][1]) * w.c[0][1] +
                            static_cast<__int128>(q[0][2]) * w.c[0][2];
       if (det == 0) {
-        ++st_->snapped_degenerate;  // no ray can hit it on the grid
+        // Smaller than the grid (or seen edge-on from the origin once snapped): the grid
+        // cannot represent it, but the reference may still hit it (a tiny triangle near
+        // the eye covers many rays). The host tests the exact triangle; that only adds
+        // hits, so no ray can leak through where the snapped mesh was closed.
+        ++st_->snapped_degenerate;
+        host->push_back(static_cast<int>(k));
         continue;
       }
       const int sign = det > 0 ? 1 : -1;
@@ -430,8 +446,8 @@ class Group {
       fmpp_tris->push_back(w.index);
     }
     // S_c = floor(sum w_q V_q / 2^n) = (w . V) / (2^(Ew+1) sv) in grid units; the grid
-    // shrinks distances by sp, so 1/t = S_c 2^(Ew+1) sv / sp.
-    return std::ldexp(1.0, Ew + 1) * sv / sp;
+    // shrinks distances by sp, so 1/t = S_c 2^(Ew+1) sv / sp (sv: the ray's scale).
+    return std::ldexp(1.0, Ew + 1) / sp;
   }
 
   // *test_size gets the instructions up to the inside test (the paper's count).
@@ -472,14 +488,12 @@ class Group {
   void run_object_parallel(const std::vector<Ray>& rays, const std::vector<size_t>& idx, std::vector<Hit>& out) {
     const unsigned n = opt_.n, mb = opt_.mbits;
     const double cond_limit = std::ldexp(1.0, static_cast<int>(effective_cond_bits(opt_)));
-    double vmax = 0;
-    for (size_t i : idx) {
-      const glm::dvec3& d = rays[i].d;
-      vmax = std::max({vmax, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
-    }
-    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+    // Each ray's components get their own scale: the largest becomes vlim.
     const int64_t vlim = (int64_t{1} << (n - 1)) - 1;
-    const double sv = vmax / static_cast<double>(vlim);
+    for (size_t i : idx) {
+      if (!(max_component(rays[i].d) > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
+    }
+    auto ray_scale = [&](const glm::dvec3& d) { return max_component(d) / static_cast<double>(vlim); };
 
     // Triangle data: X = mantissas of P^-1 (own exponent), Y = mantissas of its column
     // sums (S = sum_j s_j V_j) with one exponent for all triangles.
@@ -490,6 +504,14 @@ class Group {
     };
     std::vector<Tri> data;
     std::vector<int> host;
+    // The one exponent of Y is set by the largest column sums s_max, and a hit at distance
+    // d has S_c ~ 2^(mb-2) / (s_max d) or more (S >= 1/d per unit of the ray's largest
+    // component). Capping s_max at 2^(mb-12) / d_max (d_max: the farthest vertex) leaves
+    // every possible hit 10 bits of S_c or more. A triangle above the cap has its plane
+    // close to the eye (S of its hits is a small difference of large terms); on the FMPP
+    // it would take the bits of S from every other triangle, silently (their hits compare
+    // wrongly or vanish at S_c = 0), so it goes to the host like an ill-conditioned one.
+    const double s_limit = std::ldexp(1.0, static_cast<int>(mb) - 12) / distance_range(tris_, o_).max;
     double smax = 0;
     for (size_t k = 0; k < tris_.size(); ++k) {
       double m[3][3];
@@ -500,16 +522,23 @@ class Group {
       Tri t;
       t.index = static_cast<int>(k);
       mantissas(&m[0][0], 9, mb, t.x);
+      double tmax = 0;
       for (int j = 0; j < 3; ++j) {
         t.s[j] = m[0][j] + m[1][j] + m[2][j];
-        smax = std::max(smax, std::abs(t.s[j]));
+        tmax = std::max(tmax, std::abs(t.s[j]));
       }
+      if (!(tmax <= s_limit)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      smax = std::max(smax, tmax);
       data.push_back(t);
     }
     st_->host_triangles += host.size();
     const int Es = (smax > 0) ? static_cast<int>(std::floor(std::log2(smax))) + 1 : 0;
     const double yscale = std::ldexp(1.0, static_cast<int>(mb) - Es);
-    // S_c = floor(sum v_j y_j / 2^n) = S * yscale / (sv * 2^n); S_c < 1.5 * 2^mb.
+    // S_c = floor(sum v_j y_j / 2^n) = S * yscale / (sv * 2^n); S_c < 1.5 * 2^mb. (sv: the
+    // ray's scale; S_c is only ever compared between triangles for one ray.)
     const unsigned sbits = mb + 1;
 
     std::vector<Hit> best(idx.size());
@@ -536,6 +565,7 @@ class Group {
       std::vector<int32_t> v(3);
       for (size_t r = 0; r < idx.size(); ++r) {
         const glm::dvec3& d = rays[idx[r]].d;
+        const double sv = ray_scale(d);
         v[0] = quantize(d.x, sv, vlim, "ray component");
         v[1] = quantize(d.y, sv, vlim, "ray component");
         v[2] = quantize(d.z, sv, vlim, "ray component");
@@ -577,7 +607,7 @@ class Group {
       }
       st_->readback_cycles += dev_.cycles() - c0;
     }
-    const double s_to_inv_t = sv * std::ldexp(1.0, static_cast<int>(n)) / yscale;
+    const double s_to_inv_t = std::ldexp(1.0, static_cast<int>(n)) / yscale;  // times the ray's scale
     for (size_t r = 0; r < idx.size(); ++r) {
       const size_t i = idx[r];
       Hit h = best[r];
@@ -588,7 +618,7 @@ class Group {
         for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
         merge_host(rays[i], tris_, all, &h, st_);
       } else {
-        if (h.hit()) h.t = 1.0 / (best_s[r] * s_to_inv_t);
+        if (h.hit()) h.t = 1.0 / (best_s[r] * s_to_inv_t * ray_scale(rays[i].d));
         merge_host(rays[i], tris_, host, &h, st_);
       }
       out[i] = h;
@@ -942,6 +972,9 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const
       groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
     }
   }
+  // No triangle: every ray misses. (The scales below are derived from the scene's
+  // extent, which an empty scene does not have.)
+  if (tris.empty()) return out;
   if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
     // Small groups would leave most blocks idle: send them through the general kernel.
     const size_t min_group = std::max<size_t>(16, dev.config().blocks / 8);

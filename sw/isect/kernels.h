@@ -64,7 +64,8 @@ struct KernelOptions {
   // Called after each pass with (passes done, passes planned in this call).
   std::function<void(uint64_t, uint64_t)> progress;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
-  // intersected on the host instead. Negative: n - 3 (ray-parallel), mbits - 3 (object).
+  // intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),
+  // min(n, mbits) - 3 (object-parallel).
   int cond_bits = -1;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
@@ -87,7 +88,7 @@ struct KernelStats {
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
-  uint64_t snapped_degenerate = 0;  // watertight: triangles that became degenerate on the grid
+  uint64_t snapped_degenerate = 0;  // watertight: triangles the grid made degenerate (tested on the host)
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }

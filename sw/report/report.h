@@ -27,4 +27,9 @@ struct Command {
 // and the CPU baseline, from cycles measured on the RTL (paper.cpp).
 Command add_paper(CLI::App& app);
 
+// `fmpp-report precision`: accuracy against cycles for each multiplier width n, both
+// multiplies and the watertight form, on the scenes (golden model), the leak rate on a
+// closed mesh, and the hard-case list (precision.cpp).
+Command add_precision(CLI::App& app);
+
 }  // namespace fmpp::report

@@ -3,6 +3,7 @@
 //
 //   fmpp-report area [--synth-dir build/synth]
 //   fmpp-report paper [--out docs/paper-reproduction.md]
+//   fmpp-report precision [--out docs/precision.md] [--quick]
 #include <cstdio>
 #include <exception>
 #include <vector>
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   fmpp::report::register_area(app);
   std::vector<fmpp::report::Command> cmds;
   cmds.push_back(fmpp::report::add_paper(app));
+  cmds.push_back(fmpp::report::add_precision(app));
   try {
     app.parse(argc, argv);
     for (auto& c : cmds) {

@@ -112,7 +112,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     return plan;
   }
   // Sample: every k-th primary ray of the frame.
-  const std::vector<Ray> all = primary_rays(scene, req.width, req.height);
+  const std::vector<Ray> all = primary_rays(scene.camera, req.width, req.height);
   const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
   std::vector<Ray> sample;
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);

@@ -61,8 +61,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::vector<Ray> primary_rays(const Scene& sc, int width, int height) {
-  const Camera& cam = sc.camera;
+std::vector<Ray> primary_rays(const Camera& cam, int width, int height) {
+  // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
+  // its culling frustum is thin.
   const glm::dvec3 fwd = glm::normalize(cam.look_at - cam.eye);
   const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up));
   const glm::dvec3 upv = glm::cross(right, fwd);
@@ -98,9 +99,8 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   }
   const double eps = 1e-5 * glm::length(hi - lo);
 
-  // Primary rays through pixel centres, row by row from the top (so a pass of the
-  // ray-parallel FMPP is a band of rows and its culling frustum is thin).
-  std::vector<Ray> rays = primary_rays(sc, opt.width, opt.height);
+  // Primary rays through pixel centres.
+  std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height);
   std::vector<Path> paths;
   for (size_t i = 0; i < rays.size(); ++i) paths.push_back(Path{static_cast<uint32_t>(i), glm::dvec3(1), RayKind::kPrimary});
 

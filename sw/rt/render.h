@@ -73,8 +73,9 @@ struct RenderStats {
   double shade_seconds = 0;
 };
 
-// The primary rays of a width x height image, row by row from the top (pixel y*w + x).
-std::vector<fmpp::isect::Ray> primary_rays(const Scene& scene, int width, int height);
+// The camera's primary rays through the pixel centres, row by row from the top (pixel
+// index y * width + x), exactly as render() casts them.
+std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height);
 
 // Renders the scene; the image is linear radiance.
 Image render(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats);

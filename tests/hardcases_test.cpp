@@ -1,0 +1,949 @@
+// Numerically hard inputs for the ray-triangle intersection, each with the behaviour it
+// must show, run on the double-precision reference, on the golden model (tests named
+// Model/..., ctest label unit) and on the Verilated RTL in lockstep with the model
+// (Rtl/..., label rtl, configuration small: 64 blocks x 32 words).
+//
+// Every case compares the FMPP with the reference. Where a fixed-point form cannot meet
+// the exact behaviour for a principled reason, the case asserts a bound instead and says
+// why; docs/precision.md ("Hard cases") lists every case, its behaviour and its bound.
+// No overflow may be silent: every run checks that an overflow left in the machine was
+// counted (KernelStats) and redone, and cases that provoke one assert the count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "sw/fmpp/backend.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/meshes.h"
+#include "sw/isect/reference.h"
+
+namespace fmpp::isect {
+namespace {
+
+using glm::dvec3;
+
+Triangle tri(dvec3 a, dvec3 b, dvec3 c) { return Triangle{{a, b, c}}; }
+// The point a p0 + b p1 + c p2 (barycentric).
+dvec3 bary(const Triangle& t, double a, double b, double c) { return a * t.p[0] + b * t.p[1] + c * t.p[2]; }
+Ray aim(const dvec3& from, const dvec3& to) { return Ray{from, to - from}; }
+
+double inf_norm(const glm::dmat3& a) {
+  double m = 0;
+  for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
+  return m;
+}
+
+// |P| |P^-1| (max norms), P = the vertices relative to o as columns: the factor by which
+// the paper's form magnifies the relative error of its fixed-point inputs
+// (docs/intersection.md). The kernel sends triangles above 2^(bits-3) to the host.
+double condition(const Triangle& t, const dvec3& o) {
+  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);
+  const double det = glm::determinant(P);
+  if (det == 0) return std::numeric_limits<double>::infinity();
+  return inf_norm(P) * inf_norm(glm::inverse(P));
+}
+
+// Bits the paper's form keeps: n for the multiplier, 28 for the other operand (ray
+// components, vbits; matrix mantissas, mbits), so the coarser one has min(n, 28).
+int effective_bits(unsigned n) { return std::min(static_cast<int>(n), 28); }
+
+// How far inside a triangle (as a fraction of its height over the edge) a point must be
+// for the paper's form to see it inside: its tests T = P^-1 V carry a relative error of
+// about cond(P) 2^-bits. Measured on the closed sphere (cond up to 48): rays 0.5 cond
+// 2^-bits inside still crack at n = 12..24, rays 1 cond 2^-bits inside never do (at
+// n = 32 the 28-bit operand sets the width). Asserted with a margin: 8 cond 2^-bits.
+double paper_margin(const Triangle& t, const dvec3& o, unsigned n) {
+  return 8 * condition(t, o) * std::ldexp(1.0, -effective_bits(n));
+}
+
+// The grid of the watertight form (kernels.cpp, watertight_programs): vertices relative
+// to the origin rounded to multiples of sp = pmax 2^-b, b = (n - 3) / 2.
+double grid_step(const std::vector<Triangle>& tris, const dvec3& o, unsigned n) {
+  double pmax = 0;
+  for (const Triangle& t : tris) {
+    for (const dvec3& p : t.p) pmax = std::max({pmax, std::abs(p.x - o.x), std::abs(p.y - o.y), std::abs(p.z - o.z)});
+  }
+  return pmax > 0 ? std::ldexp(pmax, -((static_cast<int>(n) - 3) / 2)) : 1;
+}
+
+// The mesh the watertight form actually intersects: every vertex snapped to the grid;
+// a triangle the grid makes degenerate is kept as it is (the kernel tests it on the host).
+std::vector<Triangle> snapped(const std::vector<Triangle>& tris, const dvec3& o, unsigned n) {
+  const double sp = grid_step(tris, o, n);
+  std::vector<Triangle> out;
+  for (const Triangle& t : tris) {
+    Triangle s;
+    int64_t q[3][3];
+    for (int v = 0; v < 3; ++v) {
+      for (int j = 0; j < 3; ++j) {
+        q[v][j] = std::llround((t.p[v][j] - o[j]) / sp);
+        s.p[v][j] = o[j] + static_cast<double>(q[v][j]) * sp;
+      }
+    }
+    const __int128 ax = q[1][0] - q[0][0], ay = q[1][1] - q[0][1], az = q[1][2] - q[0][2];
+    const __int128 bx = q[2][0] - q[0][0], by = q[2][1] - q[0][1], bz = q[2][2] - q[0][2];
+    const bool flat = ay * bz - az * by == 0 && az * bx - ax * bz == 0 && ax * by - ay * bx == 0;
+    out.push_back(flat ? t : s);
+  }
+  return out;
+}
+
+// A point on edge a-b moved into the triangle by `frac` of the triangle's height over
+// that edge (toward vertex c).
+dvec3 inside_edge(const dvec3& a, const dvec3& b, const dvec3& c, double f, double frac) {
+  const dvec3 ab = b - a, foot = a + glm::dot(c - a, ab) / glm::dot(ab, ab) * ab;
+  return a + f * ab + frac * (c - foot);
+}
+
+// One way of running the kernel.
+struct Form {
+  const char* name;
+  Mapping mapping;
+  bool watertight;
+  int cond_bits;  // -1: the default host fallback; 60: the raw machine
+};
+const Form kRayForm{"ray", Mapping::kRay, false, -1};
+const Form kObjectForm{"object", Mapping::kObject, false, -1};
+const Form kWatertightForm{"watertight", Mapping::kRay, true, -1};
+const Form kRawRayForm{"ray, cond_bits 60", Mapping::kRay, false, 60};
+const Form kRawObjectForm{"object, cond_bits 60", Mapping::kObject, false, 60};
+
+std::string label(const Form& f, unsigned n) { return std::string(f.name) + " n=" + std::to_string(n); }
+
+struct Result {
+  std::vector<Hit> hits;
+  KernelStats st;
+};
+
+class HardCases : public ::testing::TestWithParam<const char*> {
+ protected:
+  bool on_rtl() const { return std::string(GetParam()) != "cmodel"; }
+
+  Result run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const Form& f, unsigned n = 24) const {
+    auto be = make_backend(GetParam(), Config{64, 32});
+    Device dev(be->bus());
+    KernelOptions o;
+    o.mapping = f.mapping;
+    o.mul = MulMode::kConst;
+    o.n = n;
+    o.watertight = f.watertight;
+    o.cond_bits = f.cond_bits;
+    Result r;
+    r.hits = intersect_fmpp(dev, rays, tris, o, &r.st);
+    // V is sticky and cleared only at the start of a pass: if it is still set, the last
+    // pass overflowed, and the kernel must have counted (and redone) it.
+    if (dev.overflow()) {
+      EXPECT_GT(r.st.overflow_rays + r.st.overflow_triangles, 0u) << label(f, n) << ": an overflow went uncounted";
+    }
+    be->finish();
+    return r;
+  }
+};
+
+// Same triangle as the reference for every ray, and the distance along the ray within
+// `rel` of the reference's plus `abs` (world units: the watertight grid moves surfaces).
+// The depth error a form may make on a hit (docs/precision.md, "Depth"):
+// - paper forms, the triangle's own test: T carries a relative error of about
+//   cond 2^-bits, so the sum S = 1/t does too: 8 cond 2^-bits allowed;
+// - ray-parallel, the compared sum S_c is brought to one exponent chosen so that the
+//   nearest possible hit (dmin: the nearest triangle, at least 2^-20 of the farthest
+//   vertex) gives S_c ~ 2^29: a hit at d keeps S_c >= 2^28 dmin / d, and its floors
+//   cost a few units: 8 / S_c allowed;
+// - object-parallel, S_c = Y . v with one exponent for all triangles: S_c >= 2^(mbits-2)
+//   / (s_max d) for the largest column sums s_max on the machine: 8 / S_c allowed;
+// - watertight: the snapped mesh lies up to sqrt(3)/2 grid steps from the original, so a
+//   surface moves by up to 2 steps / |cos| along a ray, and S comes from one n-bit row
+//   scaled for the nearest plane: 2^-(n-12) relative (the grid term is dropped when the
+//   comparison is with the reference on the snapped mesh itself).
+struct Tol {
+  const Form* form = nullptr;
+  unsigned n = 24;
+  dvec3 origin{0};
+  bool against_snapped = false;
+  double cond_cap = 0;  // the host fallback's limit 2^(bits-3)
+  double dmin = 0;      // ray-parallel exponent
+  double smax = 0;      // object-parallel exponent
+  double grid = 0;      // watertight grid step
+};
+
+Tol tolerance(const Form& f, unsigned n, const std::vector<Triangle>& tris, const dvec3& o,
+              bool against_snapped = false) {
+  Tol t;
+  t.form = &f;
+  t.n = n;
+  t.origin = o;
+  t.against_snapped = against_snapped;
+  const DistanceRange dr = distance_range(tris, o);
+  t.dmin = std::max(dr.min, dr.max * std::ldexp(1.0, -20));
+  t.grid = grid_step(tris, o, n);
+  const int cond_bits = f.cond_bits >= 0 ? f.cond_bits : effective_bits(n) - 3;
+  t.cond_cap = std::ldexp(1.0, cond_bits);
+  for (const Triangle& x : tris) {  // the object-parallel kernel's s_max (kernels.cpp)
+    if (!(condition(x, o) <= t.cond_cap)) continue;
+    const glm::dmat3 M = glm::inverse(glm::dmat3(x.p[0] - o, x.p[1] - o, x.p[2] - o));
+    double m = 0;
+    for (int j = 0; j < 3; ++j) m = std::max(m, std::abs(M[j][0] + M[j][1] + M[j][2]));
+    if (m <= std::ldexp(1.0, 28 - 12) / dr.max) t.smax = std::max(t.smax, m);
+  }
+  return t;
+}
+
+// Allowed |t - t_ref| (in units of the ray's direction) for a hit on `tri` at t_ref.
+double allowed(const Tol& tol, const Ray& ray, const Triangle& tri, double t_ref) {
+  const double len = glm::length(ray.d), d = t_ref * len;
+  if (tol.form->watertight) {
+    double grid_term = 0;
+    if (!tol.against_snapped) {
+      const dvec3 nrm = glm::normalize(glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]));
+      const double cosine = std::max(std::abs(glm::dot(nrm, ray.d)) / len, 0.05);
+      grid_term = 2 * tol.grid / cosine;
+    }
+    return (std::ldexp(1.0, 12 - static_cast<int>(tol.n)) * d + grid_term) / len;
+  }
+  const double own = 8 * std::min(condition(tri, tol.origin), tol.cond_cap) * std::ldexp(1.0, -effective_bits(tol.n));
+  const double sc = tol.form->mapping == Mapping::kRay ? std::ldexp(1.0, 28) * tol.dmin / d
+                                                       : std::ldexp(1.0, 26) / (std::max(tol.smax, 1e-300) * d);
+  return (own + 8 / sc) * t_ref;
+}
+
+// Same triangle as the reference for every ray, and the distance within the form's bound.
+void expect_reference(const std::vector<Hit>& got, const std::vector<Hit>& want, const std::vector<Ray>& rays,
+                      const std::vector<Triangle>& tris, const Tol& tol, const std::string& what) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].tri, want[i].tri) << what << ", ray " << i;
+    if (want[i].hit() && got[i].tri == want[i].tri) {
+      EXPECT_NEAR(got[i].t, want[i].t, allowed(tol, rays[i], tris[want[i].tri], want[i].t)) << what << ", ray " << i;
+    }
+  }
+}
+
+// ------------------------------------------------------------------ shared edges
+// A closed fan of 7 triangles around a centre vertex, in a tilted plane.
+struct Fan {
+  std::vector<Triangle> tris;
+  dvec3 centre;
+  std::vector<dvec3> ring;
+};
+
+Fan make_fan() {
+  Fan f;
+  const dvec3 nrm = glm::normalize(dvec3(0.2, 0.3, 1));
+  f.centre = dvec3(0.3, -0.2, 5.1);
+  const dvec3 e1 = glm::normalize(glm::cross(nrm, dvec3(0, 1, 0))), e2 = glm::cross(nrm, e1);
+  for (int k = 0; k < 7; ++k) {
+    const double a = 2 * M_PI * k / 7 + 0.1 * std::sin(3.0 * k), r = 1 + 0.2 * std::cos(5.0 * k);
+    f.ring.push_back(f.centre + r * (std::cos(a) * e1 + std::sin(a) * e2));
+  }
+  for (int k = 0; k < 7; ++k) f.tris.push_back(tri(f.centre, f.ring[k], f.ring[(k + 1) % 7]));
+  return f;
+}
+
+// Rays exactly through the shared vertex and along the 7 shared edges (spokes): the
+// reference and the watertight form hit every one (no crack), each ray reports exactly
+// one triangle, and it is one of those sharing the edge or vertex (both are correct: the
+// ray meets them at the same point). The paper's form decides an exact edge by the sign
+// of a rounded T (docs/precision.md): it may crack there, so for it the asserted bound is
+// that every ray a margin inside a triangle (8 cond 2^-bits of its height) hits exactly
+// that triangle, as the reference does; the cracks on the exact edges are counted.
+TEST_P(HardCases, FanSharedEdgesAndVertex) {
+  const Fan fan = make_fan();
+  const dvec3 eye(0);
+  std::vector<Ray> exact;
+  std::vector<std::set<int>> incident;
+  exact.push_back(aim(eye, fan.centre));
+  incident.push_back({0, 1, 2, 3, 4, 5, 6});
+  for (int k = 0; k < 7; ++k) {
+    for (double f : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+      exact.push_back(aim(eye, fan.centre + f * (fan.ring[k] - fan.centre)));
+      incident.push_back({(k + 6) % 7, k});
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(exact, fan.tris);
+  for (size_t i = 0; i < exact.size(); ++i) {
+    ASSERT_TRUE(ref[i].hit()) << "reference crack at ray " << i;
+    EXPECT_TRUE(incident[i].count(ref[i].tri)) << "reference ray " << i << " hit triangle " << ref[i].tri;
+  }
+  // Rays a margin inside each of the two triangles along every spoke.
+  auto offset_rays = [&](auto margin_of, std::vector<int>* want) {
+    std::vector<Ray> rays;
+    for (int k = 0; k < 7; ++k) {
+      const int a = k, b = (k + 6) % 7;  // the triangles on either side of spoke k
+      for (double f : {0.3, 0.5, 0.7}) {
+        rays.push_back(aim(eye, inside_edge(fan.centre, fan.ring[k], fan.ring[(k + 1) % 7], f, margin_of(a))));
+        want->push_back(a);
+        rays.push_back(aim(eye, inside_edge(fan.centre, fan.ring[k], fan.ring[(k + 6) % 7], f, margin_of(b))));
+        want->push_back(b);
+      }
+    }
+    return rays;
+  };
+
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    for (unsigned n : {16u, 24u}) {
+      const Result r = run(exact, fan.tris, form, n);
+      size_t cracks = 0;
+      for (size_t i = 0; i < exact.size(); ++i) {
+        cracks += !r.hits[i].hit();
+        if (r.hits[i].hit()) {
+          EXPECT_TRUE(incident[i].count(r.hits[i].tri)) << label(form, n) << " ray " << i << " hit " << r.hits[i].tri;
+          EXPECT_NEAR(r.hits[i].t, ref[i].t, allowed(tolerance(form, n, fan.tris, eye), exact[i], fan.tris[ref[i].tri], ref[i].t))
+              << label(form, n) << " ray " << i;
+        }
+      }
+      std::printf("[ fan      ] %s: %zu of %zu rays on exact shared edges crack\n", label(form, n).c_str(), cracks,
+                  exact.size());
+      std::vector<int> want;
+      const std::vector<Ray> off =
+          offset_rays([&](int t) { return paper_margin(fan.tris[t], eye, n); }, &want);
+      const std::vector<Hit> off_ref = nearest_reference(off, fan.tris);
+      const Result o = run(off, fan.tris, form, n);
+      for (size_t i = 0; i < off.size(); ++i) {
+        EXPECT_EQ(off_ref[i].tri, want[i]) << "reference, offset ray " << i;
+        EXPECT_EQ(o.hits[i].tri, want[i]) << label(form, n) << ", offset ray " << i;
+      }
+      if (on_rtl()) break;
+    }
+  }
+  // Watertight: no crack on the exact edges, ever; offset rays two grid steps inside
+  // hit their triangle (the grid moves an edge by at most sqrt(3)/2 steps).
+  const unsigned n = 24;
+  const Result w = run(exact, fan.tris, kWatertightForm, n);
+  for (size_t i = 0; i < exact.size(); ++i) {
+    ASSERT_TRUE(w.hits[i].hit()) << "watertight crack at ray " << i;
+    EXPECT_TRUE(incident[i].count(w.hits[i].tri)) << "watertight ray " << i << " hit " << w.hits[i].tri;
+  }
+  const double sp = grid_step(fan.tris, eye, n);
+  std::vector<int> want;
+  const std::vector<Ray> off = offset_rays(
+      [&](int t) {
+        const Triangle& x = fan.tris[t];
+        const dvec3 ab = x.p[1] - x.p[0], foot = x.p[0] + glm::dot(x.p[2] - x.p[0], ab) / glm::dot(ab, ab) * ab;
+        return 2 * sp / glm::length(x.p[2] - foot);
+      },
+      &want);
+  const Result wo = run(off, fan.tris, kWatertightForm, n);
+  for (size_t i = 0; i < off.size(); ++i) EXPECT_EQ(wo.hits[i].tri, want[i]) << "watertight, offset ray " << i;
+}
+
+// ------------------------------------------------------------------ closed sphere
+// A closed, perturbed sphere around the eye, rays aimed exactly at its edges and
+// vertices: every ray must hit. The watertight form never leaks (asserted for several
+// n). The paper's form leaks where every triangle at the edge rounds the ray outside:
+// on exact edges that does not get rarer with n (the rays are on the edge to within
+// double rounding, below any n), measured 5-25 % for n = 8..32; asserted below 35 %,
+// and rays a margin inside (8 cond 2^-bits of the height) never leak.
+TEST_P(HardCases, ClosedSphereAroundTheEye) {
+  const std::vector<Triangle> tris = closed_sphere(SphereMeshOptions{});
+  const dvec3 eye(0);
+  std::vector<Ray> rays = edge_and_vertex_rays(tris, eye);
+  if (on_rtl()) {  // every third triangle's rays: the RTL run stays short
+    std::vector<Ray> some;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      if ((i / 12) % 3 == 0) some.push_back(rays[i]);
+    }
+    rays.swap(some);
+  }
+  for (const Hit& h : nearest_reference(rays, tris)) ASSERT_TRUE(h.hit()) << "the reference leaks";
+  const std::vector<unsigned> ns = on_rtl() ? std::vector<unsigned>{16} : std::vector<unsigned>{12, 16, 24};
+  for (unsigned n : ns) {
+    const Result w = run(rays, tris, kWatertightForm, n);
+    size_t leaks = 0;
+    for (const Hit& h : w.hits) leaks += !h.hit();
+    EXPECT_EQ(leaks, 0u) << label(kWatertightForm, n) << " of " << rays.size();
+
+    const Result p = run(rays, tris, kRawRayForm, n);
+    size_t pleaks = 0;
+    for (const Hit& h : p.hits) pleaks += !h.hit();
+    std::printf("[ sphere   ] n=%u: paper form leaks %zu of %zu rays aimed at edges and vertices, watertight %zu\n", n,
+                pleaks, rays.size(), leaks);
+    EXPECT_LE(pleaks, rays.size() * 35 / 100) << label(kRawRayForm, n);
+
+    // Rays a margin inside every triangle, near each edge: no leak, the right triangle.
+    std::vector<Ray> inside;
+    std::vector<int> want;
+    for (size_t k = 0; k < tris.size(); k += on_rtl() ? 3 : 1) {
+      const Triangle& t = tris[k];
+      const double m = paper_margin(t, eye, n);
+      for (int e = 0; e < 3; ++e) {
+        for (double f : {0.2, 0.5, 0.8}) {
+          inside.push_back(aim(eye, inside_edge(t.p[e], t.p[(e + 1) % 3], t.p[(e + 2) % 3], f, m)));
+          want.push_back(static_cast<int>(k));
+        }
+      }
+    }
+    for (const Form& form : {kRawRayForm, kRawObjectForm}) {
+      const Result q = run(inside, tris, form, n);
+      for (size_t i = 0; i < inside.size(); ++i) {
+        EXPECT_EQ(q.hits[i].tri, want[i]) << label(form, n) << ", ray " << i << " a margin inside";
+      }
+    }
+  }
+}
+
+// The leak rate of the paper's form for rays in all directions: a ray leaks only within
+// the crack half-width (about cond 2^-n of a triangle's height) of an edge, so the rate
+// falls as 2^-n. Measured 4.3-5.5 x 2^-n on this mesh for n = 8..12 and 0 of 12000
+// rays from n = 16; asserted at most 16 x 2^-n. The watertight form never leaks.
+TEST(HardCasesLeakRate, PaperFormLeakRateFallsWithN) {
+  const std::vector<Triangle> tris = closed_sphere(SphereMeshOptions{});
+  const std::vector<Ray> rays = uniform_rays(dvec3(0), 12000, 3);
+  auto be = make_backend("cmodel", Config{1024, 32});
+  Device dev(be->bus());
+  for (unsigned n : {8u, 10u, 12u, 16u}) {
+    for (bool watertight : {false, true}) {
+      KernelOptions o;
+      o.n = n;
+      o.watertight = watertight;
+      o.cond_bits = 60;
+      KernelStats st;
+      const std::vector<Hit> hits = intersect_fmpp(dev, rays, tris, o, &st);
+      size_t leaks = 0;
+      for (const Hit& h : hits) leaks += !h.hit();
+      if (watertight) {
+        EXPECT_EQ(leaks, 0u) << "watertight n=" << n;
+      } else {
+        EXPECT_LE(static_cast<double>(leaks), 16 * std::ldexp(1.0, -static_cast<int>(n)) * rays.size()) << "n=" << n;
+        std::printf("[ leaks    ] n=%u: %zu of %zu uniform rays leak through the paper form\n", n, leaks, rays.size());
+      }
+    }
+  }
+}
+
+// ------------------------------------------------------------- the eye's plane
+// The eye exactly in a triangle's plane (P singular), inside the triangle, and nearly
+// in the plane (P nearly singular): handled, never a garbage hit. With the default
+// fallback every form equals the reference; the singular triangle goes to the host even
+// with cond_bits = 60 (det = 0 is never broadcast), and nearly singular ones are counted
+// as host triangles. A wall behind makes a wrong miss visible as a wrong hit.
+TEST_P(HardCases, EyeInATrianglesPlane) {
+  const Triangle wall = tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30});
+  const Triangle flat = tri({-1, 0, 4}, {1, 0, 4}, {0.2, 0, 6});  // in the plane y = 0
+  for (double h : {0.0, 1e-12, 1e-6, 1e-3}) {
+    const dvec3 eye(0, h, 0);
+    const std::vector<Triangle> tris = {wall, flat};
+    std::vector<Ray> rays;
+    for (const dvec3& b : {dvec3(0.2, 0.3, 0.5), dvec3(0.6, 0.2, 0.2), dvec3(0.1, 0.1, 0.8)}) {
+      rays.push_back(aim(eye, bary(flat, b.x, b.y, b.z)));
+    }
+    rays.push_back(Ray{eye, {0, 0, 1}});     // in (or just above) the plane, past the triangle: the wall
+    rays.push_back(Ray{eye, {0.1, -1e-3, 1}});  // below the plane before the triangle starts: the wall
+    rays.push_back(Ray{eye, {-0.2, 0.05, 1}});
+    const std::vector<Hit> ref = nearest_reference(rays, tris);
+    std::ostringstream where_s;
+    where_s << "h=" << h;
+    const std::string where = where_s.str();
+    for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+      for (unsigned n : {16u, 24u}) {
+        const Result r = run(rays, tris, form, n);
+        expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, eye), where + ", " + label(form, n));
+        if (!form.watertight && h <= 1e-6) {
+          EXPECT_GE(r.st.host_triangles, 1u) << where << ", " << label(form, n);
+        }
+      }
+    }
+    if (h == 0) {
+      for (const Form& form : {kRawRayForm, kRawObjectForm}) {
+        const Result r = run(rays, tris, form);
+        expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, eye), where + ", " + form.name);
+        EXPECT_EQ(r.st.host_triangles, 1u) << "the singular triangle goes to the host even with " << form.name;
+      }
+    }
+  }
+  // The eye inside a triangle (in its plane): that triangle can never be hit.
+  const Triangle around = tri({-1, 0, -1}, {1, 0, -1}, {0.2, 0, 2});
+  const std::vector<Triangle> tris = {wall, around};
+  std::vector<Ray> rays = {Ray{dvec3(0), {0, 0, 1}}, Ray{dvec3(0), {0.3, 0, 1}}, Ray{dvec3(0), {0.1, 0.1, 1}},
+                           Ray{dvec3(0), {0.2, 0, -1}}};
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Hit& x : ref) EXPECT_NE(x.tri, 1) << "reference hit the triangle holding the eye";
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm, kRawRayForm, kRawObjectForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), std::string("eye in triangle, ") + form.name);
+  }
+}
+
+// ------------------------------------------------------------------ degenerate
+// Degenerate triangles (collinear vertices, a repeated vertex, a point) are never hit,
+// even by rays aimed exactly at them: the rays hit the wall behind, as in the
+// reference. Their det is exactly 0 (the coordinates are exact in double), so the
+// paper's form sends them to the host even with cond_bits = 60.
+// The watertight form snaps vertices to its grid, where collinear vertices generally
+// stop being collinear: the triangle becomes a sliver at most one grid step wide, which
+// a ray through the old segment may hit. That is the form's contract (exact on the
+// snapped mesh, where such a sliver keeps a closed mesh closed), so for it the asserted
+// behaviour is: a repeated vertex or a point is never hit, and a collinear triangle is
+// hit only by rays passing within a grid step of it.
+TEST_P(HardCases, DegenerateTrianglesAreNeverHit) {
+  const std::vector<Triangle> tris = {
+      tri({-100, -100, 30}, {100, -100, 30}, {0, 100, 30}),     // 0: the wall
+      tri({1, 2, 5}, {2, 3, 6}, {3, 4, 7}),                     // 1: collinear, integers
+      tri({0.5, -0.25, 4}, {0.75, -0.5, 4.5}, {1.25, -1, 5.5}),  // 2: collinear, dyadic
+      tri({-1, -1, 5}, {-1, -1, 5}, {-2, 1, 6}),                // 3: a repeated vertex
+      tri({-0.5, 0.5, 4}, {-0.5, 0.5, 4}, {-0.5, 0.5, 4}),      // 4: a point
+  };
+  std::vector<Ray> at_segment;
+  for (int k = 1; k <= 4; ++k) {
+    for (int e = 0; e < 3; ++e) {
+      for (double f : {0.0, 0.3, 0.5}) {
+        at_segment.push_back(aim(dvec3(0), tris[k].p[e] + f * (tris[k].p[(e + 1) % 3] - tris[k].p[e])));
+      }
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(at_segment, tris);
+  for (size_t i = 0; i < ref.size(); ++i) EXPECT_EQ(ref[i].tri, 0) << "reference, ray " << i;
+  for (const Form& form : {kRayForm, kObjectForm, kRawRayForm, kRawObjectForm}) {
+    const Result r = run(at_segment, tris, form);
+    expect_reference(r.hits, ref, at_segment, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+    EXPECT_EQ(r.st.host_triangles, 4u) << form.name << ": the degenerate triangles are the host's";
+  }
+  for (unsigned n : {16u, 24u}) {
+    const Result w = run(at_segment, tris, kWatertightForm, n);
+    for (size_t i = 0; i < at_segment.size(); ++i) {
+      EXPECT_TRUE(w.hits[i].tri == 0 || w.hits[i].tri == 1 || w.hits[i].tri == 2)
+          << label(kWatertightForm, n) << ", ray " << i << " hit " << w.hits[i].tri;
+    }
+    // Rays passing 3 grid steps beside the collinear triangles never hit them.
+    const double sp = grid_step(tris, dvec3(0), n);
+    std::vector<Ray> beside;
+    for (int k = 1; k <= 2; ++k) {
+      const dvec3 dir = glm::normalize(tris[k].p[2] - tris[k].p[0]);
+      const dvec3 side = glm::normalize(glm::cross(dir, tris[k].p[1]));
+      for (double f : {0.2, 0.5, 0.8}) {
+        const dvec3 p = tris[k].p[0] + f * (tris[k].p[2] - tris[k].p[0]);
+        beside.push_back(aim(dvec3(0), p + 3 * sp * side));
+        beside.push_back(aim(dvec3(0), p - 3 * sp * side));
+      }
+    }
+    const Result b = run(beside, tris, kWatertightForm, n);
+    for (size_t i = 0; i < beside.size(); ++i) EXPECT_EQ(b.hits[i].tri, 0) << label(kWatertightForm, n) << ", beside " << i;
+  }
+}
+
+// ----------------------------------------------------------- needles and slivers
+// Aspect ratio 1e4: a needle (one short edge) and a sliver (one tiny height), tilted in
+// depth, in front of a wall. Rays at interior points and just beside the long edges:
+// every form equals the reference. cond is 2e4 to 2e5, so n = 16 (limit 2^13) sends
+// them to the host, n = 24 (limit 2^21) keeps them on the FMPP: the handling shows in
+// host_triangles, which must count exactly the triangles above the limit, in both
+// mappings (the limit follows the coarser operand: the n-bit ray components of the
+// object-parallel mapping too).
+// The watertight grid step (2^-11 of the scene here) is far wider than them: the
+// needles snap to nothing and go to the host; the sliver, nearly horizontal, snaps to a
+// horizontal triangle a grid step lower, which the rays aimed at it pass over. That
+// form is checked against the reference on its snapped mesh, where it is exact.
+TEST_P(HardCases, NeedlesAndSlivers) {
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({-0.5, -0.3, 5}, {0.5, -0.3, 5.3}, {0.5 - 1e-4, -0.3 + 1e-4, 5.3}),  // needle
+      tri({-0.5, 0.3, 5}, {0.5, 0.3, 5.2}, {0.05, 0.3 + 1e-4, 5.1}),           // sliver
+      tri({0.9, -0.5, 6}, {0.9 + 1e-4, 0.5, 6.3}, {0.9, 0.5, 6.3}),            // needle, tilted in depth
+  };
+  std::vector<Ray> rays;
+  for (int k = 1; k <= 3; ++k) {
+    const Triangle& t = tris[k];
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.45, 0.45, 0.1), dvec3(0.1, 0.2, 0.7)}) {
+      rays.push_back(aim(dvec3(0), bary(t, b.x, b.y, b.z)));
+    }
+    // Beside the triangle, outside its long edges by one width: the wall.
+    rays.push_back(aim(dvec3(0), bary(t, 1.5, -0.25, -0.25)));
+    rays.push_back(aim(dvec3(0), bary(t, -0.5, 0.75, 0.75)));
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (unsigned n : {16u, 24u}) {
+    for (const Form& form : {kRayForm, kObjectForm}) {
+      const Result r = run(rays, tris, form, n);
+      expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, dvec3(0)), label(form, n));
+      unsigned above = 0;
+      for (const Triangle& t : tris) above += condition(t, dvec3(0)) > std::ldexp(1.0, effective_bits(n) - 3);
+      EXPECT_EQ(r.st.host_triangles, above) << label(form, n);
+      EXPECT_EQ(above, n == 16 ? 3u : 0u) << "n = " << n;
+    }
+    const std::vector<Triangle> grid = snapped(tris, dvec3(0), n);
+    const Result w = run(rays, tris, kWatertightForm, n);
+    expect_reference(w.hits, nearest_reference(rays, grid), rays, grid, tolerance(kWatertightForm, n, grid, dvec3(0), true),
+                     label(kWatertightForm, n) + " against its snapped mesh");
+    EXPECT_GE(w.st.snapped_degenerate, 1u) << "a needle snaps to nothing";
+    EXPECT_EQ(w.st.host_triangles, w.st.snapped_degenerate) << label(kWatertightForm, n);
+  }
+}
+
+// ------------------------------------------------------------ tiny and huge
+// A tiny triangle (1e-6) at distance 1 (cond 7e6: the host's at n = 24), a tiny
+// triangle right in front of the eye (1e-7 away, well conditioned), and a huge one (1e6
+// wide, 1e5 away) behind a wall. Every form equals the reference, and the handling is
+// visible in the counts:
+// - ray-parallel: the near one's sums overflow the common exponent (flag V): its rays
+//   are redone on the host (overflow_rays); the far one is a host triangle;
+// - object-parallel: one exponent serves every S, and the scene spans 1e-7 to 1e6; the
+//   near one's column sums (1e7) are above the cap that keeps every hit 10 bits of S:
+//   both tiny ones are host triangles;
+// - watertight: the huge triangle sets the grid step (~1400): both tiny ones and the
+//   wall snap to nothing and are host triangles.
+// Unit directions: the lengths do not matter here (RaysOfVeryDifferentLengths).
+TEST_P(HardCases, TinyAndHugeTriangles) {
+  const dvec3 c = 1e-7 * dvec3(-0.6, 0.6, 1);
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({0.2, 0, 1}, {0.2 + 1e-6, 0, 1}, {0.2, 1e-6, 1}),
+      tri(c + dvec3(-2e-8, -2e-8, 0), c + dvec3(2e-8, -2e-8, 0), c + dvec3(0, 3e-8, 0)),
+      tri({-1e6, -1e6, 1e5}, {1e6, -1e6, 1e5}, {0, 1e6, 1e5}),
+  };
+  std::vector<Ray> rays;
+  for (int k = 0; k < 4; ++k) {
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.6, 0.3, 0.1)}) {
+      rays.push_back(Ray{dvec3(0), glm::normalize(bary(tris[k], b.x, b.y, b.z))});
+    }
+  }
+  rays.push_back(Ray{dvec3(0), glm::normalize(dvec3(0.9, 0.5, 1))});  // beside the wall: the huge one
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+    const bool paper_ray = form.mapping == Mapping::kRay && !form.watertight;
+    EXPECT_EQ(r.st.host_triangles, paper_ray ? 1u : form.watertight ? 3u : 2u) << form.name;
+    EXPECT_EQ(r.st.overflow_rays > 0, paper_ray) << form.name;
+  }
+}
+
+// ------------------------------------------------------------ ray lengths
+// Ray directions of very different lengths in one call (rays aimed at points from 5 to
+// 1e5 away: t is in units of each ray's own direction). Each ray keeps its precision:
+// the hits equal the reference's, and t times |D| is the distance.
+TEST_P(HardCases, RaysOfVeryDifferentLengths) {
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({-0.5, -0.3, 5}, {0.5, -0.3, 5.3}, {0.5 - 1e-3, -0.3 + 1e-3, 5.3}),
+      tri({-1e6, -1e6, 1e5}, {1e6, -1e6, 1e5}, {0, 1e6, 1e5}),
+  };
+  std::vector<Ray> rays;
+  for (int k = 0; k < 3; ++k) {
+    for (const dvec3& b : {dvec3(1.0 / 3, 1.0 / 3, 1.0 / 3), dvec3(0.45, 0.45, 0.1), dvec3(0.1, 0.2, 0.7)}) {
+      rays.push_back(aim(dvec3(0), bary(tris[k], b.x, b.y, b.z)));
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+  }
+}
+
+// ------------------------------------------------------ behind and straddling
+// Triangles behind the eye and straddling its plane, rays forward and backward through
+// interior points: hits only in front (t > 0), as in the reference, in every form.
+TEST_P(HardCases, BehindAndStraddlingTheEye) {
+  const std::vector<Triangle> tris = {
+      tri({-1, -1, -5}, {1, -1, -5}, {0, 1, -5}),     // behind
+      tri({-1, -1, -2}, {1, -1, -2}, {0, 2, 6}),      // straddling, in front and behind
+      tri({2, -1, -3}, {3, -1, 3}, {2.5, 1, 0.01}),   // straddling, beside the eye
+  };
+  std::vector<Ray> rays;
+  for (const Triangle& t : tris) {
+    for (const dvec3& b : {dvec3(0.3, 0.3, 0.4), dvec3(0.7, 0.2, 0.1), dvec3(0.15, 0.15, 0.7), dvec3(0.5, 0.1, 0.4)}) {
+      const dvec3 p = bary(t, b.x, b.y, b.z);
+      rays.push_back(Ray{dvec3(0), p});
+      rays.push_back(Ray{dvec3(0), -p});
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+  }
+}
+
+// --------------------------------------------------------------------- ties
+// The same triangle listed six times, with its vertices in every order (groups of six
+// random triangles): a ray meets all copies at the same point, a tie, which goes to the
+// lowest index of the group, on the reference and on every FMPP form.
+TEST_P(HardCases, DuplicatesTieToTheLowestIndexInAnyVertexOrder) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris;
+  std::vector<Ray> rays;
+  for (int k = 0; k < 6; ++k) {
+    const dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
+    Triangle t;
+    for (dvec3& p : t.p) p = c + 0.8 * dvec3(u(rng), u(rng), u(rng));
+    const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+    for (const auto& o : orders) tris.push_back(tri(t.p[o[0]], t.p[o[1]], t.p[o[2]]));
+    for (int r = 0; r < 8; ++r) {
+      const double a = 0.05 + 0.1 * r, b = 0.3 * (1 - a);
+      rays.push_back(aim(dvec3(0), bary(t, 1 - a - b, a, b)));
+    }
+  }
+  // A ray may meet another group first; whichever group it meets, the first copy wins.
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_TRUE(ref[i].hit());
+    EXPECT_EQ(ref[i].tri % 6, 0) << "reference, ray " << i << " hit copy " << ref[i].tri;
+  }
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    const Result r = run(rays, tris, form);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      EXPECT_EQ(r.hits[i].tri, ref[i].tri - ref[i].tri % 6) << form.name << ", ray " << i;
+    }
+  }
+  // The watertight form: the same on its snapped mesh (where the copies stay copies).
+  const std::vector<Hit> gref = nearest_reference(rays, snapped(tris, dvec3(0), 24));
+  const Result w = run(rays, tris, kWatertightForm);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const int first = gref[i].hit() ? gref[i].tri - gref[i].tri % 6 : -1;
+    EXPECT_EQ(gref[i].tri, first) << "reference on the snapped mesh, ray " << i;
+    EXPECT_EQ(w.hits[i].tri, first) << "watertight, ray " << i;
+  }
+}
+
+// Coplanar overlapping triangles and z-fighting pairs.
+// - Overlap in the plane z = 4 (exact coordinates): every copy is met at exactly the same
+//   distance; the reference, the object-parallel form (one exponent for all S) and the
+//   watertight form (S from the plane alone) tie exactly and report the lowest index.
+//   The paper's ray-parallel form sums three separately rounded rows per triangle, so
+//   two different triangles of one plane differ in the last unit of S: it reports one
+//   of the overlapping triangles, at the same depth within its depth bound.
+// - Parallel planes delta apart, the farther triangle first: where delta exceeds twice
+//   the form's depth bound (`allowed`) every form reports the nearer one, like the
+//   reference; below it, either one, at the right depth.
+TEST_P(HardCases, CoplanarOverlapAndZFighting) {
+  const std::vector<Triangle> tris = {
+      tri({-20, -20, 30}, {20, -20, 30}, {0, 20, 30}),
+      tri({-1, -1, 4}, {1, -1, 4}, {0, 1, 4}),
+      tri({-0.5, -1.25, 4}, {1.5, -0.75, 4}, {0.25, 1, 4}),
+      tri({-1.25, -0.5, 4}, {1, -0.5, 4}, {-0.25, 1.25, 4}),
+  };
+  std::vector<Ray> rays;
+  for (double x : {-0.1, 0.05, 0.2}) {
+    for (double y : {-0.3, 0.0, 0.25}) rays.push_back(Ray{dvec3(0), {x / 4, y / 4, 1}});
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(ref[i].tri, 1) << "reference, ray " << i;
+  for (const Form& form : {kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(r.hits[i].tri, 1) << form.name << ", ray " << i;
+  }
+  const Result p = run(rays, tris, kRayForm);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_TRUE(p.hits[i].tri >= 1 && p.hits[i].tri <= 3) << "ray-parallel, ray " << i << " hit " << p.hits[i].tri;
+    EXPECT_NEAR(p.hits[i].t, 4.0, allowed(tolerance(kRayForm, 24, tris, dvec3(0)), rays[i], tris[1], 4.0));
+  }
+
+  for (double delta : {1e-2, 1e-3, 1e-9}) {
+    // Tilted planes, the farther one listed first.
+    const dvec3 off(0, 0, delta);
+    const std::vector<Triangle> pair = {tri(dvec3(-1, -1, 4.5) + off, dvec3(1, -1, 5.5) + off, dvec3(0, 1, 5) + off),
+                                        tri({-0.8, -1.1, 4.6}, {1.3, -0.9, 5.65}, {0.2, 1, 5.1})};
+    std::vector<Ray> zr;
+    for (double x : {-0.05, 0.03, 0.2}) {
+      for (double y : {-0.3, 0.01, 0.3}) zr.push_back(Ray{dvec3(0), {x / 5, y / 5, 1}});
+    }
+    const std::vector<Hit> zref = nearest_reference(zr, pair);
+    for (const Hit& h : zref) ASSERT_EQ(h.tri, 1) << "reference: the nearer one";
+    for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+      const unsigned n = 24;
+      const Result r = run(zr, pair, form, n);
+      const Tol tl = tolerance(form, n, pair, dvec3(0));
+      for (size_t i = 0; i < zr.size(); ++i) {
+        // The depth resolution of the form here: below it the pair is a tie to it.
+        const double res = allowed(tl, zr[i], pair[1], zref[i].t);
+        if (delta > 2 * res) {
+          EXPECT_EQ(r.hits[i].tri, 1) << form.name << ", delta " << delta << ", ray " << i;
+        } else {
+          EXPECT_TRUE(r.hits[i].hit()) << form.name << ", delta " << delta << ", ray " << i;
+        }
+        EXPECT_NEAR(r.hits[i].t, zref[i].t, res + delta) << form.name << ", delta " << delta << ", ray " << i;
+      }
+    }
+  }
+}
+
+// Interpenetrating triangles crossing along the line y = 0 (z = 5): rays a margin away
+// from the crossing report the nearer triangle, as the reference; rays on it either.
+TEST_P(HardCases, InterpenetratingTriangles) {
+  const std::vector<Triangle> tris = {tri({-1, -1, 4}, {1, -1, 4}, {0, 1, 6}), tri({-1, -1, 6}, {1, -1, 6}, {0, 1, 4})};
+  std::vector<Ray> rays;
+  std::vector<bool> on_line;
+  for (double y : {-0.4, -0.05, 0.0, 0.05, 0.4}) {
+    for (double x : {-0.15, 0.02, 0.12}) {
+      rays.push_back(aim(dvec3(0), dvec3(x, y, 5 + y)));
+      on_line.push_back(y == 0);
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      if (on_line[i]) {
+        EXPECT_TRUE(r.hits[i].hit()) << form.name << ", ray " << i;
+      } else {
+        EXPECT_EQ(r.hits[i].tri, ref[i].tri) << form.name << ", ray " << i;
+      }
+      EXPECT_NEAR(r.hits[i].t, ref[i].t, allowed(tolerance(form, 24, tris, dvec3(0)), rays[i], tris[ref[i].tri], ref[i].t))
+          << form.name << ", ray " << i;
+    }
+  }
+}
+
+// -------------------------------------------------------------------- grazing
+// A floor of 8 x 8 tiles (2000 x 2000) one unit below the eye, rays at elevations down
+// to 1e-3 (hits up to ~1900 away) aimed at points well inside its triangles, rays just
+// above the horizon and rays that would meet the plane beyond the floor. The far tiles
+// are seen almost edge-on (cond up to ~1e5): n = 16 sends many to the host, n = 24
+// keeps them; either way the paper's forms equal the reference. The watertight grid
+// step is ~2 units here, larger than the eye's height, so its floor moves: it is checked
+// against the reference on its own snapped floor (what the form promises).
+TEST_P(HardCases, GrazingRaysOnAFarFloor) {
+  std::vector<Triangle> tris;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double x0 = -1000 + 250 * i, z0 = 250 * j;
+      tris.push_back(tri({x0, -1, z0}, {x0 + 250, -1, z0}, {x0 + 250, -1, z0 + 250}));
+      tris.push_back(tri({x0, -1, z0}, {x0 + 250, -1, z0 + 250}, {x0, -1, z0 + 250}));
+    }
+  }
+  std::vector<Ray> rays;
+  for (int k : {1, 6, 9, 14, 22, 30, 37, 45, 53, 58, 61, 67, 70, 77, 83, 90, 99, 103, 118, 127}) {
+    const Triangle& t = tris[k];
+    for (const dvec3& b : {dvec3(0.2, 0.3, 0.5), dvec3(0.5, 0.25, 0.25)}) rays.push_back(aim(dvec3(0), bary(t, b.x, b.y, b.z)));
+  }
+  for (double x : {-0.3, 0.01, 0.27}) {
+    rays.push_back(Ray{dvec3(0), {x, 1e-4, 1}});     // above the horizon
+    rays.push_back(Ray{dvec3(0), {x, -4.9e-4, 1}});  // meets the plane ~2040 away, past the floor
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (unsigned n : {16u, 24u}) {
+    for (const Form& form : {kRayForm, kObjectForm}) {
+      const Result r = run(rays, tris, form, n);
+      // Depth: cond of the far tiles reaches ~1e5 (below the host limit at n = 24).
+      expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, dvec3(0)), label(form, n));
+      if (form.mapping == Mapping::kRay && n == 16) {
+        EXPECT_GT(r.st.host_triangles, 0u) << label(form, n);
+      }
+    }
+  }
+  const unsigned n = 24;
+  const std::vector<Triangle> grid = snapped(tris, dvec3(0), n);
+  const std::vector<Hit> gref = nearest_reference(rays, grid);
+  const Result w = run(rays, tris, kWatertightForm, n);
+  expect_reference(w.hits, gref, rays, grid, tolerance(kWatertightForm, n, grid, dvec3(0), true), "watertight against its snapped floor");
+}
+
+// ----------------------------------------------------------- axis directions
+// Directions with zero components (exactly along the axes, and in the axis planes)
+// inside a box around the eye (off centre, so no ray meets a face's diagonal): every
+// form equals the reference.
+TEST_P(HardCases, AxisAlignedDirections) {
+  const dvec3 c(0.3, -0.2, 0.1);
+  std::vector<Triangle> tris;
+  for (int ax = 0; ax < 3; ++ax) {
+    for (double s : {-1.0, 1.0}) {
+      dvec3 nrm(0), a(0), b(0);
+      nrm[ax] = s;
+      a[(ax + 1) % 3] = 2;
+      b[(ax + 2) % 3] = 2;
+      const dvec3 f = c + 2.0 * nrm;
+      tris.push_back(tri(f - a - b, f + a - b, f + a + b));
+      tris.push_back(tri(f - a - b, f + a + b, f - a + b));
+    }
+  }
+  std::vector<Ray> rays;
+  for (int ax = 0; ax < 3; ++ax) {
+    for (double s : {-1.0, 1.0}) {
+      dvec3 d(0);
+      d[ax] = s;
+      rays.push_back(Ray{dvec3(0), d});
+      d[(ax + 1) % 3] = 0.55;
+      rays.push_back(Ray{dvec3(0), d});
+      d[(ax + 1) % 3] = 0;
+      d[(ax + 2) % 3] = -0.35;
+      rays.push_back(Ray{dvec3(0), d});
+    }
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Hit& h : ref) ASSERT_TRUE(h.hit());
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+  }
+}
+
+// ------------------------------------------------------------ far from origin
+// A scene and eye translated by (1e5, -1e5, 1e5): the kernels work relative to the eye
+// (paper's form) or to the scene's centre (arbitrary origins), so nothing is lost. The
+// primary rays equal the reference in every form; rays with their own origins, tmin and
+// an excluded triangle (the arbitrary-origin kernel) equal it too, with that kernel's
+// depth bound (2^-(n-10), as in tests/isect_test.cpp).
+TEST_P(HardCases, SceneFarFromTheOrigin) {
+  const dvec3 T(1e5, -1e5, 1e5);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris;
+  for (int k = 0; k < 40; ++k) {
+    const dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
+    Triangle t;
+    for (dvec3& p : t.p) p = T + c + 0.8 * dvec3(u(rng), u(rng), u(rng));
+    tris.push_back(t);
+  }
+  std::vector<Ray> rays;
+  for (int y = 0; y < 8; ++y) {
+    for (int x = 0; x < 8; ++x) rays.push_back(Ray{T, {(x + 0.5) / 8 - 0.5, (y + 0.5) / 8 - 0.5, 1}});
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  for (const Form& form : {kRayForm, kObjectForm}) {
+    const Result r = run(rays, tris, form);
+    expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, T), form.name);
+  }
+  const std::vector<Hit> gref = nearest_reference(rays, snapped(tris, T, 24));
+  expect_reference(run(rays, tris, kWatertightForm).hits, gref, rays, tris, tolerance(kWatertightForm, 24, tris, T, true),
+                   "watertight against its snapped mesh");
+
+  std::vector<Ray> own;
+  for (int i = 0; i < 40; ++i) {
+    Ray r{T + dvec3(3 * u(rng), 3 * u(rng), 2 * u(rng)), {0.4 * u(rng), 0.4 * u(rng), 1}};
+    if (i % 3 == 0) r.tmin = 4.0;
+    if (i % 5 == 0) r.exclude = i % 40;
+    own.push_back(r);
+  }
+  const std::vector<Hit> oref = nearest_reference(own, tris);
+  const Result g = run(own, tris, kRayForm);
+  EXPECT_EQ(g.st.general_rays, own.size());
+  for (size_t i = 0; i < own.size(); ++i) {
+    EXPECT_EQ(g.hits[i].tri, oref[i].tri) << "arbitrary origins, ray " << i;
+    if (oref[i].hit() && g.hits[i].tri == oref[i].tri) {
+      EXPECT_NEAR(g.hits[i].t, oref[i].t, std::ldexp(1.0, 10 - 24) * oref[i].t) << "arbitrary origins, ray " << i;
+    }
+  }
+}
+
+// --------------------------------------------------------------------- misses
+// Rays that miss everything (away from the scene, between its triangles), an empty
+// scene and an empty batch: all misses, no host work, no overflow.
+TEST_P(HardCases, RaysThatMissEverything) {
+  const std::vector<Triangle> tris = {tri({-1, -1, 5}, {1, -1, 5}, {0, 1, 5}), tri({2, -1, 5}, {4, -1, 5}, {3, 1, 5})};
+  std::vector<Ray> rays = {Ray{dvec3(0), {0, 0, -1}}, Ray{dvec3(0), {1, 0, 0}},     Ray{dvec3(0), {0.3, 0, 1}},
+                           Ray{dvec3(0), {0, 0.5, 1}}, Ray{dvec3(0), {0.9, -0.9, 1}}, Ray{dvec3(0), {-1e-3, 1, 1e-3}}};
+  for (const Hit& h : nearest_reference(rays, tris)) ASSERT_FALSE(h.hit());
+  for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+    for (const std::vector<Triangle>& scene : {tris, std::vector<Triangle>{}}) {
+      const Result r = run(rays, scene, form);
+      for (size_t i = 0; i < rays.size(); ++i) EXPECT_FALSE(r.hits[i].hit()) << form.name << ", ray " << i;
+      EXPECT_EQ(r.st.host_tests + r.st.overflow_rays + r.st.overflow_triangles, 0u) << form.name;
+    }
+    EXPECT_TRUE(run({}, tris, form).hits.empty());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Model, HardCases, ::testing::Values("cmodel"), [](const auto& info) {
+  return std::string(info.param);
+});
+INSTANTIATE_TEST_SUITE_P(Rtl, HardCases, ::testing::Values("lockstep"), [](const auto& info) {
+  return std::string(info.param);
+});
+
+}  // namespace
+}  // namespace fmpp::isect
