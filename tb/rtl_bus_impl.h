@@ -7,6 +7,7 @@
 #include <verilated_syms.h>
 
 #include <cstring>
+#include <string>
 #include <stdexcept>
 
 #include "tb/rtl_bus.h"
@@ -49,6 +50,10 @@ template <class V>
 class RtlBusImpl final : public RtlBus {
  public:
   RtlBusImpl(const Config& cfg, const RtlOptions& opt) : cfg_(cfg), opt_(opt), rng_(opt.stress_seed) {
+    if (opt.trace_start > opt.trace_end) {
+      throw std::invalid_argument("trace window: first cycle " + std::to_string(opt.trace_start) +
+                                  " is after the last cycle " + std::to_string(opt.trace_end));
+    }
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->fatalOnError(false);  // an assertion failure is reported by failure(), not abort()
     ctx_->randReset(0);         // memories start at zero, as in the golden model
@@ -58,6 +63,7 @@ class RtlBusImpl final : public RtlBus {
       fst_ = std::make_unique<VerilatedFstC>();
       top_->trace(fst_.get(), 99);
       fst_->open(opt_.trace_file.c_str());
+      if (!fst_->isOpen()) throw std::runtime_error(opt_.trace_file + ": cannot open the waveform file");
     }
     const std::string arr = "TOP.fmpp_top.u_array";
     const std::string slv = "TOP.fmpp_top.u_slave";

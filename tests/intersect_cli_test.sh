@@ -37,4 +37,19 @@ if "$bin" --triangles "$dir/bad.txt" --rays "$dir/rays.txt" 2> "$dir/err.txt"; t
 grep -q "bad.txt:1: a triangle needs 9 numbers, found 8" "$dir/err.txt"
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 63 2> "$dir/err.txt"; then exit 1; fi
 grep -q "no Verilated FMPP of 63x" "$dir/err.txt"
+# A waveform asked of a backend without RTL, or an empty trace window, is refused.
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend reference --trace "$dir/w.fst" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "backend 'reference' has no waveform" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend cmodel --blocks 64 --words 32 --trace "$dir/w.fst" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "backend 'cmodel' has no waveform" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 64 --words 32 --trace "$dir/w.fst" \
+    --trace-start 100 --trace-end 99 2> "$dir/err.txt"; then exit 1; fi
+grep -q "trace window: first cycle 100 is after the last cycle 99" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 64 --words 32 \
+    --trace "$dir/no/such/dir/w.fst" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "cannot open the waveform file" "$dir/err.txt"
+# A window that is given is what gets traced.
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 64 --words 32 --trace "$dir/w.fst" \
+  --trace-start 10 --trace-end 20 --out /dev/null
+test -s "$dir/w.fst"
 echo "fmpp-intersect e2e: OK"

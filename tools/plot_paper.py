@@ -3,14 +3,9 @@
 
 Usage: plot_paper.py paper_data.json OUT_DIR
 """
-import json
-import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plotting import plt, run, save
 
 
 def fig_time(data, mapping, title, out):
@@ -28,9 +23,7 @@ def fig_time(data, mapping, title, out):
     axes[0].set_ylabel("seconds at 50 MHz")
     axes[0].legend(fontsize=8)
     fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out)
 
 
 def fig7(data, out):
@@ -48,25 +41,17 @@ def fig7(data, out):
     ax.set_title("Fig. 7: 1024 x 1024 rays, limited FMPP (ray-parallel, reloading)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out)
 
 
 def main():
-    if len(sys.argv) != 3:
-        print(__doc__, file=sys.stderr)
-        return 2
-    with open(sys.argv[1]) as f:
-        data = json.load(f)
-    out = sys.argv[2]
-    os.makedirs(out, exist_ok=True)
-    fig_time(data, "ray", "Fig. 5: ideal ray-parallel FMPP against the sequential machine",
-             os.path.join(out, "fig5_ray_parallel.png"))
-    fig_time(data, "object", "Fig. 6: ideal object-parallel FMPP against the sequential machine",
-             os.path.join(out, "fig6_object_parallel.png"))
-    fig7(data, os.path.join(out, "fig7_limited.png"))
-    return 0
+    return run(__doc__, {
+        "fig5_ray_parallel.png": lambda d, o: fig_time(
+            d, "ray", "Fig. 5: ideal ray-parallel FMPP against the sequential machine", o),
+        "fig6_object_parallel.png": lambda d, o: fig_time(
+            d, "object", "Fig. 6: ideal object-parallel FMPP against the sequential machine", o),
+        "fig7_limited.png": fig7,
+    })
 
 
 if __name__ == "__main__":

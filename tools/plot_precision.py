@@ -8,15 +8,10 @@ against the clocks of a frame of primary rays, and the PSNR of the full render a
 its clocks; one curve per scene and form, one point per multiplier width n.
 precision_leaks.png: leak rate on the closed sphere and steps per broadcast against n.
 """
-import json
 import math
-import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plotting import plt, run, save
 
 FORMS = {
     "generic": dict(linestyle="--", marker="o", mfc="none"),
@@ -74,9 +69,7 @@ def fig_scenes(data, out):
     fig.legend(handles, labels, fontsize=7.5, ncol=4, loc="lower center")
     fig.suptitle(f"Accuracy against cycles, {data['size']} x {data['size']} pixels, golden model, "
                  f"{data['machine']['blocks']} blocks")
-    fig.tight_layout(rect=(0, 0.13, 1, 1))
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out, rect=(0, 0.13, 1, 1))
 
 
 def fig_leaks(data, out):
@@ -107,22 +100,11 @@ def fig_leaks(data, out):
     ax_steps.set_title("cost per broadcast (constant multiply)")
     ax_steps.grid(True, alpha=0.3)
     ax_steps.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
+    save(fig, out)
 
 
 def main():
-    if len(sys.argv) != 3:
-        print(__doc__, file=sys.stderr)
-        return 2
-    with open(sys.argv[1]) as f:
-        data = json.load(f)
-    out = sys.argv[2]
-    os.makedirs(out, exist_ok=True)
-    fig_scenes(data, os.path.join(out, "precision_scenes.png"))
-    fig_leaks(data, os.path.join(out, "precision_leaks.png"))
-    return 0
+    return run(__doc__, {"precision_scenes.png": fig_scenes, "precision_leaks.png": fig_leaks})
 
 
 if __name__ == "__main__":

@@ -45,6 +45,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg
   b->name_ = name;
   b->cfg_ = cfg;
   if (name == "cmodel") {
+    if (!opt.trace_file.empty()) {
+      throw std::invalid_argument("backend 'cmodel' has no waveform: a trace needs rtl, lockstep or systemc");
+    }
     b->model_ = std::make_unique<ModelBus>(cfg);
     b->bus_ = b->model_.get();
   } else if (name == "rtl") {

@@ -16,9 +16,9 @@
 namespace fmpp {
 
 struct BackendOptions {
-  std::string trace_file;  // FST waveform (rtl, lockstep)
-  uint64_t trace_start = 0;
-  uint64_t trace_end = ~0ull;
+  std::string trace_file;  // FST waveform (rtl, lockstep, systemc; cmodel refuses it)
+  uint64_t trace_start = 0;  // first clock cycle traced
+  uint64_t trace_end = ~0ull;  // last clock cycle traced (start > end is refused)
   std::string lockstep_mode = "fast";  // lockstep: check | fast | off
 };
 

@@ -142,6 +142,32 @@ void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vect
   }
 }
 
+// Reads back one ray-parallel pass of `count` blocks: the overflow flags, then the best
+// word of every block without overflow and, when it is not `none`, the 1-based number of
+// the broadcast that set it (idx_word). Calls on_hit(block, best, position in the pass)
+// for each hit; returns the overflow flag of each block.
+template <class OnHit>
+std::vector<bool> read_pass(Device& dev, unsigned count, unsigned best_word, unsigned idx_word, uint32_t none,
+                            size_t broadcasts, OnHit&& on_hit) {
+  std::vector<bool> ovf(count, false);
+  if (dev.overflow()) {
+    const std::vector<bool> v = dev.read_flag_all(map::kFlagV);
+    for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
+  }
+  for (unsigned b = 0; b < count; ++b) {
+    if (ovf[b]) continue;
+    const uint32_t best = dev.read_word(b, best_word);
+    if (best == none) continue;
+    const uint32_t ordinal = dev.read_word(b, idx_word);
+    if (ordinal < 1 || ordinal > broadcasts) {
+      throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
+                             std::to_string(ordinal) + " of " + std::to_string(broadcasts));
+    }
+    on_hit(b, best, ordinal - 1);
+  }
+  return ovf;
+}
+
 // ------------------------------------------------------------------- culling
 struct Sphere {
   glm::dvec3 c;
@@ -321,26 +347,13 @@ class Group {
 
       // Read back: overflow flags, then each block's best S (0: no hit) and index.
       c0 = dev_.cycles();
-      std::vector<bool> ovf(count, false);
-      if (dev_.overflow()) {
-        const std::vector<bool> v = dev_.read_flag_all(map::kFlagV);
-        for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
-      }
-      for (unsigned b = 0; b < count; ++b) {
-        if (ovf[b]) continue;
-        const uint32_t s = dev_.read_word(b, kRBest);
-        Hit h;
-        if (s != 0) {
-          const uint32_t ordinal = dev_.read_word(b, kRIdx);  // 1-based broadcast number
-          if (ordinal < 1 || ordinal > pass_order.size()) {
-            throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
-                                   std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
-          }
-          h.tri = fmpp_tris[pass_order[ordinal - 1]];
-          h.t = 1.0 / (static_cast<double>(s) * t_scale * ray_scale(rays[idx[base + b]].d));
-        }
-        out[idx[base + b]] = h;
-      }
+      for (unsigned b = 0; b < count; ++b) out[idx[base + b]] = Hit{};
+      const std::vector<bool> ovf =
+          read_pass(dev_, count, kRBest, kRIdx, 0, pass_order.size(), [&](unsigned b, uint32_t s, size_t pos) {
+            Hit& h = out[idx[base + b]];
+            h.tri = fmpp_tris[pass_order[pos]];
+            h.t = 1.0 / (static_cast<double>(s) * t_scale * ray_scale(rays[idx[base + b]].d));
+          });
       st_->readback_cycles += dev_.cycles() - c0;
 
       // Host work: overflowed rays completely, and the host triangles for every ray.
@@ -799,26 +812,13 @@ class General {
       st_->compute_cycles += dev_.cycles() - c0;
 
       c0 = dev_.cycles();
-      std::vector<bool> ovf(count, false);
-      if (dev_.overflow()) {
-        const std::vector<bool> v = dev_.read_flag_all(map::kFlagV);
-        for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
-      }
-      for (unsigned b = 0; b < count; ++b) {
-        if (ovf[b]) continue;
-        const uint32_t qv = dev_.read_word(b, kBest);
-        Hit h;
-        if (qv != 0x7FFFFFFFu) {
-          const uint32_t ordinal = dev_.read_word(b, kIdx);
-          if (ordinal < 1 || ordinal > pass_order.size()) {
-            throw std::logic_error("fmpp::isect: block " + std::to_string(b) + " holds broadcast number " +
-                                   std::to_string(ordinal) + " of " + std::to_string(pass_order.size()));
-          }
-          h.tri = order[pass_order[ordinal - 1]];
-          h.t = (qv + 0.5) * u;
-        }
-        out[idx[base + b]] = h;
-      }
+      for (unsigned b = 0; b < count; ++b) out[idx[base + b]] = Hit{};
+      const std::vector<bool> ovf =
+          read_pass(dev_, count, kBest, kIdx, 0x7FFFFFFFu, pass_order.size(), [&](unsigned b, uint32_t qv, size_t pos) {
+            Hit& h = out[idx[base + b]];
+            h.tri = order[pass_order[pos]];
+            h.t = (qv + 0.5) * u;
+          });
       st_->readback_cycles += dev_.cycles() - c0;
       std::vector<int> all;
       for (unsigned b = 0; b < count; ++b) {

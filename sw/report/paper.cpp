@@ -14,8 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <random>
 #include <sstream>
@@ -26,6 +24,7 @@
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
+#include "sw/report/output.h"
 #include "sw/report/report.h"
 
 #ifndef FMPP_SOURCE_DIR
@@ -100,12 +99,6 @@ uint64_t rtl_cycles(const std::string& config, const Program& p) {
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
   return dev.cycles() - c0;
-}
-
-std::string fmt(double v, int prec = 0) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
-  return buf;
 }
 
 std::string fmt_sig(double v) {
@@ -432,23 +425,7 @@ Command add_paper(CLI::App& app) {
        << "/fig{5,6,7}*.png and the data in " << o.img_dir << "/paper_data.json).\n";
 
     // ---------------------------------------------------------------- output
-    std::filesystem::create_directories(o.img_dir);
-    if (std::filesystem::path(o.out).has_parent_path()) std::filesystem::create_directories(std::filesystem::path(o.out).parent_path());
-    const std::string data_file = o.img_dir + "/paper_data.json";
-    {
-      std::ofstream f(data_file);
-      if (!f) throw std::runtime_error(data_file + ": cannot write");
-      f << data.dump(1) << "\n";
-    }
-    {
-      std::ofstream f(o.out);
-      if (!f) throw std::runtime_error(o.out + ": cannot write");
-      f << md.str();
-    }
-    if (!o.no_plots) {
-      const std::string cmd = "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/plot_paper.py '" + data_file + "' '" + o.img_dir + "'";
-      if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
-    }
+    write_report(o.out, md.str(), o.img_dir, "paper_data.json", data, o.no_plots ? "" : "plot_paper.py");
     std::fprintf(stderr, "[paper] wrote %s\n", o.out.c_str());
     return 0;
   };

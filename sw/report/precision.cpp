@@ -15,7 +15,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -26,6 +25,7 @@
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"
 #include "sw/isect/reference.h"
+#include "sw/report/output.h"
 #include "sw/report/report.h"
 #include "sw/rt/render.h"
 
@@ -194,12 +194,6 @@ json to_json(const Row& r) {
           {"render_host_tests", r.render_host_tests},
           {"psnr", std::isfinite(r.psnr) ? json(r.psnr) : json(nullptr)},
           {"pixels_off", r.pixels_off}};
-}
-
-std::string fmt(double v, int prec = 0) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
-  return buf;
 }
 
 // A rate in percent, "0" when exactly zero.
@@ -597,26 +591,7 @@ Command add_precision(CLI::App& app) {
     text.replace(text.find("@CHOOSING@"), 10,
                  o.quick ? "(A quick run: too few pixels and widths to read anything into; see docs/precision.md.)"
                          : kReading);
-    std::filesystem::create_directories(o.img_dir);
-    if (std::filesystem::path(o.out).has_parent_path()) {
-      std::filesystem::create_directories(std::filesystem::path(o.out).parent_path());
-    }
-    const std::string data_file = o.img_dir + "/precision_data.json";
-    {
-      std::ofstream f(data_file);
-      if (!f) throw std::runtime_error(data_file + ": cannot write");
-      f << data.dump(1) << "\n";
-    }
-    {
-      std::ofstream f(o.out);
-      if (!f) throw std::runtime_error(o.out + ": cannot write");
-      f << text;
-    }
-    if (!o.no_plots) {
-      const std::string cmd =
-          "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/plot_precision.py '" + data_file + "' '" + o.img_dir + "'";
-      if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
-    }
+    write_report(o.out, text, o.img_dir, "precision_data.json", data, o.no_plots ? "" : "plot_precision.py");
     std::fprintf(stderr, "[precision] wrote %s (%.0f s)\n", o.out.c_str(), seconds);
     return consistent ? 0 : 1;
   };

@@ -19,6 +19,7 @@
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
 #include "sw/isect/stats_json.h"
+#include "sw/tools/cli_options.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
@@ -50,14 +51,12 @@ int main(int argc, char** argv) {
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")->check(CLI::Range(4u, 28u));
   app.add_option("--out", out_file, "hits file ('-' for stdout)");
   app.add_option("--report", report_file, "JSON summary");
-  std::string trace;
-  uint64_t trace_start = 0, trace_end = ~0ull;
-  app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep, systemc)");
-  app.add_option("--trace-start", trace_start, "first clock cycle to trace");
-  app.add_option("--trace-end", trace_end, "last clock cycle to trace");
+  BackendOptions bo;
+  add_trace_options(app, bo);
   CLI11_PARSE(app, argc, argv);
 
   try {
+    check_trace_backend(backend, bo);
     const std::vector<Triangle> tris = read_triangles(tri_file);
     const std::vector<Ray> rays = read_rays(ray_file);
     nlohmann::json rep;
@@ -79,10 +78,6 @@ int main(int argc, char** argv) {
       opt.watertight = watertight;
       Config cfg{blocks, words ? words : ((words_needed(opt) + 1) & ~1u)};
       if (!config.empty()) cfg = named_config(config);
-      BackendOptions bo;
-      bo.trace_file = trace;
-      bo.trace_start = trace_start;
-      bo.trace_end = trace_end;
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       KernelStats st;

@@ -17,6 +17,7 @@
 
 #include "sw/fmpp/backend.h"
 #include "sw/isect/stats_json.h"
+#include "sw/tools/cli_options.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/render.h"
 
@@ -50,7 +51,7 @@ class Progress {
 int main(int argc, char** argv) {
   CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
   std::string scene_file = "scenes/cornell.json", backend = "rtl", mapping = "ray", mul = "const", config, out = "render.png",
-              report_file, trace;
+              report_file;
   int width = 128, height = 128, depth = -1;
   unsigned blocks = 4096, words = 32, bits = 24;  // defaults shown in --help; the plan decides unless given
   double clock_mhz = 50;
@@ -76,14 +77,13 @@ int main(int argc, char** argv) {
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
   app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
-  uint64_t trace_start = 0, trace_end = ~0ull;
-  app.add_option("--trace", trace, "FST waveform of the RTL (rtl, lockstep, systemc)");
-  app.add_option("--trace-start", trace_start, "first clock cycle to trace");
-  app.add_option("--trace-end", trace_end, "last clock cycle to trace");
+  BackendOptions bo;
+  add_trace_options(app, bo);
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
 
   try {
+    check_trace_backend(backend, bo);
     const rt::Scene scene = rt::load_scene(scene_file);
     nlohmann::json rep;
     rep["scene"] = scene_file;
@@ -131,10 +131,6 @@ int main(int argc, char** argv) {
             {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
-      BackendOptions bo;
-      bo.trace_file = trace;
-      bo.trace_start = trace_start;
-      bo.trace_end = trace_end;
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       isect::KernelOptions ko;

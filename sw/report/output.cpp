@@ -1,0 +1,46 @@
+#include "sw/report/output.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#ifndef FMPP_SOURCE_DIR
+#define FMPP_SOURCE_DIR "."
+#endif
+
+namespace fmpp::report {
+
+std::string fmt(double v, int prec) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", prec, v);
+  return buf;
+}
+
+namespace {
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  f << text;
+  if (!f.flush()) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace
+
+void write_report(const std::string& md_path, const std::string& markdown, const std::string& img_dir,
+                  const std::string& data_name, const nlohmann::json& data, const std::string& plot_script) {
+  std::filesystem::create_directories(img_dir);
+  const std::filesystem::path md(md_path);
+  if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
+  const std::string data_file = img_dir + "/" + data_name;
+  write_file(data_file, data.dump(1) + "\n");
+  write_file(md_path, markdown);
+  if (plot_script.empty()) return;
+  const std::string cmd =
+      "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/" + plot_script + " '" + data_file + "' '" + img_dir + "'";
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
+}
+
+}  // namespace fmpp::report

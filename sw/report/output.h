@@ -1,0 +1,21 @@
+// Shared by the fmpp-report subcommands: number formatting for the Markdown tables and
+// writing a report (Markdown, its JSON data, the plots drawn from that data).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace fmpp::report {
+
+// v with `prec` digits after the point ("%.*f").
+std::string fmt(double v, int prec = 0);
+
+// Writes `markdown` to md_path and `data` to img_dir/data_name (creating both
+// directories), then, unless `plot_script` is empty, runs
+// python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir>.
+// Throws std::runtime_error naming the file or command that failed.
+void write_report(const std::string& md_path, const std::string& markdown, const std::string& img_dir,
+                  const std::string& data_name, const nlohmann::json& data, const std::string& plot_script);
+
+}  // namespace fmpp::report
