@@ -5,6 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
+
+#include "sw/isect/reference.h"
 
 namespace fmpp::isect {
 
@@ -61,27 +64,63 @@ Hit CpuBaseline::nearest(const Ray& r) const {
   return h;
 }
 
-double cpu_tests_per_second(double seconds) {
-  std::mt19937_64 rng(1);
+namespace {
+
+// `count` random triangles in front of the origin: centres in the box |x|, |y| <= half_xy,
+// |z - depth| <= half_z, vertices within `size` of their centre (per axis).
+std::vector<Triangle> random_triangles(std::mt19937_64& rng, size_t count, double half_xy, double depth, double half_z,
+                                       double size) {
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Triangle> tris(10000);
+  std::vector<Triangle> tris(count);
   for (Triangle& t : tris) {
-    const glm::dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
-    for (glm::dvec3& p : t.p) p = c + 0.5 * glm::dvec3(u(rng), u(rng), u(rng));
+    const glm::dvec3 c(half_xy * u(rng), half_xy * u(rng), depth + half_z * u(rng));
+    for (glm::dvec3& p : t.p) p = c + size * glm::dvec3(u(rng), u(rng), u(rng));
   }
-  const CpuBaseline base(tris);
+  return tris;
+}
+
+// Runs batch() until `seconds` have passed; batch returns {tests done, hits found}.
+// Returns tests per second. The hits are summed and checked so the work cannot be
+// optimised away.
+template <class Batch>
+double rate(double seconds, Batch&& batch) {
   uint64_t tests = 0, hits = 0;
   const auto t0 = std::chrono::steady_clock::now();
   double elapsed = 0;
   while (elapsed < seconds) {
-    for (int i = 0; i < 64; ++i) {
-      const Hit h = base.nearest(Ray{glm::dvec3(0), glm::dvec3(0.3 * u(rng), 0.3 * u(rng), 1)});
-      hits += h.hit();  // uses the result, so the work is not optimised away
-    }
-    tests += 64 * tris.size();
+    const std::pair<uint64_t, uint64_t> done = batch();
+    tests += done.first;
+    hits += done.second;
     elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   return hits > tests ? 0 : static_cast<double>(tests) / elapsed;
+}
+
+}  // namespace
+
+double cpu_tests_per_second(double seconds) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<Triangle> tris = random_triangles(rng, 10000, 3, 8, 4, 0.5);
+  const CpuBaseline base(tris);
+  return rate(seconds, [&] {
+    uint64_t hits = 0;
+    for (int i = 0; i < 64; ++i) hits += base.nearest(Ray{glm::dvec3(0), glm::dvec3(0.3 * u(rng), 0.3 * u(rng), 1)}).hit();
+    return std::make_pair(uint64_t{64} * tris.size(), hits);
+  });
+}
+
+double reference_tests_per_second(double seconds) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<Triangle> tris = random_triangles(rng, 1000, 1, 5, 1, 0.1);
+  std::vector<Ray> rays(64);
+  for (Ray& r : rays) r = Ray{glm::dvec3(0), glm::dvec3(u(rng), u(rng), 1)};
+  return rate(seconds, [&] {
+    uint64_t hits = 0;
+    for (const Hit& h : nearest_reference(rays, tris)) hits += h.hit();
+    return std::make_pair(uint64_t{rays.size()} * tris.size(), hits);
+  });
 }
 
 }  // namespace fmpp::isect

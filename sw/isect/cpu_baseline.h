@@ -24,4 +24,8 @@ class CpuBaseline {
 // Ray-triangle tests per second of CpuBaseline on one core (runs about `seconds`).
 double cpu_tests_per_second(double seconds);
 
+// Ray-triangle tests per second of nearest_reference (reference.h) on one core, for the
+// CPU baseline of the paper reproduction (runs about `seconds`).
+double reference_tests_per_second(double seconds);
+
 }  // namespace fmpp::isect

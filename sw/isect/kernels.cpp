@@ -142,6 +142,14 @@ void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vect
   }
 }
 
+// Counts one triangle broadcast of `steps` instructions, `test_steps` of them up to the
+// inside test.
+void count_broadcast(KernelStats* st, size_t steps, size_t test_steps) {
+  st->broadcast_steps += steps;
+  st->test_steps += test_steps;
+  ++st->broadcasts;
+}
+
 // Reads back one ray-parallel pass of `count` blocks: the overflow flags, then the best
 // word of every block without overflow and, when it is not `none`, the 1-based number of
 // the broadcast that set it (idx_word). Calls on_hit(block, best, position in the pass)
@@ -339,9 +347,7 @@ class Group {
       c0 = dev_.cycles();
       for (size_t k : pass_order) {
         push(progs[k]);
-        st_->broadcast_steps += progs[k].size();
-        st_->test_steps += test_sizes[k];
-        ++st_->broadcasts;
+        count_broadcast(st_, progs[k].size(), test_sizes[k]);
       }
       st_->compute_cycles += dev_.cycles() - c0;
 
@@ -586,9 +592,7 @@ class Group {
         const Program p = object_program(v, sbits, &test_size);
         c0 = dev_.cycles();
         push(p);
-        st_->broadcast_steps += p.size();
-        st_->test_steps += test_size;
-        ++st_->broadcasts;
+        count_broadcast(st_, p.size(), test_size);
         st_->compute_cycles += dev_.cycles() - c0;
         c0 = dev_.cycles();
         const Responders resp = dev_.responders();
@@ -805,9 +809,7 @@ class General {
         code[excl_pos[k]] = (code[excl_pos[k]] & ~uint64_t{0xFFFFFFFF}) | ordinal_of[k];
         dev_.push(code);
         st_->instructions += code.size();
-        st_->broadcast_steps += code.size();
-        st_->test_steps += test_sizes[k];
-        ++st_->broadcasts;
+        count_broadcast(st_, code.size(), test_sizes[k]);
       }
       st_->compute_cycles += dev_.cycles() - c0;
 

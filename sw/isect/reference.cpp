@@ -1,7 +1,6 @@
 // Double-precision watertight ray-triangle reference (see reference.h).
 #include "sw/isect/reference.h"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -121,28 +120,6 @@ std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vect
     }
   }
   return out;
-}
-
-double reference_tests_per_second(double seconds) {
-  std::mt19937_64 rng(1);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Triangle> tris(1000);
-  for (Triangle& t : tris) {
-    const glm::dvec3 c(u(rng), u(rng), 5 + u(rng));
-    for (glm::dvec3& p : t.p) p = c + 0.1 * glm::dvec3(u(rng), u(rng), u(rng));
-  }
-  std::vector<Ray> rays(64);
-  for (Ray& r : rays) r = Ray{glm::dvec3(0), glm::dvec3(u(rng), u(rng), 1)};
-  uint64_t tests = 0, hits = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  double elapsed = 0;
-  while (elapsed < seconds) {
-    const std::vector<Hit> h = nearest_reference(rays, tris);
-    for (const Hit& x : h) hits += x.hit();  // uses the results, so the work is not optimised away
-    tests += rays.size() * tris.size();
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
-  return hits > tests ? 0 : static_cast<double>(tests) / elapsed;
 }
 
 }  // namespace fmpp::isect

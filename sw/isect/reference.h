@@ -20,8 +20,5 @@ double intersect_reference(const Ray& r, const Triangle& t);
 // Nearest hit of each ray over all triangles (t > ray.tmin, triangle != ray.exclude).
 std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
-// Ray-triangle tests per second of the brute-force loop above on one core, for the
-// CPU baseline of the paper reproduction (runs about `seconds`).
-double reference_tests_per_second(double seconds);
 
 }  // namespace fmpp::isect

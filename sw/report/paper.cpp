@@ -27,10 +27,6 @@
 #include "sw/report/output.h"
 #include "sw/report/report.h"
 
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
-
 namespace fmpp::report {
 namespace {
 
