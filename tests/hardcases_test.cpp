@@ -920,6 +920,49 @@ TEST_P(HardCases, SceneFarFromTheOrigin) {
   }
 }
 
+// Tiny triangles far from the scene's centre, seen by rays with their own origins (the
+// arbitrary-origin kernel): each triangle's 18 edge coefficients share one quantization
+// step set by its distance from the centre, so a triangle 1/4000 of that distance across
+// has edge tests with few reliable bits at n = 16. Default: those triangles are host
+// triangles and every ray equals the reference; the raw machine (cond_bits = 60) gets
+// rays wrong (so the fallback is what makes the difference).
+TEST_P(HardCases, TinyTrianglesSeenFromTheirOwnOrigins) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris = {tri({-100, -1, -100}, {100, -1, -100}, {0, -1, 100})};
+  for (int k = 0; k < 16; ++k) {
+    const dvec3 c(50 + u(rng), 0.5 + 0.5 * u(rng), 50 + u(rng));
+    tris.push_back(tri(c + dvec3(-0.01, -0.01, 0), c + dvec3(0.01, -0.01, 0), c + dvec3(0, 0.01, 0)));
+  }
+  std::vector<Ray> rays;
+  for (int i = 0; i < 64; ++i) {
+    const Triangle& t = tris[1 + i % 16];
+    double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const dvec3 o(50 + 3 * u(rng), 3 + u(rng), 40 + 3 * u(rng));
+    rays.push_back(aim(o, bary(t, 1 - a - b, a, b)));
+  }
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  const Result fallback = run(rays, tris, kRayForm, 16);
+  EXPECT_EQ(fallback.st.general_rays, rays.size());
+  EXPECT_EQ(fallback.st.host_triangles, 16u);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(fallback.hits[i].tri, ref[i].tri) << "ray " << i;
+    if (ref[i].hit()) {
+      EXPECT_NEAR(fallback.hits[i].t, ref[i].t, 1e-12 * ref[i].t) << "ray " << i;
+    }
+  }
+  const Result raw = run(rays, tris, kRawRayForm, 16);
+  EXPECT_EQ(raw.st.host_triangles, 0u);
+  size_t wrong = 0;
+  for (size_t i = 0; i < rays.size(); ++i) wrong += raw.hits[i].tri != ref[i].tri;
+  EXPECT_GT(wrong, 0u) << "the raw machine should get some of these rays wrong at n = 16";
+  // At n = 24 the triangles are within the limit and stay on the FMPP.
+  const Result wide = run(rays, tris, kRayForm, 24);
+  EXPECT_EQ(wide.st.host_triangles, 0u);
+  for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(wide.hits[i].tri, ref[i].tri) << "n = 24, ray " << i;
+}
+
 // --------------------------------------------------------------------- misses
 // Rays that miss everything (away from the scene, between its triangles), an empty
 // scene and an empty batch: all misses, no host work, no overflow.

@@ -706,10 +706,11 @@ class General {
       }
     }
     const glm::dvec3 c = 0.5 * (lo + hi);
-    double vmax = 0, lmax = 0, omax = 0, lambda_max = 0;
+    double vmax = 0, lmax = 0, omax = 0, lambda_max = 0, o_reach = 0;
     for (size_t i : idx) {
       const Ray& r = rays[i];
       const glm::dvec3 o = r.o - c, l = glm::cross(o, r.d);
+      o_reach = std::max(o_reach, glm::length(o));
       vmax = std::max(vmax, max_abs(r.d));
       lmax = std::max(lmax, max_abs(l));
       omax = std::max(omax, max_abs(o));
@@ -729,12 +730,31 @@ class General {
     std::vector<Program> progs;
     std::vector<size_t> test_sizes, excl_pos;
     std::vector<int> order;  // triangle of each program
+    std::vector<int> host;   // ill-conditioned triangles, tested on the host
+    const double cond_limit =
+        std::ldexp(1.0, opt_.cond_bits >= 0 ? opt_.cond_bits : static_cast<int>(n) - 4);
     for (size_t k = 0; k < tris_.size(); ++k) {
       const glm::dvec3 p1 = tris_[k].p[0] - c, p2 = tris_[k].p[1] - c, p3 = tris_[k].p[2] - c;
       const glm::dvec3 cc[3] = {glm::cross(p2, p3), glm::cross(p3, p1), glm::cross(p1, p2)};
       const glm::dvec3 ee[3] = {p3 - p2, p1 - p3, p2 - p1};
       const glm::dvec3 nrm = cc[0] + cc[1] + cc[2];
       if (nrm == glm::dvec3(0)) continue;  // degenerate: no ray can hit it, nor can the reference
+      // Conditioning of the edge tests: A_i is quantized with one step for the triangle's
+      // 18 coefficients, about 2^-(n-1) of |V| e_max max(R, O) (R: the farthest vertex
+      // from the centre, O: the farthest origin), while a ray through the triangle has
+      // |A_i| of about |V| e_i h / 3 (h: the smallest altitude). Beyond cond_limit the
+      // signs near the middle of the triangle are no longer reliable: host.
+      double emax = 0, emin = kInf;
+      for (const glm::dvec3& e : ee) {
+        emax = std::max(emax, glm::length(e));
+        emin = std::min(emin, glm::length(e));
+      }
+      const double reach = std::max({glm::length(p1), glm::length(p2), glm::length(p3), o_reach});
+      const double cond = emax * emax * reach / (emin * glm::length(nrm));  // (e_max/e_min) reach / h_min
+      if (!(cond <= cond_limit)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
       double a[18];
       for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
@@ -756,6 +776,7 @@ class General {
       excl_pos.push_back(pos);
     }
 
+    st_->host_triangles += host.size();
     const std::vector<Sphere> spheres = bounding_spheres(tris_);
     const unsigned B = cfg_.blocks;
     const uint64_t planned = (idx.size() + B - 1) / B;
@@ -822,10 +843,14 @@ class General {
             h.t = (qv + 0.5) * u;
           });
       st_->readback_cycles += dev_.cycles() - c0;
+      // Host work: overflowed rays completely, and the host triangles for every ray.
       std::vector<int> all;
       for (unsigned b = 0; b < count; ++b) {
-        if (!ovf[b]) continue;
         const size_t i = idx[base + b];
+        if (!ovf[b]) {
+          merge_host(rays[i], tris_, host, &out[i], st_);
+          continue;
+        }
         ++st_->overflow_rays;
         if (all.empty()) {
           for (size_t k = 0; k < tris_.size(); ++k) all.push_back(static_cast<int>(k));

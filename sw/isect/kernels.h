@@ -65,7 +65,8 @@ struct KernelOptions {
   std::function<void(uint64_t, uint64_t)> progress;
   // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
   // intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),
-  // min(n, mbits) - 3 (object-parallel).
+  // min(n, mbits) - 3 (object-parallel). The arbitrary-origin kernel compares its own
+  // edge-test condition (docs/intersection.md) with 2^cond_bits, by default 2^(n - 4).
   int cond_bits = -1;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;

@@ -317,6 +317,7 @@ depth bound (below).
 | a floor of 128 triangles 1 below the eye, rays down to 1e-3 elevation (hits ~1900 away), above the horizon, beyond the floor | paper forms equal the reference at n = 16 (many far tiles are host triangles) and n = 24 | watertight: the grid step (~2) exceeds the eye's height, so its floor moves: it equals the reference on its snapped floor |
 | directions with zero components (along the axes, in the axis planes) in a box around the eye | every form equals the reference | - |
 | a scene and eye translated by (1e5, -1e5, 1e5), also rays with their own origins, tmin and an excluded triangle | primary rays equal the reference in the paper forms, the watertight form on its snapped mesh; arbitrary-origin rays equal it within that kernel's bound 2^-(n-10) | - |
+| tiny triangles (0.02 across) 70 from the scene's centre, rays with their own origins aimed inside them (arbitrary-origin kernel) | n = 16: the 16 tiny triangles are host triangles (edge-test condition above 2^(n-4)) and every ray equals the reference; with cond_bits = 60 some rays are wrong; n = 24: on the FMPP, every ray equals the reference | - |
 | rays that miss everything, an empty scene, an empty batch | all misses, no host work, no overflow | - |
 
 **Depth bounds used by the tests** (`allowed` in the test file): the paper's forms make
