@@ -261,8 +261,10 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   of ordinary triangles seen from the eye (tens to hundreds), so at n = 8 every triangle
   of the sphere scenes is a host triangle: their primary rays come out right, for 10.5
   million host tests per frame on spheres_10k, as many as the brute-force reference
-  does; the image is still off (25 dB), mostly through the reflected and refracted
-  rays, whose arbitrary-origin kernel has no condition fallback.
+  does, and the secondary rays' arbitrary-origin kernel (limit 2^(n-4)) sends most
+  triangles to the host too; the sphere images come out at 31 to 33 dB (4 pixels more
+  than 8 levels off). The Cornell box keeps 6 of its triangles on the FMPP, whose
+  cracks at n = 8 cost 5 % of the primary rays (17 dB).
   At n = 10 and 12 the fallback takes most or half of the triangles and still leaves
   errors (spheres_1k: 5 % of the rays at n = 10). From n = 16 the cost of correctness is
   small (at most 4 % of the triangles), from 24 nil.
@@ -270,9 +272,10 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   steps per broadcast (64 at n = 8, 159 at 24, 209 at 32) and the generic one 22n + 31,
   3.2 to 3.6 times more on the larger scenes, for bit-identical results (checked on
   every ray and image here). From n = 16 to 24 a broadcast costs 43 % more, from 24 to
-  32 another 30 %. Whole renders gain less from the constant multiply (1.4 to 2.3
-  times) because loads, readback and the arbitrary-origin kernel of the secondary rays
-  weigh the same in both. Use the constant multiply at every n.
+  32 another 30 %. Whole renders gain less from the constant multiply (1.8 to 2.3
+  times from n = 16 on the three larger scenes, near 1 below, where the host does most
+  of the work) because loads, readback and the arbitrary-origin kernel of the secondary
+  rays weigh the same in both. Use the constant multiply at every n.
 - **n = 32 buys depth, not hits.** The ray components have 28 bits, so past 28 the
   triangle test hardly improves (no primary ray changes between n = 24 and 32 here),
   while the depth error falls about 3 times (median 1.3e-6 to 3.7e-7 on spheres_10k).
