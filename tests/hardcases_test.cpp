@@ -963,6 +963,72 @@ TEST_P(HardCases, TinyTrianglesSeenFromTheirOwnOrigins) {
   for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(wide.hits[i].tri, ref[i].tri) << "n = 24, ray " << i;
 }
 
+// --------------------------------------------------------- own origins, edge cases
+// The arbitrary-origin kernel's scales on batches where a ray quantity is 0 everywhere:
+// rays along the line through the scene's centre (every moment O x V is 0) and rays
+// leaving from the centre itself (every origin, relative to the centre, is 0). Both
+// must equal the reference (a scale of 1 for the absent quantity once made the first
+// batch miss everything). Depth within the kernel's bound 2^-(n-10).
+TEST_P(HardCases, OwnOriginsOnTheLineThroughTheCentre) {
+  const std::vector<Triangle> tris = {tri({-1, -1, -3}, {1, -1, -3}, {0, 1, -3}), tri({-1, -1, -5}, {1, -1, -5}, {0, 1, -5})};
+  const dvec3 c(0, 0, -4);  // the centre of the scene's box
+  std::vector<Ray> axis;
+  for (double z : {1.0, 2.0, 0.5, -3.5, -7.0}) {
+    axis.push_back(Ray{{0, 0, z}, {0, 0, -1}});
+    axis.push_back(Ray{{0, 0, z}, {0, 0, 2}});
+  }
+  std::vector<Ray> centre;
+  for (const dvec3& d : {dvec3(0, 0, 1), dvec3(0.1, 0.2, 1), dvec3(0.2, -0.1, -1), dvec3(-0.3, 0.1, -2), dvec3(1, 0, 0)}) {
+    centre.push_back(Ray{c, d, 1e-9});  // tmin > 0: the arbitrary-origin kernel
+  }
+  for (const std::vector<Ray>* rays : {&axis, &centre}) {
+    const std::vector<Hit> ref = nearest_reference(*rays, tris);
+    const Result r = run(*rays, tris, kRayForm);
+    EXPECT_EQ(r.st.general_rays, rays->size());
+    size_t hits = 0;
+    for (size_t i = 0; i < rays->size(); ++i) {
+      hits += ref[i].hit();
+      EXPECT_EQ(r.hits[i].tri, ref[i].tri) << "ray " << i;
+      if (ref[i].hit()) {
+        EXPECT_NEAR(r.hits[i].t, ref[i].t, std::ldexp(1.0, 10 - 24) * ref[i].t) << "ray " << i;
+      }
+    }
+    EXPECT_GE(hits, 4u);
+  }
+}
+
+// Directions from 1e-90 to 1e90 long in one batch, with one origin (the paper's form)
+// and with their own origins: each ray's t is in units of its own direction and keeps
+// its precision (a 1e300-long direction once hung the scale search, and in a mixed
+// batch the short rays' directions lost their bits).
+TEST_P(HardCases, DirectionsOfAnyMagnitude) {
+  const std::vector<Triangle> tris = {tri({-2, -2, 3}, {2, -2, 3}, {0, 2, 3}), tri({-2, -2, 5}, {2, -2, 5.5}, {0, 2, 5})};
+  std::vector<Ray> shared, own;
+  const double lengths[] = {1e-90, 1e-6, 1, 3e5, 1e90};
+  for (size_t k = 0; k < 10; ++k) {
+    const dvec3 d = glm::normalize(dvec3(0.1 * (k % 3) - 0.1, 0.05 * (k % 4) - 0.07, 1)) * lengths[k % 5];
+    shared.push_back(Ray{dvec3(0), d});
+    own.push_back(Ray{dvec3(0.1 * k - 0.5, 0.2 - 0.03 * k, -1.0 - 0.1 * k), d});
+  }
+  for (const std::vector<Ray>* rays : {&shared, &own}) {
+    const std::vector<Hit> ref = nearest_reference(*rays, tris);
+    for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
+      if (rays == &own && form.mapping == Mapping::kObject) continue;  // own origins run ray-parallel
+      const Result r = run(*rays, tris, form);
+      for (const Hit& h : ref) ASSERT_TRUE(h.hit());
+      if (rays == &shared) {
+        expect_reference(r.hits, ref, *rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
+        continue;
+      }
+      EXPECT_EQ(r.st.general_rays, rays->size()) << form.name;
+      for (size_t i = 0; i < rays->size(); ++i) {
+        EXPECT_EQ(r.hits[i].tri, ref[i].tri) << form.name << ", ray " << i;
+        EXPECT_NEAR(r.hits[i].t, ref[i].t, std::ldexp(1.0, 10 - 24) * ref[i].t) << form.name << ", ray " << i;
+      }
+    }
+  }
+}
+
 // --------------------------------------------------------------------- misses
 // Rays that miss everything (away from the scene, between its triangles), an empty
 // scene and an empty batch: all misses, no host work, no overflow.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -282,7 +283,9 @@ class Group {
     // units of V_q), and S_c = S / 2^(E+1) must stay below 2^29.
     const DistanceRange dr = distance_range(tris_, o_);
     const double dmin = std::max(dr.min, dr.max * std::ldexp(1.0, -20));
-    const int E = static_cast<int>(std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, 29))))) - 1;
+    const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, 29))));
+    if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
+    const int E = static_cast<int>(e_real) - 1;
 
     // Per-triangle programs (the same in every pass).
     std::vector<Program> progs;
@@ -724,7 +727,11 @@ class General {
     }
     if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
     const double unit = std::ldexp(1.0, kBits);
-    const double sv = vmax / unit, sl = lmax > 0 ? lmax / unit : 1, so = omax > 0 ? omax / unit : 1;
+    // A batch whose moments (or origins) are all 0 still needs scales of their natural
+    // size: a far larger one would crowd the triangle's other coefficients out of the
+    // shared exponent (rays along a line through the centre would all miss).
+    const double span = std::max(max_abs(hi - lo), std::numeric_limits<double>::min());
+    const double sv = vmax / unit, sl = (lmax > 0 ? lmax : vmax * span) / unit, so = (omax > 0 ? omax : span) / unit;
     const double u = lambda_max / std::ldexp(1.0, static_cast<int>(q));  // quotient unit
 
     std::vector<Program> progs;
@@ -969,27 +976,37 @@ unsigned words_needed(const KernelOptions& opt) {
   return opt.mul == MulMode::kGeneric ? kOV + 3 : kOV;
 }
 
-std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& tris,
                                 const KernelOptions& opt, KernelStats* stats) {
   opt.validate(dev.config());
   KernelStats local;
   KernelStats& st = stats ? *stats : local;
   const uint64_t c0 = dev.cycles();
-  std::vector<Hit> out(rays.size());
+  std::vector<Hit> out(in_rays.size());
   for (const Triangle& t : tris) {
     for (const glm::dvec3& p : t.p) {
       if (!std::isfinite(p.x + p.y + p.z)) throw std::invalid_argument("fmpp::isect: a triangle vertex is not finite");
     }
   }
+  // Every direction is scaled by a power of two to a largest component in [1, 2), and its
+  // parameters (tmin, tmax, the hit's t) by the inverse: exact, and the kernels' scales
+  // then never see a direction's magnitude, only its shape.
+  std::vector<Ray> rays(in_rays);
+  std::vector<int> t_exp(rays.size(), 0);  // t = t' 2^t_exp
   // Group rays by origin: a group shares one set of inverse matrices (the paper's method).
   std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
   std::vector<size_t> general;
   for (size_t i = 0; i < rays.size(); ++i) {
-    const Ray& r = rays[i];
-    if (!std::isfinite(r.o.x + r.o.y + r.o.z + r.d.x + r.d.y + r.d.z) || !(r.tmin >= 0) || !std::isfinite(r.tmin)) {
+    Ray& r = rays[i];
+    if (!std::isfinite(r.o.x + r.o.y + r.o.z) || !std::isfinite(r.d.x) || !std::isfinite(r.d.y) ||
+        !std::isfinite(r.d.z) || !(r.tmin >= 0) || !std::isfinite(r.tmin) || std::isnan(r.tmax)) {
       throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
     }
     if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
+    t_exp[i] = -std::ilogb(max_component(r.d));
+    r.d = glm::dvec3(std::ldexp(r.d.x, t_exp[i]), std::ldexp(r.d.y, t_exp[i]), std::ldexp(r.d.z, t_exp[i]));
+    r.tmin = std::ldexp(r.tmin, -t_exp[i]);
+    r.tmax = std::ldexp(r.tmax, -t_exp[i]);
     // Rays with tmin or an excluded triangle take the general (ray-parallel) kernel in
     // either mapping: the object-parallel maximum search has no per-ray exclusion.
     const bool special = r.tmin > 0 || r.exclude >= 0;
@@ -1028,6 +1045,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const
     General g(dev, opt, tris, &st);
     g.run(rays, general, out);
   }
+  for (size_t i = 0; i < out.size(); ++i) out[i].t = std::ldexp(out[i].t, t_exp[i]);
   st.cycles += dev.cycles() - c0;
   return out;
 }
