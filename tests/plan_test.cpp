@@ -4,6 +4,11 @@
 
 #include "sw/rt/plan.h"
 
+#include <fstream>
+
+#include "fmpp/model_bus.h"
+#include "sw/rt/render.h"
+
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
 #endif
@@ -37,13 +42,65 @@ TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
   const PlanCandidate& chosen = loose.candidates.back();
   EXPECT_EQ(chosen.n, loose.options.n);
   EXPECT_LE(chosen.wrong_rate, r.target_wrong_rate);
+  EXPECT_GE(chosen.pixel_rate, 0) << "the chosen n's frame was rendered";
+  EXPECT_LE(chosen.pixel_rate, r.target_wrong_rate);
   for (size_t i = 0; i + 1 < loose.candidates.size(); ++i) {
     const PlanCandidate& c = loose.candidates[i];
-    EXPECT_TRUE(c.wrong_rate > r.target_wrong_rate || c.host_share > r.max_host_share) << "n=" << c.n << " also met it";
+    EXPECT_TRUE(c.wrong_rate > r.target_wrong_rate || c.host_share > r.max_host_share ||
+                c.pixel_rate > r.target_wrong_rate)
+        << "n=" << c.n << " also met it";
   }
   r.target_wrong_rate = 0;
   r.max_host_share = 0;
   EXPECT_GE(make_plan(s, r).options.n, loose.options.n);
+}
+
+// A quad (two triangles sharing a diagonal) lit from the side: every primary ray is
+// right at n = 8, but a shadow ray cast to a point on the diagonal ends on the
+// neighbouring triangle's edge, and at low n its rounded t falls short of the point: a
+// dark line across the quad. The sampled frame sees it; the plan moves up until the
+// frame is clean, and the full render then matches the reference.
+TEST(Plan, TheSampledFrameCatchesWhatPrimaryRaysMiss) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream obj(dir + "/plan_quad.obj");
+    obj << "v -1 -1 -3\nv 1 -1 -3\nv 1 1 -3\nv -1 1 -3\nf 1 2 3 4\n";
+    std::ofstream json(dir + "/plan_quad.json");
+    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 60},
+               "background": [0.1, 0.1, 0.15], "ambient": [0.2, 0.2, 0.2], "max_depth": 1,
+               "lights": [{"position": [0.5, 1.0, 1.0], "color": [1, 1, 1]}],
+               "materials": {"orange": {"diffuse": [0.9, 0.5, 0.1]}},
+               "meshes": [{"file": "plan_quad.obj", "material": "orange"}]})";
+  }
+  const Scene s = load_scene(dir + "/plan_quad.json");
+  PlanRequest r;
+  r.width = r.height = 32;
+  const Plan p = make_plan(s, r);
+  ASSERT_GE(p.candidates.size(), 2u);
+  EXPECT_EQ(p.candidates.front().n, 8u);
+  EXPECT_LE(p.candidates.front().wrong_rate, r.target_wrong_rate) << "primary rays alone would accept n = 8";
+  EXPECT_GT(p.candidates.front().pixel_rate, r.target_wrong_rate) << "the frame must show the shadow line";
+  EXPECT_LE(p.candidates.back().pixel_rate, r.target_wrong_rate);
+  EXPECT_GT(p.options.n, 8u);
+  EXPECT_NE(p.why_bits.find("frame"), std::string::npos) << p.why_bits;
+
+  fmpp::ModelBus bus(p.config);
+  fmpp::Device dev(bus);
+  FmppIntersector fi(dev, s.triangles, p.options);
+  ReferenceIntersector ri(s.triangles);
+  RenderOptions o;
+  o.width = o.height = 32;
+  const ImageDiff d = compare(render(s, fi, o, nullptr), render(s, ri, o, nullptr));
+  EXPECT_LE(static_cast<double>(d.pixels_over), r.target_wrong_rate * 32 * 32);
+}
+
+TEST(Plan, MoreRaysThanTheMapHoldsArePasses) {
+  PlanRequest r;
+  r.width = r.height = 300;
+  r.bits = 24;
+  const Plan p = make_plan(scene("one_triangle"), r);
+  EXPECT_EQ(p.config.blocks, fmpp::map::kMaxBlocks);
+  EXPECT_NE(p.why_blocks.find("2 passes"), std::string::npos) << p.why_blocks;
 }
 
 TEST(Plan, OverridesWin) {

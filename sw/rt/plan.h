@@ -4,7 +4,11 @@
 //   - Precision n (multiplier bits): the smallest candidate whose wrong-triangle rate,
 //     measured on a sample of primary rays on the golden model against the double
 //     reference, is within the target, with few triangles too ill-conditioned for the
-//     format (they would go to the host). The sample costs a fraction of the frame.
+//     format (they would go to the host), and then whose render of a small frame (the
+//     same camera at about sample_rays pixels, every ray type) has no more of its pixels
+//     off the reference render by more than 8 levels than the target: the primary rays
+//     alone do not see a shadow ray ending on a neighbouring triangle's edge. The
+//     sample costs a fraction of the frame.
 //   - Words per block: what the kernels need: 12 for rays that share an origin, 24 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
@@ -27,7 +31,7 @@ namespace rt {
 struct PlanRequest {
   int width = 128, height = 128;
   int max_depth = -1;                 // -1: the scene's
-  double target_wrong_rate = 0.002;   // wrong triangle (or hit/miss) per primary ray
+  double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the sampled frame
   double max_host_share = 0.01;       // triangles the host may take over
   int sample_rays = 1024;             // primary rays measured per candidate
   bool rtl = false;                   // choose among the built RTL configurations
@@ -40,7 +44,8 @@ struct PlanCandidate {
   unsigned n;
   double wrong_rate;      // sampled, with cond_bits = 60 (the machine's own answers)
   double host_share;      // triangles over the conditioning limit of this n
-  uint64_t sample_cycles;
+  double pixel_rate = -1;  // sampled frame: pixels off by more than 8 levels; -1 if not rendered
+  uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 
 struct Plan {

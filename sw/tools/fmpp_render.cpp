@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
   app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(CLI::Range(4u, 32u));
   double target = 0.002;
-  app.add_option("--error-target", target, "precision plan: wrong-triangle rate allowed per primary ray")
+  app.add_option("--error-target", target, "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's pixels allowed off the reference")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(CLI::Range(1, 16));
   app.add_option("--out", out, "output PNG");
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
                      {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target}};
       for (const auto& c : plan.candidates) {
         rep["plan"]["candidates"].push_back(
-            {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"sample_cycles", c.sample_cycles}});
+            {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate}, {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       auto be = make_backend(backend, cfg, bo);
