@@ -4,13 +4,14 @@
 # refused with a message naming the option, outputs are checked before the work, '-'
 # is stdout for --report, and --help shows the defaults. No long runs.
 set -euo pipefail
-render=${1:?usage: tools_cli_test.sh fmpp-render fmpp-sim fmpp-report source-dir}
-sim=${2:?}
+render=$(readlink -f "${1:?usage: tools_cli_test.sh fmpp-render fmpp-sim fmpp-report source-dir}")
+sim=$(readlink -f "${2:?}")
 report=$(readlink -f "${3:?}")
 src=$(readlink -f "${4:?}")
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 scene="$src/scenes/one_triangle.json"
+cd "$dir"  # a check that regressed would write render.png here, not in the caller's directory
 fails() {  # fails <expected message> <command...>: the command must fail and print the message
   local want=$1
   shift
@@ -51,6 +52,7 @@ fails "unknown subcommand 'foo' (one of: area, paper, precision)" "$report" foo
 fails "A subcommand is required" "$report"
 fails "--out -: the report needs a file name" "$report" precision --quick --out -
 fails "--out $dir: is a directory" "$report" precision --quick --out "$dir"
+test ! -e "$dir/precision-quick"  # a refused run creates nothing
 fails "--size excludes --quick" "$report" precision --quick --size 16
 "$report" area --synth-dir "$src/docs/synth" --out - > "$dir/area.md"
 grep -q "^# FMPP area" "$dir/area.md"

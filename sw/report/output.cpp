@@ -40,10 +40,13 @@ void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_
   }
   if (md_path.empty()) throw std::invalid_argument("--out: empty path");
   if (img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
+  // The report first, so that a bad --out creates nothing.
   const std::filesystem::path md(md_path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(md, ec)) throw std::invalid_argument("--out " + md_path + ": is a directory");
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
-  std::filesystem::create_directories(img_dir);
   check_writable("--out", md_path, false);
+  std::filesystem::create_directories(img_dir);
   check_writable("--img-dir", img_dir + "/" + data_name, false);
 }
 
