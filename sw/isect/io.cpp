@@ -77,7 +77,8 @@ std::vector<Triangle> read_triangles(const std::string& path) {
       t.p[k] = glm::dvec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
       const std::string why = check_point(t.p[k]);
       if (!why.empty()) {
-        throw ParseError(path + ":" + std::to_string(lineno) + ": triangle vertex " + std::to_string(k + 1) + " " + why);
+        throw ParseError(path + ":" + std::to_string(lineno) + ": triangle vertex " + std::to_string(k + 1) + " " +
+                         why);
       }
     }
     out.push_back(t);

@@ -146,9 +146,9 @@ Command add_paper(CLI::App& app) {
   CLI::Option* out_opt =
       c.sub->add_option("--out", opt->out, "markdown report to write (with --quick: paper-quick.md)")
           ->capture_default_str();
-  CLI::Option* img_opt =
-      c.sub->add_option("--img-dir", opt->img_dir, "directory for the PNG plots and their data (with --quick: paper-quick)")
-          ->capture_default_str();
+  CLI::Option* img_opt = c.sub->add_option("--img-dir", opt->img_dir,
+                                           "directory for the PNG plots and their data (with --quick: paper-quick)")
+                             ->capture_default_str();
   c.sub->add_option("--rtl-config", opt->rtl_config, "Verilated configuration to measure on")->capture_default_str();
   c.sub->add_option("--triangles", opt->triangles, "triangles in the step-count scene (at most 300 with --quick)")
       ->capture_default_str()

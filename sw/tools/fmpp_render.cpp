@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")->check(CLI::Range(1u, map::kMaxBlocks));
+  app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
+      ->check(CLI::Range(1u, map::kMaxBlocks));
   app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
       ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
