@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "sw/tools/cli_options.h"
 #include "tb/lockstep.h"
 #include "tb/progen.h"
 #include "tb/rtl_bus.h"
@@ -78,26 +79,31 @@ int main(int argc, char** argv) {
   unsigned inject_word = 0;
   uint32_t inject_value = 0xDEADBEEF;
   app.add_option("--config", config, "named configuration (see --list)");
-  app.add_option("--seed", seed, "random seed");
+  app.add_option("--seed", seed, "random seed")->capture_default_str()->check(non_negative());
   app.add_option("--ops", ops, "bus accesses to generate")->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   app.add_option("--mode", mode, "lockstep mode: check (state after every entry), fast (hash), off")
       ->check(CLI::IsMember({"check", "fast", "off"}));
   app.add_option("--hash-interval", hash_interval, "fast mode: queue entries between state hashes")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   app.add_flag("--stress", stress, "random bus idle clocks and READY back-pressure (clock counts not compared)");
-  app.add_option("--trace", trace, "write an FST waveform to this file");
-  app.add_option("--trace-start", trace_start, "first cycle to trace");
-  app.add_option("--trace-end", trace_end, "last cycle to trace");
+  CLI::Option* trace_opt = app.add_option("--trace", trace, "write an FST waveform to this file");
+  app.add_option("--trace-start", trace_start, "first cycle to trace")->check(non_negative())->needs(trace_opt);
+  app.add_option("--trace-end", trace_end, "last cycle to trace")->check(non_negative())->needs(trace_opt);
   app.add_flag("--list", list, "list the built configurations and exit");
   app.add_option("--backend", backend, "RTL side of the lockstep: rtl (direct) or systemc (through TLM-2.0)")
       ->check(CLI::IsMember({"rtl", "systemc"}));
   auto* inject_opt = app.add_option("--inject-at", inject_at,
                                     "before access N, write a wrong word into the RTL only (mismatch demo)")
                          ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 40));
-  app.add_option("--inject-block", inject_block, "block of the injected word (default: the last block)")
+  app.add_option("--inject-block", inject_block, "block of the injected word, from 0 (default: the last block)")
+      ->check(non_negative())
       ->needs(inject_opt);
-  app.add_option("--inject-word", inject_word, "word of the injected word (default 0)")->needs(inject_opt);
-  app.add_option("--inject-value", inject_value, "value the RTL gets (default 0xDEADBEEF)")->needs(inject_opt);
+  app.add_option("--inject-word", inject_word, "word of the injected word (default 0)")
+      ->check(non_negative())
+      ->needs(inject_opt);
+  app.add_option("--inject-value", inject_value, "value the RTL gets (default 0xDEADBEEF)")
+      ->check(non_negative())
+      ->needs(inject_opt);
   CLI11_PARSE(app, argc, argv);
 
   if (list) {
@@ -106,6 +112,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    check_trace_window(trace_start, trace_end);
     const Config cfg = named_config(config);
     tb::RtlOptions ro;
     ro.trace_file = trace;

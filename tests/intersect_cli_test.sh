@@ -48,8 +48,59 @@ grep -q "trace window: first cycle 100 is after the last cycle 99" "$dir/err.txt
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 64 --words 32 \
     --trace "$dir/no/such/dir/w.fst" 2> "$dir/err.txt"; then exit 1; fi
 grep -q "cannot open the waveform file" "$dir/err.txt"
+# A window without --trace, or one that ends before it starts, is refused on every backend.
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --trace-start 10 --trace-end 5 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--trace-start requires --trace" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend reference --trace "$dir/w.fst" \
+    --trace-start 10 --trace-end 5 2> "$dir/err.txt"; then exit 1; fi
+grep -q "trace window: first cycle 10 is after the last cycle 5" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --trace "$dir/w.fst" --trace-start -1 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--trace-start: value -1 is negative" "$dir/err.txt"
 # A window that is given is what gets traced.
 "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --blocks 64 --words 32 --trace "$dir/w.fst" \
   --trace-start 10 --trace-end 20 --out /dev/null
 test -s "$dir/w.fst"
+# Rays with different origins: the default words are what the arbitrary-origin kernel
+# needs (24), with --origins auto or general; too few words given say what to give.
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --out "$dir/auto.txt" --report "$dir/auto.json"
+diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/auto.txt")
+grep -q '"words": 24' "$dir/auto.json"
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins general --out "$dir/general.txt"
+diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/general.txt")
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins group --words 12 --out /dev/null
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 12 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--words 12 is too few: 5 of the 5 rays .* give --words 24 or more (or leave --words out), or --origins group" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins general --config tiny 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--config tiny (8 words) is too few: with --origins general" "$dir/err.txt"
+# Option values checked at the command line.
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 3 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--words: value 3 is not an even number in \[2, 64\]" "$dir/err.txt"
+"$bin" --help | grep -q "words per block, even"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend foo 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--backend: foo not in {reference,cmodel,rtl,lockstep" "$dir/err.txt"
+# '-' is stdout for --report as for --out (not both); outputs are checked before the work.
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend reference --out "$dir/r.txt" --report - > "$dir/stdout.txt"
+grep -q '"hits": 4' "$dir/stdout.txt"
+test ! -e ./-
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --report - 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--out and --report both write to stdout" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --report "$dir/no/such/dir/r.json" > "$dir/stdout.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--report $dir/no/such/dir/r.json: cannot write (No such file or directory)" "$dir/err.txt"
+test ! -s "$dir/stdout.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --out "$dir" 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--out $dir: is a directory" "$dir/err.txt"
+# Input files: directories, empty paths, the magnitude limits, subnormal numbers.
+if "$bin" --triangles "$dir" --rays "$dir/rays.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "$dir: cannot read triangle file: is a directory" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "'' (empty path): cannot open ray file" "$dir/err.txt"
+printf -- '-1e160 -1e160 5  1e160 -1e160 5  0 1e160 5\n' > "$dir/big.txt"
+if "$bin" --triangles "$dir/big.txt" --rays "$dir/rays.txt" --backend reference 2> "$dir/err.txt"; then exit 1; fi
+grep -q "big.txt:1: triangle vertex 1 is too far out: |-1e+160| exceeds the limit 1e+100" "$dir/err.txt"
+printf '0 0 0  1e-101 0 1e-120\n' > "$dir/short.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/short.txt" --backend reference 2> "$dir/err.txt"; then exit 1; fi
+grep -q "short.txt:1: ray direction is too short" "$dir/err.txt"
+printf '1e-310 0 0  0 0 1\n' > "$dir/sub.txt"
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/sub.txt" --backend reference --out "$dir/sub.hits"
+grep -q "^0 5" "$dir/sub.hits"
 echo "fmpp-intersect e2e: OK"

@@ -95,9 +95,78 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
   write("badtag.json", scene_json(R"({"file": "badtag.obj", "material": "m"})"));
   EXPECT_EQ(error_of("badtag.json"), dir() + "/badtag.obj:2: unknown statement 'vx'");
 
+  write("bignum.obj", "v 0 0 -3\nv 1e160 0 -3\nv 0 1 -3\nf 1 2 3\n");
+  write("bignum.json", scene_json(R"({"file": "bignum.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("bignum.json"), dir() + "/bignum.obj:2: vertex is too far out: |1e+160| exceeds the limit 1e+100");
+  write("huge.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1e300 -3\nf 1 2 3\n");
+  write("huge.json", scene_json(R"({"file": "huge.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("huge.json"), dir() + "/huge.obj:3: vertex is too far out: |1e+300| exceeds the limit 1e+100");
+  write("bignormal.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 -1e101\nf 1//1 2//1 3//1\n");
+  write("bignormal.json", scene_json(R"({"file": "bignormal.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("bignormal.json"),
+            dir() + "/bignormal.obj:4: normal is too far out: |-1e+101| exceeds the limit 1e+100");
+
+  write("dirmesh.json", scene_json(R"({"file": ".", "material": "m"})"));
+  EXPECT_EQ(error_of("dirmesh.json"), dir() + "/.: cannot read mesh: is a directory");
+  write("emptymesh.json", scene_json(R"({"file": "", "material": "m"})"));
+  EXPECT_EQ(error_of("emptymesh.json"), dir() + "/emptymesh.json: field 'meshes[0].file': empty path");
+  EXPECT_EQ(error_of(""), dir() + "/: cannot read scene: is a directory");
+  try {
+    load_scene("");
+    ADD_FAILURE();
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "'' (empty path): cannot open scene");
+  }
+
   write("nofile.json", scene_json(R"({"file": "absent.obj", "material": "m"})"));
   EXPECT_NE(error_of("nofile.json").find("absent.obj: cannot open mesh"), std::string::npos);
   EXPECT_NE(error_of("nonexistent.json").find("cannot open scene"), std::string::npos);
+}
+
+TEST(Scene, NonObjectsAndBadValuesAreFieldErrors) {
+  write("ok.obj", kObj);
+  const std::string cam = R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "fov_y_deg": 50},
+    )";
+  const std::string mesh = R"("meshes": [{"file": "ok.obj", "material": "m"}])";
+  auto expect = [&](const std::string& body, const std::string& want) {
+    write("f.json", cam + body + "}");
+    EXPECT_EQ(error_of("f.json"), dir() + "/f.json: " + want) << body;
+  };
+  expect(R"("lights": [5], "materials": {"m": {}}, )" + mesh, "field 'lights[0]': expected an object");
+  expect(R"("lights": [[1, 2, 3]], "materials": {"m": {}}, )" + mesh, "field 'lights[0]': expected an object");
+  expect(R"("lights": [{"position": [0,2,0]}], "materials": {"m": 5}, )" + mesh,
+         "field 'materials.m': expected an object");
+  expect(R"("lights": [{"position": [0,2,0]}], "materials": {"m": {}}, "meshes": ["ok.obj"])",
+         "field 'meshes[0]': expected an object");
+  expect(R"("max_depth": 2.7, "lights": [{"position": [0,2,0]}], "materials": {"m": {}}, )" + mesh,
+         "field 'max_depth': value 2.7 must be an integer");
+  expect(R"("description": 5, "lights": [{"position": [0,2,0]}], "materials": {"m": {}}, )" + mesh,
+         "field 'description': expected a string");
+  write("camera.json", R"({"camera": [0, 0, 0], "lights": [], "materials": {}, "meshes": []})");
+  EXPECT_EQ(error_of("camera.json"), dir() + "/camera.json: field 'camera': expected an object");
+
+  write("depth.json", cam + R"("max_depth": 4.0, "lights": [{"position": [0,2,0]}], "materials": {"m": {}}, )" + mesh + "}");
+  EXPECT_EQ(load_scene(dir() + "/depth.json").max_depth, 4);
+}
+
+TEST(Scene, NumberOverflowNamesFileAndLine) {
+  write("ok.obj", kObj);
+  write("overflow.json", "{\n  \"max_depth\":\n    1e999}\n");
+  EXPECT_EQ(error_of("overflow.json"),
+            dir() + "/overflow.json:3: JSON number out of range: [json.exception.out_of_range.406] number overflow "
+                    "parsing '1e999'");
+}
+
+TEST(Scene, ObjAcceptsSubnormalsAndShortTextureCoordinates) {
+  // 1e-310 is a finite (subnormal) number: read as its value. A vt may have 1 to 3
+  // numbers (textures are not used).
+  write("sub.obj", "v 0 0 -3\nv 1 1e-310 -3\nv 0 1 -3\nvt 0.5\nvt 0.5 0.25 1e-310\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");
+  write("sub.json", scene_json(R"({"file": "sub.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("sub.json"), "no error");
+  EXPECT_EQ(load_scene(dir() + "/sub.json").triangles.at(0).p[1].y, 1e-310);
+  write("novt.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvt\nf 1 2 3\n");
+  write("novt.json", scene_json(R"({"file": "novt.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("novt.json"), dir() + "/novt.obj:4: vt needs 1 to 3 numbers, found 0");
 }
 
 }  // namespace

@@ -1,9 +1,69 @@
-// Closest point on a triangle and distance bounds (see geometry.h).
+// Input checks, closest point on a triangle and distance bounds (see geometry.h).
 #include "sw/isect/geometry.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
 
 namespace fmpp::isect {
+namespace {
+
+// The shortest text that reads back as `x` ("1e+160", "-0.25").
+std::string shortest(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+}  // namespace
+
+std::string check_point(const glm::dvec3& p) {
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(p[k])) return "is not finite (component " + shortest(p[k]) + ")";
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(p[k]) > kMaxCoordinate) {
+      return "is too far out: |" + shortest(p[k]) + "| exceeds the limit " + shortest(kMaxCoordinate);
+    }
+  }
+  return "";
+}
+
+std::string check_direction(const glm::dvec3& d) {
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(d[k])) return "is not finite (component " + shortest(d[k]) + ")";
+  }
+  const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  if (m == 0) return "is zero";
+  if (m > kMaxDirection) {
+    return "is too long: its largest |component| " + shortest(m) + " exceeds the limit " + shortest(kMaxDirection);
+  }
+  if (m < kMinDirection) {
+    return "is too short: its largest |component| " + shortest(m) + " is below the limit " + shortest(kMinDirection);
+  }
+  return "";
+}
+
+void validate_input(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("fmpp::isect: " + what); };
+  for (size_t i = 0; i < tris.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const std::string why = check_point(tris[i].p[k]);
+      if (!why.empty()) fail("triangle " + std::to_string(i) + " vertex " + std::to_string(k) + " " + why);
+    }
+  }
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    const std::string ray = "ray " + std::to_string(i);
+    std::string why = check_point(r.o);
+    if (!why.empty()) fail(ray + " origin " + why);
+    why = check_direction(r.d);
+    if (!why.empty()) fail(ray + " direction " + why);
+    if (!std::isfinite(r.tmin) || !(r.tmin >= 0)) fail(ray + " tmin " + shortest(r.tmin) + " is not finite and >= 0");
+    if (std::isnan(r.tmax)) fail(ray + " tmax is NaN");
+  }
+}
 
 glm::dvec3 closest_point(const Triangle& t, const glm::dvec3& q) {
   const glm::dvec3 a = t.p[0], b = t.p[1], c = t.p[2];

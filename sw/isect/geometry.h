@@ -1,10 +1,12 @@
 // Value types of the intersection problem: triangles, rays, hits (double precision,
-// GLM vectors), and the closest-point query used to bound hit distances.
+// GLM vectors), the input limits every entry point checks, and the closest-point query
+// used to bound hit distances.
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace fmpp::isect {
@@ -25,6 +27,27 @@ struct Ray {
   int exclude = -1;
   double tmax = std::numeric_limits<double>::infinity();
 };
+
+// Input limits (docs/intersection.md): the intersection tests multiply up to three
+// coordinates (cross products, determinants, t), which overflows double far below
+// DBL_MAX, and a direction too short loses its inverse. Every vertex coordinate and ray
+// origin component must be finite with |x| <= kMaxCoordinate; every ray direction
+// finite, with its largest |component| in [kMinDirection, kMaxDirection].
+constexpr double kMaxCoordinate = 1e100;
+constexpr double kMaxDirection = 1e100;
+constexpr double kMinDirection = 1e-100;
+
+// Why `p` is not a valid vertex or ray origin ("is not finite", "is too far out: ..."),
+// or "" if it is valid. Written to follow the name of the point.
+std::string check_point(const glm::dvec3& p);
+// Why `d` is not a valid ray direction ("is zero", "is too short: ...", ...), or "".
+std::string check_direction(const glm::dvec3& d);
+
+// The check of the library entry points (nearest_reference, intersect_fmpp):
+// every vertex and ray origin by check_point, every direction by check_direction, and
+// each ray's tmin finite and >= 0 and tmax not NaN. Throws std::invalid_argument naming
+// the triangle or ray by index: "fmpp::isect: ray 3 direction is zero".
+void validate_input(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
 struct Hit {
   int tri = -1;  // index of the nearest triangle, -1 for a miss

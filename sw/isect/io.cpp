@@ -5,7 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
+#include <filesystem>
 #include <sstream>
 
 namespace fmpp::isect {
@@ -14,8 +15,9 @@ namespace {
 // Numbers on each non-empty line, exactly `count` of them, finite.
 template <class F>
 void read_records(const std::string& path, size_t count, const char* what, F&& take) {
-  std::ifstream in(path);
-  if (!in) throw ParseError(path + ": cannot open " + what + " file");
+  std::ifstream in;
+  const std::string err = open_input(in, path, std::string(what) + " file");
+  if (!err.empty()) throw ParseError(err);
   std::string line;
   size_t lineno = 0;
   std::vector<double> v;
@@ -40,24 +42,45 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
     }
     take(v, lineno);
   }
+  if (in.bad()) throw ParseError(path + ":" + std::to_string(lineno + 1) + ": read error");
 }
 
 }  // namespace
 
 bool parse_finite(const std::string& tok, double* out) {
-  errno = 0;
   char* end = nullptr;
+  // ERANGE also flags an underflow to a subnormal or to 0: only an overflow (to
+  // +-inf) and inf / nan themselves are not finite.
   const double x = std::strtod(tok.c_str(), &end);
-  if (end == tok.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(x)) return false;
+  if (end == tok.c_str() || *end != '\0' || !std::isfinite(x)) return false;
   *out = x;
   return true;
 }
 
+std::string display_path(const std::string& path) { return path.empty() ? "'' (empty path)" : path; }
+
+std::string open_input(std::ifstream& in, const std::string& path, const std::string& what) {
+  if (path.empty()) return display_path(path) + ": cannot open " + what;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return path + ": cannot read " + what + ": is a directory";
+  errno = 0;
+  in.open(path);
+  if (!in) return path + ": cannot open " + what + (errno ? std::string(" (") + std::strerror(errno) + ")" : "");
+  return "";
+}
+
 std::vector<Triangle> read_triangles(const std::string& path) {
   std::vector<Triangle> out;
-  read_records(path, 9, "triangle", [&](const std::vector<double>& v, size_t) {
+  read_records(path, 9, "triangle", [&](const std::vector<double>& v, size_t lineno) {
     Triangle t;
-    for (int k = 0; k < 3; ++k) t.p[k] = glm::dvec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+    for (int k = 0; k < 3; ++k) {
+      t.p[k] = glm::dvec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+      const std::string why = check_point(t.p[k]);
+      if (!why.empty()) {
+        throw ParseError(path + ":" + std::to_string(lineno) + ": triangle vertex " + std::to_string(k + 1) + " " +
+                         why);
+      }
+    }
     out.push_back(t);
   });
   return out;
@@ -67,7 +90,10 @@ std::vector<Ray> read_rays(const std::string& path) {
   std::vector<Ray> out;
   read_records(path, 6, "ray", [&](const std::vector<double>& v, size_t lineno) {
     const Ray r{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
-    if (r.d == glm::dvec3(0)) throw ParseError(path + ":" + std::to_string(lineno) + ": ray direction is zero");
+    std::string why = check_point(r.o);
+    if (!why.empty()) throw ParseError(path + ":" + std::to_string(lineno) + ": ray origin " + why);
+    why = check_direction(r.d);
+    if (!why.empty()) throw ParseError(path + ":" + std::to_string(lineno) + ": ray direction " + why);
     out.push_back(r);
   });
   return out;

@@ -983,11 +983,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   KernelStats& st = stats ? *stats : local;
   const uint64_t c0 = dev.cycles();
   std::vector<Hit> out(in_rays.size());
-  for (const Triangle& t : tris) {
-    for (const glm::dvec3& p : t.p) {
-      if (!std::isfinite(p.x + p.y + p.z)) throw std::invalid_argument("fmpp::isect: a triangle vertex is not finite");
-    }
-  }
+  validate_input(in_rays, tris);
   // Every direction is scaled by a power of two to a largest component in [1, 2), and its
   // parameters (tmin, tmax, the hit's t) by the inverse: exact, and the kernels' scales
   // then never see a direction's magnitude, only its shape.
@@ -998,11 +994,6 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   std::vector<size_t> general;
   for (size_t i = 0; i < rays.size(); ++i) {
     Ray& r = rays[i];
-    if (!std::isfinite(r.o.x + r.o.y + r.o.z) || !std::isfinite(r.d.x) || !std::isfinite(r.d.y) ||
-        !std::isfinite(r.d.z) || !(r.tmin >= 0) || !std::isfinite(r.tmin) || std::isnan(r.tmax)) {
-      throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " is not finite");
-    }
-    if (r.d == glm::dvec3(0)) throw std::invalid_argument("fmpp::isect: ray " + std::to_string(i) + " has direction 0");
     t_exp[i] = -std::ilogb(max_component(r.d));
     r.d = glm::dvec3(std::ldexp(r.d.x, t_exp[i]), std::ldexp(r.d.y, t_exp[i]), std::ldexp(r.d.z, t_exp[i]));
     r.tmin = std::ldexp(r.tmin, -t_exp[i]);

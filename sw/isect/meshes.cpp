@@ -8,9 +8,26 @@
 
 namespace fmpp::isect {
 
+namespace {
+
+void check_origin(const char* who, const glm::dvec3& origin) {
+  const std::string why = check_point(origin);
+  if (!why.empty()) throw std::invalid_argument(std::string(who) + ": origin " + why);
+}
+
+}  // namespace
+
 std::vector<Triangle> closed_sphere(const SphereMeshOptions& o) {
   if (o.stacks < 2) throw std::invalid_argument("closed_sphere: stacks = " + std::to_string(o.stacks) + " below 2");
   if (o.slices < 3) throw std::invalid_argument("closed_sphere: slices = " + std::to_string(o.slices) + " below 3");
+  const std::string why = check_point(o.centre);
+  if (!why.empty()) throw std::invalid_argument("closed_sphere: centre " + why);
+  if (!(o.radius > 0 && std::isfinite(o.radius))) {
+    throw std::invalid_argument("closed_sphere: radius = " + std::to_string(o.radius) + " is not a finite number > 0");
+  }
+  if (!(o.jitter >= 0 && o.jitter < 0.5)) {
+    throw std::invalid_argument("closed_sphere: jitter = " + std::to_string(o.jitter) + " outside [0, 0.5)");
+  }
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> jit(-o.jitter, o.jitter);
   std::vector<glm::dvec3> v;
@@ -26,6 +43,10 @@ std::vector<Triangle> closed_sphere(const SphereMeshOptions& o) {
     }
   }
   v.push_back(o.centre - glm::dvec3(0, o.radius, 0));
+  for (const glm::dvec3& p : v) {
+    const std::string far = check_point(p);
+    if (!far.empty()) throw std::invalid_argument("closed_sphere: a vertex " + far + " (centre or radius too large)");
+  }
   const int slices = o.slices;
   auto ring = [&](int i, int j) { return 1 + (i - 1) * slices + (j % slices); };
   auto tri = [&](int a, int b, int c) { return Triangle{{v[a], v[b], v[c]}}; };
@@ -43,6 +64,7 @@ std::vector<Triangle> closed_sphere(const SphereMeshOptions& o) {
 }
 
 std::vector<Ray> edge_and_vertex_rays(const std::vector<Triangle>& tris, const glm::dvec3& origin) {
+  check_origin("edge_and_vertex_rays", origin);
   std::vector<Ray> rays;
   for (const Triangle& t : tris) {
     for (int e = 0; e < 3; ++e) {
@@ -55,6 +77,7 @@ std::vector<Ray> edge_and_vertex_rays(const std::vector<Triangle>& tris, const g
 }
 
 std::vector<Ray> uniform_rays(const glm::dvec3& origin, size_t count, uint64_t seed) {
+  check_origin("uniform_rays", origin);
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0, 1);
   std::vector<Ray> rays;

@@ -26,7 +26,9 @@ struct SphereMeshOptions {
 // A closed triangle mesh: every edge is shared by exactly two triangles, and every
 // triangle is wound the same way. With the default jitter the mesh is star-shaped
 // around the centre, so every ray from the centre meets it exactly once.
-// Throws std::invalid_argument naming stacks or slices if they are too small.
+// Throws std::invalid_argument naming the option if stacks or slices are too small, the
+// radius is not a finite number > 0, the jitter not in [0, 0.5), or the centre or a
+// vertex is outside the input limits (geometry.h).
 std::vector<Triangle> closed_sphere(const SphereMeshOptions& opt);
 
 // Rays from `origin` aimed exactly (in double) at every vertex of every triangle and
@@ -35,6 +37,7 @@ std::vector<Triangle> closed_sphere(const SphereMeshOptions& opt);
 std::vector<Ray> edge_and_vertex_rays(const std::vector<Triangle>& tris, const glm::dvec3& origin);
 
 // `count` rays from `origin` with directions uniform on the unit sphere (seeded).
+// Both ray makers throw std::invalid_argument for an origin outside the input limits.
 std::vector<Ray> uniform_rays(const glm::dvec3& origin, size_t count, uint64_t seed);
 
 }  // namespace fmpp::isect

@@ -100,6 +100,7 @@ double intersect_reference(const Ray& r, const Triangle& t) {
 }
 
 std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
+  validate_input(rays, tris);
   std::vector<Hit> out(rays.size());
   std::vector<Triangle> canon(tris.size());
   std::vector<char> flat(tris.size());

@@ -18,6 +18,7 @@ namespace fmpp::isect {
 double intersect_reference(const Ray& r, const Triangle& t);
 
 // Nearest hit of each ray over all triangles (t > ray.tmin, triangle != ray.exclude).
+// Input outside the limits of geometry.h throws std::invalid_argument (validate_input).
 std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
 

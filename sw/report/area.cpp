@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "sw/report/report.h"
+#include "sw/tools/cli_options.h"
 
 namespace fmpp::report {
 
@@ -446,10 +447,11 @@ void register_area(CLI::App& app) {
   sub->add_option("--words", opt->words, "words per processor for the Table 3 comparison (paper, ray-parallel: 23)")
       ->capture_default_str()
       ->check(CLI::Range(1u, 64u));
-  sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout");
+  sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout ('-': stdout)");
   sub->callback([opt] {
+    if (!opt->out.empty()) check_writable("--out", opt->out);
     const SynthData data = read_synth(opt->synth_dir);
-    if (opt->out.empty()) {
+    if (opt->out.empty() || opt->out == "-") {
       write_area_report(data, opt->words, std::cout);
       return;
     }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "sw/tools/cli_options.h"
+
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
 #endif
@@ -28,6 +30,25 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 }  // namespace
+
+void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
+                     const std::string& quick_name, const std::string& data_name) {
+  if (quick && !out_given) md_path = quick_name + ".md";
+  if (quick && !img_given) img_dir = quick_name;
+  if (md_path == "-") {
+    throw std::invalid_argument("--out -: the report needs a file name (it is written beside its data and plots)");
+  }
+  if (md_path.empty()) throw std::invalid_argument("--out: empty path");
+  if (img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
+  // The report first, so that a bad --out creates nothing.
+  const std::filesystem::path md(md_path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(md, ec)) throw std::invalid_argument("--out " + md_path + ": is a directory");
+  if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
+  check_writable("--out", md_path, false);
+  std::filesystem::create_directories(img_dir);
+  check_writable("--img-dir", img_dir + "/" + data_name, false);
+}
 
 void write_report(const std::string& md_path, const std::string& markdown, const std::string& img_dir,
                   const std::string& data_name, const nlohmann::json& data, const std::string& plot_script) {

@@ -11,6 +11,15 @@ namespace fmpp::report {
 // v with `prec` digits after the point ("%.*f").
 std::string fmt(double v, int prec = 0);
 
+// Before the measurements of `fmpp-report paper` or `precision`: settles and checks the
+// paths the run will write. A --quick run (a smoke test) given no --out or --img-dir
+// writes <quick_name>.md and <quick_name>/ in the current directory instead of the
+// committed docs/ files. Creates the directories and checks that the report and
+// img_dir/data_name can be written; throws naming the option and path ("--out -" too:
+// the report goes beside its data and plots, not to stdout).
+void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
+                     const std::string& quick_name, const std::string& data_name);
+
 // Writes `markdown` to md_path and `data` to img_dir/data_name (creating both
 // directories), then, unless `plot_script` is empty, runs
 // python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir>.

@@ -2,10 +2,12 @@
 // (see report.h); this file holds no report logic.
 //
 //   fmpp-report area [--synth-dir build/synth]
-//   fmpp-report paper [--out docs/paper-reproduction.md]
+//   fmpp-report paper [--out docs/paper-reproduction.md] [--quick]
 //   fmpp-report precision [--out docs/precision.md] [--quick]
+// (--quick runs write paper-quick.md / precision-quick.md unless given --out.)
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <vector>
 
 #include "sw/report/report.h"
@@ -23,6 +25,17 @@ int main(int argc, char** argv) {
       if (c.sub->parsed()) return c.run();
     }
   } catch (const CLI::ParseError& e) {
+    // "fmpp-report foo": CLI11 only says that a subcommand is required; name the word.
+    const std::vector<std::string> rest = app.remaining();
+    if (app.get_subcommands().empty() && !rest.empty() && rest.front().rfind("-", 0) != 0) {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      }
+      std::fprintf(stderr, "fmpp-report: unknown subcommand '%s' (one of: %s)\nRun with --help for more information.\n",
+                   rest.front().c_str(), names.c_str());
+      return static_cast<int>(CLI::ExitCodes::RequiredError);
+    }
     return app.exit(e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-report: %s\n", e.what());

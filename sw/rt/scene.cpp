@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -46,8 +47,10 @@ glm::dvec3 vec3(const json& j, const std::string& file, const std::string& field
   return v;
 }
 
+// Also the check that `j` is an object at all: a JSON array or scalar has no fields.
 void reject_unknown(const json& j, std::initializer_list<const char*> known, const std::string& file,
                     const std::string& where) {
+  if (!j.is_object()) field_error(file, where, "expected an object");
   for (const auto& [key, value] : j.items()) {
     bool ok = false;
     for (const char* k : known) ok = ok || key == k;
@@ -55,11 +58,43 @@ void reject_unknown(const json& j, std::initializer_list<const char*> known, con
   }
 }
 
+// json::parse, keeping the byte offset of an error: nlohmann reports a number overflow
+// ("1e999", out_of_range.406) through the same SAX call as a syntax error, but only a
+// parse_error carries the position. (json_sax_dom_parser is what json::parse builds with.)
+struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
+  using nlohmann::detail::json_sax_dom_parser<json>::json_sax_dom_parser;
+  size_t error_byte = 0;
+  template <class Exception>
+  bool parse_error(size_t byte, const std::string& token, const Exception& ex) {
+    error_byte = byte;
+    return nlohmann::detail::json_sax_dom_parser<json>::parse_error(byte, token, ex);
+  }
+};
+
+// v / |v|, with the components scaled by the largest first, so that |v| neither
+// overflows (vertices near the input limit) nor underflows (subnormal normals); 0 for 0.
+glm::dvec3 unit(glm::dvec3 v) {
+  const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (!(m > 0)) return glm::dvec3(0);
+  v /= m;
+  return v / glm::length(v);
+}
+
+// The numbers of an OBJ's 'v' and 'vn' statements, in file order, as strtod reads them
+// (correctly rounded, subnormals kept; tinyobjloader's own number parser is neither).
+struct ObjNumbers {
+  std::vector<glm::dvec3> v, vn;
+};
+
 // Checks the OBJ line by line before tinyobjloader parses it: tinyobjloader accepts
-// malformed numbers and dangling indices quietly.
-void validate_obj(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError(path + ": cannot open mesh");
+// malformed numbers and dangling indices quietly. Vertex positions and normals must be
+// within the input limit (fmpp::isect::kMaxCoordinate); texture coordinates (1 to 3
+// numbers) are checked for syntax only, as the renderer does not use them.
+ObjNumbers validate_obj(const std::string& path) {
+  ObjNumbers out;
+  std::ifstream in;
+  const std::string err = fmpp::isect::open_input(in, path, "mesh");
+  if (!err.empty()) throw SceneError(err);
   std::string line;
   size_t lineno = 0, nv = 0, nvn = 0, nvt = 0;
   auto fail = [&](const std::string& what) { throw SceneError(path + ":" + std::to_string(lineno) + ": " + what); };
@@ -71,15 +106,25 @@ void validate_obj(const std::string& path) {
     std::string tag;
     if (!(ss >> tag)) continue;
     if (tag == "v" || tag == "vn" || tag == "vt") {
-      const int need = tag == "vt" ? 2 : 3;
+      const int need = tag == "vt" ? 1 : 3;
       std::string tok;
       int count = 0;
       double x = 0;
+      glm::dvec3 p(0);
       while (ss >> tok) {
         if (!fmpp::isect::parse_finite(tok, &x)) fail("'" + tok + "' is not a finite number");
+        if (count < 3) p[count] = x;
         ++count;
       }
-      if (count < need) fail(tag + " needs " + std::to_string(need) + " numbers, found " + std::to_string(count));
+      if (count < need) {
+        fail(tag + " needs " + (tag == "vt" ? std::string("1 to 3") : std::to_string(need)) + " numbers, found " +
+             std::to_string(count));
+      }
+      if (tag != "vt") {
+        const std::string why = fmpp::isect::check_point(p);
+        if (!why.empty()) fail(std::string(tag == "v" ? "vertex " : "normal ") + why);
+        (tag == "v" ? out.v : out.vn).push_back(p);
+      }
       (tag == "v" ? nv : tag == "vn" ? nvn : nvt)++;
     } else if (tag == "f") {
       std::string tok;
@@ -114,6 +159,8 @@ void validate_obj(const std::string& path) {
       fail("unknown statement '" + tag + "'");
     }
   }
+  if (in.bad()) throw SceneError(path + ":" + std::to_string(lineno + 1) + ": read error");
+  return out;
 }
 
 void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
@@ -122,6 +169,7 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
   reject_unknown(m, {"file", "material", "groups"}, file, where);
   const json& f = require(m, "file", file, where);
   if (!f.is_string()) field_error(file, where + ".file", "expected a string");
+  if (f.get<std::string>().empty()) field_error(file, where + ".file", "empty path");
   const std::string path = (dir / f.get<std::string>()).string();
   auto material = [&](const json& name, const std::string& field) {
     if (!name.is_string()) field_error(file, field, "expected a material name");
@@ -135,13 +183,19 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
     if (!m["groups"].is_object()) field_error(file, where + ".groups", "expected an object of group: material");
     for (const auto& [g, name] : m["groups"].items()) group_mat[g] = material(name, where + ".groups." + g);
   }
-  validate_obj(path);
+  const ObjNumbers num = validate_obj(path);
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = true;
   cfg.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, cfg)) throw SceneError(path + ": " + reader.Error());
   const auto& at = reader.GetAttrib();
+  // Faces come from tinyobjloader (triangulation, groups), numbers from validate_obj.
+  if (at.vertices.size() != 3 * num.v.size() || at.normals.size() != 3 * num.vn.size()) {
+    throw SceneError(path + ": tinyobjloader read " + std::to_string(at.vertices.size() / 3) + " vertices and " +
+                     std::to_string(at.normals.size() / 3) + " normals, the file has " + std::to_string(num.v.size()) +
+                     " and " + std::to_string(num.vn.size()));
+  }
   std::map<std::string, bool> used;
   for (const auto& shape : reader.GetShapes()) {
     int mat = def;
@@ -157,22 +211,18 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
       bool has_n = true;
       for (int c = 0; c < 3; ++c) {
         const auto& ix = idx[k + c];
-        t.p[c] = glm::dvec3(at.vertices[3 * ix.vertex_index], at.vertices[3 * ix.vertex_index + 1],
-                            at.vertices[3 * ix.vertex_index + 2]);
+        t.p[c] = num.v[ix.vertex_index];
         if (ix.normal_index >= 0) {
-          nrm[c] = glm::dvec3(at.normals[3 * ix.normal_index], at.normals[3 * ix.normal_index + 1],
-                              at.normals[3 * ix.normal_index + 2]);
+          nrm[c] = num.vn[ix.normal_index];
         } else {
           has_n = false;
         }
       }
-      if (!has_n) {
-        glm::dvec3 fn = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
-        const double len = glm::length(fn);
-        fn = len > 0 ? fn / len : glm::dvec3(0, 0, 1);  // degenerate faces are kept; nothing can hit them
-        nrm = {fn, fn, fn};
-      } else {
-        for (auto& n : nrm) n = glm::length(n) > 0 ? glm::normalize(n) : n;
+      glm::dvec3 fn = unit(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+      if (fn == glm::dvec3(0)) fn = glm::dvec3(0, 0, 1);  // degenerate faces are kept; nothing can hit them
+      for (auto& n : nrm) {
+        n = has_n ? unit(n) : fn;
+        if (n == glm::dvec3(0)) n = fn;  // a zero normal in the file
       }
       s.triangles.push_back(t);
       s.material_of.push_back(mat);
@@ -187,23 +237,33 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
 }  // namespace
 
 Scene load_scene(const std::string& json_path) {
-  std::ifstream in(json_path);
-  if (!in) throw SceneError(json_path + ": cannot open scene");
+  std::ifstream in;
+  const std::string err = fmpp::isect::open_input(in, json_path, "scene");
+  if (!err.empty()) throw SceneError(err);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw SceneError(json_path + ": read error");
   json j;
+  PositionedDomParser dom(j);
   try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
+    json::sax_parse(text, &dom);
+  } catch (const json::exception& e) {
+    // Any error of the parser: syntax, or a number beyond double (out_of_range.406).
     size_t line = 1;
-    for (size_t k = 0; k < e.byte && k < text.size(); ++k) line += text[k] == '\n';
-    throw SceneError(json_path + ":" + std::to_string(line) + ": JSON syntax error: " + e.what());
+    for (size_t k = 0; k < dom.error_byte && k < text.size(); ++k) line += text[k] == '\n';
+    const char* what = dynamic_cast<const json::parse_error*>(&e)     ? "JSON syntax error"
+                       : dynamic_cast<const json::out_of_range*>(&e) ? "JSON number out of range"
+                                                                      : "JSON error";
+    throw SceneError(json_path + ":" + std::to_string(line) + ": " + what + ": " + e.what());
   }
   const std::string& f = json_path;
   if (!j.is_object()) throw SceneError(f + ": the scene must be a JSON object");
   reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
   Scene s;
   s.path = json_path;
-  if (j.contains("description") && j["description"].is_string()) s.description = j["description"];
+  if (j.contains("description")) {
+    if (!j["description"].is_string()) field_error(f, "description", "expected a string");
+    s.description = j["description"];
+  }
 
   const json& cam = require(j, "camera", f, "");
   reject_unknown(cam, {"eye", "look_at", "up", "fov_y_deg"}, f, "camera");
@@ -217,7 +277,15 @@ Scene load_scene(const std::string& json_path) {
   }
   if (j.contains("background")) s.background = vec3(j["background"], f, "background", 0, 100);
   if (j.contains("ambient")) s.ambient = vec3(j["ambient"], f, "ambient", 0, 100);
-  if (j.contains("max_depth")) s.max_depth = static_cast<int>(number(j["max_depth"], f, "max_depth", 1, 16));
+  if (j.contains("max_depth")) {
+    const double d = number(j["max_depth"], f, "max_depth", 1, 16);
+    if (d != std::floor(d)) {
+      std::ostringstream o;
+      o << "value " << d << " must be an integer";
+      field_error(f, "max_depth", o.str());
+    }
+    s.max_depth = static_cast<int>(d);
+  }
 
   const json& lights = require(j, "lights", f, "");
   if (!lights.is_array() || lights.empty()) field_error(f, "lights", "expected a non-empty array");

@@ -9,9 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <map>
+#include <tuple>
 
 #include "sw/fmpp/backend.h"
 #include "sw/fmpp/device.h"
@@ -24,6 +26,30 @@
 using namespace fmpp;
 using namespace fmpp::isect;
 
+namespace {
+
+// Words per block of the arbitrary-origin kernel (General::kWords in kernels.cpp; the
+// ray tracer's plan uses the same figure).
+constexpr unsigned kGeneralWords = 24;
+
+// Rays of `rays` (from a file: tmin 0, no excluded triangle) that intersect_fmpp sends
+// through the arbitrary-origin kernel, by its rule (kernels.cpp): in the ray-parallel
+// mapping only; every ray with --origins general; with --origins auto, when there is
+// more than one origin, the rays of origins shared by fewer than max(16, blocks / 8).
+size_t general_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks) {
+  if (opt.mapping != Mapping::kRay || opt.origins == Origins::kGroup) return 0;
+  if (opt.origins == Origins::kGeneral) return rays.size();
+  std::map<std::tuple<double, double, double>, size_t> groups;
+  for (const Ray& r : rays) ++groups[{r.o.x, r.o.y, r.o.z}];
+  if (groups.size() < 2) return 0;
+  const size_t min_group = std::max<size_t>(16, blocks / 8);
+  size_t n = 0;
+  for (const auto& [origin, count] : groups) n += count < min_group ? count : 0;
+  return n;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
   std::string tri_file, ray_file, out_file = "-", report_file, backend = "cmodel", mapping = "ray", mul = "const";
@@ -31,32 +57,54 @@ int main(int argc, char** argv) {
   std::string config, origins = "auto";
   int cond_bits = -1;
   unsigned qbits = 20;
-  app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line")->required();
-  app.add_option("--rays", ray_file, "ray file: ox oy oz dx dy dz per line")->required();
-  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep | systemc");
-  app.add_option("--mapping", mapping, "ray | object")->check(CLI::IsMember({"ray", "object"}));
+  app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
+      ->required();
+  app.add_option("--rays", ray_file,
+                 "ray file: ox oy oz dx dy dz per line, |o| <= 1e100, largest |d| in [1e-100, 1e100]")
+      ->required();
+  app.add_option("--backend", backend, "reference (double precision on the host) or the machine: " +
+                                           join(backend_names(), " | "))
+      ->capture_default_str()
+      ->check(CLI::IsMember(tool_backends()));
+  app.add_option("--mapping", mapping, "ray | object")->capture_default_str()->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
+      ->capture_default_str()
       ->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--bits", bits, "multiplier bits n")->check(CLI::Range(2u, 32u));
-  app.add_option("--blocks", blocks, "FMPP blocks")->check(CLI::Range(1u, map::kMaxBlocks));
-  app.add_option("--words", words, "words per block (default: what the mapping needs)")->check(CLI::Range(2u, 64u));
+  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(CLI::Range(2u, 32u));
+  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(CLI::Range(1u, map::kMaxBlocks));
+  app.add_option("--words", words,
+                 "words per block, even (default: what the mapping and multiply need, 24 when rays take the "
+                 "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
+      ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
-  app.add_option("--cond-bits", cond_bits, "triangles with condition number above 2^this go to the host");
+  app.add_option("--cond-bits", cond_bits,
+                 "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 60));
   app.add_option("--origins", origins,
                  "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
                  "general formulation for the rest) | group | general")
+      ->capture_default_str()
       ->check(CLI::IsMember({"auto", "group", "general"}));
   bool watertight = false;
   app.add_flag("--watertight", watertight, "exact-integer edge functions for rays sharing an origin (no cracks)");
-  app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")->check(CLI::Range(4u, 28u));
-  app.add_option("--out", out_file, "hits file ('-' for stdout)");
-  app.add_option("--report", report_file, "JSON summary");
+  app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
+      ->capture_default_str()
+      ->check(CLI::Range(4u, 28u));
+  app.add_option("--out", out_file, "hits file ('-' for stdout)")->capture_default_str();
+  app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
   BackendOptions bo;
   add_trace_options(app, bo);
   CLI11_PARSE(app, argc, argv);
 
   try {
-    check_trace_backend(backend, bo);
+    check_trace_options(backend, bo);
+    if (out_file == "-" && report_file == "-") {
+      throw std::invalid_argument("--out and --report both write to stdout ('-'): give one of them a file");
+    }
+    // Every output is checked before the work, not after it.
+    check_writable("--out", out_file);
+    if (!report_file.empty()) check_writable("--report", report_file);
     const std::vector<Triangle> tris = read_triangles(tri_file);
     const std::vector<Ray> rays = read_rays(ray_file);
     nlohmann::json rep;
@@ -76,8 +124,24 @@ int main(int argc, char** argv) {
       opt.origins = parse_origins(origins);
       opt.qbits = qbits;
       opt.watertight = watertight;
-      Config cfg{blocks, words ? words : ((words_needed(opt) + 1) & ~1u)};
+      const size_t general = general_rays(rays, opt, config.empty() ? blocks : named_config(config).blocks);
+      const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? kGeneralWords : 0u);
+      Config cfg{blocks, words ? words : need};
       if (!config.empty()) cfg = named_config(config);
+      if (general && cfg.words < kGeneralWords) {
+        const std::string given = config.empty() ? "--words " + std::to_string(cfg.words)
+                                                 : "--config " + config + " (" + std::to_string(cfg.words) + " words)";
+        const std::string why = opt.origins == Origins::kGeneral
+                                    ? "with --origins general every ray takes the arbitrary-origin kernel"
+                                    : std::to_string(general) + " of the " + std::to_string(rays.size()) +
+                                          " rays have origins shared by too few rays and take the arbitrary-origin "
+                                          "kernel (--origins auto)";
+        const std::string k = std::to_string(kGeneralWords);
+        const std::string fix = config.empty() ? "give --words " + k + " or more (or leave --words out)"
+                                               : "use a --config with " + k + " words or more, or --blocks and --words";
+        throw std::invalid_argument(given + " is too few: " + why + ", which needs " + k + " words per block; " + fix +
+                                    ", or --origins group");
+      }
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       KernelStats st;
@@ -95,11 +159,7 @@ int main(int argc, char** argv) {
     for (const Hit& h : hits) nhit += h.hit();
     rep["hits"] = nhit;
     write_hits(out_file, hits);
-    if (!report_file.empty()) {
-      std::ofstream f(report_file);
-      if (!f) throw std::runtime_error(report_file + ": cannot write");
-      f << rep.dump(2) << "\n";
-    }
+    if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-intersect: %s\n", e.what());

@@ -13,7 +13,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 
 #include "sw/fmpp/backend.h"
 #include "sw/isect/stats_json.h"
@@ -53,27 +52,38 @@ int main(int argc, char** argv) {
   std::string scene_file = "scenes/cornell.json", backend = "rtl", mapping = "ray", mul = "const", config, out = "render.png",
               report_file;
   int width = 128, height = 128, depth = -1;
-  unsigned blocks = 4096, words = 32, bits = 24;  // defaults shown in --help; the plan decides unless given
+  unsigned blocks = 4096, words = 32, bits = 24;  // the plan decides unless given
   double clock_mhz = 50;
   bool compare = false, no_cull = false, quiet = false, watertight = false;
-  app.add_option("--scene", scene_file, "scene JSON file");
-  app.add_option("--backend", backend, "reference | cmodel | rtl | lockstep | systemc");
-  app.add_option("--width", width, "image width")->check(CLI::Range(1, 16384));
-  app.add_option("--height", height, "image height")->check(CLI::Range(1, 16384));
+  app.add_option("--scene", scene_file, "scene JSON file")->capture_default_str();
+  app.add_option("--backend", backend,
+                 "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
+      ->capture_default_str()
+      ->check(CLI::IsMember(tool_backends()));
+  app.add_option("--width", width, "image width")->capture_default_str()->check(CLI::Range(1, 16384));
+  app.add_option("--height", height, "image height")->capture_default_str()->check(CLI::Range(1, 16384));
   app.add_option("--mapping", mapping, "ray | object (secondary rays always ray-parallel)")
+      ->capture_default_str()
       ->check(CLI::IsMember({"ray", "object"}));
-  app.add_option("--mul", mul, "const | generic")->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--blocks", blocks, "FMPP blocks")->check(CLI::Range(1u, map::kMaxBlocks));
-  app.add_option("--words", words, "FMPP words per block")->check(CLI::Range(2u, 64u));
+  app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
+  app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
+      ->check(CLI::Range(1u, map::kMaxBlocks));
+  app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
+      ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
   app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(CLI::Range(4u, 32u));
   double target = 0.002;
-  app.add_option("--error-target", target, "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's pixels allowed off the reference")
-      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--error-target", target,
+                 "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's "
+                 "pixels allowed off the reference")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 1.0));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(CLI::Range(1, 16));
-  app.add_option("--out", out, "output PNG");
-  app.add_option("--report", report_file, "JSON report");
-  app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")->check(CLI::Range(1.0, 1e5));
+  app.add_option("--out", out, "output PNG")->capture_default_str();
+  app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
+  app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
+      ->capture_default_str()
+      ->check(finite_range(1.0, 1e5));
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
   app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
@@ -83,7 +93,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    check_trace_backend(backend, bo);
+    check_trace_options(backend, bo);
+    // Every output is checked before the render, not after it.
+    if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
+    check_writable("--out", out, false);
+    if (!report_file.empty()) check_writable("--report", report_file);
     const rt::Scene scene = rt::load_scene(scene_file);
     nlohmann::json rep;
     rep["scene"] = scene_file;
@@ -160,11 +174,7 @@ int main(int argc, char** argv) {
       const rt::ImageDiff d = rt::compare(*img, want);
       rep["reference_diff"] = {{"pixels", d.pixels}, {"pixels_over_8_levels", d.pixels_over}, {"max_delta", d.max_delta}};
     }
-    if (!report_file.empty()) {
-      std::ofstream f(report_file);
-      if (!f) throw std::runtime_error(report_file + ": cannot write");
-      f << rep.dump(2) << "\n";
-    }
+    if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     if (!quiet) std::fprintf(stderr, "wrote %s (%dx%d, %s, %.1f s)\n", out.c_str(), width, height, backend.c_str(),
                              rep["wall_seconds"].get<double>());
     return 0;

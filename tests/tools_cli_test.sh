@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Command-line checks of fmpp-render, fmpp-sim and fmpp-report: option values that
+# would be coerced (NaN, negative unsigned numbers, odd word counts, trace windows) are
+# refused with a message naming the option, outputs are checked before the work, '-'
+# is stdout for --report, and --help shows the defaults. No long runs.
+set -euo pipefail
+render=$(readlink -f "${1:?usage: tools_cli_test.sh fmpp-render fmpp-sim fmpp-report source-dir}")
+sim=$(readlink -f "${2:?}")
+report=$(readlink -f "${3:?}")
+src=$(readlink -f "${4:?}")
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+scene="$src/scenes/one_triangle.json"
+cd "$dir"  # a check that regressed would write render.png here, not in the caller's directory
+fails() {  # fails <expected message> <command...>: the command must fail and print the message
+  local want=$1
+  shift
+  if "$@" > "$dir/out.txt" 2> "$dir/err.txt"; then echo "accepted: $*" >&2; exit 1; fi
+  grep -q -- "$want" "$dir/err.txt" || { echo "no '$want' from: $*" >&2; cat "$dir/err.txt" >&2; exit 1; }
+}
+
+# ---------------------------------------------------------------- fmpp-render
+fails "--error-target: value nan is not a finite number" "$render" --scene "$scene" --backend cmodel --error-target nan
+fails "--clock-mhz: value nan is not a finite number" "$render" --scene "$scene" --backend cmodel --clock-mhz nan
+fails "--clock-mhz: value inf is not a finite number" "$render" --scene "$scene" --backend cmodel --clock-mhz inf
+fails "--words: value 3 is not an even number" "$render" --scene "$scene" --backend cmodel --words 3
+fails "--backend: foo not in {reference,cmodel,rtl" "$render" --scene "$scene" --backend foo
+fails "--trace-start requires --trace" "$render" --scene "$scene" --backend cmodel --trace-start 10 --trace-end 5
+fails "trace window: first cycle 10 is after the last cycle 5" \
+  "$render" --scene "$scene" --backend cmodel --trace "$dir/w.fst" --trace-start 10 --trace-end 5
+fails "--out $dir/no/such/x.png: cannot write" "$render" --scene "$scene" --backend reference --out "$dir/no/such/x.png"
+fails "--report $dir/no/such/r.json: cannot write" \
+  "$render" --scene "$scene" --backend reference --out "$dir/x.png" --report "$dir/no/such/r.json"
+test ! -e "$dir/x.png"  # refused before the render
+fails "--out -: the PNG needs a file name" "$render" --scene "$scene" --backend reference --out -
+fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backend reference --out "$dir/x.png"
+"$render" --scene "$scene" --backend reference --width 4 --height 4 --out "$dir/x.png" --report - --quiet > "$dir/r.json"
+grep -q '"backend": "reference"' "$dir/r.json"
+"$render" --help > "$dir/help.txt"
+grep -q -- "--scene TEXT=scenes/cornell.json" "$dir/help.txt"
+grep -q -- "--backend TEXT:{reference,cmodel,rtl,lockstep,systemc}=rtl" "$dir/help.txt"
+
+# ------------------------------------------------------------------- fmpp-sim
+fails "--seed: value -1 is negative" "$sim" --config tiny --ops 10 --seed -1
+fails "--inject-block: value -2 is negative" "$sim" --config tiny --ops 10 --inject-at 5 --inject-block -2
+fails "--trace-start requires --trace" "$sim" --config tiny --ops 10 --trace-start 10 --trace-end 5
+fails "trace window: first cycle 10 is after the last cycle 5" \
+  "$sim" --config tiny --ops 10 --trace "$dir/s.fst" --trace-start 10 --trace-end 5
+
+# ---------------------------------------------------------------- fmpp-report
+fails "unknown subcommand 'foo' (one of: area, paper, precision)" "$report" foo
+fails "A subcommand is required" "$report"
+fails "--out -: the report needs a file name" "$report" precision --quick --out -
+fails "--out $dir: is a directory" "$report" precision --quick --out "$dir"
+test ! -e "$dir/precision-quick"  # a refused run creates nothing
+fails "--size excludes --quick" "$report" precision --quick --size 16
+"$report" area --synth-dir "$src/docs/synth" --out - > "$dir/area.md"
+grep -q "^# FMPP area" "$dir/area.md"
+"$report" paper --help > "$dir/help.txt"
+grep -q -- "--out TEXT=docs/paper-reproduction.md" "$dir/help.txt"
+grep -q -- "--img-dir TEXT=docs/img" "$dir/help.txt"
+"$report" precision --help > "$dir/help.txt"
+grep -q -- "--out TEXT=docs/precision.md" "$dir/help.txt"
+# A quick run never writes the committed report: without --out it writes
+# precision-quick.md and precision-quick/ in the current directory.
+mkdir -p "$dir/run/docs"
+(cd "$dir/run" && "$report" precision --quick --no-plots 2> /dev/null)
+test -s "$dir/run/precision-quick.md"
+test -s "$dir/run/precision-quick/precision_data.json"
+test -z "$(ls -A "$dir/run/docs")"
+echo "tools CLI: OK"
