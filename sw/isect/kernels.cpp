@@ -876,11 +876,8 @@ class General {
                             kIdx = 17, kCnt = 18, kOne = 19, kZero = 20, kUnit = 21, kQmin = 22, kExcl = 23;
   // Flags (kSel, kHit, kWin, kTmp from the file scope; 4 = det < 0).
   static constexpr unsigned kNeg = 4;
+  static_assert(kExcl < kGeneralWords, "the kernel's words fit the advertised count");
 
- public:
-  static constexpr unsigned kWords = 24;
-
- private:
   static double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
   uint64_t push(const Program& p) {
@@ -976,6 +973,36 @@ unsigned words_needed(const KernelOptions& opt) {
   return opt.mul == MulMode::kGeneric ? kOV + 3 : kOV;
 }
 
+RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks) {
+  RayRoutes rr;
+  // Group rays by origin: a group shares one set of inverse matrices (the paper's method).
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    // Rays with tmin or an excluded triangle take the general (ray-parallel) kernel in
+    // either mapping: the object-parallel maximum search has no per-ray exclusion.
+    const bool special = r.tmin > 0 || r.exclude >= 0;
+    if (special || (opt.mapping == Mapping::kRay && opt.origins == Origins::kGeneral)) {
+      rr.general.push_back(i);
+    } else {
+      rr.groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
+    }
+  }
+  if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
+    // Small groups would leave most blocks idle: send them through the general kernel.
+    const size_t min_group = std::max<size_t>(16, blocks / 8);
+    const bool several = rr.groups.size() > 1 || !rr.general.empty();
+    for (auto it = rr.groups.begin(); it != rr.groups.end();) {
+      if (it->second.size() < min_group && several) {
+        rr.general.insert(rr.general.end(), it->second.begin(), it->second.end());
+        it = rr.groups.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+  return rr;
+}
+
 std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& tris,
                                 const KernelOptions& opt, KernelStats* stats) {
   opt.validate(dev.config());
@@ -989,48 +1016,25 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   // then never see a direction's magnitude, only its shape.
   std::vector<Ray> rays(in_rays);
   std::vector<int> t_exp(rays.size(), 0);  // t = t' 2^t_exp
-  // Group rays by origin: a group shares one set of inverse matrices (the paper's method).
-  std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
-  std::vector<size_t> general;
   for (size_t i = 0; i < rays.size(); ++i) {
     Ray& r = rays[i];
     t_exp[i] = -std::ilogb(max_component(r.d));
     r.d = glm::dvec3(std::ldexp(r.d.x, t_exp[i]), std::ldexp(r.d.y, t_exp[i]), std::ldexp(r.d.z, t_exp[i]));
     r.tmin = std::ldexp(r.tmin, -t_exp[i]);
     r.tmax = std::ldexp(r.tmax, -t_exp[i]);
-    // Rays with tmin or an excluded triangle take the general (ray-parallel) kernel in
-    // either mapping: the object-parallel maximum search has no per-ray exclusion.
-    const bool special = r.tmin > 0 || r.exclude >= 0;
-    if (special || (opt.mapping == Mapping::kRay && opt.origins == Origins::kGeneral)) {
-      general.push_back(i);
-    } else {
-      groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
-    }
   }
   // No triangle: every ray misses. (The scales below are derived from the scene's
   // extent, which an empty scene does not have.)
   if (tris.empty()) return out;
-  if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
-    // Small groups would leave most blocks idle: send them through the general kernel.
-    const size_t min_group = std::max<size_t>(16, dev.config().blocks / 8);
-    const bool several = groups.size() > 1 || !general.empty();
-    for (auto it = groups.begin(); it != groups.end();) {
-      if (it->second.size() < min_group && several) {
-        general.insert(general.end(), it->second.begin(), it->second.end());
-        it = groups.erase(it);
-      } else {
-        ++it;
-      }
-    }
-  }
+  const auto [groups, general] = route_rays(rays, opt, dev.config().blocks);
   for (const auto& [origin, idx] : groups) {
     ++st.groups;
     Group g(dev, opt, tris, glm::dvec3(std::get<0>(origin), std::get<1>(origin), std::get<2>(origin)), &st);
     g.run(rays, idx, out);
   }
   if (!general.empty()) {
-    if (dev.config().words < General::kWords) {
-      throw std::invalid_argument("rays with their own origins need " + std::to_string(General::kWords) +
+    if (dev.config().words < kGeneralWords) {
+      throw std::invalid_argument("rays with their own origins need " + std::to_string(kGeneralWords) +
                                   " words per block; the FMPP has " + std::to_string(dev.config().words));
     }
     General g(dev, opt, tris, &st);

@@ -21,7 +21,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "sw/fmpp/device.h"
@@ -101,6 +103,20 @@ struct KernelStats {
 
 // Words each mapping needs per block.
 unsigned words_needed(const KernelOptions& opt);
+
+// Words per block the arbitrary-origin kernel needs (rays with their own origins).
+inline constexpr unsigned kGeneralWords = 24;
+
+// Which kernel takes each ray: groups of rays sharing an origin (the paper's inverse
+// matrices, by origin), and the rest (the arbitrary-origin kernel, ray-parallel):
+// rays with tmin > 0 or an excluded triangle in either mapping; every ray with
+// --origins general in the ray-parallel mapping; with auto, when there is more than one
+// origin, the rays of origins shared by fewer than max(16, blocks / 8) rays.
+struct RayRoutes {
+  std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
+  std::vector<size_t> general;
+};
+RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks);
 
 // Nearest hit of each ray, computed on the FMPP behind `dev`.
 std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,

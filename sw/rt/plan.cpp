@@ -54,13 +54,13 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
       secondary = secondary || scene.materials[m].reflectivity > 0 || scene.materials[m].transparency > 0;
     }
   }
-  const unsigned need = secondary ? 24 : (fmpp::isect::words_needed(req.base) + 1) & ~1u;
+  const unsigned need = secondary ? fmpp::isect::kGeneralWords : (fmpp::isect::words_needed(req.base) + 1) & ~1u;
   unsigned words = req.words.value_or(need);
   if (req.words) {
     plan.why_words = "set by the user";
   } else {
     plan.why_words = secondary ? "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin "
-                                 "kernel, which needs 24 words per block"
+                                 "kernel, which needs " + std::to_string(fmpp::isect::kGeneralWords) + " words per block"
                                : "all rays share an origin (eye or light): the kernel needs " + std::to_string(need) +
                                      " words per block";
   }

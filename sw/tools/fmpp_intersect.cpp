@@ -12,8 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <map>
-#include <tuple>
 
 #include "sw/fmpp/backend.h"
 #include "sw/fmpp/device.h"
@@ -25,30 +23,6 @@
 
 using namespace fmpp;
 using namespace fmpp::isect;
-
-namespace {
-
-// Words per block of the arbitrary-origin kernel (General::kWords in kernels.cpp; the
-// ray tracer's plan uses the same figure).
-constexpr unsigned kGeneralWords = 24;
-
-// Rays of `rays` (from a file: tmin 0, no excluded triangle) that intersect_fmpp sends
-// through the arbitrary-origin kernel, by its rule (kernels.cpp): in the ray-parallel
-// mapping only; every ray with --origins general; with --origins auto, when there is
-// more than one origin, the rays of origins shared by fewer than max(16, blocks / 8).
-size_t general_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks) {
-  if (opt.mapping != Mapping::kRay || opt.origins == Origins::kGroup) return 0;
-  if (opt.origins == Origins::kGeneral) return rays.size();
-  std::map<std::tuple<double, double, double>, size_t> groups;
-  for (const Ray& r : rays) ++groups[{r.o.x, r.o.y, r.o.z}];
-  if (groups.size() < 2) return 0;
-  const size_t min_group = std::max<size_t>(16, blocks / 8);
-  size_t n = 0;
-  for (const auto& [origin, count] : groups) n += count < min_group ? count : 0;
-  return n;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
@@ -124,7 +98,7 @@ int main(int argc, char** argv) {
       opt.origins = parse_origins(origins);
       opt.qbits = qbits;
       opt.watertight = watertight;
-      const size_t general = general_rays(rays, opt, config.empty() ? blocks : named_config(config).blocks);
+      const size_t general = route_rays(rays, opt, config.empty() ? blocks : named_config(config).blocks).general.size();
       const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? kGeneralWords : 0u);
       Config cfg{blocks, words ? words : need};
       if (!config.empty()) cfg = named_config(config);
