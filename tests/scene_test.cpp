@@ -83,28 +83,29 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
     "materials": {"m": {}}, "meshes": [{"file": "ok.obj", "material": "m"}]})");
   EXPECT_EQ(error_of("missing.json"), dir() + "/missing.json: field 'lights': missing");
 
-  write("badnum.obj", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n");
-  write("badnum.json", scene_json(R"({"file": "badnum.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("badnum.json"), dir() + "/badnum.obj:2: 'zero' is not a finite number");
-
-  write("badidx.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n");
-  write("badidx.json", scene_json(R"({"file": "badidx.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("badidx.json"), dir() + "/badidx.obj:4: face index 4 refers to a missing vertex");
-
-  write("badtag.obj", "v 0 0 -3\nvx 1 0 -3\n");
-  write("badtag.json", scene_json(R"({"file": "badtag.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("badtag.json"), dir() + "/badtag.obj:2: unknown statement 'vx'");
-
-  write("bignum.obj", "v 0 0 -3\nv 1e160 0 -3\nv 0 1 -3\nf 1 2 3\n");
-  write("bignum.json", scene_json(R"({"file": "bignum.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("bignum.json"), dir() + "/bignum.obj:2: vertex is too far out: |1e+160| exceeds the limit 1e+100");
-  write("huge.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1e300 -3\nf 1 2 3\n");
-  write("huge.json", scene_json(R"({"file": "huge.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("huge.json"), dir() + "/huge.obj:3: vertex is too far out: |1e+300| exceeds the limit 1e+100");
-  write("bignormal.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 -1e101\nf 1//1 2//1 3//1\n");
-  write("bignormal.json", scene_json(R"({"file": "bignormal.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("bignormal.json"),
-            dir() + "/bignormal.obj:4: normal is too far out: |-1e+101| exceeds the limit 1e+100");
+  // OBJ files: each error names the file and the line.
+  struct BadObj {
+    const char* name;
+    const char* text;
+    const char* error;  // after "<dir>/<name>.obj:"
+  };
+  const BadObj bad_objs[] = {
+      {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n", "2: 'zero' is not a finite number"},
+      {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n", "4: face index 4 refers to a missing vertex"},
+      {"badtag", "v 0 0 -3\nvx 1 0 -3\n", "2: unknown statement 'vx'"},
+      {"bignum", "v 0 0 -3\nv 1e160 0 -3\nv 0 1 -3\nf 1 2 3\n",
+       "2: vertex is too far out: |1e+160| exceeds the limit 1e+100"},
+      {"huge", "v 0 0 -3\nv 1 0 -3\nv 0 1e300 -3\nf 1 2 3\n",
+       "3: vertex is too far out: |1e+300| exceeds the limit 1e+100"},
+      {"bignormal", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 -1e101\nf 1//1 2//1 3//1\n",
+       "4: normal is too far out: |-1e+101| exceeds the limit 1e+100"},
+  };
+  for (const BadObj& b : bad_objs) {
+    const std::string obj = std::string(b.name) + ".obj", json = std::string(b.name) + ".json";
+    write(obj, b.text);
+    write(json, scene_json(R"({"file": ")" + obj + R"(", "material": "m"})"));
+    EXPECT_EQ(error_of(json), dir() + "/" + obj + ":" + b.error);
+  }
 
   write("dirmesh.json", scene_json(R"({"file": ".", "material": "m"})"));
   EXPECT_EQ(error_of("dirmesh.json"), dir() + "/.: cannot read mesh: is a directory");
