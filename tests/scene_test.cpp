@@ -158,6 +158,16 @@ TEST(Scene, NumberOverflowNamesFileAndLine) {
                     "parsing '1e999'");
 }
 
+TEST(Scene, DuplicateKeysAreErrors) {
+  write("ok.obj", kObj);
+  write("dup.json", R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "fov_y_deg": 50, "fov_y_deg": 60},
+    "lights": [{"position": [0,2,0]}], "materials": {"m": {}}, "meshes": [{"file": "ok.obj", "material": "m"}]})");
+  EXPECT_EQ(error_of("dup.json"), dir() + "/dup.json: key 'fov_y_deg' appears twice in one object");
+  // The same key in two different objects is fine.
+  write("twice.json", scene_json(R"({"file": "ok.obj", "material": "m"}, {"file": "ok.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("twice.json"), "no error");
+}
+
 TEST(Scene, ObjAcceptsSubnormalsAndShortTextureCoordinates) {
   // 1e-310 is a finite (subnormal) number: read as its value. A vt may have 1 to 3
   // numbers (textures are not used).

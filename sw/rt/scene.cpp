@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace rt {
@@ -61,13 +62,30 @@ void reject_unknown(const json& j, std::initializer_list<const char*> known, con
 // json::parse, keeping the byte offset of an error: nlohmann reports a number overflow
 // ("1e999", out_of_range.406) through the same SAX call as a syntax error, but only a
 // parse_error carries the position. (json_sax_dom_parser is what json::parse builds with.)
+// It also notes a key that appears twice in one object, which json::parse would let the
+// last one win silently.
 struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
-  using nlohmann::detail::json_sax_dom_parser<json>::json_sax_dom_parser;
+  using Base = nlohmann::detail::json_sax_dom_parser<json>;
+  using Base::json_sax_dom_parser;
   size_t error_byte = 0;
+  std::vector<std::set<std::string>> keys;  // of each open object
+  std::string duplicate;                    // the first repeated key
   template <class Exception>
   bool parse_error(size_t byte, const std::string& token, const Exception& ex) {
     error_byte = byte;
-    return nlohmann::detail::json_sax_dom_parser<json>::parse_error(byte, token, ex);
+    return Base::parse_error(byte, token, ex);
+  }
+  bool start_object(size_t len) {
+    keys.emplace_back();
+    return Base::start_object(len);
+  }
+  bool key(std::string& k) {
+    if (!keys.back().insert(k).second && duplicate.empty()) duplicate = k;
+    return Base::key(k);
+  }
+  bool end_object() {
+    keys.pop_back();
+    return Base::end_object();
   }
 };
 
@@ -255,6 +273,7 @@ Scene load_scene(const std::string& json_path) {
                                                                       : "JSON error";
     throw SceneError(json_path + ":" + std::to_string(line) + ": " + what + ": " + e.what());
   }
+  if (!dom.duplicate.empty()) throw SceneError(json_path + ": key '" + dom.duplicate + "' appears twice in one object");
   const std::string& f = json_path;
   if (!j.is_object()) throw SceneError(f + ": the scene must be a JSON object");
   reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
