@@ -251,10 +251,10 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
 
 - **The paper's form needs n = 20 for the machine alone, n = 24 for images.** At
   n = 20 the raw machine gets every primary ray of every scene right and the fallback
-  sends at most 21 triangles to the host; the full renders reach 38.5 (spheres_10k) to
+  sends at most 21 triangles to the host; the full renders reach 35.2 (spheres_10k) to
   73 dB. At n = 24, the default, every render is within one level of the reference on
-  at most a few pixels (73 to 80 dB, or identical). Below 16 the raw error grows about
-  4x per 2 bits (spheres_10k: 0.5 % of the rays wrong at n = 16, 3.5 % at 12, 17 % at
+  at most a few pixels (77 to 83 dB, or identical). Below 16 the raw error grows about
+  4x per 2 bits (spheres_10k: 0.6 % of the rays wrong at n = 16, 3.5 % at 12, 17 % at
   10), as the error analysis predicts (cond 2^-n).
 - **The fallback keeps results right, but below n = 16 it is the host doing the work.**
   Its condition limit (2^(n-3): 32 at n = 8, 128 at 10) is below the condition number
@@ -278,7 +278,7 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   rays weigh the same in both. Use the constant multiply at every n.
 - **n = 32 buys depth, not hits.** The ray components have 28 bits, so past 28 the
   triangle test hardly improves (no primary ray changes between n = 24 and 32 here),
-  while the depth error falls about 3 times (median 1.3e-6 to 3.7e-7 on spheres_10k).
+  while the depth error falls about 3 times (median 1.3e-6 to 4.1e-7 on spheres_10k).
 - **The watertight form never leaks, but its grid is coarse.** On the closed sphere it
   lets no ray through at any n (0 of 23,456), where the paper's form loses 18 to 24 %
   of the rays aimed exactly at edges for n = 8..28 (the sign of a rounded T decides
