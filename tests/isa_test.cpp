@@ -44,8 +44,30 @@ TEST(Isa, EncodeRejectsOversizedFields) {
   Instr i = add(0, 0, 0);
   i.f = 8;
   EXPECT_THROW(i.encode(), std::invalid_argument);
-  i = add(64, 0, 0);
+  i = add(0, 0, 0);
+  i.d = 64;
   EXPECT_THROW(i.encode(), std::invalid_argument);
+}
+
+// The builders refuse an operand that does not fit its field, instead of cutting it
+// to a legal but different instruction (add(259, ..) once became ADD w3).
+TEST(Isa, BuildersRejectOversizedOperands) {
+  EXPECT_THROW(add(64, 0, 0), std::invalid_argument);
+  EXPECT_THROW(add(259, 1, 2), std::invalid_argument);
+  EXPECT_THROW(sub(0, 0, 0, 8), std::invalid_argument);
+  EXPECT_THROW(func(FuncFn::kAnd, 0, 64, 0), std::invalid_argument);
+  EXPECT_THROW(flagop(0, 0, 8, lut::kA), std::invalid_argument);
+  EXPECT_THROW(flagop(0, 0, 0, 0x10), std::invalid_argument);
+  EXPECT_THROW(ref(RefFn::kAnd, RefPart::kData, 0, 0, 0, 32), std::invalid_argument);
+  EXPECT_THROW(writes(0, 0, 256), std::invalid_argument);
+  EXPECT_THROW(bitcopy(0, 0, 0, 261), std::invalid_argument);
+  EXPECT_THROW(bitcopy(0, 32, 0, 0), std::invalid_argument);
+  EXPECT_THROW(lshift(0, 64), std::invalid_argument);
+  EXPECT_THROW(rshift(0, 0, 9), std::invalid_argument);
+  // The largest operands that fit are accepted.
+  EXPECT_NO_THROW(add(63, 63, 63, 7));
+  EXPECT_NO_THROW(bitcopy(63, 31, 63, 31, 7));
+  EXPECT_NO_THROW(flagop(7, 7, 7, 0xF, true));
 }
 
 TEST(Isa, LegalityRules) {

@@ -296,12 +296,16 @@ def gen_md(m):
     o.append("")
     o.append("- Three kinds of write are *pushes* into the instruction queue, in bus order: a write to "
              "`QUEUE`, a write to the WORDS window and a write to the FLAGS window. A push is "
-             "validated when the bus accepts it (errors answer at once); a valid push is accepted "
-             f"as soon as the queue has room ({m['params']['QueueDepth']['value']} entries), so a full "
-             "queue back-pressures the bus.")
+             "validated when the bus presents it: a valid push is accepted as soon as the queue has "
+             f"room ({m['params']['QueueDepth']['value']} entries), so a full queue back-pressures the "
+             "bus; an invalid one is answered SLVERR only once the queue has drained, like a register "
+             "access, so its error is ordered after every earlier push.")
     o.append("- The array pops and executes one entry per clock (then idles `CTRL.GAP` clocks).")
     o.append("- Every other access (every read, and writes to `CTRL` and `ERROR`) waits until the queue "
              "is empty, so a read always sees the effect of every earlier push.")
+    o.append("- Register bits outside the fields listed above are reserved: a write ignores them and a "
+             "read returns 0 in them (a write of 0x1FF to `CTRL` sets GAP to 0xFF). Instructions are "
+             "stricter: a reserved instruction field that is not 0 makes the push ILLEGAL.")
     o.append("- With the bus master keeping BREADY/RREADY high, a push costs one clock and a read costs "
              "the clocks needed to drain the queue plus one. The golden model counts clocks by the "
              "same rules, so `CYCLES` agrees between model and RTL.")

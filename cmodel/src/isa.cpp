@@ -140,6 +140,19 @@ std::string disasm(uint64_t raw) {
 namespace ins {
 namespace {
 uint8_t u8(unsigned v) { return static_cast<uint8_t>(v); }
+
+// A builder's operand must fit its field: a word index below kMaxWords, a flag below
+// kNumFlags, a bit position below 32. Cutting it to the field would make a legal but
+// different instruction, so it is refused.
+unsigned field(const char* op, const char* name, unsigned v, unsigned limit) {
+  if (v >= limit) {
+    throw std::invalid_argument(std::string("fmpp::ins::") + op + ": " + name + " = " + std::to_string(v) +
+                                " is not below " + std::to_string(limit));
+  }
+  return v;
+}
+unsigned word(const char* op, const char* name, unsigned v) { return field(op, name, v, map::kMaxWords); }
+unsigned flag(const char* op, const char* name, unsigned v) { return field(op, name, v, map::kNumFlags); }
 Instr make(Op op, unsigned f, unsigned d, unsigned a, unsigned b, unsigned x, uint32_t imm) {
   Instr i;
   i.op = op;
@@ -156,24 +169,40 @@ Instr make(Op op, unsigned f, unsigned d, unsigned a, unsigned b, unsigned x, ui
 Instr nop() { return make(Op::kNop, 0, 0, 0, 0, 0, 0); }
 Instr maskset(uint32_t mask) { return make(Op::kMaskset, 0, 0, 0, 0, 0, mask); }
 Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs) {
-  return make(Op::kRef, fd, 0, a, 0, (fs << 3) | (static_cast<unsigned>(part) << 2) | static_cast<unsigned>(fn), key);
+  field("ref", "fn", static_cast<unsigned>(fn), 3);
+  field("ref", "part", static_cast<unsigned>(part), 2);
+  return make(Op::kRef, flag("ref", "fd", fd), 0, word("ref", "a", a), 0,
+              (flag("ref", "fs", fs) << 3) | (static_cast<unsigned>(part) << 2) | static_cast<unsigned>(fn), key);
 }
 Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred) {
-  return make(Op::kFunc, pred, d, a, b, static_cast<unsigned>(fn), 0);
+  return make(Op::kFunc, flag("func", "pred", pred), word("func", "d", d), word("func", "a", a), word("func", "b", b),
+              field("func", "fn", static_cast<unsigned>(fn), 3), 0);
 }
-Instr add(unsigned d, unsigned a, unsigned b, unsigned pred) { return make(Op::kAdd, pred, d, a, b, 0, 0); }
-Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred) { return make(Op::kSub, pred, d, a, b, 0, 0); }
+Instr add(unsigned d, unsigned a, unsigned b, unsigned pred) {
+  return make(Op::kAdd, flag("add", "pred", pred), word("add", "d", d), word("add", "a", a), word("add", "b", b), 0, 0);
+}
+Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred) {
+  return make(Op::kSub, flag("sub", "pred", pred), word("sub", "d", d), word("sub", "a", a), word("sub", "b", b), 0, 0);
+}
 Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred) {
-  return make(Op::kBitcopy, pred, d, a, 0, 0, (j << 8) | i);
+  return make(Op::kBitcopy, flag("bitcopy", "pred", pred), word("bitcopy", "d", d), word("bitcopy", "a", a), 0, 0,
+              (field("bitcopy", "j", j, 32) << 8) | field("bitcopy", "i", i, 32));
 }
-Instr lshift(unsigned d, unsigned a, unsigned pred) { return make(Op::kLshift, pred, d, a, 0, 0, 0); }
-Instr rshift(unsigned d, unsigned a, unsigned pred) { return make(Op::kRshift, pred, d, a, 0, 0, 0); }
-Instr writes(unsigned d, uint32_t data, unsigned pred) { return make(Op::kWrites, pred, d, 0, 0, 0, data); }
+Instr lshift(unsigned d, unsigned a, unsigned pred) {
+  return make(Op::kLshift, flag("lshift", "pred", pred), word("lshift", "d", d), word("lshift", "a", a), 0, 0, 0);
+}
+Instr rshift(unsigned d, unsigned a, unsigned pred) {
+  return make(Op::kRshift, flag("rshift", "pred", pred), word("rshift", "d", d), word("rshift", "a", a), 0, 0, 0);
+}
+Instr writes(unsigned d, uint32_t data, unsigned pred) {
+  return make(Op::kWrites, flag("writes", "pred", pred), word("writes", "d", d), 0, 0, 0, data);
+}
 Instr sets() { return make(Op::kSets, 0, 0, 0, 0, 0, 0); }
 Instr resets() { return make(Op::kResets, 0, 0, 0, 0, 0, 0); }
 Instr setsadr(uint32_t index) { return make(Op::kSetsadr, 0, 0, 0, 0, 0, index); }
 Instr flagop(unsigned fd, unsigned fa, unsigned fb, uint8_t lut, bool if_any) {
-  return make(Op::kFlagop, fd, 0, 0, 0, (fa << 3) | fb, (lut & 0xFu) | (if_any ? 0x100u : 0u));
+  return make(Op::kFlagop, flag("flagop", "fd", fd), 0, 0, 0, (flag("flagop", "fa", fa) << 3) | flag("flagop", "fb", fb),
+              field("flagop", "lut", lut, 16) | (if_any ? 0x100u : 0u));
 }
 }  // namespace ins
 

@@ -19,9 +19,37 @@ std::vector<std::string> backend_names() {
 
 void Backend::finish() {
   if (lock_) lock_->final_check();
+  if (rtl_view_ && !rtl_view_->failure().empty()) throw std::runtime_error("RTL: " + rtl_view_->failure());
 }
 
 namespace {
+
+// The rtl and systemc backends' bus: forwards every access and throws once the RTL has
+// failed an assertion or a handshake (the Verilated model reports these without
+// stopping; lockstep reports them with its own context).
+class CheckedBus final : public Bus {
+ public:
+  CheckedBus(Bus& inner, const tb::RtlBus& rtl) : inner_(inner), rtl_(rtl) {}
+  Resp write(uint32_t addr, uint64_t data, uint8_t strb) override {
+    const Resp r = inner_.write(addr, data, strb);
+    check();
+    return r;
+  }
+  Resp read(uint32_t addr, uint64_t* data) override {
+    const Resp r = inner_.read(addr, data);
+    check();
+    return r;
+  }
+  uint64_t cycles() const override { return inner_.cycles(); }
+  std::string name() const override { return inner_.name(); }
+
+ private:
+  void check() const {
+    if (!rtl_.failure().empty()) throw std::runtime_error("RTL: " + rtl_.failure());
+  }
+  Bus& inner_;
+  const tb::RtlBus& rtl_;
+};
 
 std::unique_ptr<tb::RtlBus> exact_rtl(const Config& cfg, const BackendOptions& opt) {
   tb::RtlOptions ro;
@@ -52,9 +80,12 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg
     b->bus_ = b->model_.get();
   } else if (name == "rtl") {
     b->rtl_ = exact_rtl(cfg, opt);
-    b->bus_ = b->rtl_.get();
+    b->rtl_view_ = b->rtl_.get();
+    b->checked_ = std::make_unique<CheckedBus>(*b->rtl_, *b->rtl_view_);
+    b->bus_ = b->checked_.get();
   } else if (name == "lockstep") {
     b->rtl_ = exact_rtl(cfg, opt);
+    b->rtl_view_ = b->rtl_.get();
     b->model_ = std::make_unique<ModelBus>(cfg);
     tb::LockstepOptions lo;
     lo.mode = tb::parse_lockstep_mode(opt.lockstep_mode);
@@ -62,8 +93,11 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg
     b->bus_ = b->lock_.get();
 #ifdef FMPP_HAVE_SYSTEMC
   } else if (name == "systemc") {
-    b->owned_ = sc::make_systemc_bus(exact_rtl(cfg, opt));
-    b->bus_ = b->owned_.get();
+    std::unique_ptr<tb::RtlBus> rtl = exact_rtl(cfg, opt);
+    b->rtl_view_ = rtl.get();
+    b->owned_ = sc::make_systemc_bus(std::move(rtl));
+    b->checked_ = std::make_unique<CheckedBus>(*b->owned_, *b->rtl_view_);
+    b->bus_ = b->checked_.get();
 #endif
   } else {
     std::string known;

@@ -27,7 +27,10 @@ class Backend {
   Bus& bus() { return *bus_; }
   const std::string& name() const { return name_; }
   const Config& config() const { return cfg_; }
-  // Lockstep only: compares the final state; throws tb::LockstepMismatch.
+  // The Verilated model behind rtl, lockstep and systemc (nullptr for cmodel).
+  tb::RtlBus* rtl_bus() { return rtl_view_; }
+  // Lockstep: compares the final state (throws tb::LockstepMismatch). rtl, systemc:
+  // throws std::runtime_error if an RTL assertion failed (every access checks it too).
   void finish();
 
   friend std::unique_ptr<Backend> make_backend(const std::string&, const Config&, const BackendOptions&);
@@ -39,6 +42,8 @@ class Backend {
   std::unique_ptr<tb::RtlBus> rtl_;
   std::unique_ptr<tb::Lockstep> lock_;
   std::unique_ptr<Bus> owned_;  // other wrappers (SystemC)
+  std::unique_ptr<Bus> checked_;  // rtl, systemc: the bus that stops at an RTL assertion failure
+  tb::RtlBus* rtl_view_ = nullptr;  // the Verilated model behind any of them
   Bus* bus_ = nullptr;
 };
 

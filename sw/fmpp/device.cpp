@@ -2,6 +2,8 @@
 #include "sw/fmpp/device.h"
 
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 namespace fmpp {
 
@@ -17,15 +19,34 @@ Device::Device(Bus& bus) : bus_(bus) {
   cfg_.blocks = static_cast<unsigned>(c & 0xFFFFFFFF);
   cfg_.words = static_cast<unsigned>((c >> 32) & 0xFF);
   cfg_.validate();
+  // An error someone else left would be reported as ours later: refuse it now.
+  const uint64_t err = read_reg(map::kRegError);
+  if ((err >> map::kErrorStickyLsb) & 1) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "fmpp::Device: bus '%s' has an uncleared error (ERROR = 0x%016llx)",
+                  bus.name().c_str(), static_cast<unsigned long long>(err));
+    throw DeviceError(buf);
+  }
 }
 
 void Device::fail(const char* what, uint32_t addr) {
   uint64_t err = 0;
-  bus_.read(map::kRegError, &err);
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "FMPP bus error: %s at 0x%08x answered SLVERR (ERROR = 0x%016llx: cause %u)", what,
-                addr, static_cast<unsigned long long>(err), static_cast<unsigned>((err >> 4) & 0xF));
+  const bool read_ok = bus_.read(map::kRegError, &err) == Resp::kOkay;
+  // Clear it, so that the next error's message reports that error's own cause.
+  const bool clear_ok = bus_.write(map::kRegError, uint64_t{1} << map::kErrorStickyLsb) == Resp::kOkay;
+  char buf[240];
+  std::snprintf(buf, sizeof buf, "FMPP bus error: %s at 0x%08x answered SLVERR (ERROR = 0x%016llx: cause %u)%s", what,
+                addr, static_cast<unsigned long long>(err),
+                static_cast<unsigned>((err >> map::kErrorCauseLsb) & ((1u << map::kErrorCauseWidth) - 1)),
+                read_ok && clear_ok ? "" : "; the ERROR register could not be read or cleared");
   throw DeviceError(buf);
+}
+
+void Device::check_index(const char* what, unsigned index, unsigned limit) const {
+  if (index >= limit) {
+    throw std::out_of_range(std::string("fmpp::Device: ") + what + " " + std::to_string(index) + " out of range (the " +
+                            cfg_.str() + " FMPP has " + std::to_string(limit) + ")");
+  }
 }
 
 uint64_t Device::read_reg(uint32_t addr) {
@@ -46,6 +67,8 @@ void Device::push(const std::vector<uint64_t>& prog) {
 }
 
 uint32_t Device::word_addr(unsigned block, unsigned word) const {
+  check_index("block", block, cfg_.blocks);
+  check_index("word", word, cfg_.words);
   return map::kWinWordsBase + (block << cfg_.word_shift()) + (word << 3);
 }
 
@@ -57,13 +80,19 @@ void Device::write_word(unsigned block, unsigned word, uint32_t value) {
 uint32_t Device::read_word(unsigned block, unsigned word) { return static_cast<uint32_t>(read_reg(word_addr(block, word))); }
 
 void Device::write_flags(unsigned block, uint8_t flags) {
+  check_index("block", block, cfg_.blocks);
   const uint32_t a = map::kWinFlagsBase + 8 * block;
   if (bus_.write(a, flags, 0x01) != Resp::kOkay) fail("flags write", a);
 }
 
-uint8_t Device::read_flags(unsigned block) { return static_cast<uint8_t>(read_reg(map::kWinFlagsBase + 8 * block)); }
+uint8_t Device::read_flags(unsigned block) {
+  check_index("block", block, cfg_.blocks);
+  return static_cast<uint8_t>(read_reg(map::kWinFlagsBase + 8 * block));
+}
 
 uint64_t Device::read_plane(unsigned flag, unsigned tile) {
+  check_index("flag", flag, map::kNumFlags);
+  check_index("tile", tile, cfg_.tiles());
   return read_reg(map::kWinPlanesBase + (flag << map::kWinPlanesFlagShift) + 8 * tile);
 }
 

@@ -46,10 +46,14 @@ class Device {
   uint64_t instret();
   void set_gap(uint8_t gap);
 
+  // Every block, word, flag and tile index is checked against the device's size:
+  // std::out_of_range, never an access to some other address.
   uint32_t word_addr(unsigned block, unsigned word) const;
 
  private:
+  // Throws DeviceError with ERROR's cause, after clearing ERROR for the next one.
   [[noreturn]] void fail(const char* what, uint32_t addr);
+  void check_index(const char* what, unsigned index, unsigned limit) const;
   uint64_t read_reg(uint32_t addr);
 
   Bus& bus_;

@@ -20,11 +20,11 @@ class Bus {
   // One write beat. `strb` are the AXI byte strobes of the 64-bit beat.
   // Returns the write response; a SLVERR write had no effect other than
   // recording the error in the ERROR register.
-  virtual Resp write(uint32_t addr, uint64_t data, uint8_t strb = 0xFF) = 0;
+  [[nodiscard]] virtual Resp write(uint32_t addr, uint64_t data, uint8_t strb = 0xFF) = 0;
 
   // One read beat. Sets *data to RDATA (0 on SLVERR). A read completes only
   // after every earlier write has taken effect.
-  virtual Resp read(uint32_t addr, uint64_t* data) = 0;
+  [[nodiscard]] virtual Resp read(uint32_t addr, uint64_t* data) = 0;
 
   // Clock cycles since reset.
   virtual uint64_t cycles() const = 0;

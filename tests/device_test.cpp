@@ -1,0 +1,134 @@
+// The host's Device layer: indices are checked against the device's size, every bus
+// error becomes an exception naming its own cause, and an RTL assertion failure stops
+// a run on the rtl and systemc backends instead of scrolling past.
+#include <gtest/gtest.h>
+
+#include "sw/fmpp/backend.h"
+#include "sw/fmpp/device.h"
+
+namespace fmpp {
+namespace {
+
+TEST(Device, IndicesOutsideTheDeviceAreRefused) {
+  ModelBus bus(Config{100, 16});  // two tiles, the second partly used
+  Device dev(bus);
+  EXPECT_THROW(dev.write_word(0, 16, 1), std::out_of_range);  // once wrote block 1, word 0
+  EXPECT_THROW(dev.read_word(100, 0), std::out_of_range);
+  EXPECT_THROW(dev.read_word(16515072, 0), std::out_of_range);  // once wrapped into the registers
+  EXPECT_THROW(dev.write_flags(100, 1), std::out_of_range);
+  EXPECT_THROW(dev.read_flags(100), std::out_of_range);
+  EXPECT_THROW(dev.read_plane(8, 0), std::out_of_range);
+  EXPECT_THROW(dev.read_plane(0, 2), std::out_of_range);  // once read the next flag's plane
+  try {
+    dev.read_word(0, 16);
+    ADD_FAILURE();
+  } catch (const std::out_of_range& e) {
+    EXPECT_STREQ(e.what(), "fmpp::Device: word 16 out of range (the 100x16 FMPP has 16)");
+  }
+  // The last block, word, flag and tile are in range; nothing above touched the device.
+  dev.write_word(99, 15, 7);
+  EXPECT_EQ(dev.read_word(99, 15), 7u);
+  EXPECT_EQ(dev.read_word(1, 0), 0u);
+  EXPECT_EQ(dev.read_plane(7, 1), 0u);
+  uint64_t err = 0;
+  ASSERT_EQ(bus.read(map::kRegError, &err), Resp::kOkay);
+  EXPECT_EQ(err, 0u);
+}
+
+TEST(Device, EachErrorReportsItsOwnCause) {
+  ModelBus bus(Config{64, 8});
+  Device dev(bus);
+  const uint64_t illegal = uint64_t{14} << 59;  // no such opcode
+  try {
+    dev.push(illegal);
+    ADD_FAILURE();
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("cause 4"), std::string::npos) << e.what();  // ILLEGAL
+  }
+  uint64_t err = 1;
+  ASSERT_EQ(bus.read(map::kRegError, &err), Resp::kOkay);
+  EXPECT_EQ(err, 0u) << "the Device clears ERROR once it has reported it";
+  // A different error next: its message carries its own cause, not the first one's.
+  try {
+    dev.push(ins::add(8, 0, 0).encode());  // word 8 of an 8-word device
+    ADD_FAILURE();
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("ERROR = 0x"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cause 4"), std::string::npos) << e.what();
+  }
+  ASSERT_EQ(bus.write(map::kRegCtrl, 0, 0x0F), Resp::kSlvErr);  // STROBE, left uncleared
+  EXPECT_THROW(Device{bus}, DeviceError) << "a Device must not inherit someone else's error";
+  try {
+    Device again(bus);
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("uncleared error"), std::string::npos) << e.what();
+  }
+}
+
+// docs/memory-map.md, "Ordering and timing", on the golden model and the RTL alike.
+class BusRules : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BusRules, ReservedRegisterBitsAreIgnoredAndReadAsZero) {
+  auto be = make_backend(GetParam(), Config{64, 32});
+  Bus& bus = be->bus();
+  uint64_t v = 0;
+  ASSERT_EQ(bus.write(map::kRegCtrl, 0x1FF), Resp::kOkay);
+  ASSERT_EQ(bus.read(map::kRegCtrl, &v), Resp::kOkay);
+  EXPECT_EQ(v, 0xFFu);
+  ASSERT_EQ(bus.write(map::kRegError, ~uint64_t{1}), Resp::kOkay);  // every bit but STICKY: no effect
+  ASSERT_EQ(bus.read(map::kRegError, &v), Resp::kOkay);
+  EXPECT_EQ(v, 0u);
+  be->finish();
+}
+
+TEST_P(BusRules, AnInvalidPushIsAnsweredAfterTheQueueDrains) {
+  auto be = make_backend(GetParam(), Config{64, 32});
+  Bus& bus = be->bus();
+  ASSERT_EQ(bus.write(map::kRegCtrl, 200), Resp::kOkay);  // 201 clocks per entry
+  for (unsigned k = 0; k < map::kQueueDepth; ++k) ASSERT_EQ(bus.write(map::kRegQueue, ins::nop().encode()), Resp::kOkay);
+  const uint64_t c0 = bus.cycles();
+  ASSERT_EQ(bus.write(map::kRegQueue, uint64_t{14} << 59), Resp::kSlvErr);
+  EXPECT_GT(bus.cycles() - c0, (map::kQueueDepth - 1) * 200u) << "answered before the earlier pushes ran";
+  uint64_t err = 0;
+  ASSERT_EQ(bus.read(map::kRegError, &err), Resp::kOkay);
+  EXPECT_EQ((err >> map::kErrorCauseLsb) & 0xF, 4u);  // ILLEGAL
+  ASSERT_EQ(bus.write(map::kRegError, 1), Resp::kOkay);
+  be->finish();
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BusRules, ::testing::Values("cmodel", "rtl", "lockstep"),
+                         [](const auto& info) { return std::string(info.param); });
+
+// A master that withdraws an unaccepted write trips the RTL's protocol assertion; the
+// Verilated model only records it, so the backend's bus must stop the run.
+void expect_assertion_stops(const std::string& backend) {
+  auto be = make_backend(backend, Config{64, 32});
+  ASSERT_NE(be->rtl_bus(), nullptr);
+  Bus& bus = be->bus();
+  ASSERT_EQ(bus.write(map::kRegCtrl, 200), Resp::kOkay);  // a slow array: the queue fills
+  for (unsigned k = 0; k < map::kQueueDepth + 1; ++k) ASSERT_EQ(bus.write(map::kRegQueue, ins::nop().encode()), Resp::kOkay);
+  be->rtl_bus()->withdraw_write_for_test(map::kRegQueue, ins::nop().encode());
+  uint64_t v = 0;
+  if (backend == "systemc") {
+    // The withdrawn write drove the RTL outside the TLM path: the platform's clock
+    // check stops this read even before the assertion check does.
+    EXPECT_ANY_THROW((void)bus.read(map::kRegStatus, &v));
+  } else {
+    EXPECT_THROW((void)bus.read(map::kRegStatus, &v), std::runtime_error);
+  }
+  try {
+    be->finish();
+    ADD_FAILURE() << backend << ": finish() passed over the assertion failure";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("RTL assertion failed"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Backend, RtlAssertionFailureStopsTheRun) { expect_assertion_stops("rtl"); }
+
+#ifdef FMPP_HAVE_SYSTEMC
+TEST(Backend, RtlAssertionFailureStopsTheRunOverSystemC) { expect_assertion_stops("systemc"); }
+#endif
+
+}  // namespace
+}  // namespace fmpp
