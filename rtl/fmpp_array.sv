@@ -183,9 +183,6 @@ module fmpp_array #(
   a_hw_word: assert property (@(posedge clk_i) disable iff (!rst_ni)
                               (pop && head_i.kind == fmpp_pkg::QE_WORD) |-> 32'(head_i.word) < NumWords)
     else $error("fmpp_array: window write to word %0d of %0d", head_i.word, NumWords);
-  a_hw_lane: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                              (pop && !is_instr) |-> 32'(head_i.block) < NumBlocks)
-    else $error("fmpp_array: window write to block %0d past the last tile's lanes", head_i.block);
   a_kind: assert property (@(posedge clk_i) disable iff (!rst_ni)
                            pop |-> head_i.kind != 2'd3)
     else $error("fmpp_array: queue entry of unknown kind");

@@ -22,7 +22,8 @@ module fmpp_tile #(
   parameter int unsigned NumWords = 32
 ) (
   input  logic                         clk_i,
-  // Asynchronous reset; its only synchronous use is `disable iff` in the assertions.
+  // Active-low reset, sampled synchronously by every flop; only the assertions'
+  // `disable iff` uses it asynchronously (hence the lint waiver).
   /* verilator lint_off SYNCASYNCNET */
   input  logic                         rst_ni,
   /* verilator lint_on SYNCASYNCNET */

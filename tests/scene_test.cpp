@@ -162,7 +162,11 @@ TEST(Scene, DuplicateKeysAreErrors) {
   write("ok.obj", kObj);
   write("dup.json", R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "fov_y_deg": 50, "fov_y_deg": 60},
     "lights": [{"position": [0,2,0]}], "materials": {"m": {}}, "meshes": [{"file": "ok.obj", "material": "m"}]})");
-  EXPECT_EQ(error_of("dup.json"), dir() + "/dup.json: key 'fov_y_deg' appears twice in one object");
+  EXPECT_EQ(error_of("dup.json"), dir() + "/dup.json: field 'camera.fov_y_deg': given twice");
+  write("dup2.json", R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "fov_y_deg": 50},
+    "lights": [{"position": [0,2,0]}, {"position": [1,2,0], "color": [1,1,1], "color": [0,0,0]}],
+    "materials": {"m": {}}, "meshes": [{"file": "ok.obj", "material": "m"}]})");
+  EXPECT_EQ(error_of("dup2.json"), dir() + "/dup2.json: field 'lights[1].color': given twice");
   // The same key in two different objects is fine.
   write("twice.json", scene_json(R"({"file": "ok.obj", "material": "m"}, {"file": "ok.obj", "material": "m"})"));
   EXPECT_EQ(error_of("twice.json"), "no error");

@@ -258,8 +258,8 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   10), as the error analysis predicts (cond 2^-n).
 - **The fallback keeps results right, but below n = 16 it is the host doing the work.**
   Its condition limit (2^(n-3): 32 at n = 8, 128 at 10) is below the condition number
-  of ordinary triangles seen from the eye (tens to hundreds), so at n = 8 every triangle
-  of the sphere scenes is a host triangle: their primary rays come out right, for 10.5
+  of ordinary triangles seen from the eye (tens to hundreds), so at n = 8 all but two
+  triangles of each sphere scene are host triangles: their primary rays come out right, for 10.5
   million host tests per frame on spheres_10k, as many as the brute-force reference
   does, and the secondary rays' arbitrary-origin kernel (limit 2^(n-4)) sends most
   triangles to the host too; the sphere images come out at 31 to 33 dB (4 pixels more
@@ -286,7 +286,7 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   2 bits to none of 20,000 from n = 16. But it snaps vertices to a grid of (n-3)/2 bits
   of the scene's extent, moving them by up to 2^-(n-1)/2 of it: on the sphere scenes it
   needs n = 32 to get as few rays wrong as the paper's form at n = 16 to 20, and even
-  there its images are 45 to 69 dB (its depth comes from one n-bit row). Its clocks per
+  there its sphere images are 45 to 68 dB (its depth comes from one n-bit row). Its clocks per
   broadcast are close to the paper's form's at equal n (fewer at small n, up to 22 %
   more at 24-32). So: the paper's form at n = 24 for the most accurate image per clock;
   the watertight form at n = 32 where a closed surface must never leak (shadow rays
@@ -596,7 +596,7 @@ Command add_precision(CLI::App& app) {
     md << kHardCases << "\n";
     md << "Reproduce: `make build && build/fmpp-report precision` (writes this file, " << o.img_dir
        << "/precision_{scenes,leaks}.png and " << o.img_dir << "/precision_data.json; about "
-       << fmt(std::ceil(seconds / 60))
+       << fmt(std::max(1.0, std::round(seconds / 60)))
        << " min on the machine above). `--quick` is the ctest smoke run (without `--out` it writes "
           "precision-quick.md, never this file).\n";
 

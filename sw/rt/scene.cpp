@@ -63,29 +63,69 @@ void reject_unknown(const json& j, std::initializer_list<const char*> known, con
 // ("1e999", out_of_range.406) through the same SAX call as a syntax error, but only a
 // parse_error carries the position. (json_sax_dom_parser is what json::parse builds with.)
 // It also notes a key that appears twice in one object, which json::parse would let the
-// last one win silently.
+// last one win silently, with its field path ("camera.fov_y_deg", "lights[1].color").
 struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
   using Base = nlohmann::detail::json_sax_dom_parser<json>;
   using Base::json_sax_dom_parser;
   size_t error_byte = 0;
-  std::vector<std::set<std::string>> keys;  // of each open object
-  std::string duplicate;                    // the first repeated key
+  std::string duplicate;  // path of the first repeated key
+
   template <class Exception>
   bool parse_error(size_t byte, const std::string& token, const Exception& ex) {
     error_byte = byte;
     return Base::parse_error(byte, token, ex);
   }
   bool start_object(size_t len) {
-    keys.emplace_back();
+    open_.push_back(Open{false, {}, {}, 0});
     return Base::start_object(len);
   }
   bool key(std::string& k) {
-    if (!keys.back().insert(k).second && duplicate.empty()) duplicate = k;
+    Open& o = open_.back();
+    o.key = k;
+    if (!o.keys.insert(k).second && duplicate.empty()) duplicate = path();
     return Base::key(k);
   }
   bool end_object() {
-    keys.pop_back();
+    open_.pop_back();
+    done();
     return Base::end_object();
+  }
+  bool start_array(size_t len) {
+    open_.push_back(Open{true, {}, {}, 0});
+    return Base::start_array(len);
+  }
+  bool end_array() {
+    open_.pop_back();
+    done();
+    return Base::end_array();
+  }
+  bool null() { return done(), Base::null(); }
+  bool boolean(bool v) { return done(), Base::boolean(v); }
+  bool number_integer(json::number_integer_t v) { return done(), Base::number_integer(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return done(), Base::number_unsigned(v); }
+  bool number_float(json::number_float_t v, const std::string& s) { return done(), Base::number_float(v, s); }
+  bool string(std::string& v) { return done(), Base::string(v); }
+  bool binary(json::binary_t& v) { return done(), Base::binary(v); }
+
+ private:
+  struct Open {
+    bool array;
+    std::string key;             // object: the current key
+    std::set<std::string> keys;  // object: the keys so far
+    size_t index;                // array: the current element
+  };
+  std::vector<Open> open_;
+
+  // A value ended: in an array, the next one has the next index.
+  void done() {
+    if (!open_.empty() && open_.back().array) ++open_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Open& o : open_) {
+      p += o.array ? "[" + std::to_string(o.index) + "]" : (p.empty() ? "" : ".") + o.key;
+    }
+    return p;
   }
 };
 
@@ -273,7 +313,7 @@ Scene load_scene(const std::string& json_path) {
                                                                       : "JSON error";
     throw SceneError(json_path + ":" + std::to_string(line) + ": " + what + ": " + e.what());
   }
-  if (!dom.duplicate.empty()) throw SceneError(json_path + ": key '" + dom.duplicate + "' appears twice in one object");
+  if (!dom.duplicate.empty()) field_error(json_path, dom.duplicate, "given twice");
   const std::string& f = json_path;
   if (!j.is_object()) throw SceneError(f + ": the scene must be a JSON object");
   reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
