@@ -2,8 +2,9 @@
 //
 // Drives the Verilated RTL through its AXI4-Lite port with a seeded random
 // program and runs every access on the golden model in lockstep. Prints one
-// summary line and exits 0 only if nothing differed, no RTL assertion fired and
-// every opcode and error cause was exercised.
+// summary line and exits 0 only if nothing differed, no RTL assertion fired and,
+// for runs of 20,000 accesses or more, every opcode and error cause was exercised
+// (a shorter run reports what it missed on stderr but does not fail for it).
 //
 // --backend systemc sends the RTL side's accesses through the SystemC TLM-2.0
 // platform (tb/sc/: initiator socket -> b_transport -> target -> RTL) instead of
@@ -181,9 +182,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     const std::string missing = st.missing();
-    if (!missing.empty() && ops >= 20000) {
-      std::fprintf(stderr, "coverage hole: never exercised: %s\n", missing.c_str());
-      return 1;
+    if (!missing.empty()) {
+      std::fprintf(stderr, "coverage hole: never exercised: %s%s\n", missing.c_str(),
+                   ops >= 20000 ? "" : " (not an error below 20000 accesses)");
+      if (ops >= 20000) return 1;
     }
     return 0;
   } catch (const std::exception& e) {

@@ -81,6 +81,23 @@ void Lockstep::after_access(const char* what, uint32_t addr) {
   char where[96];
   std::snprintf(where, sizeof where, "after %s of 0x%08x", what, addr);
   if (!rtl_.failure().empty()) mismatch(std::string(where) + ": " + rtl_.failure());
+  if (opt_.mode != LockstepOptions::Mode::kOff) {
+    // The slave's own state changes at the access itself, queue or no queue: an error
+    // recorded differently and cleared again before the next queue entry shows only here.
+    const ErrorState re = rtl_.error_state();
+    if (!(re == model_.error()) || rtl_.gap() != model_.gap()) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "ERROR: RTL 0x%016llx, model 0x%016llx; GAP: RTL %u, model %u",
+                    static_cast<unsigned long long>(re.reg()), static_cast<unsigned long long>(model_.error().reg()),
+                    rtl_.gap(), model_.gap());
+      mismatch(std::string(where) + ": " + buf);
+    }
+  }
+  if (!opt_.compare_cycles && in_read_ && rtl_entries_ != model_entries_) {
+    // Stress mode: the clocks differ, but after a read both queues are drained.
+    mismatch(std::string(where) + ": RTL executed " + std::to_string(rtl_entries_) + " entries, model " +
+             std::to_string(model_entries_));
+  }
   if (opt_.compare_cycles) {
     if (rtl_.cycles() != model_.cycles()) {
       mismatch(std::string(where) + ": RTL at cycle " + std::to_string(rtl_.cycles()) + ", model at cycle " +
@@ -135,7 +152,9 @@ Resp Lockstep::read(uint32_t addr, uint64_t* data) {
 void Lockstep::final_check() {
   uint64_t id = 0;
   read(map::kRegId, &id);  // drains both queues
-  rtl_snapshots_.clear();
+  if (!rtl_snapshots_.empty()) {
+    mismatch("the RTL executed " + std::to_string(rtl_snapshots_.size()) + " entries the model did not");
+  }
   const ArchState r = rtl_.state();
   ArchState m = model_state(model_);
   const std::string d = diff_states(r, m);

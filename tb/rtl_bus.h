@@ -60,6 +60,9 @@ class RtlBus : public Bus {
   virtual const Config& config() const = 0;
   // Extracts the full architectural state from the Verilated model.
   virtual ArchState state() const = 0;
+  // The slave's ERROR state and CTRL.GAP alone (cheap: checked after every access).
+  virtual ErrorState error_state() const = 0;
+  virtual uint8_t gap() const = 0;
   // Called after each clock edge at which the array executed a queue entry.
   using ExecHook = std::function<void()>;
   virtual void set_exec_hook(ExecHook h) = 0;

@@ -173,13 +173,20 @@ class RtlBusImpl final : public RtlBus {
     s.mask = static_cast<uint32_t>(mask_.u64());
     s.instret = instret_.u64();
     s.gap = static_cast<uint8_t>(gap_.u64());
-    s.error.sticky = err_sticky_.u64() != 0;
-    s.error.cause = static_cast<map::Err>(err_cause_.u64());
-    s.error.count = static_cast<uint16_t>(err_count_.u64());
-    s.error.addr = static_cast<uint32_t>(err_addr_.u64());
+    s.error = error_state();
     s.queue_level = static_cast<unsigned>(level_.u64());
     return s;
   }
+
+  ErrorState error_state() const override {
+    ErrorState e;
+    e.sticky = err_sticky_.u64() != 0;
+    e.cause = static_cast<map::Err>(err_cause_.u64());
+    e.count = static_cast<uint16_t>(err_count_.u64());
+    e.addr = static_cast<uint32_t>(err_addr_.u64());
+    return e;
+  }
+  uint8_t gap() const override { return static_cast<uint8_t>(gap_.u64()); }
 
  private:
   struct Tile {

@@ -71,7 +71,7 @@ diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/general.txt")
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 12 2> "$dir/err.txt"; then exit 1; fi
 grep -q -- "--words 12 is too few: 5 of the 5 rays .* give --words 24 or more (or leave --words out), or --origins group" "$dir/err.txt"
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins general --config tiny 2> "$dir/err.txt"; then exit 1; fi
-grep -q -- "--config tiny (8 words) is too few: with --origins general" "$dir/err.txt"
+grep -q -- "--config tiny (10 words) is too few: with --origins general" "$dir/err.txt"
 # Option values checked at the command line.
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 3 2> "$dir/err.txt"; then exit 1; fi
 grep -q -- "--words: value 3 is not an even number in \[2, 64\]" "$dir/err.txt"

@@ -30,6 +30,7 @@ run --config medium --seed "$((seed + 200))" --ops 30000 --mode check
 run --config narrow --seed "$seed" --ops 500000 --mode fast --hash-interval 2000
 run --config medium --seed "$seed" --ops 500000 --mode fast --hash-interval 4000
 run --config large  --seed "$seed" --ops 200000 --mode fast --hash-interval 8000
+run --config small  --seed "$((seed + 300))" --ops 30000 --mode check --backend systemc
 awk '{ for (i = 1; i <= NF; i++) { split($i, kv, "="); v[kv[1]] += kv[2] } n++ }
      END { printf "total runs=%d instructions=%d cycles=%d state_checks=%d mismatches=%d seconds=%.1f\n",
            n, v["instructions"], v["cycles"], v["state_checks"], v["mismatches"], v["seconds"] }' "$log"

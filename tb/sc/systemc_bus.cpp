@@ -165,6 +165,8 @@ class SystemCRtlBus final : public tb::RtlBus {
 
   const Config& config() const override { return rtl_->config(); }
   tb::ArchState state() const override { return rtl_->state(); }
+  ErrorState error_state() const override { return rtl_->error_state(); }
+  uint8_t gap() const override { return rtl_->gap(); }
   void set_exec_hook(ExecHook h) override { rtl_->set_exec_hook(std::move(h)); }
   void idle(uint64_t clocks) override {
     rtl_->idle(clocks);

@@ -206,7 +206,7 @@ struct NamedConfig {
 };
 inline constexpr unsigned kNumConfigs = 6;
 inline constexpr NamedConfig kConfigs[kNumConfigs] = {
-    {"tiny", 1, 8, "one block: the smallest legal machine"},
+    {"tiny", 1, 10, "one block of 10 words: the smallest machine, and a NumWords that is not a power of two (the WORDS window has unmapped word slots)"},
     {"odd", 100, 16, "a partial last tile (36 of 64 lanes)"},
     {"small", 64, 32, "one full tile"},
     {"narrow", 1024, 8, "16 tiles, few words"},
