@@ -65,6 +65,37 @@ TEST(Device, EachErrorReportsItsOwnCause) {
   }
 }
 
+// A device that answers one register with another value.
+class AlteredBus final : public Bus {
+ public:
+  AlteredBus(Bus& inner, uint32_t reg, uint64_t value) : inner_(inner), reg_(reg), value_(value) {}
+  Resp write(uint32_t addr, uint64_t data, uint8_t strb) override { return inner_.write(addr, data, strb); }
+  Resp read(uint32_t addr, uint64_t* data) override {
+    const Resp r = inner_.read(addr, data);
+    if (addr == reg_) *data = value_;
+    return r;
+  }
+  uint64_t cycles() const override { return inner_.cycles(); }
+  std::string name() const override { return "altered"; }
+
+ private:
+  Bus& inner_;
+  uint32_t reg_;
+  uint64_t value_;
+};
+
+TEST(Device, RefusesAnotherVersionOrBlockStride) {
+  ModelBus model(Config{64, 8});
+  uint64_t id = 0, cfg = 0;
+  ASSERT_EQ(model.read(map::kRegId, &id), Resp::kOkay);
+  ASSERT_EQ(model.read(map::kRegConfig, &cfg), Resp::kOkay);
+  EXPECT_NO_THROW(Device{model});
+  AlteredBus v2(model, map::kRegId, id + (uint64_t{1} << map::kIdMajorLsb));
+  EXPECT_THROW(Device{v2}, DeviceError);
+  AlteredBus stride(model, map::kRegConfig, cfg + (uint64_t{1} << map::kConfigWshiftLsb));
+  EXPECT_THROW(Device{stride}, DeviceError);
+}
+
 // docs/memory-map.md, "Ordering and timing", on the golden model and the RTL alike.
 class BusRules : public ::testing::TestWithParam<const char*> {};
 

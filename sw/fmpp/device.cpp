@@ -15,10 +15,21 @@ Device::Device(Bus& bus) : bus_(bus) {
                   static_cast<unsigned long long>(id));
     throw DeviceError(buf);
   }
+  const unsigned major = static_cast<unsigned>((id >> map::kIdMajorLsb) & 0xFFFF);
+  if (major != map::kVersionMajor) {
+    throw DeviceError("fmpp::Device: bus '" + bus.name() + "' has an FMPP of major version " + std::to_string(major) +
+                      "; this host software speaks version " + std::to_string(map::kVersionMajor));
+  }
   const uint64_t c = read_reg(map::kRegConfig);
   cfg_.blocks = static_cast<unsigned>(c & 0xFFFFFFFF);
   cfg_.words = static_cast<unsigned>((c >> 32) & 0xFF);
   cfg_.validate();
+  // The host computes window addresses itself: its block stride must be the device's.
+  const unsigned wshift = static_cast<unsigned>((c >> map::kConfigWshiftLsb) & 0xFF);
+  if (wshift != cfg_.word_shift()) {
+    throw DeviceError("fmpp::Device: bus '" + bus.name() + "' reports WSHIFT " + std::to_string(wshift) + " for " +
+                      cfg_.str() + "; expected " + std::to_string(cfg_.word_shift()));
+  }
   // An error someone else left would be reported as ours later: refuse it now.
   const uint64_t err = read_reg(map::kRegError);
   if ((err >> map::kErrorStickyLsb) & 1) {
