@@ -31,6 +31,17 @@ void write_file(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+OutputOptions add_output_options(CLI::App* sub, std::string& md_path, std::string& img_dir,
+                                 const std::string& quick_name) {
+  OutputOptions o;
+  o.out = sub->add_option("--out", md_path, "markdown report to write (with --quick: " + quick_name + ".md)")
+              ->capture_default_str();
+  o.img_dir = sub->add_option("--img-dir", img_dir,
+                              "directory for the PNG plots and their data (with --quick: " + quick_name + ")")
+                  ->capture_default_str();
+  return o;
+}
+
 void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
                      const std::string& quick_name, const std::string& data_name) {
   if (quick && !out_given) md_path = quick_name + ".md";

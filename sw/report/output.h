@@ -2,6 +2,7 @@
 // writing a report (Markdown, its JSON data, the plots drawn from that data).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -19,6 +20,16 @@ std::string fmt(double v, int prec = 0);
 // the report goes beside its data and plots, not to stdout).
 void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
                      const std::string& quick_name, const std::string& data_name);
+
+// --out and --img-dir of a report subcommand (defaults shown; --quick alternatives
+// <quick_name>.md and <quick_name>/ named in the help). Returns the two options, whose
+// count() says whether they were given.
+struct OutputOptions {
+  CLI::Option* out;
+  CLI::Option* img_dir;
+};
+OutputOptions add_output_options(CLI::App* sub, std::string& md_path, std::string& img_dir,
+                                 const std::string& quick_name);
 
 // Writes `markdown` to md_path and `data` to img_dir/data_name (creating both
 // directories), then, unless `plot_script` is empty, runs

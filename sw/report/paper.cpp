@@ -143,12 +143,7 @@ Command add_paper(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   Command c;
   c.sub = app.add_subcommand("paper", "reproduce the paper's evaluation from cycles measured on the RTL");
-  CLI::Option* out_opt =
-      c.sub->add_option("--out", opt->out, "markdown report to write (with --quick: paper-quick.md)")
-          ->capture_default_str();
-  CLI::Option* img_opt = c.sub->add_option("--img-dir", opt->img_dir,
-                                           "directory for the PNG plots and their data (with --quick: paper-quick)")
-                             ->capture_default_str();
+  const OutputOptions outs = add_output_options(c.sub, opt->out, opt->img_dir, "paper-quick");
   c.sub->add_option("--rtl-config", opt->rtl_config, "Verilated configuration to measure on")->capture_default_str();
   c.sub->add_option("--triangles", opt->triangles, "triangles in the step-count scene (at most 300 with --quick)")
       ->capture_default_str()
@@ -158,9 +153,9 @@ Command add_paper(CLI::App& app) {
       ->check(CLI::Range(8u, 32u));
   c.sub->add_flag("--quick", opt->quick, "small measurement sizes (for tests)");
   c.sub->add_flag("--no-plots", opt->no_plots, "skip running tools/plot_paper.py");
-  c.run = [opt, out_opt, img_opt]() -> int {
-    prepare_outputs(opt->quick, out_opt->count() > 0, opt->out, img_opt->count() > 0, opt->img_dir, "paper-quick",
-                    "paper_data.json");
+  c.run = [opt, outs]() -> int {
+    prepare_outputs(opt->quick, outs.out->count() > 0, opt->out, outs.img_dir->count() > 0, opt->img_dir,
+                    "paper-quick", "paper_data.json");
     const Options& o = *opt;
     const Config rcfg = named_config(o.rtl_config);
     const unsigned n = o.n;

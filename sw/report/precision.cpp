@@ -348,12 +348,7 @@ Command add_precision(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   Command c;
   c.sub = app.add_subcommand("precision", "accuracy against cycles for each multiplier width, on the scenes (golden model)");
-  CLI::Option* out_opt =
-      c.sub->add_option("--out", opt->out, "markdown report to write (with --quick: precision-quick.md)")
-          ->capture_default_str();
-  CLI::Option* img_opt = c.sub->add_option("--img-dir", opt->img_dir,
-                                           "directory for the PNG plots and their data (with --quick: precision-quick)")
-                             ->capture_default_str();
+  const OutputOptions outs = add_output_options(c.sub, opt->out, opt->img_dir, "precision-quick");
   c.sub->add_option("--scenes", opt->scenes_dir, "directory holding the scene JSON files")->capture_default_str();
   CLI::Option* size_opt = c.sub->add_option("--size", opt->size, "image width and height in pixels")
                               ->capture_default_str()
@@ -361,9 +356,9 @@ Command add_precision(CLI::App& app) {
   c.sub->add_flag("--quick", opt->quick, "8 x 8 pixels, n = 8 and 24 only, fewer leak rays (for tests)")
       ->excludes(size_opt);
   c.sub->add_flag("--no-plots", opt->no_plots, "skip running tools/plot_precision.py");
-  c.run = [opt, out_opt, img_opt]() -> int {
-    prepare_outputs(opt->quick, out_opt->count() > 0, opt->out, img_opt->count() > 0, opt->img_dir, "precision-quick",
-                    "precision_data.json");
+  c.run = [opt, outs]() -> int {
+    prepare_outputs(opt->quick, outs.out->count() > 0, opt->out, outs.img_dir->count() > 0, opt->img_dir,
+                    "precision-quick", "precision_data.json");
     const Options& o = *opt;
     const auto t_start = std::chrono::steady_clock::now();
     const int size = o.quick ? 8 : o.size;
