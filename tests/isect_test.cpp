@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <random>
 
 #include "sw/fmpp/backend.h"
@@ -357,56 +358,39 @@ TEST(CpuBaseline, AgreesWithTheReference) {
   EXPECT_GE(agree, s.rays.size() * 995 / 1000) << "single precision may differ only at edges";
 }
 
-TEST(Io, ParseErrorsNameFileAndLine) {
-  const std::string path = ::testing::TempDir() + "/bad.tri";
-  {
-    std::ofstream f(path);
-    f << "# comment\n0 0 0 1 0 0 0 1 0\n\n0 0 0 1 0 0 0 1\n";
-  }
+// The ParseError a read gives, or "no error".
+std::string parse_error_of(const std::function<void()>& read) {
   try {
-    read_triangles(path);
-    FAIL();
+    read();
   } catch (const ParseError& e) {
-    EXPECT_EQ(std::string(e.what()), path + ":4: a triangle needs 9 numbers, found 8");
+    return e.what();
   }
-  {
-    std::ofstream f(path);
-    f << "0 0 0 1 0 0 0 1 zero\n";
-  }
-  EXPECT_THROW(read_triangles(path), ParseError);
-  {
-    std::ofstream f(path);
-    f << "0 0 0 0 0 0 # zero direction\n";
-  }
-  try {
-    read_rays(path);
-    FAIL();
-  } catch (const ParseError& e) {
-    EXPECT_EQ(std::string(e.what()), path + ":1: ray direction is zero");
-  }
-  EXPECT_THROW(read_rays(path + ".missing"), ParseError);
-  {
-    std::ofstream f(path);
-    f << "0 0 0 1 0 nan\n";
-  }
-  EXPECT_THROW(read_rays(path), ParseError);
+  return "no error";
 }
 
+// Writes `text` to `path`, then reads it as rays or triangles.
 std::string read_error(const std::string& path, const std::string& text, bool rays) {
   {
     std::ofstream f(path);
     f << text;
   }
-  try {
+  return parse_error_of([&] {
     if (rays) {
       read_rays(path);
     } else {
       read_triangles(path);
     }
-  } catch (const ParseError& e) {
-    return e.what();
-  }
-  return "no error";
+  });
+}
+
+TEST(Io, ParseErrorsNameFileAndLine) {
+  const std::string path = ::testing::TempDir() + "/bad.tri";
+  EXPECT_EQ(read_error(path, "# comment\n0 0 0 1 0 0 0 1 0\n\n0 0 0 1 0 0 0 1\n", false),
+            path + ":4: a triangle needs 9 numbers, found 8");
+  EXPECT_NE(read_error(path, "0 0 0 1 0 0 0 1 zero\n", false), "no error");
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 0 # zero direction\n", true), path + ":1: ray direction is zero");
+  EXPECT_NE(parse_error_of([&] { read_rays(path + ".missing"); }), "no error");
+  EXPECT_NE(read_error(path, "0 0 0 1 0 nan\n", true), "no error");
 }
 
 TEST(Io, CoordinatesBeyondTheLimitsNameFileAndLine) {
@@ -448,24 +432,10 @@ TEST(Io, SubnormalNumbersAreReadAsTheirValue) {
 TEST(Io, DirectoriesAndEmptyPathsAreNamed) {
   std::string dir = ::testing::TempDir();
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
-  try {
-    read_triangles(dir);
-    FAIL();
-  } catch (const ParseError& e) {
-    EXPECT_EQ(std::string(e.what()), dir + ": cannot read triangle file: is a directory");
-  }
-  try {
-    read_rays("");
-    FAIL();
-  } catch (const ParseError& e) {
-    EXPECT_EQ(std::string(e.what()), "'' (empty path): cannot open ray file");
-  }
-  try {
-    read_rays(dir + "/no-such-file.txt");
-    FAIL();
-  } catch (const ParseError& e) {
-    EXPECT_EQ(std::string(e.what()), dir + "/no-such-file.txt: cannot open ray file (No such file or directory)");
-  }
+  EXPECT_EQ(parse_error_of([&] { read_triangles(dir); }), dir + ": cannot read triangle file: is a directory");
+  EXPECT_EQ(parse_error_of([] { read_rays(""); }), "'' (empty path): cannot open ray file");
+  EXPECT_EQ(parse_error_of([&] { read_rays(dir + "/no-such-file.txt"); }),
+            dir + "/no-such-file.txt: cannot open ray file (No such file or directory)");
 }
 
 TEST(Meshes, OptionsOutsideTheLimitsAreRejected) {

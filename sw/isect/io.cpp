@@ -18,13 +18,8 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
   std::ifstream in;
   const std::string err = open_input(in, path, std::string(what) + " file");
   if (!err.empty()) throw ParseError(err);
-  std::string line;
-  size_t lineno = 0;
   std::vector<double> v;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
+  const size_t lines = for_each_line(in, [&](const std::string& line, size_t lineno) {
     std::istringstream ss(line);
     std::string tok;
     v.clear();
@@ -35,14 +30,14 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
       }
       v.push_back(x);
     }
-    if (v.empty()) continue;
+    if (v.empty()) return;
     if (v.size() != count) {
       throw ParseError(path + ":" + std::to_string(lineno) + ": a " + what + " needs " + std::to_string(count) +
                        " numbers, found " + std::to_string(v.size()));
     }
     take(v, lineno);
-  }
-  if (in.bad()) throw ParseError(path + ":" + std::to_string(lineno + 1) + ": read error");
+  });
+  if (in.bad()) throw ParseError(path + ":" + std::to_string(lines + 1) + ": read error");
 }
 
 }  // namespace

@@ -33,6 +33,21 @@ std::string display_path(const std::string& path);
 // "<path>: cannot read <what>: is a directory", "'' (empty path): cannot open <what>".
 std::string open_input(std::ifstream& in, const std::string& path, const std::string& what);
 
+// Calls take(text, lineno) for each line of `in`, numbered from 1, with everything from
+// '#' on removed. Returns the number of lines read.
+template <class F>
+size_t for_each_line(std::istream& in, F&& take) {
+  std::string line;
+  size_t lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    take(line, lineno);
+  }
+  return lineno;
+}
+
 std::vector<Triangle> read_triangles(const std::string& path);
 std::vector<Ray> read_rays(const std::string& path);
 // One line per ray: "triangle_index t", "-1 inf" for a miss, in input order.

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -30,6 +31,13 @@ void write_file(const std::string& path, const std::string& text) {
 }
 
 }  // namespace
+
+std::string today() {
+  char date[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
+  return date;
+}
 
 OutputOptions add_output_options(CLI::App* sub, std::string& md_path, std::string& img_dir,
                                  const std::string& quick_name) {

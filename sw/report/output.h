@@ -12,6 +12,9 @@ namespace fmpp::report {
 // v with `prec` digits after the point ("%.*f").
 std::string fmt(double v, int prec = 0);
 
+// Today's local date, YYYY-MM-DD, for a report's "Generated ... on" line.
+std::string today();
+
 // Before the measurements of `fmpp-report paper` or `precision`: settles and checks the
 // paths the run will write. A --quick run (a smoke test) given no --out or --img-dir
 // writes <quick_name>.md and <quick_name>/ in the current directory instead of the

@@ -162,9 +162,7 @@ Command add_paper(CLI::App& app) {
     const unsigned m_scene = o.quick ? std::min(o.triangles, 300u) : o.triangles;
     json data;
     std::ostringstream md;
-    char date[32];
-    const std::time_t now = std::time(nullptr);
-    std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
+    const std::string date = today();
 
     // ------------------------------------------------------------ Table 1
     std::fprintf(stderr, "[paper] Table 1 on the RTL (%s)\n", o.rtl_config.c_str());

@@ -369,9 +369,7 @@ Command add_precision(CLI::App& app) {
     data["size"] = size;
     data["machine"] = {{"blocks", machine.blocks}, {"words", machine.words}};
     std::ostringstream md;
-    char date[32];
-    const std::time_t now = std::time(nullptr);
-    std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
+    const std::string date = today();
     bool consistent = true;  // generic and const gave bit-identical results everywhere
 
     // ------------------------------------------------------------- the scenes

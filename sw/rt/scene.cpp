@@ -153,16 +153,13 @@ ObjNumbers validate_obj(const std::string& path) {
   std::ifstream in;
   const std::string err = fmpp::isect::open_input(in, path, "mesh");
   if (!err.empty()) throw SceneError(err);
-  std::string line;
   size_t lineno = 0, nv = 0, nvn = 0, nvt = 0;
   auto fail = [&](const std::string& what) { throw SceneError(path + ":" + std::to_string(lineno) + ": " + what); };
-  while (std::getline(in, line)) {
-    ++lineno;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
+  const size_t lines = fmpp::isect::for_each_line(in, [&](const std::string& line, size_t n) {
+    lineno = n;
     std::istringstream ss(line);
     std::string tag;
-    if (!(ss >> tag)) continue;
+    if (!(ss >> tag)) return;
     if (tag == "v" || tag == "vn" || tag == "vt") {
       const int need = tag == "vt" ? 1 : 3;
       std::string tok;
@@ -216,8 +213,8 @@ ObjNumbers validate_obj(const std::string& path) {
                tag != "p") {
       fail("unknown statement '" + tag + "'");
     }
-  }
-  if (in.bad()) throw SceneError(path + ":" + std::to_string(lineno + 1) + ": read error");
+  });
+  if (in.bad()) throw SceneError(path + ":" + std::to_string(lines + 1) + ": read error");
   return out;
 }
 
