@@ -39,47 +39,43 @@ std::string today() {
   return date;
 }
 
-OutputOptions add_output_options(CLI::App* sub, std::string& md_path, std::string& img_dir,
-                                 const std::string& quick_name) {
-  OutputOptions o;
-  o.out = sub->add_option("--out", md_path, "markdown report to write (with --quick: " + quick_name + ".md)")
-              ->capture_default_str();
-  o.img_dir = sub->add_option("--img-dir", img_dir,
-                              "directory for the PNG plots and their data (with --quick: " + quick_name + ")")
+void add_output_options(CLI::App* sub, ReportOutput& o) {
+  o.out_opt = sub->add_option("--out", o.out, "markdown report to write (with --quick: " + o.quick_name + ".md)")
                   ->capture_default_str();
-  return o;
+  o.img_opt = sub->add_option("--img-dir", o.img_dir,
+                              "directory for the PNG plots and their data (with --quick: " + o.quick_name + ")")
+                  ->capture_default_str();
+  sub->add_flag("--no-plots", o.no_plots, "skip running tools/" + o.plot_script);
 }
 
-void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
-                     const std::string& quick_name, const std::string& data_name) {
-  if (quick && !out_given) md_path = quick_name + ".md";
-  if (quick && !img_given) img_dir = quick_name;
-  if (md_path == "-") {
+void prepare_outputs(ReportOutput& o) {
+  if (o.quick && o.out_opt->count() == 0) o.out = o.quick_name + ".md";
+  if (o.quick && o.img_opt->count() == 0) o.img_dir = o.quick_name;
+  if (o.out == "-") {
     throw std::invalid_argument("--out -: the report needs a file name (it is written beside its data and plots)");
   }
-  if (md_path.empty()) throw std::invalid_argument("--out: empty path");
-  if (img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
+  if (o.out.empty()) throw std::invalid_argument("--out: empty path");
+  if (o.img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
   // The report first, so that a bad --out creates nothing.
-  const std::filesystem::path md(md_path);
+  const std::filesystem::path md(o.out);
   std::error_code ec;
-  if (std::filesystem::is_directory(md, ec)) throw std::invalid_argument("--out " + md_path + ": is a directory");
+  if (std::filesystem::is_directory(md, ec)) throw std::invalid_argument("--out " + o.out + ": is a directory");
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
-  check_writable("--out", md_path, false);
-  std::filesystem::create_directories(img_dir);
-  check_writable("--img-dir", img_dir + "/" + data_name, false);
+  check_writable("--out", o.out, false);
+  std::filesystem::create_directories(o.img_dir);
+  check_writable("--img-dir", o.img_dir + "/" + o.data_name, false);
 }
 
-void write_report(const std::string& md_path, const std::string& markdown, const std::string& img_dir,
-                  const std::string& data_name, const nlohmann::json& data, const std::string& plot_script) {
-  std::filesystem::create_directories(img_dir);
-  const std::filesystem::path md(md_path);
+void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data) {
+  std::filesystem::create_directories(o.img_dir);
+  const std::filesystem::path md(o.out);
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
-  const std::string data_file = img_dir + "/" + data_name;
+  const std::string data_file = o.img_dir + "/" + o.data_name;
   write_file(data_file, data.dump(1) + "\n");
-  write_file(md_path, markdown);
-  if (plot_script.empty()) return;
+  write_file(o.out, markdown);
+  if (o.no_plots) return;
   const std::string cmd =
-      "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/" + plot_script + " '" + data_file + "' '" + img_dir + "'";
+      "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/" + o.plot_script + " '" + data_file + "' '" + o.img_dir + "'";
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
 }
 

@@ -15,30 +15,34 @@ std::string fmt(double v, int prec = 0);
 // Today's local date, YYYY-MM-DD, for a report's "Generated ... on" line.
 std::string today();
 
-// Before the measurements of `fmpp-report paper` or `precision`: settles and checks the
-// paths the run will write. A --quick run (a smoke test) given no --out or --img-dir
-// writes <quick_name>.md and <quick_name>/ in the current directory instead of the
-// committed docs/ files. Creates the directories and checks that the report and
-// img_dir/data_name can be written; throws naming the option and path ("--out -" too:
-// the report goes beside its data and plots, not to stdout).
-void prepare_outputs(bool quick, bool out_given, std::string& md_path, bool img_given, std::string& img_dir,
-                     const std::string& quick_name, const std::string& data_name);
-
-// --out and --img-dir of a report subcommand (defaults shown; --quick alternatives
-// <quick_name>.md and <quick_name>/ named in the help). Returns the two options, whose
-// count() says whether they were given.
-struct OutputOptions {
-  CLI::Option* out;
-  CLI::Option* img_dir;
+// Where a report subcommand (`fmpp-report paper`, `precision`) writes: its Markdown,
+// and in img_dir its JSON data (data_name) and the plots tools/<plot_script> draws from
+// it. A --quick run (a smoke test, the subcommand's own flag) given no --out or
+// --img-dir writes <quick_name>.md and <quick_name>/ in the current directory instead
+// of the committed docs/ files.
+struct ReportOutput {
+  std::string out;
+  std::string img_dir = "docs/img";
+  bool quick = false;
+  bool no_plots = false;
+  std::string quick_name, data_name, plot_script;
+  CLI::Option* out_opt = nullptr;  // set by add_output_options
+  CLI::Option* img_opt = nullptr;
 };
-OutputOptions add_output_options(CLI::App* sub, std::string& md_path, std::string& img_dir,
-                                 const std::string& quick_name);
 
-// Writes `markdown` to md_path and `data` to img_dir/data_name (creating both
-// directories), then, unless `plot_script` is empty, runs
+// Declares --out, --img-dir (defaults shown) and --no-plots on the subcommand.
+void add_output_options(CLI::App* sub, ReportOutput& o);
+
+// Before the measurements: settles the paths (the --quick defaults) and checks them.
+// Creates the directories and checks that the report and img_dir/data_name can be
+// written; throws naming the option and path ("--out -" too: the report goes beside
+// its data and plots, not to stdout).
+void prepare_outputs(ReportOutput& o);
+
+// Writes `markdown` to o.out and `data` to o.img_dir/o.data_name (creating both
+// directories), then, unless --no-plots, runs
 // python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir>.
 // Throws std::runtime_error naming the file or command that failed.
-void write_report(const std::string& md_path, const std::string& markdown, const std::string& img_dir,
-                  const std::string& data_name, const nlohmann::json& data, const std::string& plot_script);
+void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data);
 
 }  // namespace fmpp::report

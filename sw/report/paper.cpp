@@ -33,14 +33,16 @@ namespace {
 using namespace fmpp::isect;
 using json = nlohmann::json;
 
-struct Options {
-  std::string out = "docs/paper-reproduction.md";
-  std::string img_dir = "docs/img";
+struct Options : ReportOutput {
+  Options() {
+    out = "docs/paper-reproduction.md";
+    quick_name = "paper-quick";
+    data_name = "paper_data.json";
+    plot_script = "plot_paper.py";
+  }
   std::string rtl_config = "small";
   unsigned triangles = 10000;
   unsigned n = 32;
-  bool quick = false;
-  bool no_plots = false;
 };
 
 // The scene for the step counts: triangles of a tessellated-surface size scattered in
@@ -143,7 +145,7 @@ Command add_paper(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   Command c;
   c.sub = app.add_subcommand("paper", "reproduce the paper's evaluation from cycles measured on the RTL");
-  const OutputOptions outs = add_output_options(c.sub, opt->out, opt->img_dir, "paper-quick");
+  add_output_options(c.sub, *opt);
   c.sub->add_option("--rtl-config", opt->rtl_config, "Verilated configuration to measure on")->capture_default_str();
   c.sub->add_option("--triangles", opt->triangles, "triangles in the step-count scene (at most 300 with --quick)")
       ->capture_default_str()
@@ -152,10 +154,8 @@ Command add_paper(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(8u, 32u));
   c.sub->add_flag("--quick", opt->quick, "small measurement sizes (for tests)");
-  c.sub->add_flag("--no-plots", opt->no_plots, "skip running tools/plot_paper.py");
-  c.run = [opt, outs]() -> int {
-    prepare_outputs(opt->quick, outs.out->count() > 0, opt->out, outs.img_dir->count() > 0, opt->img_dir,
-                    "paper-quick", "paper_data.json");
+  c.run = [opt]() -> int {
+    prepare_outputs(*opt);
     const Options& o = *opt;
     const Config rcfg = named_config(o.rtl_config);
     const unsigned n = o.n;
@@ -424,7 +424,7 @@ Command add_paper(CLI::App& app) {
        << "/fig{5,6,7}*.png and the data in " << o.img_dir << "/paper_data.json).\n";
 
     // ---------------------------------------------------------------- output
-    write_report(o.out, md.str(), o.img_dir, "paper_data.json", data, o.no_plots ? "" : "plot_paper.py");
+    write_report(o, md.str(), data);
     std::fprintf(stderr, "[paper] wrote %s\n", o.out.c_str());
     return 0;
   };

@@ -39,13 +39,15 @@ namespace {
 using namespace fmpp::isect;
 using json = nlohmann::json;
 
-struct Options {
-  std::string out = "docs/precision.md";
-  std::string img_dir = "docs/img";
+struct Options : ReportOutput {
+  Options() {
+    out = "docs/precision.md";
+    quick_name = "precision-quick";
+    data_name = "precision_data.json";
+    plot_script = "plot_precision.py";
+  }
   std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
   int size = 32;
-  bool quick = false;
-  bool no_plots = false;
 };
 
 // The machine every figure is measured on: the RTL's medium configuration (a 32 x 32
@@ -348,17 +350,15 @@ Command add_precision(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   Command c;
   c.sub = app.add_subcommand("precision", "accuracy against cycles for each multiplier width, on the scenes (golden model)");
-  const OutputOptions outs = add_output_options(c.sub, opt->out, opt->img_dir, "precision-quick");
+  add_output_options(c.sub, *opt);
   c.sub->add_option("--scenes", opt->scenes_dir, "directory holding the scene JSON files")->capture_default_str();
   CLI::Option* size_opt = c.sub->add_option("--size", opt->size, "image width and height in pixels")
                               ->capture_default_str()
                               ->check(CLI::Range(2, 256));
   c.sub->add_flag("--quick", opt->quick, "8 x 8 pixels, n = 8 and 24 only, fewer leak rays (for tests)")
       ->excludes(size_opt);
-  c.sub->add_flag("--no-plots", opt->no_plots, "skip running tools/plot_precision.py");
-  c.run = [opt, outs]() -> int {
-    prepare_outputs(opt->quick, outs.out->count() > 0, opt->out, outs.img_dir->count() > 0, opt->img_dir,
-                    "precision-quick", "precision_data.json");
+  c.run = [opt]() -> int {
+    prepare_outputs(*opt);
     const Options& o = *opt;
     const auto t_start = std::chrono::steady_clock::now();
     const int size = o.quick ? 8 : o.size;
@@ -599,7 +599,7 @@ Command add_precision(CLI::App& app) {
     text.replace(text.find("@CHOOSING@"), 10,
                  o.quick ? "(A quick run: too few pixels and widths to read anything into; see docs/precision.md.)"
                          : kReading);
-    write_report(o.out, text, o.img_dir, "precision_data.json", data, o.no_plots ? "" : "plot_precision.py");
+    write_report(o, text, data);
     std::fprintf(stderr, "[precision] wrote %s (%.0f s)\n", o.out.c_str(), seconds);
     return consistent ? 0 : 1;
   };
