@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 
 namespace fmpp::report {
 
@@ -21,6 +22,8 @@ std::string today();
 // --img-dir writes <quick_name>.md and <quick_name>/ in the current directory instead
 // of the committed docs/ files.
 struct ReportOutput {
+  ReportOutput(std::string out_path, std::string quick, std::string data, std::string plot)
+      : out(std::move(out_path)), quick_name(std::move(quick)), data_name(std::move(data)), plot_script(std::move(plot)) {}
   std::string out;
   std::string img_dir = "docs/img";
   bool quick = false;

@@ -34,12 +34,7 @@ using namespace fmpp::isect;
 using json = nlohmann::json;
 
 struct Options : ReportOutput {
-  Options() {
-    out = "docs/paper-reproduction.md";
-    quick_name = "paper-quick";
-    data_name = "paper_data.json";
-    plot_script = "plot_paper.py";
-  }
+  Options() : ReportOutput("docs/paper-reproduction.md", "paper-quick", "paper_data.json", "plot_paper.py") {}
   std::string rtl_config = "small";
   unsigned triangles = 10000;
   unsigned n = 32;

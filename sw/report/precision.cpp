@@ -40,12 +40,7 @@ using namespace fmpp::isect;
 using json = nlohmann::json;
 
 struct Options : ReportOutput {
-  Options() {
-    out = "docs/precision.md";
-    quick_name = "precision-quick";
-    data_name = "precision_data.json";
-    plot_script = "plot_precision.py";
-  }
+  Options() : ReportOutput("docs/precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
   std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
   int size = 32;
 };
