@@ -115,8 +115,8 @@ int mantissas(const double* v, int count, unsigned bits, int64_t* out) {
   }
 }
 
-// Largest component magnitude of a direction: each ray's components are quantized with
-// their own scale (the largest becomes the format's limit), so a short direction in a
+// Largest component magnitude of a vector. For a direction: each ray's components are
+// quantized with their own scale (the largest becomes the format's limit), so a short direction in a
 // batch of long ones keeps all its bits; t is corrected per ray on the host.
 double max_component(const glm::dvec3& d) { return std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}); }
 
@@ -275,7 +275,6 @@ class Group {
     double vq_len = 0;  // largest |V_q|
     for (size_t i : idx) {
       const glm::dvec3& d = rays[i].d;
-      if (!(max_component(d) > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
       vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
     }
     auto ray_scale = [&](const glm::dvec3& d) { return max_component(d) / std::ldexp(1.0, static_cast<int>(opt_.vbits)); };
@@ -512,9 +511,6 @@ class Group {
     const double cond_limit = std::ldexp(1.0, static_cast<int>(effective_cond_bits(opt_)));
     // Each ray's components get their own scale: the largest becomes vlim.
     const int64_t vlim = (int64_t{1} << (n - 1)) - 1;
-    for (size_t i : idx) {
-      if (!(max_component(rays[i].d) > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
-    }
     auto ray_scale = [&](const glm::dvec3& d) { return max_component(d) / static_cast<double>(vlim); };
 
     // Triangle data: X = mantissas of P^-1 (own exponent), Y = mantissas of its column
@@ -714,9 +710,9 @@ class General {
       const Ray& r = rays[i];
       const glm::dvec3 o = r.o - c, l = glm::cross(o, r.d);
       o_reach = std::max(o_reach, glm::length(o));
-      vmax = std::max(vmax, max_abs(r.d));
-      lmax = std::max(lmax, max_abs(l));
-      omax = std::max(omax, max_abs(o));
+      vmax = std::max(vmax, max_component(r.d));
+      lmax = std::max(lmax, max_component(l));
+      omax = std::max(omax, max_component(o));
       // No hit is farther than the farthest corner of the scene box.
       double far = 0;
       for (int k = 0; k < 8; ++k) {
@@ -725,12 +721,11 @@ class General {
       }
       lambda_max = std::max(lambda_max, 1.25 * far / glm::length(r.d));
     }
-    if (!(vmax > 0)) throw std::invalid_argument("fmpp::isect: a ray has a zero direction");
     const double unit = std::ldexp(1.0, kBits);
     // A batch whose moments (or origins) are all 0 still needs scales of their natural
     // size: a far larger one would crowd the triangle's other coefficients out of the
     // shared exponent (rays along a line through the centre would all miss).
-    const double span = std::max(max_abs(hi - lo), std::numeric_limits<double>::min());
+    const double span = std::max(max_component(hi - lo), std::numeric_limits<double>::min());
     const double sv = vmax / unit, sl = (lmax > 0 ? lmax : vmax * span) / unit, so = (omax > 0 ? omax : span) / unit;
     const double u = lambda_max / std::ldexp(1.0, static_cast<int>(q));  // quotient unit
 
@@ -877,8 +872,6 @@ class General {
   // Flags (kSel, kHit, kWin, kTmp from the file scope; 4 = det < 0).
   static constexpr unsigned kNeg = 4;
   static_assert(kExcl < kGeneralWords, "the kernel's words fit the advertised count");
-
-  static double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
   uint64_t push(const Program& p) {
     const uint64_t c0 = dev_.cycles();
