@@ -130,13 +130,20 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   // The sampled frame: the same camera at about sample_rays pixels, rendered whole
   // (shadow, reflection and refraction rays too) and compared with the reference render
   // of the same size.
-  const int shrink = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(pixels) / std::max(1, req.sample_rays))));
+  const int shrink = std::max(
+      1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(pixels) / std::max(1, req.sample_rays)))));
   RenderOptions frame;
-  frame.width = std::max(1, (req.width + shrink - 1) / std::max(1, shrink));
-  frame.height = std::max(1, (req.height + shrink - 1) / std::max(1, shrink));
+  frame.width = (req.width + shrink - 1) / shrink;
+  frame.height = (req.height + shrink - 1) / shrink;
   frame.max_depth = depth;
   std::optional<Image> ref_frame;
   const fmpp::Config frame_cfg{static_cast<unsigned>(std::min(frame.width * frame.height, 4096)), 32};
+  auto options = [&](unsigned n) {
+    fmpp::isect::KernelOptions o = req.base;
+    o.n = n;
+    o.progress = nullptr;
+    return o;
+  };
   std::ostringstream why;
   for (unsigned n : {8u, 10u, 12u, 16u, 20u, 24u, 28u, 32u}) {
     PlanCandidate c;
@@ -146,17 +153,16 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     c.host_share = static_cast<double>(over) / static_cast<double>(cond.size());
     fmpp::ModelBus bus(sample_cfg);
     fmpp::Device dev(bus);
-    fmpp::isect::KernelOptions o = req.base;
-    o.n = n;
+    fmpp::isect::KernelOptions o = options(n);
     o.cond_bits = 60;  // the machine's own answers, no host fallback
-    o.progress = nullptr;
     fmpp::isect::KernelStats st;
     const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
     size_t wrong = 0;
     for (size_t i = 0; i < got.size(); ++i) wrong += got[i].tri != ref[i].tri;
     c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
     c.sample_cycles = st.cycles;
-    if (c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share) {
+    const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share;
+    if (primary_ok) {
       // Only then the frame (it costs more): what the rays the primary sample does not
       // see (shadow rays ending on a neighbour's edge, secondary rays) do to the picture.
       if (!ref_frame) {
@@ -165,17 +171,13 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
       }
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
-      fmpp::isect::KernelOptions fo = req.base;
-      fo.n = n;
-      fo.progress = nullptr;
-      FmppIntersector fi(fdev, scene.triangles, fo);
+      FmppIntersector fi(fdev, scene.triangles, options(n));
       const ImageDiff d = compare(render(scene, fi, frame, nullptr), *ref_frame);
       c.pixel_rate = static_cast<double>(d.pixels_over) / (static_cast<double>(frame.width) * frame.height);
       c.sample_cycles += fi.stats().cycles;
     }
     plan.candidates.push_back(c);
-    if (c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share &&
-        c.pixel_rate <= req.target_wrong_rate) {
+    if (primary_ok && c.pixel_rate <= req.target_wrong_rate) {
       plan.options.n = n;
       why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
