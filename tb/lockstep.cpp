@@ -93,20 +93,15 @@ void Lockstep::after_access(const char* what, uint32_t addr) {
       mismatch(std::string(where) + ": " + buf);
     }
   }
-  if (!opt_.compare_cycles && in_read_ && rtl_entries_ != model_entries_) {
-    // Stress mode: the clocks differ, but after a read both queues are drained.
+  if (opt_.compare_cycles && rtl_.cycles() != model_.cycles()) {
+    mismatch(std::string(where) + ": RTL at cycle " + std::to_string(rtl_.cycles()) + ", model at cycle " +
+             std::to_string(model_.cycles()));
+  }
+  // With matching clocks after every access; in stress mode (the clocks differ) after a
+  // read, when both queues are drained.
+  if ((opt_.compare_cycles || in_read_) && rtl_entries_ != model_entries_) {
     mismatch(std::string(where) + ": RTL executed " + std::to_string(rtl_entries_) + " entries, model " +
              std::to_string(model_entries_));
-  }
-  if (opt_.compare_cycles) {
-    if (rtl_.cycles() != model_.cycles()) {
-      mismatch(std::string(where) + ": RTL at cycle " + std::to_string(rtl_.cycles()) + ", model at cycle " +
-               std::to_string(model_.cycles()));
-    }
-    if (rtl_entries_ != model_entries_) {
-      mismatch(std::string(where) + ": RTL executed " + std::to_string(rtl_entries_) + " entries, model " +
-               std::to_string(model_entries_));
-    }
   }
   if (opt_.mode == LockstepOptions::Mode::kFast) {
     // Without matching clocks the two sides agree only once both queues are drained.

@@ -17,16 +17,24 @@ std::vector<std::string> backend_names() {
 #endif
 }
 
+namespace {
+
+// The Verilated model records an assertion or handshake failure without stopping.
+void stop_on_failure(const tb::RtlBus& rtl) {
+  if (!rtl.failure().empty()) throw std::runtime_error("RTL: " + rtl.failure());
+}
+
+}  // namespace
+
 void Backend::finish() {
   if (lock_) lock_->final_check();
-  if (rtl_view_ && !rtl_view_->failure().empty()) throw std::runtime_error("RTL: " + rtl_view_->failure());
+  if (rtl_view_) stop_on_failure(*rtl_view_);
 }
 
 namespace {
 
 // The rtl and systemc backends' bus: forwards every access and throws once the RTL has
-// failed an assertion or a handshake (the Verilated model reports these without
-// stopping; lockstep reports them with its own context).
+// failed an assertion or a handshake (lockstep reports these with its own context).
 class CheckedBus final : public Bus {
  public:
   CheckedBus(Bus& inner, const tb::RtlBus& rtl) : inner_(inner), rtl_(rtl) {}
@@ -44,9 +52,7 @@ class CheckedBus final : public Bus {
   std::string name() const override { return inner_.name(); }
 
  private:
-  void check() const {
-    if (!rtl_.failure().empty()) throw std::runtime_error("RTL: " + rtl_.failure());
-  }
+  void check() const { stop_on_failure(rtl_); }
   Bus& inner_;
   const tb::RtlBus& rtl_;
 };
