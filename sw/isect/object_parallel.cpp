@@ -65,7 +65,7 @@ class ObjectParallelPlan : public PassPlan {
     const std::vector<int32_t> v = {quantize(d.x, sv, vlim(), "ray component"),
                                     quantize(d.y, sv, vlim(), "ray component"),
                                     quantize(d.z, sv, vlim(), "ray component")};
-    program_ = paper_object_program(v, opt_.mbits + 1, opt_, test_steps);
+    program_ = paper_object_program(v, policy::object_search_bits(opt_), opt_, test_steps);
     return program_.code();
   }
 

@@ -62,6 +62,8 @@ double object_sum_limit(unsigned mbits, double dmax) {
   return std::ldexp(1.0, static_cast<int>(mbits) - kObjectSumHeadroomBits) / dmax;
 }
 
+unsigned object_search_bits(const KernelOptions& o) { return o.mbits + 1; }
+
 int direction_exponent(const glm::dvec3& d) { return -std::ilogb(max_component(d)); }
 
 double cull_margin(unsigned n) { return 1e-3 + std::ldexp(1.0, 12 - static_cast<int>(n)); }

@@ -64,6 +64,8 @@ double nearest_for_exponent(const DistanceRange& dr);
 // / d_max go to the host (they would take the bits of every other triangle's S).
 inline constexpr int kObjectSumHeadroomBits = 12;
 double object_sum_limit(unsigned mbits, double dmax);
+// Bits of S_c the object-parallel maximum search scans: S_c < 1.5 2^mbits.
+unsigned object_search_bits(const KernelOptions& o);
 
 // Arbitrary-origin form: ray data (direction, moment, origin relative to the scene's
 // centre) is quantized to at most 2^kGeneralRayBits, so that its 6-term rows stay below
