@@ -18,7 +18,7 @@
 #include <random>
 #include <sstream>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
 #include "sw/isect/cpu_baseline.h"

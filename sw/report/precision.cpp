@@ -20,7 +20,7 @@
 #include <sstream>
 #include <thread>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"

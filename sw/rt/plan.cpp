@@ -11,7 +11,6 @@
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/rt/render.h"
-#include "tb/rtl_bus.h"
 
 namespace rt {
 
@@ -67,12 +66,12 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
                         std::to_string((pixels + fmpp::map::kMaxBlocks - 1) / fmpp::map::kMaxBlocks) + " passes";
     }
   }
-  if (req.rtl) {
+  if (!req.rtl_configs.empty()) {
     // The RTL exists only in its built configurations.
     std::string best;
     fmpp::Config best_cfg{0, 0}, largest{0, 0};
     std::string largest_name;
-    for (const std::string& name : fmpp::tb::rtl_configs()) {
+    for (const std::string& name : req.rtl_configs) {
       const fmpp::Config c = fmpp::named_config(name);
       if (c.words < words) continue;
       if (c.blocks > largest.blocks) {
