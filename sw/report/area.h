@@ -1,6 +1,7 @@
-// The pieces of `fmpp-report area` (area.cpp), exposed for tests: reading the
-// synthesis results of tools/synth.sh, fitting a cost per block and per stored word,
-// and the paper's Table 3 figures they are compared with.
+// The pieces of `fmpp-report area`, exposed for tests: reading the synthesis results of
+// tools/synth.sh (area_read.cpp), fitting a cost per block and per stored word and
+// setting it beside the paper's Table 3 figures (area_model.cpp), and the Markdown
+// (area_markdown.cpp); area.cpp is the subcommand.
 #pragma once
 
 #include <cstdint>
@@ -53,6 +54,9 @@ struct CostFit {
 // than four sizes), naming the sizes given.
 CostFit fit_cost(const std::vector<SynthSize>& sizes, const std::vector<double>& values);
 
+// The fit of one yosys cell type's counts (0 where a size has none).
+CostFit fit_cell(const std::vector<SynthSize>& sizes, const std::string& type);
+
 // yosys 0.23 `stat -tech cmos` transistor count of a generic cell; throws
 // std::runtime_error for a cell type it has no cost for.
 double cmos_transistors(const std::string& cell);
@@ -68,6 +72,29 @@ inline constexpr double kPaperCamTransistorsPerBit = 18;
 inline constexpr double kPaperAluTransistors = 1000;
 inline constexpr unsigned kPaperWordsRayParallel = 23;
 inline constexpr unsigned kPaperBitsPerWord = 40;  // 32 data + 8 status flags
+
+// The cost model fitted to the sizes and what it gives beside the paper, for a
+// processor of `words` words.
+struct CellFit {
+  std::string type;               // yosys cell type
+  double transistors_each = 0;    // cmos_transistors(type)
+  CostFit fit;                    // its count per block and per word
+};
+struct AreaModel {
+  unsigned words = 0;
+  CostFit cells, transistors, flops;
+  std::vector<CellFit> per_cell;  // every cell type of the sizes, by name
+  double paper_processor = 0;     // the paper's processor of `words` 40-bit words: CAM bits + ALU
+  double processor = 0;           // this RTL's block of `words` words, transistors
+  double bit = 0;                 // transistors per stored bit
+  double implied_lo = 0, implied_hi = 0;  // transistors per processor that Table 3 implies
+  double implied_bits = 0;        // CAM bits that implied_lo means at 18 per bit + 1000
+  double dff_bit = 0, mux_bit = 0;  // $_DFF_P_ and $_MUX_ cells per stored bit
+};
+AreaModel area_model(const SynthData& data, unsigned words);
+
+// v rounded, digits grouped by thousands ("1,234,567").
+std::string grouped(double v);
 
 // The whole report, as Markdown, for `words` words per processor in the Table 3
 // comparison.
