@@ -3,23 +3,15 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "sw/isect/reference.h"
+#include "sw/rt/shade.h"
 
 namespace rt {
 
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
-
-const char* to_string(RayKind k) {
-  switch (k) {
-    case RayKind::kPrimary: return "primary";
-    case RayKind::kShadow: return "shadow";
-    case RayKind::kReflection: return "reflection";
-    case RayKind::kRefraction: return "refraction";
-  }
-  return "?";
-}
 
 std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
   return fmpp::isect::nearest_reference(rays, tris_);
@@ -30,30 +22,6 @@ std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
 }
 
 namespace {
-
-// A ray's path back to its pixel: what its light is worth there.
-struct Path {
-  uint32_t pixel;
-  glm::dvec3 weight;
-  RayKind kind;
-};
-
-// A shadow query: the light's contribution if nothing lies between light and point.
-struct Shadow {
-  uint32_t pixel;
-  glm::dvec3 contribution;
-  int own;  // the shaded triangle: the shadow ray may end on it
-};
-
-glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
-  const glm::dvec3 v0 = t.p[1] - t.p[0], v1 = t.p[2] - t.p[0], v2 = p - t.p[0];
-  const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
-  const double d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
-  const double den = d00 * d11 - d01 * d01;
-  if (den == 0) return glm::dvec3(1.0 / 3);
-  const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den;
-  return glm::dvec3(1 - b1 - b2, b1, b2);
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -88,16 +56,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   RenderStats& st = stats ? *stats : local;
   Image img(opt.width, opt.height);
   const int depth = opt.max_depth > 0 ? opt.max_depth : sc.max_depth;
-
-  // Offsets for secondary rays: a tiny fraction of the scene's size.
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (const auto& t : sc.triangles) {
-    for (const auto& p : t.p) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  }
-  const double eps = 1e-5 * glm::length(hi - lo);
+  const Shader shader(sc);
 
   // Primary rays through pixel centres.
   std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height);
@@ -115,72 +74,11 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
     if (opt.progress) opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(rays.size()) + " rays");
 
     t0 = std::chrono::steady_clock::now();
-    std::vector<Ray> next, shadow_rays;
-    std::vector<Path> next_paths;
-    std::vector<Shadow> shadows;
-    for (size_t i = 0; i < rays.size(); ++i) {
-      const Ray& r = rays[i];
-      const Path& path = paths[i];
-      const Hit& h = hits[i];
-      if (!h.hit()) {
-        img[path.pixel] += path.weight * sc.background;
-        continue;
-      }
-      const auto& tri = sc.triangles[h.tri];
-      const Material& m = sc.materials[sc.material_of[h.tri]];
-      const glm::dvec3 p = r.o + h.t * r.d;
-      const glm::dvec3 b = barycentric(tri, p);
-      const auto& vn = sc.normals[h.tri];
-      glm::dvec3 n = b.x * vn[0] + b.y * vn[1] + b.z * vn[2];
-      glm::dvec3 nf = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-      nf = glm::length(nf) > 0 ? glm::normalize(nf) : glm::dvec3(0, 0, 1);
-      n = glm::length(n) > 0 ? glm::normalize(n) : nf;
-      const glm::dvec3 dir = glm::normalize(r.d);
-      const bool entering = glm::dot(dir, nf) < 0;
-      if (!entering) nf = -nf;             // both normals face the side the ray came from
-      if (glm::dot(n, nf) < 0) n = -n;
-      const double local = 1 - m.reflectivity - m.transparency;
-      img[path.pixel] += path.weight * local * m.diffuse * sc.ambient;
-      for (const Light& light : sc.lights) {
-        const glm::dvec3 l = light.position - p;
-        const double len = glm::length(l);
-        if (len == 0 || glm::dot(nf, l) <= 0 || glm::dot(n, l) <= 0) continue;  // light behind the surface
-        const glm::dvec3 ld = l / len;
-        const glm::dvec3 hv = glm::normalize(ld - dir);
-        const glm::dvec3 c = path.weight * (local * m.diffuse * glm::dot(n, ld) +
-                                            m.specular * std::pow(std::max(0.0, glm::dot(n, hv)), m.shininess)) *
-                             light.color;
-        // Cast from the light: every shadow ray of one light shares its origin.
-        Ray s{light.position, p - light.position};
-        s.tmax = 1;
-        shadow_rays.push_back(s);
-        shadows.push_back(Shadow{path.pixel, c, h.tri});
-      }
-      if (level + 1 >= depth) continue;
-      if (m.reflectivity > 0) {
-        glm::dvec3 rd = glm::reflect(dir, n);
-        if (glm::dot(rd, nf) <= 0) rd = glm::reflect(dir, nf);
-        Ray rr{p + eps * nf, rd};
-        rr.exclude = h.tri;
-        next.push_back(rr);
-        next_paths.push_back(Path{path.pixel, path.weight * m.reflectivity, RayKind::kReflection});
-      }
-      if (m.transparency > 0) {
-        const double eta = entering ? 1.0 / m.ior : m.ior;
-        glm::dvec3 td = glm::refract(dir, n, eta);
-        glm::dvec3 origin = p - eps * nf;
-        if (glm::length(td) == 0) {  // total internal reflection
-          td = glm::reflect(dir, n);
-          origin = p + eps * nf;
-        }
-        Ray tr{origin, td};
-        tr.exclude = h.tri;
-        next.push_back(tr);
-        next_paths.push_back(Path{path.pixel, path.weight * m.transparency, RayKind::kRefraction});
-      }
-    }
+    ShadeOutput out;
+    for (size_t i = 0; i < rays.size(); ++i) shader.shade(rays[i], paths[i], hits[i], level + 1 < depth, img, out);
     st.shade_seconds += seconds_since(t0);
 
+    const std::vector<Ray>& shadow_rays = out.shadow_rays;
     if (!shadow_rays.empty()) {
       t0 = std::chrono::steady_clock::now();
       const std::vector<Hit> sh = isect.intersect(shadow_rays);
@@ -191,15 +89,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
       if (opt.progress) {
         opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(shadow_rays.size()) + " shadow rays");
       }
-      for (size_t i = 0; i < sh.size(); ++i) {
-        // Lit unless the first thing from the light is something other than the point's
-        // own triangle, before the point (t < 1; 1e-4 absorbs the fixed-point error).
-        const bool lit = !sh[i].hit() || sh[i].tri == shadows[i].own || sh[i].t >= 1 - 1e-4;
-        if (lit) img[shadows[i].pixel] += shadows[i].contribution;
-      }
+      Shader::add_unshadowed(out.shadows, sh, img);
     }
-    rays.swap(next);
-    paths.swap(next_paths);
+    rays.swap(out.next);
+    paths.swap(out.next_paths);
   }
   return img;
 }

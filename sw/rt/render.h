@@ -8,6 +8,8 @@
 //    share the light as origin too; a point is lit unless something lies between;
 //  - reflection and refraction rays have their own origins (the general formulation)
 //    and exclude the triangle they leave.
+// Each hit is shaded by shade.h's Shader; what a surface does with light is its
+// material's (material.h).
 #pragma once
 
 #include <cstdint>
@@ -19,13 +21,10 @@
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/rt/image.h"
+#include "sw/rt/ray_kind.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
-
-enum class RayKind { kPrimary = 0, kShadow = 1, kReflection = 2, kRefraction = 3 };
-inline constexpr int kNumRayKinds = 4;
-const char* to_string(RayKind k);
 
 class Intersector {
  public:

@@ -1,0 +1,98 @@
+// Shading one hit (see shade.h).
+#include "sw/rt/shade.h"
+
+namespace rt {
+
+using fmpp::isect::Hit;
+using fmpp::isect::Ray;
+
+namespace {
+
+glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
+  const glm::dvec3 v0 = t.p[1] - t.p[0], v1 = t.p[2] - t.p[0], v2 = p - t.p[0];
+  const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
+  const double d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
+  const double den = d00 * d11 - d01 * d01;
+  if (den == 0) return glm::dvec3(1.0 / 3);
+  const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den;
+  return glm::dvec3(1 - b1 - b2, b1, b2);
+}
+
+// Offsets for secondary rays: a tiny fraction of the scene's size.
+double offset_for(const Scene& sc) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const auto& t : sc.triangles) {
+    for (const auto& p : t.p) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  return 1e-5 * glm::length(hi - lo);
+}
+
+}  // namespace
+
+Shader::Shader(const Scene& scene) : scene_(scene), eps_(offset_for(scene)) {
+  surfaces_.reserve(scene.materials.size());
+  for (const Material& m : scene.materials) surfaces_.emplace_back(m);
+}
+
+SurfacePoint Shader::surface_point(const Ray& r, const Hit& h) const {
+  const auto& tri = scene_.triangles[h.tri];
+  SurfacePoint s;
+  s.p = r.o + h.t * r.d;
+  const glm::dvec3 b = barycentric(tri, s.p);
+  const auto& vn = scene_.normals[h.tri];
+  glm::dvec3 n = b.x * vn[0] + b.y * vn[1] + b.z * vn[2];
+  glm::dvec3 nf = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+  nf = glm::length(nf) > 0 ? glm::normalize(nf) : glm::dvec3(0, 0, 1);
+  n = glm::length(n) > 0 ? glm::normalize(n) : nf;
+  s.dir = glm::normalize(r.d);
+  s.entering = glm::dot(s.dir, nf) < 0;
+  if (!s.entering) nf = -nf;  // both normals face the side the ray came from
+  if (glm::dot(n, nf) < 0) n = -n;
+  s.n = n;
+  s.nf = nf;
+  return s;
+}
+
+void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Image& img, ShadeOutput& out) const {
+  if (!h.hit()) {
+    img[path.pixel] += path.weight * scene_.background;
+    return;
+  }
+  const SurfacePoint s = surface_point(r, h);
+  const Surface& m = surfaces_[scene_.material_of[h.tri]];
+  img[path.pixel] += m.ambient(path.weight, scene_.ambient);
+  for (const Light& light : scene_.lights) {
+    const glm::dvec3 l = light.position - s.p;
+    const double len = glm::length(l);
+    if (len == 0 || glm::dot(s.nf, l) <= 0 || glm::dot(s.n, l) <= 0) continue;  // light behind the surface
+    const glm::dvec3 c = m.direct(path.weight, s, l / len, light.color);
+    // Cast from the light: every shadow ray of one light shares its origin.
+    Ray sr{light.position, s.p - light.position};
+    sr.tmax = 1;
+    out.shadow_rays.push_back(sr);
+    out.shadows.push_back(Shadow{path.pixel, c, h.tri});
+  }
+  if (!spawn) return;
+  for (const auto& part : m.parts()) {
+    Spawn sp;
+    if (!part->spawn(path.weight, s, &sp)) continue;
+    Ray nr{sp.through ? s.p - eps_ * s.nf : s.p + eps_ * s.nf, sp.dir};
+    nr.exclude = h.tri;
+    out.next.push_back(nr);
+    out.next_paths.push_back(Path{path.pixel, sp.weight, sp.kind});
+  }
+}
+
+void Shader::add_unshadowed(const std::vector<Shadow>& shadows, const std::vector<Hit>& hits, Image& img) {
+  for (size_t i = 0; i < hits.size(); ++i) {
+    // Lit unless the first thing from the light is something other than the point's
+    // own triangle, before the point (t < 1; 1e-4 absorbs the fixed-point error).
+    const bool lit = !hits[i].hit() || hits[i].tri == shadows[i].own || hits[i].t >= 1 - 1e-4;
+    if (lit) img[shadows[i].pixel] += shadows[i].contribution;
+  }
+}
+
+}  // namespace rt
