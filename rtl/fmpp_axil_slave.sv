@@ -377,6 +377,9 @@ module fmpp_axil_slave #(
 
   // Assertions
 `ifndef SYNTHESIS
+  if (fmpp_pkg::DataW != 64) begin : g_bad_data_width
+    $error("fmpp_axil_slave: the map's bus is %0d bits wide; this slave moves 64-bit beats", fmpp_pkg::DataW);
+  end
   if (NumWords < 2 || NumWords > fmpp_pkg::MaxWords || NumWords % 2 != 0) begin : g_bad_words
     $error("fmpp_axil_slave: NumWords = %0d must be even and in [2, %0d]", NumWords, fmpp_pkg::MaxWords);
   end

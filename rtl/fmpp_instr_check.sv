@@ -28,11 +28,17 @@ module fmpp_instr_check #(
   assign b  = instr_i[fmpp_pkg::F_B_LSB  +: fmpp_pkg::F_B_W];
   assign x  = instr_i[fmpp_pkg::F_X_LSB  +: fmpp_pkg::F_X_W];
 
+  // Which segments of reserved bits (fmpp_pkg::RsvSegMask) have a bit set.
+  logic [fmpp_pkg::NumRsvSegs-1:0] seg_set;
+  always_comb begin
+    for (int s = 0; s < fmpp_pkg::NumRsvSegs; s++) seg_set[s] = |(instr_i & fmpp_pkg::RsvSegMask[s*64 +: 64]);
+  end
+
   always_comb begin
     logic known;
     known    = 32'(op) < fmpp_pkg::NumOpcodes;
     reserved = known ? fmpp_pkg::OpReserved[32'(op)*64 +: 64] : '1;
-    legal_o  = known && ((instr_i & reserved) == '0);
+    legal_o  = known && ((seg_set & fmpp_pkg::RsvSegOps[32'(op)*fmpp_pkg::NumRsvSegs +: fmpp_pkg::NumRsvSegs]) == '0);
     // Used word fields (their bits are not reserved) must address a word of the block.
     if (!reserved[fmpp_pkg::F_D_LSB] && 32'(d) >= NumWords) legal_o = 1'b0;
     if (!reserved[fmpp_pkg::F_A_LSB] && 32'(a) >= NumWords) legal_o = 1'b0;

@@ -198,6 +198,12 @@ package fmpp_pkg;
   parameter int unsigned NumOpcodes = 14;
   // OpReserved[op*64 +: 64]
   parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFFF, 64'h0000003FFFFFFFFF, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
+  // The same, grouped for a cheap check: bits reserved for the same opcodes form one
+  // segment; RsvSegMask[s*64 +: 64] are its bits, RsvSegOps[op*NumRsvSegs + s] = 1
+  // if opcode op reserves segment s.
+  parameter int unsigned NumRsvSegs = 9;
+  parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000010F, 64'h0000000000001E10, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
+  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {9'b011001110, 9'b000111111, 9'b111111111, 9'b111111111, 9'b000111100, 9'b111111000, 9'b111111000, 9'b001111000, 9'b111110000, 9'b111110000, 9'b111010000, 9'b000001010, 9'b000111111, 9'b111111111};
 
 endpackage
 /* verilator lint_on UNUSEDPARAM */

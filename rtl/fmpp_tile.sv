@@ -229,7 +229,7 @@ module fmpp_tile #(
               fl_new = (op_i == fmpp_pkg::OP_SETS) ? '1 : '0;
             end
             fmpp_pkg::OP_FLAGOP: begin
-              fl_we  = !imm_i[fmpp_pkg::FLAG_ANY_LSB] || flagop_any_i;
+              fl_we  = imm_i[fmpp_pkg::FLAG_ANY_LSB +: fmpp_pkg::FLAG_ANY_W] == '0 || flagop_any_i;
               fl_new = flagop_v;
             end
             fmpp_pkg::OP_WRITES: begin

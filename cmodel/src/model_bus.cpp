@@ -9,6 +9,10 @@ namespace fmpp {
 
 using map::Err;
 
+// The Bus interface carries the map's beats and addresses in these types.
+static_assert(map::kDataW == 64, "fmpp::Bus moves 64-bit beats (uint64_t)");
+static_assert(map::kAddrW == 32, "fmpp::Bus addresses are 32 bits (uint32_t)");
+
 Decoded decode_address(const Config& cfg, uint32_t addr) {
   Decoded d;
   d.aligned = (addr & 7) == 0;
@@ -69,9 +73,9 @@ Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry
       switch (d.reg) {
         case map::kRegQueue:
           if (strb != 0xFF) return Err::kStrobe;
-          if (!is_legal(data, config().words)) return Err::kIllegal;
+          if (!is_legal(map::kQueueInstr.get(data), config().words)) return Err::kIllegal;
           *is_push = true;
-          *push = QueueEntry{QueueEntry::Kind::kInstr, 0, 0, 0, data};
+          *push = QueueEntry{QueueEntry::Kind::kInstr, 0, 0, 0, map::kQueueInstr.get(data)};
           return Err::kNone;
         case map::kRegCtrl:
         case map::kRegError:

@@ -68,7 +68,7 @@ uint64_t Device::read_reg(uint32_t addr) {
 }
 
 void Device::push(uint64_t raw) {
-  if (bus_.write(map::kRegQueue, raw) != Resp::kOkay) {
+  if (bus_.write(map::kRegQueue, map::kQueueInstr.put(raw)) != Resp::kOkay) {
     const std::string what = "push of " + disasm(raw);
     fail(what.c_str(), map::kRegQueue);
   }

@@ -139,8 +139,10 @@ def build_and_run(scratch, accesses):
            os.path.join("cmodel", "src", "model_bus.cpp"), os.path.join("tb", "arch_state.cpp"),
            os.path.join("tb", "lockstep.cpp"), os.path.join("tb", "progen.cpp"),
            os.path.join("sw", "fmpp", "device.cpp"), os.path.join("sw", "fmpp", "program.cpp")]
-    cflags = f"-std=c++17 -O1 -I{scratch} -I{os.path.join(scratch, 'cmodel', 'include')}"
+    # Unoptimised: the run is short, the compile is what takes the time.
+    cflags = f"-std=c++17 -O0 -I{scratch} -I{os.path.join(scratch, 'cmodel', 'include')}"
     cmd = ["verilator", "--cc", "--exe", "--build", "-j", "2", "-Wall", "--assert", "--trace-fst",
+           "-MAKEFLAGS", "OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0",
            "--top-module", "fmpp_top", "--prefix", "Vfmpp_tiny", "-Mdir", "obj",
            f"-GNumBlocks={cfg['blocks']}", f"-GNumWords={cfg['words']}",
            "-CFLAGS", cflags, "-o", "moved_lockstep"] + rtl + cpp

@@ -140,7 +140,8 @@ def _how_generated():
         "sub-fields rather than spell out bit positions) and writes:",
         "",
         "- `rtl/fmpp_pkg.sv`: field positions `F_<FIELD>_LSB/_W`, sub-field positions, values and "
-        "`<SUB>_LEGAL` masks, the per-opcode reserved-bit table `OpReserved`, the opcode and error "
+        "`<SUB>_LEGAL` masks, the per-opcode reserved-bit table `OpReserved` (and the same grouped "
+        "into segments, `RsvSegMask`/`RsvSegOps`, for the checker's gates), the opcode and error "
         "enums (their widths from the OP field and `ERROR.CAUSE`), and one packed struct "
         "`<reg>_reg_t` per readable register. The slave packs every register through its struct, "
         "the array and the checker slice instructions with the field parameters, the tile and ALU "
@@ -154,11 +155,13 @@ def _how_generated():
         "",
         "To change the encoding, edit the JSON, run `tools/gen_map.py`, rebuild, and run the tests. "
         "Nothing else needs editing unless an instruction's meaning changes. The ctest "
-        "`map_generated` fails while a generated file is stale; the ctest `map_moved` copies the "
+        "`map_generated` fails while a generated file is stale; `map_checks` feeds the generator "
+        "broken maps and expects each refused with its reason; the ctest `map_moved` copies the "
         "repository to a scratch directory, moves every instruction field, most sub-fields and "
         "register fields and renumbers opcodes, error causes and function codes there, regenerates, "
         "checks that the package, the header and both docs show the new layout, Verilates the scratch "
-        "RTL and runs it in lockstep with the scratch model on random programs (`tools/map_moved_test.py`). "
+        "RTL and runs it in lockstep with the scratch model on random programs "
+        "(`tests/map/map_moved_test.py`, about a minute). "
         "A bit position written as a number anywhere in the RTL or the model makes that run fail. "
         "The unit tests that pin today's encoding (`tests/isa_test.cpp`) must then be updated by hand: "
         "they are the record of the published encoding.",

@@ -94,6 +94,21 @@ def op_reserved(m, op):
     return ones(64) & ~allowed
 
 
+def reserved_segments(m):
+    """The instruction bits grouped by how their reservation depends on the opcode: bits
+    reserved for exactly the same opcodes form one segment (a field, or the part of one
+    its sub-fields leave uncovered). Returns [(bit mask, set of opcode codes)], bits never
+    reserved left out. Checking "any bit of a segment set" once per segment is as cheap
+    in gates as checking each field, whatever the map."""
+    res = {op["code"]: op_reserved(m, op) for op in m["opcodes"]}
+    groups = {}
+    for bit in range(64):
+        ops = frozenset(c for c, r in res.items() if (r >> bit) & 1)
+        if ops:
+            groups[ops] = groups.get(ops, 0) | (1 << bit)
+    return sorted(((mask, ops) for ops, mask in groups.items()), key=lambda g: -g[0])
+
+
 def legal_values(s):
     """Bit v set: value v of sub-field s is defined (all values if it names none)."""
     if "values" not in s:
@@ -188,6 +203,10 @@ def check(m, path):
                 raise MapError(f"{where}: {o['name']} has sub-field {n} of {s['of']}, a field it does not use")
         _no_overlap([(n, sub_abs_lsb(m, subfield(m, n)), subfield(m, n)["width"]) for n in subs], 64,
                     f"{where}: sub-fields of {o['name']}")
+    named = {n for o in ops for n in o.get("subfields", [])}
+    for s in m["subfields"]:
+        if s["name"] not in named:
+            raise MapError(f"{where}: sub-field {s['name']} belongs to no opcode (list it in one's subfields)")
     for r in m["registers"]:
         _no_overlap([(f["name"], f["lsb"], f["width"]) for f in r["fields"]], 64, f"{where}: register {r['name']}")
     texts = [(o["name"], o["desc"]) for o in ops] + [(f["name"], f["desc"]) for f in fields] + \

@@ -1,6 +1,6 @@
 """rtl/fmpp_pkg.sv: the map as a SystemVerilog package (members referred to by
 qualified name: yosys 0.23 cannot parse `import`, nor unpacked array parameters)."""
-from .model import BANNER, hexint, legal_values, op_reserved, reg_layout, register
+from .model import BANNER, hexint, legal_values, op_reserved, reg_layout, register, reserved_segments
 
 
 def _enum(o, name, width, items, comments=None):
@@ -102,6 +102,18 @@ def gen_sv(m):
     o.append("  // OpReserved[op*64 +: 64]")
     body = ", ".join(f"64'h{op_reserved(m, op):016X}" for op in reversed(ops))
     o.append(f"  parameter logic [NumOpcodes*64-1:0] OpReserved = {{{body}}};")
+    segs = reserved_segments(m)
+    o.append("  // The same, grouped for a cheap check: bits reserved for the same opcodes form one")
+    o.append("  // segment; RsvSegMask[s*64 +: 64] are its bits, RsvSegOps[op*NumRsvSegs + s] = 1")
+    o.append("  // if opcode op reserves segment s.")
+    o.append(f"  parameter int unsigned NumRsvSegs = {len(segs)};")
+    body = ", ".join(f"64'h{mask:016X}" for mask, _ in reversed(segs))
+    o.append(f"  parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {{{body}}};")
+    rows = []
+    for op in reversed(ops):
+        row = "".join("1" if op["code"] in opset else "0" for _, opset in reversed(segs))
+        rows.append(f"{len(segs)}'b{row}")
+    o.append(f"  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {{{', '.join(rows)}}};")
     o.append("")
     o.append("endpackage")
     o.append("/* verilator lint_on UNUSEDPARAM */")

@@ -190,14 +190,11 @@ namespace lut {
 inline constexpr uint8_t kZero = 0x0;  // 0
 inline constexpr uint8_t kOne = 0xF;  // 1
 inline constexpr uint8_t kA = 0xC;  // a
-inline constexpr uint8_t kB = 0xA;  // b
 inline constexpr uint8_t kNotA = 0x3;  // ~a
-inline constexpr uint8_t kNotB = 0x5;  // ~b
 inline constexpr uint8_t kAnd = 0x8;  // a & b
 inline constexpr uint8_t kOr = 0xE;  // a | b
 inline constexpr uint8_t kXor = 0x6;  // a ^ b
 inline constexpr uint8_t kAndNotB = 0x4;  // a & ~b
-inline constexpr uint8_t kNotAAndB = 0x2;  // ~a & b
 }  // namespace lut
 inline constexpr BitField kFlagAny{8, 1};  // within IMM: 1: write flag F only if the result is 1 in some block
 
