@@ -11,8 +11,9 @@ Then it
   (b) Verilates the scratch RTL (tiny configuration, -Wall) with the scratch model, test
       bench and Device, and runs tests/map/moved_lockstep_main.cpp: directed microcode
       checked against host arithmetic, then random accesses with RTL and model in lockstep.
-A bit position, code or register layout written as a number anywhere in that code, instead
-of taken from the map, makes (b) fail. Exit status 0 = everything followed the map.
+A position or code of an instruction field, sub-field, register field, flag, opcode or error
+cause written as a number in that code, instead of taken from the map, makes (b) fail (lint,
+a directed check or a lockstep mismatch). Exit status 0 = everything followed the map.
 
 Usage: map_moved_test.py [--repo DIR] [--work DIR] [--accesses N] [--keep]
                          [--patch FILE OLD NEW]...   (edit the scratch copy after moving:

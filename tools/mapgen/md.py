@@ -162,7 +162,11 @@ def _how_generated():
         "checks that the package, the header and both docs show the new layout, Verilates the scratch "
         "RTL and runs it in lockstep with the scratch model on random programs "
         "(`tests/map/map_moved_test.py`, about a minute). "
-        "A bit position written as a number anywhere in the RTL or the model makes that run fail. "
+        "A position or code of an instruction field, sub-field, register field, flag, opcode or error "
+        "cause written as a number in the RTL, the model, the Device or the program generator, "
+        "instead of taken from the map, makes that run fail (in lint, in the directed checks or as a "
+        "lockstep mismatch). The window layouts and the 4 KiB register region are described in the "
+        "map's prose only and are not moved by the test. "
         "The unit tests that pin today's encoding (`tests/isa_test.cpp`) must then be updated by hand: "
         "they are the record of the published encoding.",
         "",
