@@ -7,7 +7,7 @@
 #include <functional>
 #include <random>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/io.h"

@@ -8,9 +8,9 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/rt/render.h"
-#include "tb/rtl_bus.h"
 
 namespace rt {
 
@@ -18,19 +18,6 @@ namespace {
 
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
-
-// Condition number of P (vertices relative to o) in the infinity norm, inf if singular.
-double condition(const fmpp::isect::Triangle& t, const glm::dvec3& o) {
-  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);
-  const double det = glm::determinant(P);
-  if (det == 0 || !std::isfinite(det)) return std::numeric_limits<double>::infinity();
-  auto norm = [](const glm::dmat3& a) {
-    double m = 0;
-    for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
-    return m;
-  };
-  return norm(P) * norm(glm::inverse(P));
-}
 
 std::string pct(double v) {
   std::ostringstream o;
@@ -79,12 +66,12 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
                         std::to_string((pixels + fmpp::map::kMaxBlocks - 1) / fmpp::map::kMaxBlocks) + " passes";
     }
   }
-  if (req.rtl) {
+  if (!req.rtl_configs.empty()) {
     // The RTL exists only in its built configurations.
     std::string best;
     fmpp::Config best_cfg{0, 0}, largest{0, 0};
     std::string largest_name;
-    for (const std::string& name : fmpp::tb::rtl_configs()) {
+    for (const std::string& name : req.rtl_configs) {
       const fmpp::Config c = fmpp::named_config(name);
       if (c.words < words) continue;
       if (c.blocks > largest.blocks) {
@@ -125,7 +112,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
   const std::vector<Hit> ref = fmpp::isect::nearest_reference(sample, scene.triangles);
   std::vector<double> cond;
-  for (const auto& t : scene.triangles) cond.push_back(condition(t, scene.camera.eye));
+  for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
   const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
   // The sampled frame: the same camera at about sample_rays pixels, rendered whole
   // (shadow, reflection and refraction rays too) and compared with the reference render
@@ -149,12 +136,13 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     PlanCandidate c;
     c.n = n;
     size_t over = 0;
-    for (double k : cond) over += !(k <= std::ldexp(1.0, static_cast<int>(n) - 3));
+    const double limit = fmpp::isect::policy::paper_cond_limit(options(n));  // the kernel's own limit
+    for (double k : cond) over += !(k <= limit);
     c.host_share = static_cast<double>(over) / static_cast<double>(cond.size());
     fmpp::ModelBus bus(sample_cfg);
     fmpp::Device dev(bus);
     fmpp::isect::KernelOptions o = options(n);
-    o.cond_bits = 60;  // the machine's own answers, no host fallback
+    o.cond_bits = fmpp::isect::policy::kRawCondBits;  // the machine's own answers, no host fallback
     fmpp::isect::KernelStats st;
     const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
     size_t wrong = 0;

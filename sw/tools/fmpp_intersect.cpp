@@ -13,7 +13,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/io.h"
 #include "sw/isect/kernels.h"
