@@ -135,9 +135,9 @@ def build_and_run(scratch, accesses):
     rtl = [os.path.join("rtl", "fmpp_pkg.sv")] + sorted(
         os.path.join("rtl", f) for f in os.listdir(os.path.join(scratch, "rtl"))
         if f.endswith(".sv") and f != "fmpp_pkg.sv")
-    cpp = [os.path.join("tests", "map", "moved_lockstep_main.cpp"),
-           os.path.join("cmodel", "src", "isa.cpp"), os.path.join("cmodel", "src", "machine.cpp"),
-           os.path.join("cmodel", "src", "model_bus.cpp"), os.path.join("tb", "arch_state.cpp"),
+    model = sorted(os.path.join("cmodel", "src", f) for f in os.listdir(os.path.join(scratch, "cmodel", "src"))
+                   if f.endswith(".cpp"))
+    cpp = [os.path.join("tests", "map", "moved_lockstep_main.cpp")] + model + [os.path.join("tb", "arch_state.cpp"),
            os.path.join("tb", "lockstep.cpp"), os.path.join("tb", "progen.cpp"),
            os.path.join("sw", "fmpp", "device.cpp"), os.path.join("sw", "fmpp", "program.cpp")]
     # Unoptimised: the run is short, the compile is what takes the time.

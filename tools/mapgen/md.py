@@ -10,7 +10,12 @@ def _values(s):
         return ", ".join(f"{k} = {v}" for k, v in s["values"].items())
     if "functions" in s:
         return "truth table (named functions below)"
-    return "index"
+    return f"0 .. {(1 << s['width']) - 1}"
+
+
+def _cell(text):
+    """text for a table cell: a | would end the cell."""
+    return text.replace("|", "\\|")
 
 
 def _layout(m):
@@ -43,15 +48,15 @@ def gen_md(m):
             if f is None:
                 parts.append(f"`{bits(lsb, width)}` reserved")
             else:
-                parts.append(f"`{bits(lsb, width)}` {f['name']}" + (f": {f['desc']}" if f.get("desc") else ""))
-        o.append(f"| `{r['offset']}` | {r['name']} | {r['access']} | {'<br>'.join(parts)} | {r['desc']} |")
+                parts.append(f"`{bits(lsb, width)}` {f['name']}" + (f": {_cell(f['desc'])}" if f.get("desc") else ""))
+        o.append(f"| `{r['offset']}` | {r['name']} | {r['access']} | {'<br>'.join(parts)} | {_cell(r['desc'])} |")
     o.append("")
     o.append("## Windows")
     o.append("")
     o.append("| base | size | name | access | layout |")
     o.append("| --- | --- | --- | --- | --- |")
     for w in m["windows"]:
-        o.append(f"| `{w['base']}` | `{w['size']}` | {w['name']} | {w['access']} | {w['desc']} |")
+        o.append(f"| `{w['base']}` | `{w['size']}` | {w['name']} | {w['access']} | {_cell(w['desc'])} |")
     o.append("")
     o.append("## Error causes")
     o.append("")
@@ -61,7 +66,7 @@ def gen_md(m):
     o.append("| code | cause | meaning |")
     o.append("| --- | --- | --- |")
     for e in sorted(m["errors"], key=lambda e: e["code"]):
-        o.append(f"| {e['code']} | {e['name']} | {e['desc']} |")
+        o.append(f"| {e['code']} | {e['name']} | {_cell(e['desc'])} |")
     o.append("")
     o.append("## Instruction encoding")
     o.append("")
@@ -70,7 +75,7 @@ def gen_md(m):
     o.append("| field | bits | meaning |")
     o.append("| --- | --- | --- |")
     for f in m["fields"]:
-        o.append(f"| {f['name']} | `{bits(f['lsb'], f['width'])}` | {f['desc']} |")
+        o.append(f"| {f['name']} | `{bits(f['lsb'], f['width'])}` | {_cell(f['desc'])} |")
     o.append("")
     o.append("An opcode's reserved bits are the fields it does not use and the bits of a used field "
              "that none of its sub-fields covers; a push with one of them set is ILLEGAL.")
@@ -80,7 +85,7 @@ def gen_md(m):
     for op in sorted(m["opcodes"], key=lambda op: op["code"]):
         uses = ", ".join(op["uses"]) if op["uses"] else "none"
         subs = ", ".join(op.get("subfields", [])) or "-"
-        o.append(f"| {op['code']} | {op['name']} | {uses} | {subs} | `0x{op_reserved(m, op):016X}` | {op['desc']} |")
+        o.append(f"| {op['code']} | {op['name']} | {uses} | {subs} | `0x{op_reserved(m, op):016X}` | {_cell(op['desc'])} |")
     o.append("")
     o.append("Sub-fields (bits within their field, and within the instruction). A value not listed "
              "for a sub-field that lists values makes the push ILLEGAL.")
@@ -89,7 +94,7 @@ def gen_md(m):
     o.append("| --- | --- | --- | --- | --- | --- |")
     for s in m["subfields"]:
         o.append(f"| {s['name']} | {s['of']} | `{bits(s['lsb'], s['width'])}` | "
-                 f"`{bits(sub_abs_lsb(m, s), s['width'])}` | {_values(s)} | {s['desc']} |")
+                 f"`{bits(sub_abs_lsb(m, s), s['width'])}` | {_values(s)} | {_cell(s['desc'])} |")
     o.append("")
     for s in m["subfields"]:
         if "functions" not in s:
@@ -99,14 +104,14 @@ def gen_md(m):
         o.append("| function | value | table |")
         o.append("| --- | --- | --- |")
         for fn, expr in s["functions"].items():
-            o.append(f"| {fn} | `{expr}` | `0x{lut_value(expr, fn):X}` |")
+            o.append(f"| {fn} | `{_cell(expr)}` | `0x{lut_value(expr, fn):X}` |")
         o.append("")
     o.append("## Named configurations")
     o.append("")
     o.append("| name | NumBlocks | NumWords | purpose |")
     o.append("| --- | --- | --- | --- |")
     for c in m["configs"]:
-        o.append(f"| {c['name']} | {c['blocks']} | {c['words']} | {c['desc']} |")
+        o.append(f"| {c['name']} | {c['blocks']} | {c['words']} | {_cell(c['desc'])} |")
     o.append("")
     o.append("## Ordering and timing")
     o.append("")
