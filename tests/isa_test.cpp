@@ -108,6 +108,16 @@ TEST(Isa, ReservedBitsOfEveryOpcodeAreRefused) {
   }
 }
 
+TEST(Isa, WithImmReplacesTheImmediateOnly) {
+  const uint64_t raw = ref(RefFn::kAnd, RefPart::kData, 3, 0x1234u, 2, 1).encode();
+  Instr want = Instr::decode(raw);
+  want.imm = 0xCAFEF00Du;
+  EXPECT_TRUE(Instr::decode(with_imm(raw, 0xCAFEF00Du)) == want);
+  EXPECT_EQ(with_imm(writes(4, 7).encode(), 9), writes(4, 9).encode());
+  EXPECT_THROW(with_imm(add(1, 2, 3).encode(), 5), std::invalid_argument) << "ADD has no IMM";
+  EXPECT_THROW(with_imm(map::kFieldOp.put(map::kNumOpcodes), 5), std::invalid_argument) << "unknown opcode";
+}
+
 TEST(Isa, LegalityRules) {
   EXPECT_FALSE(is_legal(uint64_t{14} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(uint64_t{31} << 59, 32)) << "unknown opcode";

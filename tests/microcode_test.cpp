@@ -52,16 +52,6 @@ int64_t random_signed(std::mt19937_64& rng, unsigned bits) {
   }
 }
 
-TEST(Program, WithImmReplacesTheImmediateOnly) {
-  const uint64_t raw = ref(RefFn::kAnd, RefPart::kData, 3, 0x1234u, 2, 1).encode();
-  Instr want = Instr::decode(raw);
-  want.imm = 0xCAFEF00Du;
-  EXPECT_TRUE(Instr::decode(with_imm(raw, 0xCAFEF00Du)) == want);
-  EXPECT_EQ(with_imm(writes(4, 7).encode(), 9), writes(4, 9).encode());
-  EXPECT_THROW(with_imm(add(1, 2, 3).encode(), 5), std::invalid_argument) << "ADD has no IMM";
-  EXPECT_THROW(with_imm(map::kFieldOp.put(map::kNumOpcodes), 5), std::invalid_argument) << "unknown opcode";
-}
-
 TEST(Csd, DigitsAreCanonicalAndExact) {
   std::mt19937_64 rng(3);
   for (int k = 0; k < 20000; ++k) {

@@ -189,6 +189,15 @@ Instr make(Op op, unsigned f, unsigned d, unsigned a, unsigned b, unsigned x, ui
 }
 }  // namespace
 
+uint64_t with_imm(uint64_t raw, uint32_t imm) {
+  static_assert(map::kFieldImm.width == 32, "the immediate field holds a whole word");
+  const uint64_t op = map::kFieldOp.get(raw);
+  if (op >= map::kNumOpcodes || (map::kOpReserved[op] & map::kFieldImm.mask())) {
+    throw std::invalid_argument("fmpp::ins::with_imm: " + disasm(raw) + " has no IMM field to set");
+  }
+  return map::kFieldImm.set(raw, imm);
+}
+
 Instr nop() { return make(Op::kNop, 0, 0, 0, 0, 0, 0); }
 Instr maskset(uint32_t mask) { return make(Op::kMaskset, 0, 0, 0, 0, 0, mask); }
 Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs) {

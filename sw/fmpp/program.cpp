@@ -30,14 +30,6 @@ void Program::append(const Program& p) {
   mask_ = p.mask_;
 }
 
-uint64_t ins::with_imm(uint64_t raw, uint32_t imm) {
-  const uint64_t op = map::kFieldOp.get(raw);
-  if (op >= map::kNumOpcodes || (map::kOpReserved[op] & map::kFieldImm.mask())) {
-    throw std::invalid_argument("fmpp::ins::with_imm: " + disasm(raw) + " has no IMM field to set");
-  }
-  return map::kFieldImm.set(raw, imm);
-}
-
 std::vector<int8_t> csd(int64_t x) {
   std::vector<int8_t> d;
   while (x != 0) {

@@ -42,14 +42,6 @@ class Program {
   std::optional<uint32_t> mask_;
 };
 
-namespace ins {
-// `raw` (an encoded instruction) with its IMM field - the REF key, the WRITES data, the
-// SETSADR index - replaced by `imm`, everything else kept: patches one instruction of an
-// already encoded program without knowing where the map puts IMM. Throws
-// std::invalid_argument if `raw`'s opcode is unknown or does not use IMM.
-uint64_t with_imm(uint64_t raw, uint32_t imm);
-}  // namespace ins
-
 // Canonical signed digits of x: digits[k] in {-1, 0, 1}, x = sum digits[k] 2^k, no two
 // adjacent non-zero digits (the fewest non-zero digits of any signed-digit form).
 std::vector<int8_t> csd(int64_t x);
