@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include <verilated.h>
+
 namespace fmpp::tb {
 
 std::unique_ptr<RtlBus> make_rtl_bus(unsigned blocks, unsigned words, const RtlOptions& opt) {
@@ -25,5 +27,7 @@ std::unique_ptr<RtlBus> make_rtl_bus(unsigned blocks, unsigned words, const RtlO
   }
   return make_rtl_bus(best, opt);
 }
+
+std::string verilator_version() { return Verilated::productVersion(); }
 
 }  // namespace fmpp::tb

@@ -77,6 +77,8 @@ class RtlBus : public Bus {
 
 // Names of the configurations built into this binary.
 std::vector<std::string> rtl_configs();
+// The version of the Verilator that built them ("5.006 2023-01-22").
+std::string verilator_version();
 // Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument.
 std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});
 // Builds the smallest built configuration with at least `blocks` blocks and

@@ -1,7 +1,11 @@
 // Instruction encoding, legality and disassembly.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <map>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "fmpp/isa.h"
 
@@ -108,13 +112,67 @@ TEST(Isa, LegalityRules) {
   EXPECT_TRUE(is_legal(flagop(7, 7, 7, 0xF, true).encode(), 8));
 }
 
-TEST(Isa, RandomWordsAreRarelyLegalAndNeverCrashTheDisassembler) {
+// A random legal instruction of opcode `op`, every field drawn at random within its
+// range (word addresses up to 63).
+Instr random_legal(Op op, std::mt19937_64& rng) {
+  auto u = [&rng](unsigned n) { return static_cast<unsigned>(rng() % n); };
+  const uint32_t imm = static_cast<uint32_t>(rng());
+  switch (op) {
+    case Op::kNop: return nop();
+    case Op::kMaskset: return maskset(imm);
+    case Op::kRef: {
+      const RefPart part = u(2) ? RefPart::kAddr : RefPart::kData;
+      return ref(static_cast<RefFn>(u(3)), part, part == RefPart::kAddr ? 0 : u(64), imm, u(8), u(8));
+    }
+    case Op::kFunc: return func(static_cast<FuncFn>(u(3)), u(64), u(64), u(64), u(8));
+    case Op::kAdd: return add(u(64), u(64), u(64), u(8));
+    case Op::kSub: return sub(u(64), u(64), u(64), u(8));
+    case Op::kBitcopy: return bitcopy(u(64), u(32), u(64), u(32), u(8));
+    case Op::kLshift: return lshift(u(64), u(64), u(8));
+    case Op::kRshift: return rshift(u(64), u(64), u(8));
+    case Op::kWrites: return writes(u(64), imm, u(8));
+    case Op::kSets: return sets();
+    case Op::kResets: return resets();
+    case Op::kSetsadr: return setsadr(imm);
+    case Op::kFlagop: return flagop(u(8), u(8), u(8), static_cast<uint8_t>(u(16)), u(2) == 1);
+  }
+  throw std::logic_error("random_legal: opcode " + std::to_string(static_cast<unsigned>(op)));
+}
+
+TEST(Isa, DisassemblyNamesEveryFieldOfALegalInstruction) {
+  // Two different legal instructions never read the same, so a lockstep report or a
+  // trace shows exactly which instruction ran; and each starts with its opcode's name.
+  std::mt19937_64 rng(5);
+  std::map<std::string, uint64_t> seen;
+  for (int k = 0; k < 40000; ++k) {
+    const auto op = static_cast<Op>(k % map::kNumOpcodes);
+    const uint64_t raw = random_legal(op, rng).encode();
+    ASSERT_TRUE(is_legal(raw, 64)) << std::hex << raw;
+    const std::string text = disasm(raw);
+    EXPECT_EQ(text.rfind(map::kOpNames[k % map::kNumOpcodes], 0), 0u) << text;
+    const auto [it, fresh] = seen.emplace(text, raw);
+    if (!fresh) {
+      EXPECT_EQ(it->second, raw) << "two instructions disassemble as \"" << text << "\"";
+    }
+  }
+  EXPECT_GT(seen.size(), 30000u) << "the random fields repeat too often to test anything";
+}
+
+TEST(Isa, RandomWordsAreRarelyLegalAndDisassembleByTheirOpcode) {
   std::mt19937_64 rng(7);
   unsigned legal = 0;
   for (int k = 0; k < 20000; ++k) {
     const uint64_t raw = rng();
     if (is_legal(raw, 32)) ++legal;
-    EXPECT_FALSE(disasm(raw).empty());
+    const unsigned code = static_cast<unsigned>(raw >> 59);
+    const std::string text = disasm(raw);
+    if (code >= map::kNumOpcodes) {
+      char want[64];
+      std::snprintf(want, sizeof want, "ILLEGAL(op=%u raw=0x%016llx)", code, static_cast<unsigned long long>(raw));
+      EXPECT_EQ(text, want);
+    } else {
+      EXPECT_EQ(text.rfind(map::kOpNames[code], 0), 0u) << text;
+    }
   }
   EXPECT_LT(legal, 200u);
 }

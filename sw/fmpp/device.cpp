@@ -129,8 +129,4 @@ bool Device::overflow() { return (read_reg(map::kRegStatus) >> map::kStatusOvfLs
 
 uint64_t Device::instret() { return read_reg(map::kRegInstret); }
 
-void Device::set_gap(uint8_t gap) {
-  if (bus_.write(map::kRegCtrl, gap) != Resp::kOkay) fail("CTRL write", map::kRegCtrl);
-}
-
 }  // namespace fmpp
