@@ -1,6 +1,6 @@
 // fmpp-render: Whitted ray tracing with every intersection computed on the FMPP.
 //
-//   fmpp-render --scene scenes/cornell.json --backend rtl --width 128 --height 128 \
+//   fmpp-render --scene scenes/cornell.json --backend rtl --width 128 --height 128
 //               --out cornell.png --report cornell.json
 //
 // Backends: reference (double precision on the host), cmodel (golden model), rtl
