@@ -22,7 +22,9 @@ class RtlDirected : public ::testing::TestWithParam<std::string> {
   }
   void TearDown() override {
     if (lock) lock->final_check();
-    if (rtl) EXPECT_EQ(rtl->failure(), "");  // none when SetUp threw (a configuration not built)
+    if (rtl) {  // none when SetUp threw (a configuration not built)
+      EXPECT_EQ(rtl->failure(), "");
+    }
   }
   uint64_t rd(uint32_t addr) {
     uint64_t v = 0;
