@@ -1,5 +1,5 @@
 // The arbitrary-origin form: ray-parallel, with a different origin in every block
-// (docs/intersection.md, "Rays with their own origins"). Relative to the scene's centre
+// (docs/intersection.md, "The arbitrary-origin form"). Relative to the scene's centre
 // and with A = P_1 - O etc., T_i det(P - O) = c_i . V + e_i . L, where c_i = P_j x P_k
 // and e_i = P_k - P_j depend on the triangle only and L = O x V (the ray's Pluecker
 // moment) on the ray only. The hit needs the three A_i and their sum nv = n . V to share

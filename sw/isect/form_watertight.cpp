@@ -1,4 +1,4 @@
-// The watertight form, for rays sharing an origin O (docs/intersection.md, "Watertight
+// The watertight form, for rays sharing an origin O (docs/intersection.md, "The watertight
 // form"): the vertices relative to O snap to an integer grid of (n - 3) / 2 bits
 // (policy::watertight_grid_bits), and each edge function A_i = c_i . V, with the exact
 // integer constant c_i = P_j x P_k, is evaluated as floor(c_i . V / 2^n), whose sign is

@@ -1,5 +1,5 @@
 // Where the intersection kernels keep their data inside a block: the flags and the
-// word addresses of each form and mapping (docs/intersection.md, "Block layout").
+// word addresses of each form and mapping (docs/intersection.md, "The code, file by file").
 // Every kernel file takes its addresses from here, so two forms can never disagree on
 // what a word holds, and words_needed() is computed from the same numbers.
 #pragma once
