@@ -1,0 +1,244 @@
+// Filtered exact ray-triangle predicates (see exact.h).
+//
+// Error bounds of the filter (eps = 2^-53, eta = 2^-1075 the largest rounding error of
+// an underflowing product). A triple product x . (y x z) evaluated in double, with y
+// and z themselves rounded differences, is the exact sum of its six terms x_i y_j z_k
+// each times at most 7 factors (1 + delta), |delta| <= eps (y, z, the product, the
+// difference, the product with x, two additions), so its error is at most
+// gamma_7 sum |x_i y_j z_k| <= 2 gamma_7 |x|_1 |y|_inf |z|_inf, below 16 eps |x|_1 my mz
+// with my, mz the computed max norms (the margin covers the rounding of the bound). A
+// rounded x (a = A - O) adds one factor: 52 eps |a|_inf my mz covers 6 gamma_8. An
+// underflowing product adds at most eta, carried through at most one product with x:
+// (2 |x|_1 + 3) eta (1 + eps)^4 in all, below (4 |x|_1 + 8) 2^-1074. The bound itself
+// never underflows because the filter only runs when every max norm is >= 2^-300 (|D|_1
+// >= 1e-100 by the input limits); anything smaller goes to the exact evaluation.
+#include "sw/isect/exact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fmpp::isect::exact {
+namespace {
+
+constexpr double kEps = 0x1p-53;
+constexpr double kTiny = 0x1p-1074;
+constexpr double kMinNorm = 0x1p-300;
+
+double max_norm(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double sum_norm(const glm::dvec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+
+// x = m 2^e with m an integer of at most 53 bits (x != 0).
+void split(double x, int64_t* m, int* e) {
+  int ex;
+  const double f = std::frexp(x, &ex);  // |f| in [0.5, 1)
+  *m = static_cast<int64_t>(std::ldexp(f, 53));
+  *e = ex - 53;
+}
+
+// Exponent of the lowest set bit of x != 0.
+int low_bit(double x) {
+  int64_t m;
+  int e;
+  split(x, &m, &e);
+  return e + __builtin_ctzll(static_cast<uint64_t>(m < 0 ? -m : m));
+}
+
+// x 2^-s as an integer (s <= low_bit(x)).
+mpz_class scaled(double x, int s) {
+  if (x == 0) return 0;
+  int64_t m;
+  int e;
+  split(x, &m, &e);
+  mpz_class z(static_cast<long>(m));
+  if (e - s >= 0) {
+    mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(e - s));
+  } else {
+    mpz_tdiv_q_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(s - e));  // exact: s <= low bit
+  }
+  return z;
+}
+
+struct ZVec {
+  mpz_class x, y, z;
+};
+
+ZVec sub(const ZVec& a, const ZVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+ZVec cross(const ZVec& a, const ZVec& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+mpz_class dot(const ZVec& a, const ZVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The test's quantities, exactly (scaled by one power of two).
+struct Exact {
+  int su[3];  // signs of uA, uB, uC
+  Ratio t;    // num = a . N, den = det (not yet made positive)
+};
+
+Exact evaluate(const Ray& r, const Triangle& tri) {
+  const double* vals[5] = {&r.o.x, &r.d.x, &tri.p[0].x, &tri.p[1].x, &tri.p[2].x};
+  int s = std::numeric_limits<int>::max();
+  for (const double* v : vals) {
+    for (int k = 0; k < 3; ++k) {
+      if (v[k] != 0) s = std::min(s, low_bit(v[k]));
+    }
+  }
+  if (s == std::numeric_limits<int>::max()) s = 0;
+  auto vec = [s](const glm::dvec3& v) { return ZVec{scaled(v.x, s), scaled(v.y, s), scaled(v.z, s)}; };
+  const ZVec o = vec(r.o), d = vec(r.d);
+  const ZVec a = sub(vec(tri.p[0]), o), b = sub(vec(tri.p[1]), o), c = sub(vec(tri.p[2]), o);
+  const ZVec bc = cross(b, c);
+  const mpz_class ua = dot(d, bc), ub = dot(d, cross(c, a)), uc = dot(d, cross(a, b));
+  Exact e;
+  e.su[0] = sgn(ua);
+  e.su[1] = sgn(ub);
+  e.su[2] = sgn(uc);
+  e.t.den = ua + ub + uc;  // = D . N
+  e.t.num = dot(a, bc);    // = a . N
+  return e;
+}
+
+}  // namespace
+
+void enclose(Candidate* c) {
+  const double v = to_double(c->exact, -std::numeric_limits<double>::infinity());  // within 1 ulp
+  c->lo = std::nextafter(v, -std::numeric_limits<double>::infinity());
+  c->hi = std::nextafter(v, std::numeric_limits<double>::infinity());
+}
+
+int compare(const Ratio& a, const Ratio& b) { return sgn(a.num * b.den - b.num * a.den); }
+
+int compare(const Ratio& a, double b) {
+  if (b == 0) return sgn(a.num);
+  int64_t m;
+  int e;
+  split(b, &m, &e);
+  mpz_class lhs = a.num, rhs = mpz_class(static_cast<long>(m)) * a.den;
+  if (e >= 0) {
+    mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), static_cast<mp_bitcnt_t>(e));
+  } else {
+    mpz_mul_2exp(lhs.get_mpz_t(), lhs.get_mpz_t(), static_cast<mp_bitcnt_t>(-e));
+  }
+  return sgn(lhs - rhs);
+}
+
+double to_double(const Ratio& a, double floor) {
+  if (a.num == 0) return 0;
+  // q = floor(|num| 2^s / den) has 64 or 65 bits; converting it truncates to 53 bits,
+  // which truncates the exact quotient (the 53-bit grid of q is coarser than 1).
+  const long s = 64 - (static_cast<long>(mpz_sizeinbase(a.num.get_mpz_t(), 2)) -
+                       static_cast<long>(mpz_sizeinbase(a.den.get_mpz_t(), 2)));
+  mpz_class n = abs(a.num), d = a.den, q;
+  if (s >= 0) {
+    mpz_mul_2exp(n.get_mpz_t(), n.get_mpz_t(), static_cast<mp_bitcnt_t>(s));
+  } else {
+    mpz_mul_2exp(d.get_mpz_t(), d.get_mpz_t(), static_cast<mp_bitcnt_t>(-s));
+  }
+  mpz_fdiv_q(q.get_mpz_t(), n.get_mpz_t(), d.get_mpz_t());
+  // ldexp is exact unless the result is subnormal, where it rounds to the subnormal
+  // grid: still within one of its ulps.
+  double v = std::ldexp(mpz_get_d(q.get_mpz_t()), static_cast<int>(-s));
+  if (a.num < 0) v = -v;
+  if (v <= floor && compare(a, floor) > 0) v = std::nextafter(floor, std::numeric_limits<double>::infinity());
+  return v;
+}
+
+RayTest::RayTest(const Ray& r, bool filter) : r_(r), filter_(filter) {
+  d1_ = sum_norm(r.d) * (1 + 4 * kEps);
+  d_abs_ = (4 * d1_ + 8) * kTiny;
+}
+
+Ratio RayTest::exact_t(const Triangle& tri) {
+  ++exact_evaluations;
+  Ratio t = evaluate(r_, tri).t;
+  if (t.den < 0) {
+    t.num = -t.num;
+    t.den = -t.den;
+  }
+  return t;
+}
+
+bool RayTest::hits(const Triangle& tri, Candidate* c) {
+  c->have_exact = false;
+  if (filter_) {
+    const glm::dvec3 a = tri.p[0] - r_.o, b = tri.p[1] - r_.o, cc = tri.p[2] - r_.o;
+    const double ma = max_norm(a), mb = max_norm(b), mc = max_norm(cc);
+    if (std::min({ma, mb, mc}) >= kMinNorm) {
+      const glm::dvec3 bc = glm::cross(b, cc);
+      const double u[3] = {glm::dot(r_.d, bc), glm::dot(r_.d, glm::cross(cc, a)), glm::dot(r_.d, glm::cross(a, b))};
+      const double k = 16 * kEps * d1_;
+      const double bound[3] = {k * mb * mc + d_abs_, k * mc * ma + d_abs_, k * ma * mb + d_abs_};
+      bool pos = false, neg = false, unsure = false;
+      for (int i = 0; i < 3; ++i) {
+        if (u[i] > bound[i]) {
+          pos = true;
+        } else if (u[i] < -bound[i]) {
+          neg = true;
+        } else {
+          unsure = true;
+        }
+      }
+      if (pos && neg) {  // two barycentrics of opposite signs: outside, whatever det is
+        ++filtered;
+        return false;
+      }
+      if (!unsure) {
+        // Inside, det has the sign of the u's. Now t = (a . N) / (D . N).
+        const glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
+        const double m1 = max_norm(e1), m2 = max_norm(e2);
+        const glm::dvec3 nrm = glm::cross(e1, e2);
+        const double det = glm::dot(r_.d, nrm), num = glm::dot(a, nrm);
+        const double bd = k * m1 * m2 + d_abs_;
+        const double bn = 52 * kEps * ma * m1 * m2 + (12 * ma + 8) * kTiny;
+        const double sign = pos ? 1 : -1;
+        if (std::min(m1, m2) >= kMinNorm && std::abs(det) > bd && std::abs(num) > bn && det * sign > 0) {
+          ++filtered;
+          if (num * sign < 0) return false;  // behind the origin
+          const double an = std::abs(num), ad = std::abs(det);
+          c->lo = std::max(0.0, (an - bn) / (ad + bd) * (1 - 4 * kEps) - kTiny);
+          c->hi = (an + bn) / (ad - bd) * (1 + 4 * kEps) + kTiny;
+          if (c->lo > r_.tmin) return true;
+          if (c->hi <= r_.tmin) return false;
+          c->exact = exact_t(tri);  // t near tmin: decide exactly
+          c->have_exact = true;
+          if (compare(c->exact, r_.tmin) <= 0) return false;
+          enclose(c);
+          return true;
+        }
+      }
+    }
+  }
+  ++exact_evaluations;
+  Exact e = evaluate(r_, tri);
+  const int sd = sgn(e.t.den);
+  if (sd == 0) return false;  // the ray is parallel to the plane, or the triangle is degenerate
+  for (int s : e.su) {
+    if (s == -sd) return false;
+  }
+  if (sd < 0) {
+    e.t.num = -e.t.num;
+    e.t.den = -e.t.den;
+  }
+  if (compare(e.t, r_.tmin) <= 0) return false;
+  c->exact = std::move(e.t);
+  c->have_exact = true;
+  enclose(c);
+  return true;
+}
+
+int RayTest::compare_hits(const Triangle& ta, Candidate* a, const Triangle& tb, Candidate* b) {
+  if (a->have_exact && b->have_exact) return compare(a->exact, b->exact);
+  if (a->hi < b->lo) return -1;
+  if (a->lo > b->hi) return 1;
+  if (!a->have_exact) {
+    a->exact = exact_t(ta);
+    a->have_exact = true;
+  }
+  if (!b->have_exact) {
+    b->exact = exact_t(tb);
+    b->have_exact = true;
+  }
+  return compare(a->exact, b->exact);
+}
+
+}  // namespace fmpp::isect::exact
