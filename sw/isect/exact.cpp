@@ -158,56 +158,104 @@ Ratio RayTest::exact_t(const Triangle& tri) {
   return t;
 }
 
+FromOrigin from_origin(const glm::dvec3& o, const Triangle& tri) {
+  FromOrigin f;
+  f.a = tri.p[0] - o;
+  const glm::dvec3 b = tri.p[1] - o, c = tri.p[2] - o;
+  f.ma = max_norm(f.a);
+  const double mb = max_norm(b), mc = max_norm(c);
+  f.usable = std::min({f.ma, mb, mc}) >= kMinNorm;
+  f.bc = glm::cross(b, c);
+  f.ca = glm::cross(c, f.a);
+  f.ab = glm::cross(f.a, b);
+  f.m[0] = mb * mc;
+  f.m[1] = mc * f.ma;
+  f.m[2] = f.ma * mb;
+  return f;
+}
+
+namespace {
+
+// The signs of uA, uB, uC as the filter sees them.
+struct Signs {
+  bool pos = false, neg = false, unsure = false;
+  // Adds one; true once two are certainly of opposite signs (outside, whatever det is).
+  bool add(double u, double bound) {
+    if (u > bound) {
+      pos = true;
+    } else if (u < -bound) {
+      neg = true;
+    } else {
+      unsure = true;
+    }
+    return pos && neg;
+  }
+};
+
+}  // namespace
+
 bool RayTest::hits(const Triangle& tri, Candidate* c) {
   c->have_exact = false;
-  if (filter_) {
-    const glm::dvec3 a = tri.p[0] - r_.o, b = tri.p[1] - r_.o, cc = tri.p[2] - r_.o;
-    const double ma = max_norm(a), mb = max_norm(b), mc = max_norm(cc);
-    if (std::min({ma, mb, mc}) >= kMinNorm) {
-      const glm::dvec3 bc = glm::cross(b, cc);
-      const double u[3] = {glm::dot(r_.d, bc), glm::dot(r_.d, glm::cross(cc, a)), glm::dot(r_.d, glm::cross(a, b))};
-      const double k = 16 * kEps * d1_;
-      const double bound[3] = {k * mb * mc + d_abs_, k * mc * ma + d_abs_, k * ma * mb + d_abs_};
-      bool pos = false, neg = false, unsure = false;
-      for (int i = 0; i < 3; ++i) {
-        if (u[i] > bound[i]) {
-          pos = true;
-        } else if (u[i] < -bound[i]) {
-          neg = true;
-        } else {
-          unsure = true;
-        }
-      }
-      if (pos && neg) {  // two barycentrics of opposite signs: outside, whatever det is
-        ++filtered;
-        return false;
-      }
-      if (!unsure) {
-        // Inside, det has the sign of the u's. Now t = (a . N) / (D . N).
-        const glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
-        const double m1 = max_norm(e1), m2 = max_norm(e2);
-        const glm::dvec3 nrm = glm::cross(e1, e2);
-        const double det = glm::dot(r_.d, nrm), num = glm::dot(a, nrm);
-        const double bd = k * m1 * m2 + d_abs_;
-        const double bn = 52 * kEps * ma * m1 * m2 + (12 * ma + 8) * kTiny;
-        const double sign = pos ? 1 : -1;
-        if (std::min(m1, m2) >= kMinNorm && std::abs(det) > bd && std::abs(num) > bn && det * sign > 0) {
-          ++filtered;
-          if (num * sign < 0) return false;  // behind the origin
-          const double an = std::abs(num), ad = std::abs(det);
-          c->lo = std::max(0.0, (an - bn) / (ad + bd) * (1 - 4 * kEps) - kTiny);
-          c->hi = (an + bn) / (ad - bd) * (1 + 4 * kEps) + kTiny;
-          if (c->lo > r_.tmin) return true;
-          if (c->hi <= r_.tmin) return false;
-          c->exact = exact_t(tri);  // t near tmin: decide exactly
-          c->have_exact = true;
-          if (compare(c->exact, r_.tmin) <= 0) return false;
-          enclose(c);
-          return true;
-        }
-      }
-    }
+  if (!filter_) return exact_hit(tri, c);
+  // As from_origin, but each cross product only when it is needed.
+  const glm::dvec3 a = tri.p[0] - r_.o, b = tri.p[1] - r_.o, cc = tri.p[2] - r_.o;
+  const double ma = max_norm(a), mb = max_norm(b), mc = max_norm(cc);
+  if (std::min({ma, mb, mc}) < kMinNorm) return exact_hit(tri, c);
+  const double k = 16 * kEps * d1_;
+  Signs s;
+  if (s.add(glm::dot(r_.d, glm::cross(b, cc)), k * (mb * mc) + d_abs_) ||
+      s.add(glm::dot(r_.d, glm::cross(cc, a)), k * (mc * ma) + d_abs_) ||
+      s.add(glm::dot(r_.d, glm::cross(a, b)), k * (ma * mb) + d_abs_)) {
+    ++filtered;
+    return false;
   }
+  if (s.unsure) return exact_hit(tri, c);
+  return inside(tri, a, ma, s.pos, c);
+}
+
+bool RayTest::hits(const Triangle& tri, const FromOrigin& f, Candidate* c) {
+  c->have_exact = false;
+  if (!filter_ || !f.usable) return exact_hit(tri, c);
+  const double k = 16 * kEps * d1_;
+  Signs s;
+  if (s.add(glm::dot(r_.d, f.bc), k * f.m[0] + d_abs_) || s.add(glm::dot(r_.d, f.ca), k * f.m[1] + d_abs_) ||
+      s.add(glm::dot(r_.d, f.ab), k * f.m[2] + d_abs_)) {
+    ++filtered;
+    return false;
+  }
+  if (s.unsure) return exact_hit(tri, c);
+  return inside(tri, f.a, f.ma, s.pos, c);
+}
+
+bool RayTest::inside(const Triangle& tri, const glm::dvec3& a, double ma, bool positive, Candidate* c) {
+  // Inside, and det has the sign of the u's. Now t = (a . N) / (D . N).
+  const double k = 16 * kEps * d1_;
+  const glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
+  const double m1 = max_norm(e1), m2 = max_norm(e2);
+  const glm::dvec3 nrm = glm::cross(e1, e2);
+  const double det = glm::dot(r_.d, nrm), num = glm::dot(a, nrm);
+  const double bd = k * m1 * m2 + d_abs_;
+  const double bn = 52 * kEps * ma * m1 * m2 + (12 * ma + 8) * kTiny;
+  const double sign = positive ? 1 : -1;
+  if (!(std::min(m1, m2) >= kMinNorm && std::abs(det) > bd && std::abs(num) > bn && det * sign > 0)) {
+    return exact_hit(tri, c);
+  }
+  ++filtered;
+  if (num * sign < 0) return false;  // behind the origin
+  const double an = std::abs(num), ad = std::abs(det);
+  c->lo = std::max(0.0, (an - bn) / (ad + bd) * (1 - 4 * kEps) - kTiny);
+  c->hi = (an + bn) / (ad - bd) * (1 + 4 * kEps) + kTiny;
+  if (c->lo > r_.tmin) return true;
+  if (c->hi <= r_.tmin) return false;
+  c->exact = exact_t(tri);  // t near tmin: decide exactly
+  c->have_exact = true;
+  if (compare(c->exact, r_.tmin) <= 0) return false;
+  enclose(c);
+  return true;
+}
+
+bool RayTest::exact_hit(const Triangle& tri, Candidate* c) {
+  c->have_exact = false;
   ++exact_evaluations;
   Exact e = evaluate(r_, tri);
   const int sd = sgn(e.t.den);

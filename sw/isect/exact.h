@@ -55,6 +55,17 @@ struct Candidate {
 // Sets c->lo and c->hi to an enclosure of c->exact (one ulp either side of it).
 void enclose(Candidate* c);
 
+// What a triangle's filtered test needs from the ray's origin alone (shared by all the
+// rays from one origin): a = A - O, the cross products b x c, c x a, a x b, and the
+// products of the max norms of b and c, c and a, a and b.
+struct FromOrigin {
+  glm::dvec3 a, bc, ca, ab;
+  double ma = 0;
+  double m[3] = {0, 0, 0};
+  bool usable = false;  // every max norm >= 2^-300 (else the test is done exactly)
+};
+FromOrigin from_origin(const glm::dvec3& o, const Triangle& tri);
+
 // Tests one ray against any number of triangles.
 class RayTest {
  public:
@@ -65,6 +76,8 @@ class RayTest {
   // tmax are the caller's business); then c->lo <= t <= c->hi, and c->exact holds t if
   // have_exact (set when the filter could not settle the test).
   bool hits(const Triangle& tri, Candidate* c);
+  // The same with the origin's part computed beforehand (from_origin of this ray's origin).
+  bool hits(const Triangle& tri, const FromOrigin& f, Candidate* c);
 
   // The exact distance of a hit on `tri` (a triangle the ray meets).
   Ratio exact_t(const Triangle& tri);
@@ -77,6 +90,10 @@ class RayTest {
   uint64_t filtered = 0, exact_evaluations = 0;
 
  private:
+  bool exact_hit(const Triangle& tri, Candidate* c);
+  // The rest of a test the filter found inside (u's all of sign `positive`).
+  bool inside(const Triangle& tri, const glm::dvec3& a, double ma, bool positive, Candidate* c);
+
   Ray r_;
   bool filter_;
   double d1_;     // |D|_1, rounded up

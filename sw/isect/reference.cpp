@@ -18,10 +18,12 @@ using exact::RayTest;
 // Keeps the nearest of the hits offered, in any order of index.
 class Nearest {
  public:
-  Nearest(RayTest* test, const std::vector<Triangle>& tris) : test_(test), tris_(tris) {}
+  // `pre`, if not null, holds from_origin of the ray's origin for every triangle.
+  Nearest(RayTest* test, const std::vector<Triangle>& tris, const std::vector<exact::FromOrigin>* pre = nullptr)
+      : test_(test), tris_(tris), pre_(pre) {}
 
   void offer(int k) {
-    if (!test_->hits(tris_[k], &next_)) return;
+    if (!(pre_ ? test_->hits(tris_[k], (*pre_)[k], &next_) : test_->hits(tris_[k], &next_))) return;
     next_.tri = k;
     if (best_.tri >= 0) {
       const int c = test_->compare_hits(tris_[k], &next_, tris_[best_.tri], &best_);
@@ -45,6 +47,7 @@ class Nearest {
  private:
   RayTest* test_;
   const std::vector<Triangle>& tris_;
+  const std::vector<exact::FromOrigin>* pre_;
   Candidate best_, next_;
 };
 
@@ -63,9 +66,22 @@ std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vect
   validate_input(rays, tris);
   std::vector<Hit> out(rays.size());
   ReferenceStats st;
+  // Consecutive rays from one origin (a camera's, a light's) share the origin's part of
+  // every triangle's test.
+  std::vector<exact::FromOrigin> pre;
+  glm::dvec3 pre_origin(0);
+  bool pre_valid = false;
   for (size_t i = 0; i < rays.size(); ++i) {
+    const glm::dvec3& o = rays[i].o;
+    if (pre_valid && o != pre_origin) pre_valid = false;
+    if (!pre_valid && filter && i + 1 < rays.size() && rays[i + 1].o == o) {
+      pre.resize(tris.size());
+      for (size_t k = 0; k < tris.size(); ++k) pre[k] = exact::from_origin(o, tris[k]);
+      pre_origin = o;
+      pre_valid = true;
+    }
     RayTest test(rays[i], filter);
-    Nearest best(&test, tris);
+    Nearest best(&test, tris, pre_valid ? &pre : nullptr);
     for (size_t k = 0; k < tris.size(); ++k) {
       if (static_cast<int>(k) != rays[i].exclude) best.offer(static_cast<int>(k));
     }

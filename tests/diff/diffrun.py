@@ -42,6 +42,7 @@ FORMS = {
 # where the docs give no rigorous bound yet.
 BOUNDS = {
     "arbitrary-origin/ray": lambda n: 2.0 ** -(n - 10),
+    "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
 }
 KINDS = ("false_hit", "missed", "other_triangle", "tie_order")
 
@@ -116,7 +117,8 @@ def main():
     ap.add_argument("--instances", type=int, default=10, help="instances (placements) per family")
     ap.add_argument("--families", help="default: all (with the extreme-scale ones for --reference-only)")
     ap.add_argument("--bits", default="16,24,32")
-    ap.add_argument("--backends", default="cmodel", help="FMPP backends: cmodel, rtl, lockstep (rtl and the model)")
+    ap.add_argument("--backends", default="cmodel",
+                    help="reference (fmpp-intersect's), cmodel, rtl, lockstep (the RTL checked against the model)")
     ap.add_argument("--forms", default=",".join(FORMS))
     ap.add_argument("--reference-only", action="store_true", help="check only the exact reference")
     ap.add_argument("--record", action="store_true", help="FMPP disagreements do not fail the run (today's table)")
@@ -130,13 +132,18 @@ def main():
     for f in families:
         if f not in known:
             ap.error("unknown family %r (families: %s)" % (f, ", ".join(known)))
-    forms = [] if a.reference_only else a.forms.split(",")
+    forms = a.forms.split(",")
     for f in forms:
         if f not in FORMS:
             ap.error("unknown form %r (forms: %s)" % (f, ", ".join(FORMS)))
     bits = [int(b) for b in a.bits.split(",")]
     backends = [] if a.reference_only else a.backends.split(",")
     per = max(1, a.rays // a.instances)
+    # (backend, form, n) of every fmpp-intersect run; the reference has one form and no n.
+    runs = [(be, "exact", 0) if be == "reference" else (be, form, n)
+            for be in backends for form in (["exact"] if be == "reference" else forms)
+            for n in ([0] if be == "reference" else bits)]
+    runs = list(dict.fromkeys(runs))
 
     tmp = tempfile.mkdtemp(prefix="fmpp-diff-")
     ref_bad, ref_counts, ref_rays, ref_hits = [], {}, {}, {}
@@ -156,12 +163,11 @@ def main():
                 add_counts(ref_counts, counts)
                 ref_rays[fam] = ref_rays.get(fam, 0) + len(rays)
                 ref_hits[fam] = ref_hits.get(fam, 0) + sum(1 for k, _ in exact if k >= 0)
-                for be in backends:
-                    for form in forms:
-                        for n in bits:
-                            cmd = [os.path.join(a.build, "fmpp-intersect"), "--triangles", tp, "--rays", rp,
-                                   "--backend", be, "--bits", str(n), "--blocks", "64", "--words", "32"] + FORMS[form]
-                            jobs.append(((be, form, n, fam), pool.submit(run, cmd), exact, tris, rays))
+                for be, form, n in runs:
+                    cmd = [os.path.join(a.build, "fmpp-intersect"), "--triangles", tp, "--rays", rp, "--backend", be]
+                    if be != "reference":
+                        cmd += ["--bits", str(n), "--blocks", "64", "--words", "32"] + FORMS[form]
+                    jobs.append(((be, form, n, fam), pool.submit(run, cmd), exact, tris, rays))
         for key, fut, exact, tris, rays in jobs:
             bound = BOUNDS.get(key[1])
             c = compare_fmpp(parse_hits(fut.result()[0]), exact, tris, rays, bound(key[2]) if bound else None)
@@ -173,24 +179,22 @@ def main():
              "(%d ray-triangle tests: %d settled by the filter, %d exact evaluations)." %
              (len(ref_bad), sum(ref_rays.values()), sum(ref_hits.values()), ref_counts.get("tests", 0),
               ref_counts.get("filtered", 0), ref_counts.get("exact", 0)), ""]
-    if forms:
+    if runs:
         short = {f: f.replace("_", " ") for f in families}
         lines.append("| backend | form/mapping | n | " + " | ".join(short[f] for f in families) +
                      " | all | false hit / missed / other / tie | max rel t err | over bound |")
         lines.append("|" + " --- |" * (len(families) + 7))
-        for be in backends:
-            for form in forms:
-                for n in bits:
-                    tot = {}
-                    cells = []
-                    for fam in families:
-                        c = fmpp[(be, form, n, fam)]
-                        add_counts(tot, c)
-                        cells.append(str(c["disagreements"]))
-                    ob = str(tot["over_bound"]) if form in BOUNDS else "-"
-                    lines.append("| %s | %s | %d | %s | **%d** / %d | %s | %.2g | %s |" % (
-                        be, form, n, " | ".join(cells), tot["disagreements"], tot["rays"],
-                        " / ".join(str(tot[k]) for k in KINDS), tot["max_rel_t"], ob))
+        for be, form, n in runs:
+            tot = {}
+            cells = []
+            for fam in families:
+                c = fmpp[(be, form, n, fam)]
+                add_counts(tot, c)
+                cells.append(str(c["disagreements"]))
+            ob = str(tot["over_bound"]) if form in BOUNDS else "-"
+            lines.append("| %s | %s | %s | %s | **%d** / %d | %s | %.2g | %s |" % (
+                be, form, n or "-", " | ".join(cells), tot["disagreements"], tot["rays"],
+                " / ".join(str(tot[k]) for k in KINDS), tot["max_rel_t"], ob))
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     for b in ref_bad[:50]:
