@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace fmpp::isect::exact {
@@ -44,58 +45,100 @@ int low_bit(double x) {
   return e + __builtin_ctzll(static_cast<uint64_t>(m < 0 ? -m : m));
 }
 
-// x 2^-s as an integer (s <= low_bit(x)).
-mpz_class scaled(double x, int s) {
-  if (x == 0) return 0;
+// z = x 2^-s, an integer (s <= low_bit(x)).
+void set_scaled(mpz_t z, double x, int s) {
+  if (x == 0) {
+    mpz_set_ui(z, 0);
+    return;
+  }
   int64_t m;
   int e;
   split(x, &m, &e);
-  mpz_class z(static_cast<long>(m));
+  mpz_set_si(z, static_cast<long>(m));
   if (e - s >= 0) {
-    mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(e - s));
+    mpz_mul_2exp(z, z, static_cast<mp_bitcnt_t>(e - s));
   } else {
-    mpz_tdiv_q_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(s - e));  // exact: s <= low bit
+    mpz_tdiv_q_2exp(z, z, static_cast<mp_bitcnt_t>(s - e));  // exact: s <= low bit
   }
-  return z;
 }
 
-struct ZVec {
-  mpz_class x, y, z;
-};
-
-ZVec sub(const ZVec& a, const ZVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-ZVec cross(const ZVec& a, const ZVec& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-mpz_class dot(const ZVec& a, const ZVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-
-// The test's quantities, exactly (scaled by one power of two).
-struct Exact {
-  int su[3];  // signs of uA, uB, uC
-  Ratio t;    // num = a . N, den = det (not yet made positive)
-};
-
-Exact evaluate(const Ray& r, const Triangle& tri) {
-  const double* vals[5] = {&r.o.x, &r.d.x, &tri.p[0].x, &tri.p[1].x, &tri.p[2].x};
+// The largest power of two that divides every component of the given vectors (its
+// exponent): scaled by its inverse, all are integers.
+int common_scale(std::initializer_list<const glm::dvec3*> vs) {
   int s = std::numeric_limits<int>::max();
-  for (const double* v : vals) {
+  for (const glm::dvec3* v : vs) {
     for (int k = 0; k < 3; ++k) {
-      if (v[k] != 0) s = std::min(s, low_bit(v[k]));
+      if ((*v)[k] != 0) s = std::min(s, low_bit((*v)[k]));
     }
   }
-  if (s == std::numeric_limits<int>::max()) s = 0;
-  auto vec = [s](const glm::dvec3& v) { return ZVec{scaled(v.x, s), scaled(v.y, s), scaled(v.z, s)}; };
-  const ZVec o = vec(r.o), d = vec(r.d);
-  const ZVec a = sub(vec(tri.p[0]), o), b = sub(vec(tri.p[1]), o), c = sub(vec(tri.p[2]), o);
-  const ZVec bc = cross(b, c);
-  const mpz_class ua = dot(d, bc), ub = dot(d, cross(c, a)), uc = dot(d, cross(a, b));
-  Exact e;
-  e.su[0] = sgn(ua);
-  e.su[1] = sgn(ub);
-  e.su[2] = sgn(uc);
-  e.t.den = ua + ub + uc;  // = D . N
-  e.t.num = dot(a, bc);    // = a . N
-  return e;
+  return s == std::numeric_limits<int>::max() ? 0 : s;
+}
+
+// Integer vectors and scratch values, kept per thread so that the exact evaluations
+// reuse their memory instead of allocating.
+struct Workspace {
+  mpz_class o[3], d[3], a[3], b[3], c[3], bc[3], ca[3], ab[3], u[3], x, y, q;
+
+  void load(mpz_class* out, const glm::dvec3& v, int s) {
+    for (int k = 0; k < 3; ++k) set_scaled(out[k].get_mpz_t(), v[k], s);
+  }
+  // out = v - o (v scaled into out first).
+  void load_rel(mpz_class* out, const glm::dvec3& v, int s) {
+    load(out, v, s);
+    for (int k = 0; k < 3; ++k) mpz_sub(out[k].get_mpz_t(), out[k].get_mpz_t(), o[k].get_mpz_t());
+  }
+  static void cross(mpz_class* out, const mpz_class* p, const mpz_class* q) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      mpz_mul(out[k].get_mpz_t(), p[i].get_mpz_t(), q[j].get_mpz_t());
+      mpz_submul(out[k].get_mpz_t(), p[j].get_mpz_t(), q[i].get_mpz_t());
+    }
+  }
+  static void dot(mpz_class& out, const mpz_class* p, const mpz_class* q) {
+    mpz_mul(out.get_mpz_t(), p[0].get_mpz_t(), q[0].get_mpz_t());
+    mpz_addmul(out.get_mpz_t(), p[1].get_mpz_t(), q[1].get_mpz_t());
+    mpz_addmul(out.get_mpz_t(), p[2].get_mpz_t(), q[2].get_mpz_t());
+  }
+};
+
+Workspace& workspace() {
+  thread_local Workspace w;
+  return w;
+}
+
+// Sign of d . ((p - o) x (q - o)), exactly.
+int triple_sign(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& p, const glm::dvec3& q) {
+  Workspace& w = workspace();
+  const int s = common_scale({&o, &d, &p, &q});
+  w.load(w.o, o, s);
+  w.load(w.d, d, s);
+  w.load_rel(w.b, p, s);
+  w.load_rel(w.c, q, s);
+  Workspace::cross(w.bc, w.b, w.c);
+  Workspace::dot(w.u[0], w.d, w.bc);
+  return sgn(w.u[0]);
+}
+
+// The test's quantities, exactly: the signs of uA, uB, uC into su, and t = num / den
+// with num = a . N, den = det (not yet made positive), scaled by one power of two.
+void evaluate(const Ray& r, const Triangle& tri, int su[3], Ratio* t) {
+  Workspace& w = workspace();
+  const int s = common_scale({&r.o, &r.d, &tri.p[0], &tri.p[1], &tri.p[2]});
+  w.load(w.o, r.o, s);
+  w.load(w.d, r.d, s);
+  w.load_rel(w.a, tri.p[0], s);
+  w.load_rel(w.b, tri.p[1], s);
+  w.load_rel(w.c, tri.p[2], s);
+  Workspace::cross(w.bc, w.b, w.c);
+  Workspace::cross(w.ca, w.c, w.a);
+  Workspace::cross(w.ab, w.a, w.b);
+  Workspace::dot(w.u[0], w.d, w.bc);
+  Workspace::dot(w.u[1], w.d, w.ca);
+  Workspace::dot(w.u[2], w.d, w.ab);
+  for (int i = 0; i < 3; ++i) su[i] = sgn(w.u[i]);
+  mpz_add(t->den.get_mpz_t(), w.u[0].get_mpz_t(), w.u[1].get_mpz_t());  // D . N
+  mpz_add(t->den.get_mpz_t(), t->den.get_mpz_t(), w.u[2].get_mpz_t());
+  Workspace::dot(t->num, w.a, w.bc);  // a . N
 }
 
 }  // namespace
@@ -106,7 +149,13 @@ void enclose(Candidate* c) {
   c->hi = std::nextafter(v, std::numeric_limits<double>::infinity());
 }
 
-int compare(const Ratio& a, const Ratio& b) { return sgn(a.num * b.den - b.num * a.den); }
+int compare(const Ratio& a, const Ratio& b) {
+  Workspace& w = workspace();
+  mpz_mul(w.x.get_mpz_t(), a.num.get_mpz_t(), b.den.get_mpz_t());
+  mpz_mul(w.y.get_mpz_t(), b.num.get_mpz_t(), a.den.get_mpz_t());
+  const int c = mpz_cmp(w.x.get_mpz_t(), w.y.get_mpz_t());
+  return (c > 0) - (c < 0);
+}
 
 int compare(const Ratio& a, double b) {
   if (b == 0) return sgn(a.num);
@@ -128,7 +177,10 @@ double to_double(const Ratio& a, double floor) {
   // which truncates the exact quotient (the 53-bit grid of q is coarser than 1).
   const long s = 64 - (static_cast<long>(mpz_sizeinbase(a.num.get_mpz_t(), 2)) -
                        static_cast<long>(mpz_sizeinbase(a.den.get_mpz_t(), 2)));
-  mpz_class n = abs(a.num), d = a.den, q;
+  Workspace& w = workspace();
+  mpz_class &n = w.x, &d = w.y, &q = w.q;
+  mpz_abs(n.get_mpz_t(), a.num.get_mpz_t());
+  mpz_set(d.get_mpz_t(), a.den.get_mpz_t());
   if (s >= 0) {
     mpz_mul_2exp(n.get_mpz_t(), n.get_mpz_t(), static_cast<mp_bitcnt_t>(s));
   } else {
@@ -148,14 +200,14 @@ RayTest::RayTest(const Ray& r, bool filter) : r_(r), filter_(filter) {
   d_abs_ = (4 * d1_ + 8) * kTiny;
 }
 
-Ratio RayTest::exact_t(const Triangle& tri) {
+void RayTest::exact_t(const Triangle& tri, Ratio* t) {
   ++exact_evaluations;
-  Ratio t = evaluate(r_, tri).t;
-  if (t.den < 0) {
-    t.num = -t.num;
-    t.den = -t.den;
+  int su[3];
+  evaluate(r_, tri, su, t);
+  if (t->den < 0) {
+    mpz_neg(t->num.get_mpz_t(), t->num.get_mpz_t());
+    mpz_neg(t->den.get_mpz_t(), t->den.get_mpz_t());
   }
-  return t;
 }
 
 FromOrigin from_origin(const glm::dvec3& o, const Triangle& tri) {
@@ -176,19 +228,36 @@ FromOrigin from_origin(const glm::dvec3& o, const Triangle& tri) {
 
 namespace {
 
-// The signs of uA, uB, uC as the filter sees them.
+// The signs of uA, uB, uC as the filter sees them (0: not settled).
 struct Signs {
+  int sign[3] = {0, 0, 0};
+  int n = 0;
   bool pos = false, neg = false, unsure = false;
-  // Adds one; true once two are certainly of opposite signs (outside, whatever det is).
+  // Adds the next; true once two are certainly of opposite signs (outside, whatever det is).
   bool add(double u, double bound) {
+    int& sg = sign[n++];
     if (u > bound) {
+      sg = 1;
       pos = true;
     } else if (u < -bound) {
+      sg = -1;
       neg = true;
     } else {
       unsure = true;
     }
     return pos && neg;
+  }
+  // Settles the unsettled signs exactly; false when the ray misses (opposite signs, or
+  // all three 0: det = 0).
+  bool settle(const Ray& r, const Triangle& t) {
+    for (int i = 0; i < 3; ++i) {
+      if (sign[i] != 0) continue;
+      sign[i] = triple_sign(r.o, r.d, t.p[(i + 1) % 3], t.p[(i + 2) % 3]);
+      pos |= sign[i] > 0;
+      neg |= sign[i] < 0;
+    }
+    unsure = false;
+    return pos != neg;
   }
 };
 
@@ -209,7 +278,10 @@ bool RayTest::hits(const Triangle& tri, Candidate* c) {
     ++filtered;
     return false;
   }
-  if (s.unsure) return exact_hit(tri, c);
+  if (s.unsure) {
+    ++exact_signs;
+    if (!s.settle(r_, tri)) return false;
+  }
   return inside(tri, a, ma, s.pos, c);
 }
 
@@ -223,7 +295,10 @@ bool RayTest::hits(const Triangle& tri, const FromOrigin& f, Candidate* c) {
     ++filtered;
     return false;
   }
-  if (s.unsure) return exact_hit(tri, c);
+  if (s.unsure) {
+    ++exact_signs;
+    if (!s.settle(r_, tri)) return false;
+  }
   return inside(tri, f.a, f.ma, s.pos, c);
 }
 
@@ -247,7 +322,7 @@ bool RayTest::inside(const Triangle& tri, const glm::dvec3& a, double ma, bool p
   c->hi = (an + bn) / (ad - bd) * (1 + 4 * kEps) + kTiny;
   if (c->lo > r_.tmin) return true;
   if (c->hi <= r_.tmin) return false;
-  c->exact = exact_t(tri);  // t near tmin: decide exactly
+  exact_t(tri, &c->exact);  // t near tmin: decide exactly
   c->have_exact = true;
   if (compare(c->exact, r_.tmin) <= 0) return false;
   enclose(c);
@@ -257,18 +332,19 @@ bool RayTest::inside(const Triangle& tri, const glm::dvec3& a, double ma, bool p
 bool RayTest::exact_hit(const Triangle& tri, Candidate* c) {
   c->have_exact = false;
   ++exact_evaluations;
-  Exact e = evaluate(r_, tri);
-  const int sd = sgn(e.t.den);
+  int su[3];
+  Ratio& t = c->exact;
+  evaluate(r_, tri, su, &t);
+  const int sd = sgn(t.den);
   if (sd == 0) return false;  // the ray is parallel to the plane, or the triangle is degenerate
-  for (int s : e.su) {
+  for (int s : su) {
     if (s == -sd) return false;
   }
   if (sd < 0) {
-    e.t.num = -e.t.num;
-    e.t.den = -e.t.den;
+    mpz_neg(t.num.get_mpz_t(), t.num.get_mpz_t());
+    mpz_neg(t.den.get_mpz_t(), t.den.get_mpz_t());
   }
-  if (compare(e.t, r_.tmin) <= 0) return false;
-  c->exact = std::move(e.t);
+  if (compare(t, r_.tmin) <= 0) return false;
   c->have_exact = true;
   enclose(c);
   return true;
@@ -279,11 +355,11 @@ int RayTest::compare_hits(const Triangle& ta, Candidate* a, const Triangle& tb, 
   if (a->hi < b->lo) return -1;
   if (a->lo > b->hi) return 1;
   if (!a->have_exact) {
-    a->exact = exact_t(ta);
+    exact_t(ta, &a->exact);
     a->have_exact = true;
   }
   if (!b->have_exact) {
-    b->exact = exact_t(tb);
+    exact_t(tb, &b->exact);
     b->have_exact = true;
   }
   return compare(a->exact, b->exact);

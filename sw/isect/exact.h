@@ -79,15 +79,16 @@ class RayTest {
   // The same with the origin's part computed beforehand (from_origin of this ray's origin).
   bool hits(const Triangle& tri, const FromOrigin& f, Candidate* c);
 
-  // The exact distance of a hit on `tri` (a triangle the ray meets).
-  Ratio exact_t(const Triangle& tri);
+  // The exact distance of a hit on `tri` (a triangle the ray meets), into *t.
+  void exact_t(const Triangle& tri, Ratio* t);
 
   // Sign of t(a) - t(b) for two hits of this ray (exact; a tie is 0). Fills in the
   // exact distances it needed.
   int compare_hits(const Triangle& ta, Candidate* a, const Triangle& tb, Candidate* b);
 
-  // For the speed report: tests the filter settled, and exact evaluations.
-  uint64_t filtered = 0, exact_evaluations = 0;
+  // For the speed report: tests the filter settled alone, tests that needed the exact
+  // sign of some of uA, uB, uC, and full exact evaluations (a test, or a hit's t).
+  uint64_t filtered = 0, exact_signs = 0, exact_evaluations = 0;
 
  private:
   bool exact_hit(const Triangle& tri, Candidate* c);

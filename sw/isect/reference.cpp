@@ -36,7 +36,7 @@ class Nearest {
     Hit h;
     if (best_.tri < 0) return h;
     if (!best_.have_exact) {
-      best_.exact = test_->exact_t(tris_[best_.tri]);
+      test_->exact_t(tris_[best_.tri], &best_.exact);
       best_.have_exact = true;
     }
     h.tri = best_.tri;
@@ -57,7 +57,7 @@ double intersect_reference(const Ray& r, const Triangle& t) {
   RayTest test(r);
   Candidate c;
   if (!test.hits(t, &c)) return std::numeric_limits<double>::infinity();
-  if (!c.have_exact) c.exact = test.exact_t(t);
+  if (!c.have_exact) test.exact_t(t, &c.exact);
   return exact::to_double(c.exact, r.tmin);
 }
 
@@ -88,6 +88,7 @@ std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vect
     out[i] = best.result(rays[i].tmin);
     st.tests += tris.size() - (rays[i].exclude >= 0 && static_cast<size_t>(rays[i].exclude) < tris.size());
     st.filtered += test.filtered;
+    st.exact_signs += test.exact_signs;
     st.exact += test.exact_evaluations;
   }
   if (stats) *stats = st;

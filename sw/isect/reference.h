@@ -17,8 +17,9 @@ namespace fmpp::isect {
 // How the reference's tests were settled (for the speed report, docs/perf.md).
 struct ReferenceStats {
   uint64_t tests = 0;     // ray-triangle tests
-  uint64_t filtered = 0;  // settled in double by the error-bounded filter
-  uint64_t exact = 0;     // exact (GMP) evaluations: unsettled tests, near ties, hit distances
+  uint64_t filtered = 0;     // settled in double by the error-bounded filter alone
+  uint64_t exact_signs = 0;  // that needed the exact sign of an edge function (GMP)
+  uint64_t exact = 0;        // full exact evaluations (GMP): unsettled tests, near ties, hit distances
 };
 
 // Returns t if the ray hits the triangle at t > r.tmin (exactly; `exclude` and tmax are

@@ -78,8 +78,8 @@ def check_reference(build, tri_path, ray_path, exact):
             bad.append("ray %d: reference triangle %d, exact %d" % (i, k, ek))
         elif ek >= 0 and (t <= 0 or abs(Fraction(t) - et) > Fraction(ulp(float(et)))):
             bad.append("ray %d: reference t %r, exact %s (more than 1 ulp)" % (i, t, float(et)))
-    counts = dict(x.split() for x in [err.split()[j] + " " + err.split()[j + 1] for j in (0, 2, 4)])
-    return bad, {k: int(v) for k, v in counts.items()}
+    words = err.split()
+    return bad, {words[j]: int(words[j + 1]) for j in range(0, len(words) - 1, 2)}
 
 
 def compare_fmpp(hits, exact, tris, rays, bound):
@@ -176,9 +176,10 @@ def main():
     lines = ["Seed %s, %d rays per family (%d instances of %d rays), families: %s." %
              (a.seed, per * a.instances, a.instances, per, ", ".join(families)), "",
              "Exact reference against the rational oracle: **%d disagreements** in %d rays, %d of them hits "
-             "(%d ray-triangle tests: %d settled by the filter, %d exact evaluations)." %
+             "(%d ray-triangle tests: %d settled by the floating-point filter alone, %d with the exact sign of an "
+             "edge function, %d full exact evaluations)." %
              (len(ref_bad), sum(ref_rays.values()), sum(ref_hits.values()), ref_counts.get("tests", 0),
-              ref_counts.get("filtered", 0), ref_counts.get("exact", 0)), ""]
+              ref_counts.get("filtered", 0), ref_counts.get("exact_signs", 0), ref_counts.get("exact", 0)), ""]
     if runs:
         short = {f: f.replace("_", " ") for f in families}
         lines.append("| backend | form/mapping | n | " + " | ".join(short[f] for f in families) +

@@ -5,7 +5,7 @@
 //   fmpp-ref-hits TRIANGLES RAYS [--no-filter]   (file formats of fmpp-intersect)
 //
 // One line per ray: "triangle t" or "-1 inf"; then on stderr one line of counts:
-// "tests N filtered N exact N".
+// "tests N filtered N exact_signs N exact N" (reference.h, ReferenceStats).
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -31,8 +31,9 @@ int main(int argc, char** argv) {
         std::printf("-1 inf\n");
       }
     }
-    std::fprintf(stderr, "tests %llu filtered %llu exact %llu\n", static_cast<unsigned long long>(st.tests),
-                 static_cast<unsigned long long>(st.filtered), static_cast<unsigned long long>(st.exact));
+    std::fprintf(stderr, "tests %llu filtered %llu exact_signs %llu exact %llu\n",
+                 static_cast<unsigned long long>(st.tests), static_cast<unsigned long long>(st.filtered),
+                 static_cast<unsigned long long>(st.exact_signs), static_cast<unsigned long long>(st.exact));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-ref-hits: %s\n", e.what());
