@@ -7,7 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "sw/tools/cli_options.h"
+#include "sw/util/files.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

@@ -61,6 +61,13 @@ Instr setsadr(uint32_t index);
 // fd <- lut[(fa << 1) | fb] in every block; with `if_any`, only when that value
 // is 1 in at least one block (otherwise fd is left unchanged everywhere).
 Instr flagop(unsigned fd, unsigned fa, unsigned fb, uint8_t lut, bool if_any = false);
+// The encoded instruction `raw` with its immediate field (REF key, WRITES data, MASKSET
+// mask) replaced by `imm`: for code built once and patched per use.
+inline uint64_t with_imm(uint64_t raw, uint32_t imm) {
+  static_assert(map::kFieldImmWidth == 32, "the immediate field holds a whole word");
+  const uint64_t field = ((uint64_t{1} << map::kFieldImmWidth) - 1) << map::kFieldImmLsb;
+  return (raw & ~field) | (static_cast<uint64_t>(imm) << map::kFieldImmLsb);
+}
 }  // namespace ins
 
 // Look-up tables for FLAGOP: index (fa << 1) | fb.
