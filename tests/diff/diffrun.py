@@ -18,6 +18,7 @@ run disagrees or exceeds its bound; 2 for a tool that fails.
 """
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -47,11 +48,6 @@ BOUNDS = {
 KINDS = ("false_hit", "missed", "other_triangle", "tie_order")
 
 
-def ulp(x):
-    import math
-    return math.ulp(x)
-
-
 def run(cmd):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
@@ -76,7 +72,7 @@ def check_reference(build, tri_path, ray_path, exact):
     for i, ((k, t), (ek, et)) in enumerate(zip(hits, exact)):
         if k != ek:
             bad.append("ray %d: reference triangle %d, exact %d" % (i, k, ek))
-        elif ek >= 0 and (t <= 0 or abs(Fraction(t) - et) > Fraction(ulp(float(et)))):
+        elif ek >= 0 and (t <= 0 or abs(Fraction(t) - et) > Fraction(math.ulp(float(et)))):
             bad.append("ray %d: reference t %r, exact %s (more than 1 ulp)" % (i, t, float(et)))
     words = err.split()
     return bad, {words[j]: int(words[j + 1]) for j in range(0, len(words) - 1, 2)}
