@@ -78,6 +78,9 @@ class RtlBus : public Bus {
 // The Verilated configurations linked into this binary (generated per binary from
 // tb/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
 std::vector<std::string> rtl_configs();
+// The version of the Verilator that built them ("5.006 2023-01-22"; defined beside
+// rtl_configs(), so a binary without RTL configurations has none).
+std::string verilator_version();
 // Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument
 // naming the configurations this binary has.
 std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});

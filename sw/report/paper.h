@@ -88,7 +88,7 @@ CpuRates measure_cpu(bool quick);
 
 // -------------------------------------------------------------------- model
 
-// The paper's clock model (DIGEST.md section 6) and ours, for R rays, m triangles and P
+// The paper's clock model (docs/paper.md, section 7) and ours, for R rays, m triangles and P
 // blocks at n bits.
 struct CostModel {
   unsigned n = 32;

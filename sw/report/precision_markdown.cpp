@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
-#include <thread>
 
 #include "sw/report/precision.h"
 
@@ -41,18 +39,6 @@ std::string big(uint64_t v) {
 }
 
 std::string db(double v) { return std::isfinite(v) ? fmt(v, 1) : "identical"; }
-
-std::string machine_description() {
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  for (std::string line; std::getline(f, line);) {
-    if (line.rfind("model name", 0) == 0) {
-      cpu = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
-}
 
 // How to read the tables (written for the full run's numbers).
 const char* kReading = R"(**What the numbers mean for choosing n** (read from the tables above):

@@ -58,7 +58,8 @@ class Machine {
   Responders responders() const;
   bool ovf_any() const;
 
-  // Order-independent digest of words, flags, mask (for fast lockstep checks).
+  // state_digest of words, flags and mask: the blocks in index order whatever the
+  // storage layout, so the RTL's digest of an equal state is equal (fast lockstep checks).
   uint64_t state_hash() const;
 
  private:
