@@ -326,6 +326,12 @@ module fmpp_tile #(
   if (Lanes < 1 || Lanes > fmpp_pkg::LaneW) begin : g_bad_lanes
     $error("fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
   end
+  // The tile's 64-lane bit-plane indexing: a block's lane is block[5:0], its tile is
+  // block[15:6] (compared with base_i[15:6]), and the index bits 0-5 of a lane come from
+  // its lane number. All of that holds only for 64 lanes per tile.
+  if (fmpp_pkg::LaneW != 64) begin : g_bad_lane_width
+    $error("fmpp_tile: the lane indexing assumes fmpp_pkg::LaneW = 64, not %0d", fmpp_pkg::LaneW);
+  end
 `endif
 
 endmodule

@@ -50,6 +50,11 @@ struct RtlOptions {
   uint64_t timeout = 1000000;  // clocks an access may wait for READY before failing
   bool stress = false;         // random idle clocks and READY back-pressure
   uint64_t stress_seed = 1;
+  // Soak options (tools/soak.sh). random_init != 0: every variable, the words included,
+  // powers up with random values from this seed (Verilator randReset(2)); the reset
+  // then clears all but the words, which the golden model must be given (preload).
+  uint64_t random_init = 0;
+  bool max_backpressure = false;  // stress mode: READY held low 8 clocks after every response
 };
 
 class RtlBus : public Bus {
