@@ -49,7 +49,10 @@ module fmpp_array #(
   logic        is_instr;
   logic [63:0] instr;
 
-  assign pop      = head_valid_i && gap_q == '0;
+  // No entry executes while rst_ni is low: the queue's level resets at the same edge,
+  // and an entry executed then would write a word (words have no reset) that the reset
+  // was meant to drop (found by the soak's resets in the middle of programs).
+  assign pop      = rst_ni && head_valid_i && gap_q == '0;
   assign pop_o    = pop;
   assign is_instr = head_i.kind == fmpp_pkg::QE_INSTR;
   assign instr    = head_i.data;
@@ -170,6 +173,25 @@ module fmpp_array #(
   fmpp_pkg::opcode_e dbg_op;
   /* verilator lint_on UNUSEDSIGNAL */
   assign dbg_op = fmpp_pkg::opcode_e'(op);
+`endif
+
+  // Coverage (make coverage): every opcode executed, every REF function on the data and
+  // on the address part, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP.
+`ifdef FMPP_COVERAGE
+  for (genvar o = 0; o < fmpp_pkg::NumOpcodes; o++) begin : g_cov_op
+    c_op: cover property (@(posedge clk_i) pop && is_instr && op == 5'(o));
+  end
+  for (genvar fn = 0; fn < 3; fn++) begin : g_cov_ref_fn
+    for (genvar part = 0; part < 2; part++) begin : g_part
+      c_ref: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF &&
+                             x[1:0] == 2'(fn) && x[2] == 1'(part));
+    end
+  end
+  c_flagop_any_taken: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
+  c_flagop_any_skipped: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
+  c_word_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_WORD);
+  c_flags_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_FLAGS);
+  c_gap_stall: cover property (@(posedge clk_i) head_valid_i && gap_q != '0);
 `endif
 
   // Assertions

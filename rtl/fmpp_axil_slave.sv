@@ -324,6 +324,27 @@ module fmpp_axil_slave #(
     end
   end
 
+  // Coverage (make coverage): every error cause of a write and of a read, every
+  // responder read (RESP and STATUS, with and without a selected block), response
+  // back-pressure, and a push into a queue with one free entry.
+`ifdef FMPP_COVERAGE
+  for (genvar c = 1; c <= 6; c++) begin : g_cov_w_err
+    c_w_err: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::err_e'(c));
+  end
+  c_r_err_unmapped: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_UNMAPPED);
+  c_r_err_writeonly: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_WRITEONLY);
+  c_r_err_align: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_ALIGN);
+  for (genvar any = 0; any < 2; any++) begin : g_cov_resp
+    c_resp: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_RESP[11:0] &&
+                            resp_any_i == 1'(any));
+    c_status: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_STATUS[11:0] &&
+                              resp_any_i == 1'(any));
+  end
+  c_b_backpressure: cover property (@(posedge clk_i) rst_ni && bvalid_q && !bready_i);
+  c_r_backpressure: cover property (@(posedge clk_i) rst_ni && rvalid_q && !rready_i);
+  c_push_full: cover property (@(posedge clk_i) rst_ni && awvalid_i && wvalid_i && w_push && !w_err && q_full_i);
+`endif
+
   logic unused_prot;
   assign unused_prot = ^{awprot_i, arprot_i, aw_flag};
 

@@ -57,6 +57,14 @@ module fmpp_fifo #(
     else $error("fmpp_fifo: level %0d above depth %0d", level_q, Depth);
 `endif
 
+  // Coverage (make coverage): the queue full, empty, and pushed and popped at once.
+`ifdef FMPP_COVERAGE
+  c_full: cover property (@(posedge clk_i) rst_ni && full_o);
+  c_empty: cover property (@(posedge clk_i) rst_ni && empty_o);
+  c_push_pop: cover property (@(posedge clk_i) rst_ni && push_i && pop_i);
+  c_full_pop: cover property (@(posedge clk_i) rst_ni && full_o && pop_i);
+`endif
+
   // Formal properties (formal/fmpp_fifo_formal.sv runs them; tools/formal.sh).
   // The environment's side of the contract is assumed there: no push while full, no
   // pop while empty (fmpp_axil_slave and fmpp_array guarantee these; the slave's side

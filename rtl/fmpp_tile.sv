@@ -320,6 +320,15 @@ module fmpp_tile #(
     end
   end
 
+  // Coverage (make coverage only: named cover points would give each tile its own code)
+`ifdef FMPP_COVERAGE
+  // Every lane's adder carries out and overflows at least once.
+  for (genvar l = 0; l < Lanes; l++) begin : g_cov_lane
+    c_carry: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_c && pred[l] && alu_c[l]);
+    c_ovf: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_v && pred[l] && alu_v[l]);
+  end
+`endif
+
   // Elaboration check. (Run-time properties of the tile's inputs are asserted in
   // fmpp_array: assertions here would carry each tile's name into its code.)
 `ifndef SYNTHESIS

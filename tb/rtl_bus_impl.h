@@ -54,6 +54,12 @@ class RtlBusImpl final : public RtlBus {
       throw std::invalid_argument("trace window: first cycle " + std::to_string(opt.trace_start) +
                                   " is after the last cycle " + std::to_string(opt.trace_end));
     }
+#if !VM_COVERAGE
+    if (!opt.coverage_file.empty()) {
+      throw std::invalid_argument("coverage file " + opt.coverage_file +
+                                  ": this build has no coverage (configure with -DFMPP_COVERAGE=ON: make coverage)");
+    }
+#endif
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->fatalOnError(false);  // an assertion failure is reported by failure(), not abort()
     ctx_->randReset(0);         // memories start at zero, as in the golden model
@@ -92,6 +98,9 @@ class RtlBusImpl final : public RtlBus {
     activate();
     top_->final();
     if (fst_) fst_->close();
+#if VM_COVERAGE
+    if (!opt_.coverage_file.empty()) ctx_->coveragep()->write(opt_.coverage_file.c_str());
+#endif
   }
 
   const Config& config() const override { return cfg_; }
@@ -211,8 +220,10 @@ class RtlBusImpl final : public RtlBus {
   // context rather than the model's; point it at ours whenever several models coexist.
   void activate() { Verilated::threadContextp(ctx_.get()); }
 
-  void reset() {
+  void reset() override {
     activate();
+    bhold_ = Hold{};
+    rhold_ = Hold{};
     top_->clk_i = 0;
     top_->rst_ni = 0;
     top_->s_axil_bready_i = 1;

@@ -24,6 +24,7 @@
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
+#include "sw/report/fpga.h"
 #include "sw/report/output.h"
 #include "sw/report/report.h"
 
@@ -38,6 +39,7 @@ struct Options : ReportOutput {
   std::string rtl_config = "small";
   unsigned triangles = 10000;
   unsigned n = 32;
+  std::string fpga_csv = FMPP_SOURCE_DIR "/docs/fpga/summary.csv";  // make fpga's figures (fpga.cpp)
 };
 
 // The scene for the step counts: triangles of a tessellated-surface size scattered in
@@ -149,9 +151,12 @@ Command add_paper(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(8u, 32u));
   c.sub->add_flag("--quick", opt->quick, "small measurement sizes (for tests)");
+  c.sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh (the measured clock)")
+      ->capture_default_str();
   c.run = [opt]() -> int {
     prepare_outputs(*opt);
     const Options& o = *opt;
+    const FpgaData fpga = read_fpga(o.fpga_csv);  // before the long measurements: a bad file fails at once
     const Config rcfg = named_config(o.rtl_config);
     const unsigned n = o.n;
     const unsigned m_scene = o.quick ? std::min(o.triangles, 300u) : o.triangles;
@@ -412,6 +417,8 @@ Command add_paper(CLI::App& app) {
     md << "\n(1 GHz is an assumption for an SRAM-based array in a current process, not a measurement.) A "
           "CPU core prunes with a bounding volume hierarchy and so tests far fewer pairs than this "
           "brute force; the comparison is of raw test rates, as in the paper.\n\n";
+
+    write_clock_comparison(fpga, rp_const.st.steps_per_broadcast(), cpu, md);
 
     md << "## Plots\n\n![Fig. 5](img/fig5_ray_parallel.png)\n\n![Fig. 6](img/fig6_object_parallel.png)\n\n"
           "![Fig. 7](img/fig7_limited.png)\n\n";
