@@ -322,7 +322,9 @@ module fmpp_tile #(
 
   // Coverage (make coverage only: named cover points would give each tile its own code)
 `ifdef FMPP_COVERAGE
-  // Every lane's adder carries out and overflows at least once.
+  // A lane's adder carries out and overflows. Verilator 5.006 merges the iterations of
+  // this loop into one point per tile, so these say "some lane"; that every lane does
+  // is checked by the ALU's unit test (tests/rtl_units/alu_unit_test.cpp).
   for (genvar l = 0; l < Lanes; l++) begin : g_cov_lane
     c_carry: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_c && pred[l] && alu_c[l]);
     c_ovf: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_v && pred[l] && alu_v[l]);

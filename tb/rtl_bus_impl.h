@@ -5,6 +5,9 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 #include <verilated_syms.h>
+#if VM_COVERAGE
+#include <verilated_cov.h>
+#endif
 
 #include <cstring>
 #include <string>

@@ -46,6 +46,13 @@ std::string fixed(double v, int prec) {
   return s.str();
 }
 
+// Three significant digits (e.g. 4.88e+09), on a stream of its own.
+std::string sig3(double v) {
+  std::ostringstream s;
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+
 }  // namespace
 
 FpgaData read_fpga(const std::string& csv) {
@@ -183,9 +190,7 @@ void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, doub
   }
   const FpgaRun& ref = reference_run(d);
   const double f = ref.fmax_mhz * 1e6;
-  out << "## The paper's 50 MHz beside a measured clock
-
-";
+  out << "## The paper's 50 MHz beside a measured clock\n\n";
   out << "Every clock figure above assumes the paper's 50 MHz. The one measured clock of this design is "
       << fixed(ref.fmax_mhz, 1) << " MHz: " << ref.blocks << " blocks of " << ref.words << " words placed and routed on "
       << "an iCE40" << ref.device << " FPGA (`make fpga`, docs/area.md). The ray-parallel test rates at both clocks:\n\n";
@@ -194,8 +199,8 @@ void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, doub
   for (double side : {64.0, 256.0, 1024.0}) {
     const double p = side * side;
     const double t50 = p * 50e6 / clocks_per_broadcast, tf = p * f / clocks_per_broadcast;
-    out << "| " << fixed(side, 0) << "^2 | " << std::setprecision(3) << t50 << " | " << fixed(t50 / cpu_tests_per_s, 1)
-        << " | " << std::setprecision(3) << tf << " | " << fixed(tf / cpu_tests_per_s, 1) << " |\n";
+    out << "| " << fixed(side, 0) << "^2 | " << sig3(t50) << " | " << fixed(t50 / cpu_tests_per_s, 1) << " | " << sig3(tf)
+        << " | " << fixed(tf / cpu_tests_per_s, 1) << " |\n";
   }
   out << "\nTable 2 compares the FMPP with the sequential machine at one and the same clock, so its speed-ups do "
          "not depend on the clock; with the FMPP at the measured "

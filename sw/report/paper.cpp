@@ -154,9 +154,9 @@ Command add_paper(CLI::App& app) {
   c.sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh (the measured clock)")
       ->capture_default_str();
   c.run = [opt]() -> int {
+    const FpgaData fpga = read_fpga(opt->fpga_csv);  // before any output or measurement: a bad file fails at once
     prepare_outputs(*opt);
     const Options& o = *opt;
-    const FpgaData fpga = read_fpga(o.fpga_csv);  // before the long measurements: a bad file fails at once
     const Config rcfg = named_config(o.rtl_config);
     const unsigned n = o.n;
     const unsigned m_scene = o.quick ? std::min(o.triangles, 300u) : o.triangles;
