@@ -1,4 +1,4 @@
-// Ray-triangle intersection: the double reference, and the FMPP kernels of both
+// Ray-triangle intersection: the exact reference, and the FMPP kernels of both
 // mappings and both multiplies against it, on the golden model and on the RTL.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <functional>
 #include <random>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/io.h"
@@ -23,18 +23,24 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 Triangle tri(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return Triangle{{a, b, c}}; }
 
 TEST(Reference, HitsMissesEdgesAndDegenerates) {
-  const Triangle t = tri({-1, -1, 5}, {1, -1, 5}, {0, 1, 5});
-  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, t), 5.0);
-  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 2}}, t), 2.5) << "t is in units of D";
+  // The reference is exact on the doubles given, so edge and vertex rays must be exact in
+  // double: -1/4 is, -1/5 is not (its ray passes 5.6e-17 outside the edge, a miss).
+  const Triangle t = tri({-1, -1, 4}, {1, -1, 4}, {0, 1, 4});
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, t), 4.0);
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 2}}, t), 2.0) << "t is in units of D";
   EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, -1}}, t), kInf) << "behind";
   EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0.5, 0, 1}}, t), kInf) << "beside";
-  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, -1.0 / 5, 1}}, t), 5.0) << "on an edge";
-  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {1.0 / 5, -1.0 / 5, 1}}, t), 5.0) << "on a vertex";
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, -1.0 / 4, 1}}, t), 4.0) << "on an edge";
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {1.0 / 4, -1.0 / 4, 1}}, t), 4.0) << "on a vertex";
+  const Triangle t5 = tri({-1, -1, 5}, {1, -1, 5}, {0, 1, 5});
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, -1.0 / 5, 1}}, t5), kInf) << "5.6e-17 outside the edge";
+  EXPECT_DOUBLE_EQ(intersect_reference(Ray{{0, 0, 0}, {0, std::nextafter(-1.0 / 5, 0.0), 1}}, t5), 5.0)
+      << "inside the edge by an ulp of the direction";
   EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, tri({-1, 0, 5}, {0, 0, 5}, {1, 0, 5})), kInf)
       << "collinear vertices";
   EXPECT_EQ(intersect_reference(Ray{{0, 0, 0}, {0, 0, 1}}, tri({0, 0, 5}, {0, 0, 5}, {1, 1, 5})), kInf)
       << "repeated vertex";
-  EXPECT_EQ(intersect_reference(Ray{{0, 0, 5}, {0, 0, 1}}, t), kInf) << "origin on the triangle";
+  EXPECT_EQ(intersect_reference(Ray{{0, 0, 4}, {0, 0, 1}}, t), kInf) << "origin on the triangle";
 }
 
 TEST(Reference, SharedEdgeIsHitExactlyOnce) {
@@ -87,7 +93,9 @@ void expect_close_to_reference(const std::vector<Hit>& got, const std::vector<Hi
   ASSERT_EQ(got.size(), ref.size());
   for (size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].tri, ref[i].tri) << "ray " << i;
-    if (ref[i].hit() && got[i].tri == ref[i].tri) EXPECT_NEAR(got[i].t, ref[i].t, rel * ref[i].t) << "ray " << i;
+    if (ref[i].hit() && got[i].tri == ref[i].tri) {
+      EXPECT_NEAR(got[i].t, ref[i].t, rel * ref[i].t) << "ray " << i;
+    }
   }
 }
 
@@ -164,15 +172,27 @@ TEST(KernelsConstVsGeneric, BitIdenticalResultsFewerSteps) {
 }
 
 TEST(KernelsNumerics, StepsPerBroadcastBeatThePaper) {
-  // Ray-parallel at n = 32: the paper's sequence takes 36n + 95 steps per broadcast.
+  // Ray-parallel at n = 32 on a fixed scene. The counts are deterministic (the scene's
+  // seed fixes every constant, hence every CSD digit): they are pinned, so a kernel
+  // change that costs steps shows here, and must update them knowingly. The paper's
+  // sequence takes 36n + 95 steps per broadcast; the generic multiply takes 22n + 24
+  // plus the exponent shifts (docs/intersection.md).
   const Scene s = random_scene(100, 8, 13);
   KernelOptions o;
   o.n = 32;
-  for (MulMode mul : {MulMode::kGeneric, MulMode::kConst}) {
-    o.mul = mul;
+  struct Want {
+    MulMode mul;
+    uint64_t broadcasts, broadcast_steps, test_steps;
+  };
+  // Measured on 2026-11-23: 732.8 and 206.4 steps per broadcast.
+  for (const Want& w : {Want{MulMode::kGeneric, 98, 71814, 70658}, Want{MulMode::kConst, 98, 20231, 19075}}) {
+    o.mul = w.mul;
     KernelStats st;
     run("cmodel", Config{64, 32}, s, o, &st);
-    EXPECT_LE(st.steps_per_broadcast(), 36.0 * 32 + 95) << to_string(mul);
+    EXPECT_EQ(st.broadcasts, w.broadcasts) << to_string(w.mul);
+    EXPECT_EQ(st.broadcast_steps, w.broadcast_steps) << to_string(w.mul);
+    EXPECT_EQ(st.test_steps, w.test_steps) << to_string(w.mul);
+    EXPECT_LE(st.steps_per_broadcast(), 36.0 * 32 + 95) << to_string(w.mul);
   }
 }
 
@@ -318,7 +338,9 @@ TEST(KernelsWatertight, MatchesTheReferenceAwayFromEdges) {
   size_t same = 0;
   for (size_t i = 0; i < got.size(); ++i) {
     same += got[i].tri == ref[i].tri;
-    if (got[i].tri == ref[i].tri && ref[i].hit()) EXPECT_NEAR(got[i].t, ref[i].t, 1e-3 * ref[i].t);
+    if (got[i].tri == ref[i].tri && ref[i].hit()) {
+      EXPECT_NEAR(got[i].t, ref[i].t, 1e-3 * ref[i].t);
+    }
   }
   // Snapping vertices to the 14-bit grid moves edges by up to 2^-15 of the scene.
   EXPECT_GE(same, got.size() * 99 / 100);
@@ -353,7 +375,9 @@ TEST(CpuBaseline, AgreesWithTheReference) {
   for (size_t i = 0; i < s.rays.size(); ++i) {
     const Hit h = cpu.nearest(s.rays[i]);
     agree += h.tri == ref[i].tri;
-    if (h.tri == ref[i].tri && h.hit()) EXPECT_NEAR(h.t, ref[i].t, 1e-4 * ref[i].t);
+    if (h.tri == ref[i].tri && h.hit()) {
+      EXPECT_NEAR(h.t, ref[i].t, 1e-4 * ref[i].t);
+    }
   }
   EXPECT_GE(agree, s.rays.size() * 995 / 1000) << "single precision may differ only at edges";
 }

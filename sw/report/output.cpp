@@ -6,8 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <thread>
 
-#include "sw/tools/cli_options.h"
+#include "sw/util/files.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -37,6 +38,18 @@ std::string today() {
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
   return date;
+}
+
+std::string machine_description() {
+  std::string cpu = "unknown CPU";
+  std::ifstream f("/proc/cpuinfo");
+  for (std::string line; std::getline(f, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
 }
 
 void add_output_options(CLI::App* sub, ReportOutput& o) {

@@ -15,15 +15,14 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <map>
 #include <sstream>
-#include <thread>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/report/output.h"
 #include "sw/report/report.h"
@@ -222,18 +221,6 @@ std::string big(uint64_t v) {
 
 std::string db(double v) { return std::isfinite(v) ? fmt(v, 1) : "identical"; }
 
-std::string machine_description() {
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  for (std::string line; std::getline(f, line);) {
-    if (line.rfind("model name", 0) == 0) {
-      cpu = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
-}
-
 // One row of the leak table.
 struct LeakRow {
   unsigned n = 0;
@@ -388,7 +375,7 @@ Command add_precision(CLI::App& app) {
           Row r;
           r.n = n;
           r.form = f.name;
-          const Run raw = run_kernel(machine, rays, scene.triangles, kernel_options(f, n, 60));
+          const Run raw = run_kernel(machine, rays, scene.triangles, kernel_options(f, n, policy::kRawCondBits));
           r.steps = raw.st.steps_per_broadcast();
           r.broadcasts = raw.st.broadcasts;
           r.raw_cycles = raw.st.cycles;
@@ -440,7 +427,7 @@ Command add_precision(CLI::App& app) {
       int cond_bits;
     };
     for (unsigned n : leak_bits) {
-      for (const LeakForm& lf : {LeakForm{"paper, raw", false, 60}, LeakForm{"paper, fallback", false, -1},
+      for (const LeakForm& lf : {LeakForm{"paper, raw", false, policy::kRawCondBits}, LeakForm{"paper, fallback", false, -1},
                                  LeakForm{"watertight", true, -1}}) {
         KernelOptions ko;
         ko.n = n;
