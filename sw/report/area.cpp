@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "sw/report/area.h"
+#include "sw/report/fpga.h"
 #include "sw/report/report.h"
 #include "sw/util/files.h"
 
@@ -20,6 +21,7 @@ struct AreaOptions {
   std::string synth_dir = "build/synth";
   unsigned words = kPaperWordsRayParallel;
   std::string out;
+  std::string fpga_csv;  // tools/fpga.sh summary.csv: adds the FPGA section (fpga.cpp)
 };
 }  // namespace
 
@@ -33,16 +35,23 @@ void register_area(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1u, 64u));
   sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout ('-': stdout)");
+  sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh: adds the measured FPGA clock and size");
   sub->callback([opt] {
     if (!opt->out.empty()) check_writable("--out", opt->out);
     const SynthData data = read_synth(opt->synth_dir);
+    FpgaData fpga;
+    if (!opt->fpga_csv.empty()) fpga = read_fpga(opt->fpga_csv);
+    auto write = [&](std::ostream& os) {
+      write_area_report(data, opt->words, os);
+      if (!fpga.runs.empty()) write_fpga_section(fpga, os);
+    };
     if (opt->out.empty() || opt->out == "-") {
-      write_area_report(data, opt->words, std::cout);
+      write(std::cout);
       return;
     }
     std::ofstream f(opt->out);
     if (!f) throw std::runtime_error(opt->out + ": cannot write");
-    write_area_report(data, opt->words, f);
+    write(f);
   });
 }
 

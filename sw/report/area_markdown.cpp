@@ -202,7 +202,7 @@ void how_measured(std::ostream& out) {
   out << "`make synth` runs tools/synth.sh (yosys on every size above, flip-flops legalized so that `stat -tech cmos` "
          "counts them, writing summary.csv and cells.csv) and then this report. docs/area.md is this report over the "
          "results committed in docs/synth/: after `make synth`, `cp build/synth/*.csv docs/synth/` and "
-         "`build/fmpp-report area --synth-dir docs/synth --out docs/area.md` (the ctest report_area_doc checks that "
+         "`build/fmpp-report area --synth-dir docs/synth --fpga-csv docs/fpga/summary.csv --out docs/area.md` (the ctest report_area_doc checks that "
          "it is current).\n";
 }
 

@@ -29,7 +29,10 @@ Command add_paper(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(8u, 32u));
   c.sub->add_flag("--quick", opt->quick, "small measurement sizes (for tests)");
+  c.sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh (the measured clock)")
+      ->capture_default_str();
   c.run = [opt]() -> int {
+    const FpgaData fpga = read_fpga(opt->fpga_csv);  // before any output or measurement: a bad file fails at once
     prepare_outputs(*opt);
     const paper::Options& o = *opt;
     const Config rcfg = named_config(o.rtl_config);
@@ -44,7 +47,7 @@ Command add_paper(CLI::App& app) {
 
     const paper::Derived d = paper::derive(w, b, cpu, o.n);
 
-    const std::string md = paper::markdown(o, rcfg, date, paper::Measured{t1, w, b, sweep, cpu}, d);
+    const std::string md = paper::markdown(o, rcfg, date, paper::Measured{t1, w, b, sweep, cpu, fpga}, d);
     write_report(o, md, paper::report_data(t1, sweep, cpu, d));
     std::fprintf(stderr, "[paper] wrote %s\n", o.out.c_str());
     return 0;

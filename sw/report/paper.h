@@ -20,7 +20,12 @@
 
 #include "fmpp/config.h"
 #include "sw/isect/kernels.h"
+#include "sw/report/fpga.h"
 #include "sw/report/output.h"
+
+#ifndef FMPP_SOURCE_DIR
+#define FMPP_SOURCE_DIR "."
+#endif
 
 namespace fmpp::report::paper {
 
@@ -29,6 +34,7 @@ struct Options : ReportOutput {
   std::string rtl_config = "small";
   unsigned triangles = 10000;
   unsigned n = 32;
+  std::string fpga_csv = FMPP_SOURCE_DIR "/docs/fpga/summary.csv";  // make fpga's figures (fpga.cpp)
 };
 
 // ------------------------------------------------------------------ measured
@@ -157,6 +163,7 @@ struct Measured {
   const Broadcasts& b;
   const Sweep& sweep;
   const CpuRates& cpu;
+  const FpgaData& fpga;  // make fpga's place-and-route runs (read, not measured here)
 };
 std::string markdown(const Options& o, const Config& rcfg, const std::string& date, const Measured& m,
                      const Derived& d);

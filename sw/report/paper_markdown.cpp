@@ -187,6 +187,7 @@ std::string markdown(const Options& o, const Config& rcfg, const std::string& da
   fig7(md, d);
   amdahl(md, d);
   cpu(md, m.cpu, m.b, d);
+  write_clock_comparison(m.fpga, m.b.rp_const.st.steps_per_broadcast(), m.cpu.cpu, md);
   plots(md, o);
   return md.str();
 }

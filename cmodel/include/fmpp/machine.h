@@ -46,6 +46,9 @@ class Machine {
   // Window writes (queued host writes). strb4: byte enables of the 32-bit word.
   void write_word(unsigned block, unsigned word, uint32_t data, uint8_t strb4 = 0xF);
   void write_flags(unsigned block, uint8_t flags);
+  // The RTL's reset: flags, mask and INSTRET to zero; the words keep their values
+  // (memory has no reset).
+  void reset();
 
   uint32_t word(unsigned block, unsigned word) const { return mem_[word * stride_ + block]; }
   uint8_t flags(unsigned block) const { return flags_[block]; }
