@@ -1,13 +1,20 @@
 #include "sw/report/output.h"
 
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
+#include <vector>
 
+#include "sw/isect/output_file.h"
 #include "sw/tools/cli_options.h"
+
+extern char** environ;
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -23,14 +30,35 @@ std::string fmt(double v, int prec) {
 
 namespace {
 
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  f << text;
-  if (!f.flush()) throw std::runtime_error(path + ": write failed");
+// The command line of `argv` for a message, each argument quoted.
+std::string shown(const std::vector<std::string>& argv) {
+  std::string s;
+  for (const auto& a : argv) s += (s.empty() ? "'" : " '") + a + "'";
+  return s;
 }
 
 }  // namespace
+
+void run_program(const std::vector<std::string>& argv) {
+  if (argv.empty()) throw std::invalid_argument("run_program: no program");
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  std::fflush(nullptr);
+  pid_t pid = 0;
+  const int err = ::posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ);
+  if (err != 0) throw std::runtime_error("cannot run " + shown(argv) + ": " + std::strerror(err));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw std::runtime_error("waiting for " + shown(argv) + ": " + std::strerror(errno));
+  }
+  if (WIFSIGNALED(status)) {
+    throw std::runtime_error(shown(argv) + " was killed by signal " + std::to_string(WTERMSIG(status)));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error(shown(argv) + " failed with exit status " + std::to_string(WEXITSTATUS(status)));
+  }
+}
 
 std::string today() {
   char date[32];
@@ -64,6 +92,7 @@ void prepare_outputs(ReportOutput& o) {
   check_writable("--out", o.out, false);
   std::filesystem::create_directories(o.img_dir);
   check_writable("--img-dir", o.img_dir + "/" + o.data_name, false);
+  check_no_alias({{"--out", o.out}, {"--img-dir", o.img_dir + "/" + o.data_name}}, {});
 }
 
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data) {
@@ -71,12 +100,11 @@ void write_report(const ReportOutput& o, const std::string& markdown, const nloh
   const std::filesystem::path md(o.out);
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
   const std::string data_file = o.img_dir + "/" + o.data_name;
-  write_file(data_file, data.dump(1) + "\n");
-  write_file(o.out, markdown);
+  write_output(data_file, data.dump(1) + "\n");
+  write_output(o.out, markdown);
   if (o.no_plots) return;
-  const std::string cmd =
-      "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/" + o.plot_script + " '" + data_file + "' '" + o.img_dir + "'";
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
+  // An argument vector, no shell: the paths are passed as they are, whatever they hold.
+  run_program({"/usr/bin/python3", FMPP_SOURCE_DIR "/tools/" + o.plot_script, data_file, o.img_dir});
 }
 
 }  // namespace fmpp::report
