@@ -106,8 +106,27 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     } else {
       plan.why_blocks += "; the smallest built RTL configuration that holds it is '" + best + "' (" + best_cfg.str() + ")";
     }
+    // Sizes the user gave are kept or refused, never replaced silently.
+    if ((req.blocks && best_cfg.blocks != blocks) || (req.words && best_cfg.words != words)) {
+      std::string built;
+      for (const std::string& name : fmpp::tb::rtl_configs()) {
+        built += (built.empty() ? "" : ", ") + name + " (" + fmpp::named_config(name).str() + ")";
+      }
+      throw std::invalid_argument("no built RTL configuration has " +
+                                  (req.blocks ? std::to_string(blocks) + " blocks" : std::string()) +
+                                  (req.blocks && req.words ? " and " : "") +
+                                  (req.words ? std::to_string(words) + " words" : std::string()) +
+                                  ": the built ones are " + built + "; use --config NAME, or backend cmodel for any size");
+    }
     blocks = best_cfg.blocks;
     words = best_cfg.words;
+  }
+  if (req.words && words < need) {
+    throw std::invalid_argument(std::to_string(words) + " words per block are too few: " +
+                                (secondary ? "mirrors or glass within the recursion depth send secondary rays to the "
+                                             "arbitrary-origin kernel, which needs "
+                                           : "the kernel needs ") +
+                                std::to_string(need) + " words per block");
   }
   plan.config = fmpp::Config{blocks, words};
   plan.config.validate();

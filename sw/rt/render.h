@@ -76,8 +76,25 @@ struct RenderStats {
 // The camera's primary rays through the pixel centres, row by row from the top (pixel
 // index y * width + x), exactly as render() casts them.
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height);
+// The same rays for pixel indices [first, last) only.
+std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last);
 
-// Renders the scene; the image is linear radiance.
+// Memory bounds of a render: rays travel in bands of at most kPrimaryBatch primary rays
+// (each band traced to the full depth) and shadow rays in batches of at most
+// kShadowBatch, so only the image grows with the resolution. The largest side is
+// kMaxSide, and a resolution whose image (with its copies for output) needs more than
+// kMaxRenderBytes is refused with the estimate.
+inline constexpr size_t kPrimaryBatch = size_t{1} << 18;
+inline constexpr size_t kShadowBatch = size_t{1} << 20;
+inline constexpr int kMaxSide = 16384;
+inline constexpr uint64_t kMaxRenderBytes = uint64_t{4} << 30;
+// Bytes per render of width x height that do not depend on the batches.
+uint64_t render_memory_estimate(int width, int height);
+// Throws std::invalid_argument naming the resolution (and the estimate) if it is refused.
+void check_resolution(int width, int height);
+
+// Renders the scene; the image is linear radiance. Throws std::invalid_argument for a
+// resolution check_resolution refuses.
 Image render(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats);
 
 }  // namespace rt

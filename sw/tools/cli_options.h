@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "sw/fmpp/backend.h"
+#include "sw/isect/output_file.h"
 
 namespace fmpp {
 
@@ -38,6 +39,19 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return "";
       },
       desc.str());
+}
+
+// A whole-number option in [lo, hi]: "abc" is "not a whole number", not "not in range"
+// (CLI::Range alone says the latter for both).
+inline CLI::Validator int_range(long long lo, long long hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& s) -> std::string {
+        long long v = 0;
+        if (!CLI::detail::lexical_cast(s, v)) return "'" + s + "' is not a whole number";
+        if (v < lo || v > hi) return "value " + s + " not in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+        return "";
+      },
+      "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
 // An unsigned or "no sign" option: CLI11 reads "-1" into a uint64_t as 2^64 - 1 (strtoull
@@ -98,10 +112,22 @@ inline void check_trace_window(uint64_t start, uint64_t end) {
   }
 }
 
+// A waveform goes to a regular file: the FST writer does not report write errors, so a
+// device (/dev/full, /dev/null) or a pipe would lose it without a word. Refused before
+// any work, naming the option.
+inline void check_trace_file(const std::string& path, const char* option = "--trace") {
+  if (path.empty()) return;
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return;
+  throw std::invalid_argument(std::string(option) + " " + path + ": not a regular file; a waveform needs a file name");
+}
+
 // The reference backend runs no hardware: a trace asked of it is refused, not ignored.
 // (make_backend refuses one for cmodel.)
 inline void check_trace_options(const std::string& backend, const BackendOptions& bo) {
   check_trace_window(bo.trace_start, bo.trace_end);
+  check_trace_file(bo.trace_file);
   if (backend == "reference" && !bo.trace_file.empty()) {
     throw std::invalid_argument("backend 'reference' has no waveform: a trace needs rtl, lockstep or systemc");
   }
@@ -129,17 +155,8 @@ inline void check_writable(const std::string& option, const std::string& path, b
   if (!existed) std::filesystem::remove(path, ec);
 }
 
-// Writes `text` to `path`, or to stdout for "-".
-inline void write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text << std::flush;
-    if (!std::cout) throw std::runtime_error("stdout: write failed");
-    return;
-  }
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  f << text;
-  if (!f.flush()) throw std::runtime_error(path + ": write failed");
-}
+// Writes `text` to `path`, or to stdout for "-": checked, and atomic for a file
+// (fmpp::write_output).
+inline void write_text(const std::string& path, const std::string& text) { write_output(path, text); }
 
 }  // namespace fmpp

@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   app.add_option("--mul", mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
       ->capture_default_str()
       ->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(CLI::Range(2u, 32u));
-  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(CLI::Range(1u, map::kMaxBlocks));
+  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(int_range(2, 32));
+  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
   app.add_option("--words", words,
                  "words per block, even (default: what the mapping and multiply need, 24 when rays take the "
                  "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--cond-bits", cond_bits,
                  "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
       ->capture_default_str()
-      ->check(CLI::Range(-1, 60));
+      ->check(int_range(-1, 60));
   app.add_option("--origins", origins,
                  "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
                  "general formulation for the rest) | group | general")
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_flag("--watertight", watertight, "exact-integer edge functions for rays sharing an origin (no cracks)");
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
       ->capture_default_str()
-      ->check(CLI::Range(4u, 28u));
+      ->check(int_range(4, 28));
   app.add_option("--out", out_file, "hits file ('-' for stdout)")->capture_default_str();
   app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
   BackendOptions bo;
@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
     // Every output is checked before the work, not after it.
     check_writable("--out", out_file);
     if (!report_file.empty()) check_writable("--report", report_file);
+    check_no_alias({{"--out", out_file}, {"--report", report_file}, {"--trace", bo.trace_file}},
+                   {{"--triangles", tri_file}, {"--rays", ray_file}});
     const std::vector<Triangle> tris = read_triangles(tri_file);
     const std::vector<Ray> rays = read_rays(ray_file);
     nlohmann::json rep;

@@ -60,25 +60,25 @@ int main(int argc, char** argv) {
                  "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
       ->capture_default_str()
       ->check(CLI::IsMember(tool_backends()));
-  app.add_option("--width", width, "image width")->capture_default_str()->check(CLI::Range(1, 16384));
-  app.add_option("--height", height, "image height")->capture_default_str()->check(CLI::Range(1, 16384));
+  app.add_option("--width", width, "image width")->capture_default_str()->check(int_range(1, 16384));
+  app.add_option("--height", height, "image height")->capture_default_str()->check(int_range(1, 16384));
   app.add_option("--mapping", mapping, "ray | object (secondary rays always ray-parallel)")
       ->capture_default_str()
       ->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
   app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
-      ->check(CLI::Range(1u, map::kMaxBlocks));
+      ->check(int_range(1, map::kMaxBlocks));
   app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
       ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
-  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(CLI::Range(4u, 32u));
+  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(int_range(4, 32));
   double target = 0.002;
   app.add_option("--error-target", target,
                  "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's "
                  "pixels allowed off the reference")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
-  app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(CLI::Range(1, 16));
+  app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
   app.add_option("--out", out, "output PNG")->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
@@ -94,11 +94,17 @@ int main(int argc, char** argv) {
 
   try {
     check_trace_options(backend, bo);
+    rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
     check_writable("--out", out, false);
     if (!report_file.empty()) check_writable("--report", report_file);
     const rt::Scene scene = rt::load_scene(scene_file);
+    {
+      std::vector<NamedPath> inputs;
+      for (const auto& f : scene.files) inputs.push_back({f == scene_file ? "--scene" : "mesh of --scene", f});
+      check_no_alias({{"--out", out}, {"--report", report_file}, {"--trace", bo.trace_file}}, inputs);
+    }
     nlohmann::json rep;
     rep["scene"] = scene_file;
     rep["triangles"] = scene.triangles.size();
