@@ -19,6 +19,7 @@
 #include <unordered_map>
 
 #include "sw/isect/io.h"
+#include "sw/rt/isolate.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
@@ -299,17 +300,12 @@ const std::vector<std::string>& mesh_extensions() {
   return e;
 }
 
-Mesh load_mesh(const std::string& path) {
-  std::string data;
-  const std::string err = fmpp::isect::read_input(path, "mesh", fmpp::isect::kMaxMeshBytes, &data);
-  if (!err.empty()) throw SceneError(err);
-  const std::string ext = lower_extension(path);
-  const auto& known = mesh_extensions();
-  if (std::find(known.begin(), known.end(), ext) == known.end()) {
-    std::string list;
-    for (const auto& e : known) list += (list.empty() ? "" : " ") + e;
-    throw SceneError(path + ": not a mesh file name: the extension must be one of " + list);
-  }
+namespace {
+
+double g_mesh_seconds = 60;
+
+// The library's part: `data` is the file's bytes (already checked and read).
+Mesh parse_mesh(const std::string& path, const std::string& ext, std::string data) {
   std::unique_ptr<DoubleValues> exact;
   if (ext == ".obj") {
     data = normalize_obj(path, std::move(data));
@@ -330,6 +326,92 @@ Mesh load_mesh(const std::string& path) {
   Walker{path, *sc, exact.get(), m}.node(*sc->mRootNode, "");
   if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
   return m;
+}
+
+// A Mesh as bytes, to come back from the reader process.
+template <class T>
+void put(std::string& s, const T& v) {
+  s.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+T get(const std::string& s, size_t& pos) {
+  T v{};
+  if (pos + sizeof v > s.size()) throw SceneError("mesh reader: short result");
+  std::memcpy(&v, s.data() + pos, sizeof v);
+  pos += sizeof v;
+  return v;
+}
+std::string serialize(const Mesh& m) {
+  std::string s;
+  put<uint64_t>(s, m.skipped_primitives);
+  put<uint64_t>(s, m.groups.size());
+  for (const MeshGroup& g : m.groups) {
+    put<uint64_t>(s, g.name.size());
+    s += g.name;
+    put<uint64_t>(s, g.triangles.size());
+    for (size_t i = 0; i < g.triangles.size(); ++i) {
+      for (int c = 0; c < 3; ++c) put(s, g.triangles[i].p[c]);
+      for (int c = 0; c < 3; ++c) put(s, g.normals[i][c]);
+    }
+  }
+  return s;
+}
+Mesh deserialize(const std::string& s) {
+  Mesh m;
+  size_t pos = 0;
+  m.skipped_primitives = get<uint64_t>(s, pos);
+  const uint64_t groups = get<uint64_t>(s, pos);
+  for (uint64_t k = 0; k < groups; ++k) {
+    MeshGroup g;
+    const uint64_t len = get<uint64_t>(s, pos);
+    if (len > s.size() - pos) throw SceneError("mesh reader: short result");
+    g.name.assign(s, pos, len);
+    pos += len;
+    const uint64_t n = get<uint64_t>(s, pos);
+    if (n > (s.size() - pos) / (6 * sizeof(glm::dvec3))) throw SceneError("mesh reader: short result");
+    g.triangles.resize(n);
+    g.normals.resize(n);
+    for (uint64_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) g.triangles[i].p[c] = get<glm::dvec3>(s, pos);
+      for (int c = 0; c < 3; ++c) g.normals[i][c] = get<glm::dvec3>(s, pos);
+    }
+    m.triangles += n;
+    m.groups.push_back(std::move(g));
+  }
+  return m;
+}
+
+}  // namespace
+
+void set_mesh_time_limit(double seconds) { g_mesh_seconds = seconds; }
+
+Mesh load_mesh(const std::string& path) {
+  std::string data;
+  const std::string err = fmpp::isect::read_input(path, "mesh", fmpp::isect::kMaxMeshBytes, &data);
+  if (!err.empty()) throw SceneError(err);
+  const std::string ext = lower_extension(path);
+  const auto& known = mesh_extensions();
+  if (std::find(known.begin(), known.end(), ext) == known.end()) {
+    std::string list;
+    for (const auto& e : known) list += (list.empty() ? "" : " ") + e;
+    throw SceneError(path + ": not a mesh file name: the extension must be one of " + list);
+  }
+  // The library runs in a child process: a file it loops or crashes on (fuzzing found
+  // both) becomes this tool's error, not its hang or signal.
+  try {
+    const std::string bytes = run_isolated(
+        [&]() {
+          try {
+            return serialize(parse_mesh(path, ext, std::move(data)));
+          } catch (const SceneError& e) {
+            throw std::runtime_error(std::string("!") + e.what());
+          }
+        },
+        path + ": cannot read mesh", g_mesh_seconds, kMeshReaderBytes);
+    return deserialize(bytes);
+  } catch (const IsolationError& e) {
+    throw SceneError(e.what());
+  }
 }
 
 }  // namespace rt

@@ -38,6 +38,11 @@ const std::vector<std::string>& mesh_extensions();
 // outside the input limit (fmpp::isect::check_point; the library reads
 // single precision, so a coordinate beyond 3.4e38 is not finite), or no triangles. The message quotes nothing
 // from the file's contents.
+// The library runs in a child process limited to kMeshReaderBytes of address space
+// (without AddressSanitizer) and set_mesh_time_limit seconds (60 unless set): a file it
+// loops, crashes or runs out of memory on is a SceneError too.
 Mesh load_mesh(const std::string& path);
+inline constexpr unsigned long long kMeshReaderBytes = 8ull << 30;
+void set_mesh_time_limit(double seconds);
 
 }  // namespace rt
