@@ -57,11 +57,32 @@ glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
   return glm::dvec3(1 - b1 - b2, b1, b2);
 }
 
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+// v / |v|, or `fallback` for a zero vector; a vector whose squared length overflows
+// (edges near the input limit) or underflows is scaled by its largest component first.
+glm::dvec3 unit_or(glm::dvec3 v, const glm::dvec3& fallback) {
+  const double len = glm::length(v);
+  if (len > 0 && std::isfinite(len) && len > 1e-150) return glm::normalize(v);
+  const double m = max_abs(v);
+  if (!(m > 0) || !std::isfinite(m)) return fallback;
+  return glm::normalize(v / m);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
+
+double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
+  // p = o + t d: each component is off by at most |t d| t_err (the intersector's error
+  // of t) plus the rounding of the multiply and add, a few units of 2^-53 of |o| + |t d|.
+  // As pbrt-v4 does, the bound of the error box projected on the normal, doubled.
+  const double td = std::abs(t) * max_abs(r.d);
+  const double e = td * t_err + 4 * std::ldexp(1.0, -53) * (max_abs(r.o) + td);
+  return 2 * e * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+}
 
 std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last) {
   // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
@@ -110,16 +131,6 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   RenderStats& st = stats ? *stats : local;
   Image img(opt.width, opt.height);
   const int depth = opt.max_depth > 0 ? opt.max_depth : sc.max_depth;
-
-  // Offsets for secondary rays: a tiny fraction of the scene's size.
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (const auto& t : sc.triangles) {
-    for (const auto& p : t.p) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  }
-  const double eps = 1e-5 * glm::length(hi - lo);
 
   // Pixels in bands of at most kPrimaryBatch primary rays, each traced to the full
   // depth before the next: the rays, paths and hits in memory stay bounded whatever the
@@ -182,7 +193,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         const auto& vn = sc.normals[h.tri];
         glm::dvec3 n = b.x * vn[0] + b.y * vn[1] + b.z * vn[2];
         glm::dvec3 nf = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-        nf = glm::length(nf) > 0 ? glm::normalize(nf) : glm::dvec3(0, 0, 1);
+        nf = unit_or(nf, glm::dvec3(0, 0, 1));
         n = glm::length(n) > 0 ? glm::normalize(n) : nf;
         const glm::dvec3 dir = glm::normalize(r.d);
         const bool entering = glm::dot(dir, nf) < 0;
@@ -211,10 +222,12 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
           }
         }
         if (level + 1 >= depth) continue;
+        // Secondary rays start off the surface by the bound on this hit point's error.
+        const double off = spawn_offset(r, h.t, nf, isect.t_relative_error());
         if (m.reflectivity > 0) {
           glm::dvec3 rd = glm::reflect(dir, n);
           if (glm::dot(rd, nf) <= 0) rd = glm::reflect(dir, nf);
-          Ray rr{p + eps * nf, rd};
+          Ray rr{p + off * nf, rd};
           rr.exclude = h.tri;
           next.push_back(rr);
           next_paths.push_back(Path{path.pixel, path.weight * m.reflectivity, RayKind::kReflection});
@@ -222,10 +235,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         if (m.transparency > 0) {
           const double eta = entering ? 1.0 / m.ior : m.ior;
           glm::dvec3 td = glm::refract(dir, n, eta);
-          glm::dvec3 origin = p - eps * nf;
+          glm::dvec3 origin = p - off * nf;
           if (glm::length(td) == 0) {  // total internal reflection
             td = glm::reflect(dir, n);
-            origin = p + eps * nf;
+            origin = p + off * nf;
           }
           Ray tr{origin, td};
           tr.exclude = h.tri;

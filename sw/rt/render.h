@@ -32,12 +32,18 @@ class Intersector {
   virtual ~Intersector() = default;
   // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
   virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
+  // Bound on the relative error of the t it returns: the offset of secondary rays is
+  // derived from it (spawn_offset). 1e-4 is the bound the shadow test also allows for the
+  // FMPP's fixed-point t.
+  virtual double t_relative_error() const { return 1e-4; }
 };
 
 class ReferenceIntersector : public Intersector {
  public:
   explicit ReferenceIntersector(const std::vector<fmpp::isect::Triangle>& tris) : tris_(tris) {}
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
+  // Double precision: t is a ratio of determinants, a few ulps off; 2^-40 leaves room.
+  double t_relative_error() const override { return 0x1p-40; }
 
  private:
   const std::vector<fmpp::isect::Triangle>& tris_;
@@ -72,6 +78,12 @@ struct RenderStats {
   double intersect_seconds = 0;
   double shade_seconds = 0;
 };
+
+// How far a secondary ray spawned at the hit o + t d of ray r starts from the surface
+// (along the unit face normal n): the bound on the hit point's own error - from the
+// intersector's relative error of t and the rounding of o + t d - projected on n and
+// doubled (as pbrt-v4 does). It depends on this hit alone, not on the scene's size.
+double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, double t_err);
 
 // The camera's primary rays through the pixel centres, row by row from the top (pixel
 // index y * width + x), exactly as render() casts them.
