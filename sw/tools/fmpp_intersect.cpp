@@ -20,6 +20,7 @@
 #include "sw/isect/reference.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
+#include "tb/rtl_bus.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   add_trace_options(app, bo);
   CLI11_PARSE(app, argc, argv);
 
+  std::string stage = "checking the options";  // for an out-of-memory message
   try {
     check_trace_options(backend, bo);
     if (out_file == "-" && report_file == "-") {
@@ -81,13 +83,16 @@ int main(int argc, char** argv) {
     if (!report_file.empty()) check_writable("--report", report_file);
     check_no_alias({{"--out", out_file}, {"--report", report_file}, {"--trace", bo.trace_file}},
                    {{"--triangles", tri_file}, {"--rays", ray_file}});
+    stage = "reading " + tri_file;
     const std::vector<Triangle> tris = read_triangles(tri_file);
+    stage = "reading " + ray_file;
     const std::vector<Ray> rays = read_rays(ray_file);
     nlohmann::json rep;
     rep["triangles"] = tris.size();
     rep["rays"] = rays.size();
     rep["backend"] = backend;
     const auto t0 = std::chrono::steady_clock::now();
+    stage = "intersecting " + std::to_string(rays.size()) + " rays with " + std::to_string(tris.size()) + " triangles";
     std::vector<Hit> hits;
     if (backend == "reference") {
       hits = nearest_reference(rays, tris);
@@ -104,6 +109,14 @@ int main(int argc, char** argv) {
       const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? kGeneralWords : 0u);
       Config cfg{blocks, words ? words : need};
       if (!config.empty()) cfg = named_config(config);
+      if (config.empty() && !words && backend != "cmodel") {
+        // The RTL exists in its built sizes only: the default words are the fewest of a
+        // built configuration with these blocks that holds what the kernel needs.
+        for (const std::string& name : tb::rtl_configs()) {
+          const Config c = named_config(name);
+          if (c.blocks == cfg.blocks && c.words >= need && (cfg.words == need || c.words < cfg.words)) cfg = c;
+        }
+      }
       if (general && cfg.words < kGeneralWords) {
         const std::string given = config.empty() ? "--words " + std::to_string(cfg.words)
                                                  : "--config " + config + " (" + std::to_string(cfg.words) + " words)";
@@ -137,6 +150,9 @@ int main(int argc, char** argv) {
     write_hits(out_file, hits);
     if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     return 0;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "fmpp-intersect: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-intersect: %s\n", e.what());
     return 1;

@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
 
+  std::string stage = "checking the options";  // for an out-of-memory message
   try {
     check_trace_options(backend, bo);
     rt::check_resolution(width, height);
@@ -99,6 +100,7 @@ int main(int argc, char** argv) {
     if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
     check_writable("--out", out, false);
     if (!report_file.empty()) check_writable("--report", report_file);
+    stage = "loading " + scene_file;
     const rt::Scene scene = rt::load_scene(scene_file);
     {
       std::vector<NamedPath> inputs;
@@ -117,6 +119,7 @@ int main(int argc, char** argv) {
     ro.max_depth = depth;
     ro.progress = [&](uint64_t, const std::string& what) { progress.batch(what); };
     rt::RenderStats rs;
+    stage = "rendering " + std::to_string(width) + "x" + std::to_string(height);
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
@@ -171,6 +174,7 @@ int main(int argc, char** argv) {
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;
     for (int k = 0; k < rt::kNumRayKinds; ++k) rep["rays"][rt::to_string(static_cast<rt::RayKind>(k))] = rs.rays[k];
+    stage = "writing " + out;
     img->write_png(out);
     if (compare) {
       rt::ReferenceIntersector ref(scene.triangles);
@@ -184,6 +188,9 @@ int main(int argc, char** argv) {
     if (!quiet) std::fprintf(stderr, "wrote %s (%dx%d, %s, %.1f s)\n", out.c_str(), width, height, backend.c_str(),
                              rep["wall_seconds"].get<double>());
     return 0;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "fmpp-render: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-render: %s\n", e.what());
     return 1;
