@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "sw/isect/reference.h"
@@ -25,6 +26,20 @@ const char* to_string(RayKind k) {
 
 std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
   return fmpp::isect::nearest_reference(rays, tris_);
+}
+
+FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
+                                 const fmpp::isect::KernelOptions& opt)
+    : dev_(dev), tris_(tris), opt_(opt) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const auto& t : tris) {
+    for (const auto& p : t.p) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  // Half-extents first: the diagonal of a box near the coordinate limit would overflow.
+  margin_ = tris.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo);
 }
 
 std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
@@ -68,6 +83,10 @@ glm::dvec3 unit_or(glm::dvec3 v, const glm::dvec3& fallback) {
   if (!(m > 0) || !std::isfinite(m)) return fallback;
   return glm::normalize(v / m);
 }
+
+// Relative error bound of a double-precision t (a ratio of determinants, a few ulps for
+// any hit that is not grazing); 2^-40 leaves a wide margin.
+constexpr double kDoubleTError = 0x1p-40;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -222,8 +241,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
           }
         }
         if (level + 1 >= depth) continue;
-        // Secondary rays start off the surface by the bound on this hit point's error.
-        const double off = spawn_offset(r, h.t, nf, isect.t_relative_error());
+        // Secondary rays start off the surface by the bound on this hit point's own error,
+        // plus what the intersector needs to tell a new hit from the surface it leaves
+        // (0 for the double-precision reference).
+        const double off = spawn_offset(r, h.t, nf, kDoubleTError) + isect.spawn_margin();
         if (m.reflectivity > 0) {
           glm::dvec3 rd = glm::reflect(dir, n);
           if (glm::dot(rd, nf) <= 0) rd = glm::reflect(dir, nf);

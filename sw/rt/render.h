@@ -32,18 +32,17 @@ class Intersector {
   virtual ~Intersector() = default;
   // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
   virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
-  // Bound on the relative error of the t it returns: the offset of secondary rays is
-  // derived from it (spawn_offset). 1e-4 is the bound the shadow test also allows for the
-  // FMPP's fixed-point t.
-  virtual double t_relative_error() const { return 1e-4; }
+  // Distance a ray spawned at a hit must start off the surface, beyond the hit point's own
+  // error (spawn_offset), so that this intersector does not find the surface again: 0 for
+  // double precision; the FMPP's fixed-point kernels resolve distances relative to the
+  // extent of the triangles they hold.
+  virtual double spawn_margin() const { return 0; }
 };
 
 class ReferenceIntersector : public Intersector {
  public:
   explicit ReferenceIntersector(const std::vector<fmpp::isect::Triangle>& tris) : tris_(tris) {}
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
-  // Double precision: t is a ratio of determinants, a few ulps off; 2^-40 leaves room.
-  double t_relative_error() const override { return 0x1p-40; }
 
  private:
   const std::vector<fmpp::isect::Triangle>& tris_;
@@ -52,9 +51,11 @@ class ReferenceIntersector : public Intersector {
 class FmppIntersector : public Intersector {
  public:
   FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
-                  const fmpp::isect::KernelOptions& opt)
-      : dev_(dev), tris_(tris), opt_(opt) {}
+                  const fmpp::isect::KernelOptions& opt);
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
+  // 1e-5 of the diagonal of the triangles' bounding box: the resolution of the
+  // fixed-point kernels, whose scale follows the geometry they hold.
+  double spawn_margin() const override { return margin_; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
 
  private:
@@ -62,6 +63,7 @@ class FmppIntersector : public Intersector {
   const std::vector<fmpp::isect::Triangle>& tris_;
   fmpp::isect::KernelOptions opt_;
   fmpp::isect::KernelStats stats_;
+  double margin_ = 0;
 };
 
 struct RenderOptions {
@@ -79,10 +81,11 @@ struct RenderStats {
   double shade_seconds = 0;
 };
 
-// How far a secondary ray spawned at the hit o + t d of ray r starts from the surface
-// (along the unit face normal n): the bound on the hit point's own error - from the
-// intersector's relative error of t and the rounding of o + t d - projected on n and
-// doubled (as pbrt-v4 does). It depends on this hit alone, not on the scene's size.
+// How far a secondary ray spawned at the point o + t d of ray r starts from the surface
+// (along the unit face normal n): the bound on that point's own error - from the
+// relative error t_err of t and the rounding of o + t d - projected on n and doubled (as
+// pbrt-v4 does). It depends on this hit alone, not on the scene's size; render() adds
+// the intersector's spawn_margin().
 double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, double t_err);
 
 // The camera's primary rays through the pixel centres, row by row from the top (pixel
