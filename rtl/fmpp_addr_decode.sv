@@ -24,6 +24,7 @@ module fmpp_addr_decode #(
   localparam int unsigned WIdxW    = $clog2(NumWords);   // NumWords is even, so >= 1
   localparam int unsigned WShift   = 3 + WIdxW;          // WORDS block stride = 2^WShift bytes
   localparam int unsigned AW       = fmpp_pkg::AddrW;
+  localparam int unsigned FShift   = fmpp_pkg::WIN_PLANES_FLAG_SHIFT;  // PLANES: flag above, tile below
 
   logic [AW-1:0] off_plane, off_flags, off_words;
   logic          in_plane, in_flags, in_words;
@@ -36,7 +37,7 @@ module fmpp_addr_decode #(
   assign in_flags  = addr_i >= fmpp_pkg::WIN_FLAGS_BASE  && off_flags < fmpp_pkg::WIN_FLAGS_SIZE;
   assign in_words  = addr_i >= fmpp_pkg::WIN_WORDS_BASE  && off_words < fmpp_pkg::WIN_WORDS_SIZE;
 
-  assign plane_tile  = {19'd0, off_plane[12:0]} >> 3;
+  assign plane_tile  = 32'(off_plane[FShift-1:0]) >> 3;
   assign flags_block = off_flags >> 3;
   assign words_block = off_words >> WShift;
   assign words_word  = {26'd0, off_words[8:3] & 6'((1 << WIdxW) - 1)};
@@ -47,7 +48,7 @@ module fmpp_addr_decode #(
   assign is_plane_o = in_plane && plane_tile < NumTiles;
   assign is_flags_o = in_flags && flags_block < NumBlocks;
   assign is_word_o  = in_words && words_block < NumBlocks && words_word < NumWords;
-  assign flag_o     = off_plane[15:13];
+  assign flag_o     = off_plane[FShift +: 3];
 
   always_comb begin
     block_o = '0;
@@ -62,6 +63,6 @@ module fmpp_addr_decode #(
 
   logic unused_hi;
   assign unused_hi = ^{plane_tile[31:16], flags_block[31:16], words_block[31:16], words_word[31:6],
-                       off_plane[AW-1:16], off_flags[2:0], off_words[2:0]};
+                       off_plane[AW-1:FShift+3], off_flags[2:0], off_words[2:0]};
 
 endmodule

@@ -13,10 +13,10 @@
 module fmpp_alu #(
   parameter int unsigned Lanes = 64
 ) (
-  input  logic [4:0]                        op_i,      // fmpp_pkg::opcode_e
-  input  logic [1:0]                        fn_i,      // FUNC: AND / OR / XOR
-  input  logic [4:0]                        bit_i_i,   // BITCOPY source bit
-  input  logic [4:0]                        bit_j_i,   // BITCOPY destination bit
+  input  logic [fmpp_pkg::F_OP_W-1:0]       op_i,      // fmpp_pkg::opcode_e
+  input  logic [fmpp_pkg::FUNC_FN_W-1:0]    fn_i,      // FUNC: AND / OR / XOR
+  input  logic [fmpp_pkg::BIT_I_W-1:0]      bit_i_i,   // BITCOPY source bit
+  input  logic [fmpp_pkg::BIT_J_W-1:0]      bit_j_i,   // BITCOPY destination bit
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  a_i,       // word A of every lane
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  b_i,       // word B of every lane
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
@@ -44,7 +44,7 @@ module fmpp_alu #(
         case (fn_i)
           fmpp_pkg::FUNC_FN_AND: r_o = a_i & b_i;
           fmpp_pkg::FUNC_FN_OR:  r_o = a_i | b_i;
-          default:               r_o = a_i ^ b_i;  // XOR; code 3 never reaches here (ILLEGAL at push)
+          default:               r_o = a_i ^ b_i;  // FUNC_FN_XOR; undefined codes never get here (ILLEGAL at push)
         endcase
       end
       fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB: begin

@@ -78,10 +78,13 @@ module fmpp_array #(
   assign instret_o = instret_q;
 
   // Decoded execute bus, shared by every tile. Window writes reuse D for the word.
-  logic [4:0]  op;
-  logic [2:0]  f;
-  logic [5:0]  d, a, b, x;
-  logic [31:0] imm;
+  logic [fmpp_pkg::F_OP_W-1:0]  op;
+  logic [fmpp_pkg::F_F_W-1:0]   f;
+  logic [fmpp_pkg::F_D_W-1:0]   d;
+  logic [fmpp_pkg::F_A_W-1:0]   a;
+  logic [fmpp_pkg::F_B_W-1:0]   b;
+  logic [fmpp_pkg::F_X_W-1:0]   x;
+  logic [fmpp_pkg::F_IMM_W-1:0] imm;
 
   assign op  = is_instr ? instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] : fmpp_pkg::OP_NOP;
   assign f   = instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W];

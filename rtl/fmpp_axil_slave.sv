@@ -92,6 +92,11 @@ module fmpp_axil_slave #(
   fmpp_pkg::err_e w_cause;
   logic           w_push, w_ctrl, w_err_clear;
   fmpp_pkg::qentry_t w_entry;
+  // The written value seen through the layouts of the writable registers.
+  fmpp_pkg::ctrl_reg_t  w_ctrl_v;
+  fmpp_pkg::error_reg_t w_error_v;
+  assign w_ctrl_v  = wdata_i;
+  assign w_error_v = wdata_i;
 
   always_comb begin
     w_cause     = fmpp_pkg::ERR_NONE;
@@ -118,7 +123,7 @@ module fmpp_axil_slave #(
         end
         fmpp_pkg::REG_ERROR[11:0]: begin
           if (wstrb_i != 8'hFF) w_cause     = fmpp_pkg::ERR_STROBE;
-          else                  w_err_clear = wdata_i[0];
+          else                  w_err_clear = w_error_v.sticky;
         end
         fmpp_pkg::REG_ID[11:0], fmpp_pkg::REG_CONFIG[11:0], fmpp_pkg::REG_STATUS[11:0],
         fmpp_pkg::REG_RESP[11:0], fmpp_pkg::REG_CYCLES[11:0], fmpp_pkg::REG_INSTRET[11:0],
@@ -170,15 +175,59 @@ module fmpp_axil_slave #(
 
   // Sticky error state and registers.
   // Public for the lockstep checker (tb/), which reads the state directly.
-  logic        err_sticky_q /*verilator public_flat_rd*/;
-  logic [3:0]  err_cause_q /*verilator public_flat_rd*/;
-  logic [15:0] err_count_q /*verilator public_flat_rd*/;
-  logic [31:0] err_addr_q /*verilator public_flat_rd*/;
-  logic [7:0]  gap_q /*verilator public_flat_rd*/;
-  logic [63:0] cycles_q;
+  logic           err_sticky_q /*verilator public_flat_rd*/;
+  fmpp_pkg::err_e err_cause_q /*verilator public_flat_rd*/;
+  logic [15:0]    err_count_q /*verilator public_flat_rd*/;
+  logic [31:0]    err_addr_q /*verilator public_flat_rd*/;
+  logic [7:0]     gap_q /*verilator public_flat_rd*/;
+  logic [63:0]    cycles_q;
 
   fmpp_pkg::err_e r_cause;
   logic [63:0]    r_data;
+
+  // Register values, packed by the map's layouts (reserved bits 0).
+  fmpp_pkg::id_reg_t      id_v;
+  fmpp_pkg::config_reg_t  config_v;
+  fmpp_pkg::status_reg_t  status_v;
+  fmpp_pkg::error_reg_t   error_v;
+  fmpp_pkg::ctrl_reg_t    ctrl_v;
+  fmpp_pkg::resp_reg_t    resp_v;
+  fmpp_pkg::cycles_reg_t  cycles_v;
+  fmpp_pkg::instret_reg_t instret_v;
+  fmpp_pkg::mask_reg_t    mask_v;
+  always_comb begin
+    id_v             = '0;
+    id_v.magic       = fmpp_pkg::Magic;
+    id_v.major       = fmpp_pkg::VersionMajor;
+    id_v.minor       = fmpp_pkg::VersionMinor;
+    config_v         = '0;
+    config_v.wshift  = 8'(WShift);
+    config_v.lanes   = 8'(fmpp_pkg::LaneW);
+    config_v.qdepth  = 8'(fmpp_pkg::QueueDepth);
+    config_v.words   = 8'(NumWords);
+    config_v.blocks  = 32'(NumBlocks);
+    status_v         = '0;
+    status_v.any     = resp_any_i;
+    status_v.ovf     = ovf_any_i;
+    status_v.err     = err_sticky_q;
+    error_v          = '0;
+    error_v.addr     = err_addr_q;
+    error_v.count    = err_count_q;
+    error_v.cause    = err_cause_q;
+    error_v.sticky   = err_sticky_q;
+    ctrl_v           = '0;
+    ctrl_v.gap       = gap_q;
+    resp_v           = '0;
+    resp_v.any       = resp_any_i;
+    resp_v.first     = resp_first_i;
+    resp_v.count     = resp_count_i;
+    cycles_v         = '0;
+    cycles_v.value   = cycles_q;
+    instret_v        = '0;
+    instret_v.value  = instret_i;
+    mask_v           = '0;
+    mask_v.value     = mask_i;
+  end
 
   assign rd_en_o    = arvalid_i && ar_aligned && (ar_is_plane || ar_is_flags || ar_is_word);
   assign rd_kind_o  = ar_is_plane ? fmpp_pkg::RK_PLANE : (ar_is_flags ? fmpp_pkg::RK_FLAGS : fmpp_pkg::RK_WORD);
@@ -195,16 +244,15 @@ module fmpp_axil_slave #(
       r_cause = fmpp_pkg::ERR_ALIGN;
     end else if (ar_is_reg) begin
       unique case (ar_reg)
-        fmpp_pkg::REG_ID[11:0]:      r_data = {fmpp_pkg::Magic, fmpp_pkg::VersionMajor, fmpp_pkg::VersionMinor};
-        fmpp_pkg::REG_CONFIG[11:0]:  r_data = {8'(WShift), 8'(fmpp_pkg::LaneW), 8'(fmpp_pkg::QueueDepth),
-                                               8'(NumWords), 32'(NumBlocks)};
-        fmpp_pkg::REG_STATUS[11:0]:  r_data = {61'd0, resp_any_i, ovf_any_i, err_sticky_q};
-        fmpp_pkg::REG_ERROR[11:0]:   r_data = {err_addr_q, err_count_q, 8'd0, err_cause_q, 3'd0, err_sticky_q};
-        fmpp_pkg::REG_CTRL[11:0]:    r_data = {56'd0, gap_q};
-        fmpp_pkg::REG_RESP[11:0]:    r_data = {resp_any_i, resp_first_i, resp_count_i};
-        fmpp_pkg::REG_CYCLES[11:0]:  r_data = cycles_q;
-        fmpp_pkg::REG_INSTRET[11:0]: r_data = instret_i;
-        fmpp_pkg::REG_MASK[11:0]:    r_data = {32'd0, mask_i};
+        fmpp_pkg::REG_ID[11:0]:      r_data = id_v;
+        fmpp_pkg::REG_CONFIG[11:0]:  r_data = config_v;
+        fmpp_pkg::REG_STATUS[11:0]:  r_data = status_v;
+        fmpp_pkg::REG_ERROR[11:0]:   r_data = error_v;
+        fmpp_pkg::REG_CTRL[11:0]:    r_data = ctrl_v;
+        fmpp_pkg::REG_RESP[11:0]:    r_data = resp_v;
+        fmpp_pkg::REG_CYCLES[11:0]:  r_data = cycles_v;
+        fmpp_pkg::REG_INSTRET[11:0]: r_data = instret_v;
+        fmpp_pkg::REG_MASK[11:0]:    r_data = mask_v;
         fmpp_pkg::REG_QUEUE[11:0]:   r_cause = fmpp_pkg::ERR_WRITEONLY;
         default:                     r_cause = fmpp_pkg::ERR_UNMAPPED;
       endcase
@@ -266,10 +314,10 @@ module fmpp_axil_slave #(
 
   // Error register: a clear (write 1 to STICKY) applies first; then the errors of
   // this clock are recorded, the write's before the read's.
-  logic        err_sticky_d;
-  logic [3:0]  err_cause_d;
-  logic [15:0] err_count_d;
-  logic [31:0] err_addr_d;
+  logic           err_sticky_d;
+  fmpp_pkg::err_e err_cause_d;
+  logic [15:0]    err_count_d;
+  logic [31:0]    err_addr_d;
 
   always_comb begin
     err_sticky_d = err_sticky_q;
@@ -278,7 +326,7 @@ module fmpp_axil_slave #(
     err_addr_d   = err_addr_q;
     if (w_accept && w_err_clear) begin
       err_sticky_d = 1'b0;
-      err_cause_d  = '0;
+      err_cause_d  = fmpp_pkg::ERR_NONE;
       err_count_d  = '0;
       err_addr_d   = '0;
     end
@@ -288,7 +336,7 @@ module fmpp_axil_slave #(
         err_addr_d  = awaddr_i;
       end
       err_sticky_d = 1'b1;
-      if (err_count_d != 16'hFFFF) err_count_d = err_count_d + 1'b1;
+      if (err_count_d != '1) err_count_d = err_count_d + 1'b1;
     end
     if (r_accept && r_err) begin
       if (!err_sticky_d) begin
@@ -296,14 +344,14 @@ module fmpp_axil_slave #(
         err_addr_d  = araddr_i;
       end
       err_sticky_d = 1'b1;
-      if (err_count_d != 16'hFFFF) err_count_d = err_count_d + 1'b1;
+      if (err_count_d != '1) err_count_d = err_count_d + 1'b1;
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       err_sticky_q <= 1'b0;
-      err_cause_q  <= '0;
+      err_cause_q  <= fmpp_pkg::ERR_NONE;
       err_count_q  <= '0;
       err_addr_q   <= '0;
     end else begin
@@ -320,15 +368,18 @@ module fmpp_axil_slave #(
       cycles_q <= '0;
     end else begin
       cycles_q <= cycles_q + 1'b1;
-      if (w_accept && w_ctrl) gap_q <= wdata_i[7:0];
+      if (w_accept && w_ctrl) gap_q <= w_ctrl_v.gap;
     end
   end
 
   logic unused_prot;
-  assign unused_prot = ^{awprot_i, arprot_i, aw_flag};
+  assign unused_prot = ^{awprot_i, arprot_i, aw_flag, w_ctrl_v, w_error_v};
 
   // Assertions
 `ifndef SYNTHESIS
+  if (fmpp_pkg::DataW != 64) begin : g_bad_data_width
+    $error("fmpp_axil_slave: the map's bus is %0d bits wide; this slave moves 64-bit beats", fmpp_pkg::DataW);
+  end
   if (NumWords < 2 || NumWords > fmpp_pkg::MaxWords || NumWords % 2 != 0) begin : g_bad_words
     $error("fmpp_axil_slave: NumWords = %0d must be even and in [2, %0d]", NumWords, fmpp_pkg::MaxWords);
   end

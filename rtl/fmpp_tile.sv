@@ -34,13 +34,13 @@ module fmpp_tile #(
   // Execute bus: the queue entry popped this cycle (state changes at the clock edge)
   input  logic                         exec_i,      // an entry executes this cycle
   input  fmpp_pkg::qkind_e             kind_i,
-  input  logic [4:0]                   op_i,        // fmpp_pkg::opcode_e
-  input  logic [2:0]                   f_i,
-  input  logic [5:0]                   d_i,
-  input  logic [5:0]                   a_i,
-  input  logic [5:0]                   b_i,
-  input  logic [5:0]                   x_i,
-  input  logic [31:0]                  imm_i,
+  input  logic [fmpp_pkg::F_OP_W-1:0]  op_i,        // fmpp_pkg::opcode_e
+  input  logic [fmpp_pkg::F_F_W-1:0]   f_i,
+  input  logic [fmpp_pkg::F_D_W-1:0]   d_i,
+  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
+  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
+  input  logic [fmpp_pkg::F_X_W-1:0]   x_i,         // sub-fields by opcode (fmpp_pkg::REF_FN_LSB, ...)
+  input  logic [fmpp_pkg::F_IMM_W-1:0] imm_i,
   input  logic [31:0]                  mask_i,
   input  logic [15:0]                  hw_block_i,  // block of a window write
   input  logic [3:0]                   hw_strb_i,
@@ -69,8 +69,11 @@ module fmpp_tile #(
   localparam int unsigned NF = fmpp_pkg::NumFlags;
   localparam int unsigned FC = fmpp_pkg::FlagC;
   localparam int unsigned FV = fmpp_pkg::FlagV;
-  // Word fields are 6 bits; the push check guarantees they are below NumWords.
+  // Word fields are F_D_W bits; the push check guarantees they are below NumWords.
   localparam int unsigned WIdxW = (NumWords > 1) ? $clog2(NumWords) : 1;
+  // REF's source flag and FLAGOP's first flag share a multiplexer when the map puts them
+  // in the same bits of X (a constant: both selections below fold into one).
+  localparam bit FsIsFa = fmpp_pkg::REF_FS_LSB == fmpp_pkg::FLAG_FA_LSB;
 
   typedef logic [W*Lanes-1:0]  word_t;   // one word of every lane, plane k at [k*Lanes +: Lanes]
   typedef logic [NF*Lanes-1:0] flags_t;  // flag f of every lane at [f*Lanes +: Lanes]
@@ -93,14 +96,15 @@ module fmpp_tile #(
   assign opd = mem_q[d_i[WIdxW-1:0]];
   if (WIdxW < 6) begin : g_unused_hi
     logic unused_hi;
-    assign unused_hi = ^{a_i[5:WIdxW], b_i[5:WIdxW], d_i[5:WIdxW], rd_word_i[5:WIdxW]};
+    assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
+                         d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
   end
 
   fmpp_alu #(.Lanes(Lanes)) u_alu (
     .op_i    (op_i),
-    .fn_i    (x_i[1:0]),
-    .bit_i_i (imm_i[4:0]),
-    .bit_j_i (imm_i[12:8]),
+    .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
+    .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
+    .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
     .a_i     (opa),
     .b_i     (opb),
     .d_i     (opd),
@@ -115,8 +119,8 @@ module fmpp_tile #(
   // rather than functions: Verilator names function temporaries per call site, which
   // would stop it from sharing one C++ body among the tiles.)
   lane_t pred;         // flag F: the predicate
-  lane_t flag_a;       // flag X[5:3]: REF Fs, FLAGOP Fa
-  lane_t flag_b;       // flag X[2:0]: FLAGOP Fb
+  lane_t flag_a;       // REF: flag REF_FS; FLAGOP: flag FLAG_FA
+  lane_t flag_b;       // FLAGOP: flag FLAG_FB
   lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
   lane_t rd_lane_sel;  // one-hot lane of a window read
   lane_t rd_plane;     // flag rd_flag_i of every lane
@@ -128,6 +132,11 @@ module fmpp_tile #(
   assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
                                                               : rd_block_i[15:6] == base_i[15:6]);
   assign rd_lane = rd_block_i[5:0];
+  logic [fmpp_pkg::REF_FS_W-1:0]  fa_idx;
+  logic [fmpp_pkg::FLAG_FB_W-1:0] fb_idx;
+  assign fa_idx = (FsIsFa || op_i != fmpp_pkg::OP_FLAGOP) ? x_i[fmpp_pkg::REF_FS_LSB +: fmpp_pkg::REF_FS_W]
+                                                          : x_i[fmpp_pkg::FLAG_FA_LSB +: fmpp_pkg::FLAG_FA_W];
+  assign fb_idx = x_i[fmpp_pkg::FLAG_FB_LSB +: fmpp_pkg::FLAG_FB_W];
   always_comb begin
     pred = '0;
     flag_a = '0;
@@ -135,8 +144,8 @@ module fmpp_tile #(
     rd_plane = '0;
     for (int k = 0; k < NF; k++) begin
       if (f_i == 3'(k))       pred     = flag_q[k*Lanes +: Lanes];
-      if (x_i[5:3] == 3'(k))  flag_a   = flag_q[k*Lanes +: Lanes];
-      if (x_i[2:0] == 3'(k))  flag_b   = flag_q[k*Lanes +: Lanes];
+      if (fa_idx == 3'(k))    flag_a   = flag_q[k*Lanes +: Lanes];
+      if (fb_idx == 3'(k))    flag_b   = flag_q[k*Lanes +: Lanes];
       if (rd_flag_i == 3'(k)) rd_plane = flag_q[k*Lanes +: Lanes];
     end
     for (int l = 0; l < Lanes; l++) begin
@@ -156,13 +165,15 @@ module fmpp_tile #(
     end
   end
 
-  // FLAGOP value: lut[{fa, fb}] in every lane.
+  // FLAGOP value: lut[2 fa + fb] in every lane (lut = FLAG_LUT).
   lane_t flagop_v;
+  logic [fmpp_pkg::FLAG_LUT_W-1:0] lut;
+  assign lut = imm_i[fmpp_pkg::FLAG_LUT_LSB +: fmpp_pkg::FLAG_LUT_W];
   always_comb begin
     flagop_v = '0;
     if (exec_i && kind_i == fmpp_pkg::QE_INSTR && op_i == fmpp_pkg::OP_FLAGOP) begin
-      flagop_v = ({Lanes{imm_i[0]}} & ~flag_a & ~flag_b) | ({Lanes{imm_i[1]}} & ~flag_a & flag_b) |
-                 ({Lanes{imm_i[2]}} &  flag_a & ~flag_b) | ({Lanes{imm_i[3]}} &  flag_a & flag_b);
+      flagop_v = ({Lanes{lut[0]}} & ~flag_a & ~flag_b) | ({Lanes{lut[1]}} & ~flag_a & flag_b) |
+                 ({Lanes{lut[2]}} &  flag_a & ~flag_b) | ({Lanes{lut[3]}} &  flag_a & flag_b);
     end
   end
   assign flagop_any_o = |flagop_v;
@@ -173,7 +184,7 @@ module fmpp_tile #(
     lane_t match, src, fl_new;
     logic [31:0] key_mask;
     logic addr_part, fl_we;
-    logic [2:0] fl_dst;
+    logic [fmpp_pkg::F_F_W-1:0] fl_dst;
     flag_d   = flag_q;
     wr_en    = 1'b0;
     wr_data  = opd;
@@ -190,7 +201,8 @@ module fmpp_tile #(
           case (op_i)
             fmpp_pkg::OP_REF, fmpp_pkg::OP_SETSADR: begin
               // Masked match: every unmasked bit of the source equals the key bit.
-              addr_part = (op_i == fmpp_pkg::OP_SETSADR) || x_i[2] == fmpp_pkg::REF_PART_ADDR;
+              addr_part = (op_i == fmpp_pkg::OP_SETSADR) ||
+                          x_i[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR;
               if (op_i == fmpp_pkg::OP_SETSADR) key_mask = '0;
               match = '1;
               for (int k = 0; k < W; k++) begin
@@ -204,7 +216,7 @@ module fmpp_tile #(
                 fl_dst = 3'(fmpp_pkg::FlagSEL);
                 fl_new = match;
               end else begin
-                case (x_i[1:0])
+                case (x_i[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W])
                   fmpp_pkg::REF_FN_AND: fl_new = flag_a & match;
                   fmpp_pkg::REF_FN_OR:  fl_new = flag_a | match;
                   default:              fl_new = match;  // THROUGH
@@ -217,7 +229,7 @@ module fmpp_tile #(
               fl_new = (op_i == fmpp_pkg::OP_SETS) ? '1 : '0;
             end
             fmpp_pkg::OP_FLAGOP: begin
-              fl_we  = !imm_i[8] || flagop_any_i;
+              fl_we  = imm_i[fmpp_pkg::FLAG_ANY_LSB +: fmpp_pkg::FLAG_ANY_W] == '0 || flagop_any_i;
               fl_new = flagop_v;
             end
             fmpp_pkg::OP_WRITES: begin

@@ -24,13 +24,11 @@
 #include <cstdio>
 #include <iostream>
 
-#include "sw/tools/cli_options.h"
+#include "sw/util/cli_checks.h"
 #include "tb/lockstep.h"
 #include "tb/progen.h"
 #include "tb/rtl_bus.h"
-#ifdef FMPP_HAVE_SYSTEMC
 #include "tb/sc/systemc_bus.h"
-#endif
 
 using namespace fmpp;
 
@@ -41,10 +39,8 @@ std::unique_ptr<tb::RtlBus> make_backend(const std::string& backend, const std::
                                          const tb::RtlOptions& ro) {
   auto rtl = tb::make_rtl_bus(config, ro);
   if (backend == "rtl") return rtl;
-#ifdef FMPP_HAVE_SYSTEMC
   if (backend == "systemc") return sc::make_systemc_rtl_bus(std::move(rtl));
-#endif
-  throw std::invalid_argument("backend '" + backend + "' is not built into this fmpp-sim (SystemC not found?)");
+  throw std::invalid_argument("backend '" + backend + "' is not one of rtl, systemc");
 }
 
 // Writes `bad` into word `word` of block `block` on the RTL side only; the model gets

@@ -8,9 +8,17 @@
 namespace fmpp::tb {
 
 namespace {
+// The k-th instruction bit outside the OP field, from bit 0 up.
+uint64_t non_op_bit(unsigned k) {
+  for (unsigned bit = 0; bit < 64; ++bit) {
+    if ((map::kFieldOp.mask() >> bit) & 1) continue;
+    if (k-- == 0) return uint64_t{1} << bit;
+  }
+  throw std::logic_error("progen: no such instruction bit outside OP");
+}
+
 constexpr uint32_t kEdgeValues[] = {0x00000000u, 0x00000001u, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu,
                                     0x7FFFFFFEu, 0x80000001u, 0xFFFFFFFEu, 0x40000000u, 0x55555555u};
-const char* const kErrNames[] = {"NONE", "UNMAPPED", "READONLY", "WRITEONLY", "ILLEGAL", "STROBE", "ALIGN", "?"};
 }  // namespace
 
 std::string GenStats::missing() const {
@@ -18,8 +26,9 @@ std::string GenStats::missing() const {
   for (unsigned op = 0; op < map::kNumOpcodes; ++op) {
     if (per_op[op] == 0) m += std::string(m.empty() ? "" : ", ") + map::kOpNames[op];
   }
-  for (unsigned e = 1; e <= 6; ++e) {
-    if (per_error[e] == 0) m += std::string(m.empty() ? "" : ", ") + "error " + kErrNames[e];
+  for (unsigned e = 0; e < map::kNumErrs; ++e) {
+    if (e == static_cast<unsigned>(map::Err::kNone)) continue;
+    if (per_error[e] == 0) m += std::string(m.empty() ? "" : ", ") + "error " + map::kErrNames[e];
   }
   return m;
 }
@@ -50,7 +59,16 @@ unsigned ProgramGenerator::block_index() {
 
 unsigned ProgramGenerator::flag_index() {
   const unsigned pick = std::uniform_int_distribution<unsigned>(0, 3)(rng_);
-  return pick == 0 ? 0 : std::uniform_int_distribution<unsigned>(0, 7)(rng_);
+  return pick == 0 ? map::kFlagSEL : std::uniform_int_distribution<unsigned>(0, map::kNumFlags - 1)(rng_);
+}
+
+unsigned ProgramGenerator::legal_code(uint32_t legal) {
+  unsigned codes[32], n = 0;
+  for (unsigned v = 0; v < 32; ++v) {
+    if ((legal >> v) & 1) codes[n++] = v;
+  }
+  if (n == 0) throw std::logic_error("progen: a sub-field without a legal value");
+  return codes[std::uniform_int_distribution<unsigned>(0, n - 1)(rng_)];
 }
 
 uint32_t ProgramGenerator::word_addr(unsigned block, unsigned word) const {
@@ -60,7 +78,7 @@ uint32_t ProgramGenerator::word_addr(unsigned block, unsigned word) const {
 uint64_t ProgramGenerator::random_instruction() {
   using namespace ins;
   const unsigned op = std::uniform_int_distribution<unsigned>(0, map::kNumOpcodes - 1)(rng_);
-  const unsigned pred = std::uniform_int_distribution<unsigned>(0, 2)(rng_) == 0 ? flag_index() : 0;
+  const unsigned pred = std::uniform_int_distribution<unsigned>(0, 2)(rng_) == 0 ? flag_index() : map::kFlagSEL;
   Instr i;
   switch (static_cast<Op>(op)) {
     case Op::kNop: i = nop(); break;
@@ -74,7 +92,7 @@ uint64_t ProgramGenerator::random_instruction() {
       break;
     }
     case Op::kRef: {
-      const auto fn = static_cast<RefFn>(std::uniform_int_distribution<unsigned>(0, 2)(rng_));
+      const auto fn = static_cast<RefFn>(legal_code(map::kRefFnLegal));
       const bool addr = std::uniform_int_distribution<unsigned>(0, 3)(rng_) == 0;
       const uint32_t key = addr ? (std::uniform_int_distribution<unsigned>(0, 3)(rng_) == 0 ? edge_value() : block_index())
                                 : edge_value();
@@ -82,13 +100,12 @@ uint64_t ProgramGenerator::random_instruction() {
       break;
     }
     case Op::kFunc:
-      i = func(static_cast<FuncFn>(std::uniform_int_distribution<unsigned>(0, 2)(rng_)), word_index(), word_index(),
-               word_index(), pred);
+      i = func(static_cast<FuncFn>(legal_code(map::kFuncFnLegal)), word_index(), word_index(), word_index(), pred);
       break;
     case Op::kAdd: i = add(word_index(), word_index(), word_index(), pred); break;
     case Op::kSub: i = sub(word_index(), word_index(), word_index(), pred); break;
     case Op::kBitcopy: {
-      std::uniform_int_distribution<unsigned> bit(0, 31);
+      std::uniform_int_distribution<unsigned> bit(0, map::kWordW - 1);
       i = bitcopy(word_index(), bit(rng_), word_index(), bit(rng_), pred);
       break;
     }
@@ -105,7 +122,7 @@ uint64_t ProgramGenerator::random_instruction() {
     }
     case Op::kFlagop:
       i = flagop(flag_index(), flag_index(), flag_index(),
-                 static_cast<uint8_t>(std::uniform_int_distribution<unsigned>(0, 15)(rng_)),
+                 static_cast<uint8_t>(std::uniform_int_distribution<unsigned>(0, static_cast<unsigned>(map::kFlagLut.max()))(rng_)),
                  std::uniform_int_distribution<unsigned>(0, 2)(rng_) == 0);
       break;
   }
@@ -124,7 +141,7 @@ void ProgramGenerator::expect(Resp got, Resp want, const char* what, uint32_t ad
 void ProgramGenerator::push_instruction(Bus& bus, uint64_t raw) {
   expect(bus.write(map::kRegQueue, raw), Resp::kOkay, "instruction push", map::kRegQueue);
   ++stats_.instructions;
-  ++stats_.per_op[(raw >> map::kFieldOpLsb) & 31];
+  ++stats_.per_op[map::kFieldOp.get(raw)];
 }
 
 void ProgramGenerator::bad_access(Bus& bus) {
@@ -136,18 +153,19 @@ void ProgramGenerator::bad_access(Bus& bus) {
   Resp r = Resp::kOkay;
   switch (kind) {
     case 0: {  // unknown opcode
-      const uint64_t op = std::uniform_int_distribution<unsigned>(map::kNumOpcodes, 31)(rng_);
-      r = bus.write(addr = map::kRegQueue, op << map::kFieldOpLsb);
+      const unsigned op_max = static_cast<unsigned>(map::kFieldOp.max());
+      const uint64_t op = std::uniform_int_distribution<unsigned>(map::kNumOpcodes, op_max)(rng_);
+      r = bus.write(addr = map::kRegQueue, map::kFieldOp.put(op));
       cause = Err::kIllegal;
       break;
     }
     case 1: {  // a legal instruction with one bit flipped in a field it must leave zero, or an operand out of range
       uint64_t raw = 0;
       for (int tries = 0; tries < 64; ++tries) {
-        raw = random_instruction() ^ (1ull << std::uniform_int_distribution<unsigned>(0, 58)(rng_));
+        raw = random_instruction() ^ non_op_bit(std::uniform_int_distribution<unsigned>(0, 63 - map::kFieldOp.width)(rng_));
         if (!is_legal(raw, cfg_.words)) break;
       }
-      if (is_legal(raw, cfg_.words)) raw = uint64_t{31} << map::kFieldOpLsb;
+      if (is_legal(raw, cfg_.words)) raw = map::kFieldOp.put(map::kFieldOp.max());
       r = bus.write(addr = map::kRegQueue, raw);
       cause = Err::kIllegal;
       break;

@@ -27,7 +27,7 @@ struct GenStats {
   uint64_t reads = 0;
   uint64_t bad = 0;           // accesses that must answer SLVERR
   std::array<uint64_t, map::kNumOpcodes> per_op{};
-  std::array<uint64_t, 8> per_error{};  // by map::Err code
+  std::array<uint64_t, map::kNumErrs> per_error{};  // by map::Err code
   // Names what was never exercised (an opcode or an error cause), empty if all were.
   std::string missing() const;
 };
@@ -49,6 +49,8 @@ class ProgramGenerator {
   unsigned word_index();
   unsigned block_index();
   unsigned flag_index();
+  // A random code among those a sub-field's legal mask (map::k<Sub>Legal) defines.
+  unsigned legal_code(uint32_t legal);
   void push_instruction(Bus& bus, uint64_t raw);
   void bad_access(Bus& bus);
   void expect(Resp got, Resp want, const char* what, uint32_t addr);

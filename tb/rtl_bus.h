@@ -75,12 +75,11 @@ class RtlBus : public Bus {
   virtual void withdraw_write_for_test(uint32_t addr, uint64_t data) = 0;
 };
 
-// Names of the configurations built into this binary.
+// The Verilated configurations linked into this binary (generated per binary from
+// tb/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
 std::vector<std::string> rtl_configs();
-// Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument.
+// Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument
+// naming the configurations this binary has.
 std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});
-// Builds the smallest built configuration with at least `blocks` blocks and
-// `words` words. Throws std::invalid_argument listing what is built.
-std::unique_ptr<RtlBus> make_rtl_bus(unsigned blocks, unsigned words, const RtlOptions& opt = {});
 
 }  // namespace fmpp::tb

@@ -1,5 +1,5 @@
 // RtlBus for one Verilated configuration (V = the generated class, e.g. Vfmpp_small).
-// Included only by the generated tb factory (rtl_configs.cpp), once per configuration.
+// Included only by the generated per-configuration file (tb/rtl_config.cpp.in), once per configuration.
 #pragma once
 
 #include <verilated.h>

@@ -16,10 +16,11 @@
 #include <set>
 #include <sstream>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 
 namespace fmpp::isect {
@@ -32,25 +33,36 @@ Triangle tri(dvec3 a, dvec3 b, dvec3 c) { return Triangle{{a, b, c}}; }
 dvec3 bary(const Triangle& t, double a, double b, double c) { return a * t.p[0] + b * t.p[1] + c * t.p[2]; }
 Ray aim(const dvec3& from, const dvec3& to) { return Ray{from, to - from}; }
 
-double inf_norm(const glm::dmat3& a) {
-  double m = 0;
-  for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
-  return m;
+// One way of running the kernel.
+struct Form {
+  const char* name;
+  Mapping mapping;
+  bool watertight;
+  int cond_bits;  // -1: the default host fallback; policy::kRawCondBits: the raw machine
+};
+const Form kRayForm{"ray", Mapping::kRay, false, -1};
+const Form kObjectForm{"object", Mapping::kObject, false, -1};
+const Form kWatertightForm{"watertight", Mapping::kRay, true, -1};
+const Form kRawRayForm{"ray, cond_bits 60", Mapping::kRay, false, policy::kRawCondBits};
+const Form kRawObjectForm{"object, cond_bits 60", Mapping::kObject, false, policy::kRawCondBits};
+
+KernelOptions options(const Form& f, unsigned n) {
+  KernelOptions o;
+  o.mapping = f.mapping;
+  o.mul = MulMode::kConst;
+  o.n = n;
+  o.watertight = f.watertight;
+  o.cond_bits = f.cond_bits;
+  return o;
 }
 
-// |P| |P^-1| (max norms), P = the vertices relative to o as columns: the factor by which
-// the paper's form magnifies the relative error of its fixed-point inputs
-// (docs/intersection.md). The kernel sends triangles above 2^(bits-3) to the host.
-double condition(const Triangle& t, const dvec3& o) {
-  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);
-  const double det = glm::determinant(P);
-  if (det == 0) return std::numeric_limits<double>::infinity();
-  return inf_norm(P) * inf_norm(glm::inverse(P));
-}
+// |P| |P^-1|: the factor by which the paper's form magnifies the relative error of its
+// fixed-point inputs (policy::condition; docs/intersection.md).
+double condition(const Triangle& t, const dvec3& o) { return policy::condition(t, o); }
 
-// Bits the paper's form keeps: n for the multiplier, 28 for the other operand (ray
-// components, vbits; matrix mantissas, mbits), so the coarser one has min(n, 28).
-int effective_bits(unsigned n) { return std::min(static_cast<int>(n), 28); }
+// Bits the paper's form keeps: the coarser of the n-bit multiplier and the other
+// operand (policy::operand_bits: min(n, 28) with the default vbits and mbits).
+int effective_bits(unsigned n) { return static_cast<int>(policy::operand_bits(options(kRayForm, n))); }
 
 // How far inside a triangle (as a fraction of its height over the edge) a point must be
 // for the paper's form to see it inside: its tests T = P^-1 V carry a relative error of
@@ -61,14 +73,10 @@ double paper_margin(const Triangle& t, const dvec3& o, unsigned n) {
   return 8 * condition(t, o) * std::ldexp(1.0, -effective_bits(n));
 }
 
-// The grid of the watertight form (kernels.cpp, watertight_programs): vertices relative
-// to the origin rounded to multiples of sp = pmax 2^-b, b = (n - 3) / 2.
+// The grid of the watertight form (policy::watertight_grid_step): vertices relative to
+// the origin rounded to multiples of sp = pmax 2^-b, b = (n - 3) / 2.
 double grid_step(const std::vector<Triangle>& tris, const dvec3& o, unsigned n) {
-  double pmax = 0;
-  for (const Triangle& t : tris) {
-    for (const dvec3& p : t.p) pmax = std::max({pmax, std::abs(p.x - o.x), std::abs(p.y - o.y), std::abs(p.z - o.z)});
-  }
-  return pmax > 0 ? std::ldexp(pmax, -((static_cast<int>(n) - 3) / 2)) : 1;
+  return policy::watertight_grid_step(tris, o, n);
 }
 
 // The mesh the watertight form actually intersects: every vertex snapped to the grid;
@@ -100,19 +108,6 @@ dvec3 inside_edge(const dvec3& a, const dvec3& b, const dvec3& c, double f, doub
   return a + f * ab + frac * (c - foot);
 }
 
-// One way of running the kernel.
-struct Form {
-  const char* name;
-  Mapping mapping;
-  bool watertight;
-  int cond_bits;  // -1: the default host fallback; 60: the raw machine
-};
-const Form kRayForm{"ray", Mapping::kRay, false, -1};
-const Form kObjectForm{"object", Mapping::kObject, false, -1};
-const Form kWatertightForm{"watertight", Mapping::kRay, true, -1};
-const Form kRawRayForm{"ray, cond_bits 60", Mapping::kRay, false, 60};
-const Form kRawObjectForm{"object, cond_bits 60", Mapping::kObject, false, 60};
-
 std::string label(const Form& f, unsigned n) { return std::string(f.name) + " n=" + std::to_string(n); }
 
 struct Result {
@@ -127,12 +122,7 @@ class HardCases : public ::testing::TestWithParam<const char*> {
   Result run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const Form& f, unsigned n = 24) const {
     auto be = make_backend(GetParam(), Config{64, 32});
     Device dev(be->bus());
-    KernelOptions o;
-    o.mapping = f.mapping;
-    o.mul = MulMode::kConst;
-    o.n = n;
-    o.watertight = f.watertight;
-    o.cond_bits = f.cond_bits;
+    const KernelOptions o = options(f, n);
     Result r;
     r.hits = intersect_fmpp(dev, rays, tris, o, &r.st);
     // V is sticky and cleared only at the start of a pass: if it is still set, the last
@@ -179,16 +169,16 @@ Tol tolerance(const Form& f, unsigned n, const std::vector<Triangle>& tris, cons
   t.origin = o;
   t.against_snapped = against_snapped;
   const DistanceRange dr = distance_range(tris, o);
-  t.dmin = std::max(dr.min, dr.max * std::ldexp(1.0, -20));
+  t.dmin = policy::nearest_for_exponent(dr);
   t.grid = grid_step(tris, o, n);
-  const int cond_bits = f.cond_bits >= 0 ? f.cond_bits : effective_bits(n) - 3;
-  t.cond_cap = std::ldexp(1.0, cond_bits);
-  for (const Triangle& x : tris) {  // the object-parallel kernel's s_max (kernels.cpp)
+  const KernelOptions ko = options(f, n);
+  t.cond_cap = policy::paper_cond_limit(ko);
+  for (const Triangle& x : tris) {  // the object-parallel kernel's s_max (object_parallel.cpp)
     if (!(condition(x, o) <= t.cond_cap)) continue;
     const glm::dmat3 M = glm::inverse(glm::dmat3(x.p[0] - o, x.p[1] - o, x.p[2] - o));
     double m = 0;
     for (int j = 0; j < 3; ++j) m = std::max(m, std::abs(M[j][0] + M[j][1] + M[j][2]));
-    if (m <= std::ldexp(1.0, 28 - 12) / dr.max) t.smax = std::max(t.smax, m);
+    if (m <= policy::object_sum_limit(ko.mbits, dr.max)) t.smax = std::max(t.smax, m);
   }
   return t;
 }
@@ -206,8 +196,9 @@ double allowed(const Tol& tol, const Ray& ray, const Triangle& tri, double t_ref
     return (std::ldexp(1.0, 12 - static_cast<int>(tol.n)) * d + grid_term) / len;
   }
   const double own = 8 * std::min(condition(tri, tol.origin), tol.cond_cap) * std::ldexp(1.0, -effective_bits(tol.n));
-  const double sc = tol.form->mapping == Mapping::kRay ? std::ldexp(1.0, 28) * tol.dmin / d
-                                                       : std::ldexp(1.0, 26) / (std::max(tol.smax, 1e-300) * d);
+  const double sc = tol.form->mapping == Mapping::kRay
+                       ? std::ldexp(1.0, policy::kSumBits - 1) * tol.dmin / d
+                       : std::ldexp(1.0, static_cast<int>(KernelOptions{}.mbits) - 2) / (std::max(tol.smax, 1e-300) * d);
   return (own + 8 / sc) * t_ref;
 }
 
@@ -400,7 +391,7 @@ TEST(HardCasesLeakRate, PaperFormLeakRateFallsWithN) {
       KernelOptions o;
       o.n = n;
       o.watertight = watertight;
-      o.cond_bits = 60;
+      o.cond_bits = policy::kRawCondBits;
       KernelStats st;
       const std::vector<Hit> hits = intersect_fmpp(dev, rays, tris, o, &st);
       size_t leaks = 0;
@@ -560,7 +551,7 @@ TEST_P(HardCases, NeedlesAndSlivers) {
       const Result r = run(rays, tris, form, n);
       expect_reference(r.hits, ref, rays, tris, tolerance(form, n, tris, dvec3(0)), label(form, n));
       unsigned above = 0;
-      for (const Triangle& t : tris) above += condition(t, dvec3(0)) > std::ldexp(1.0, effective_bits(n) - 3);
+      for (const Triangle& t : tris) above += condition(t, dvec3(0)) > policy::paper_cond_limit(options(kRayForm, n));
       EXPECT_EQ(r.st.host_triangles, above) << label(form, n);
       EXPECT_EQ(above, n == 16 ? 3u : 0u) << "n = " << n;
     }

@@ -70,6 +70,54 @@ TEST(Isa, BuildersRejectOversizedOperands) {
   EXPECT_NO_THROW(flagop(7, 7, 7, 0xF, true));
 }
 
+TEST(Map, BitFieldTouchesOnlyItsBits) {
+  constexpr map::BitField f{8, 4};
+  EXPECT_EQ(f.mask(), 0xF00u);
+  EXPECT_EQ(f.get(0xABCDu), 0xBu);
+  EXPECT_EQ(f.put(0x3u), 0x300u);
+  EXPECT_EQ(f.put(0x13u), 0x300u) << "bits beyond the width are dropped";
+  EXPECT_EQ(f.set(0xFFFFu, 0x3u), 0xF3FFu);
+  EXPECT_TRUE(f.fits(15));
+  EXPECT_FALSE(f.fits(16));
+  constexpr map::BitField all{0, 64};
+  EXPECT_EQ(all.mask(), ~uint64_t{0});
+  EXPECT_EQ(all.get(~uint64_t{0}), ~uint64_t{0});
+}
+
+// Whatever the map says: every reserved bit of an opcode makes it illegal, OP is never
+// reserved, and what is not reserved lies in a field the opcode uses.
+TEST(Isa, ReservedBitsOfEveryOpcodeAreRefused) {
+  const map::BitField fields[] = {map::kFieldF, map::kFieldD, map::kFieldA, map::kFieldB, map::kFieldX, map::kFieldImm};
+  for (unsigned code = 0; code < map::kNumOpcodes; ++code) {
+    Instr i;
+    i.op = static_cast<Op>(code);
+    const uint64_t raw = i.encode();  // all fields 0: legal for every opcode
+    ASSERT_TRUE(is_legal(raw, 8)) << map::kOpNames[code];
+    const uint64_t reserved = map::kOpReserved[code];
+    EXPECT_EQ(reserved & map::kFieldOp.mask(), 0u) << map::kOpNames[code];
+    for (unsigned bit = 0; bit < 64; ++bit) {
+      const uint64_t b = uint64_t{1} << bit;
+      if (reserved & b) {
+        EXPECT_FALSE(is_legal(raw | b, 64)) << map::kOpNames[code] << " with reserved bit " << bit;
+      } else if (!(map::kFieldOp.mask() & b)) {
+        bool in_field = false;
+        for (const map::BitField& f : fields) in_field = in_field || (f.mask() & b);
+        EXPECT_TRUE(in_field) << map::kOpNames[code] << ": bit " << bit << " neither reserved nor in a field";
+      }
+    }
+  }
+}
+
+TEST(Isa, WithImmReplacesTheImmediateOnly) {
+  const uint64_t raw = ref(RefFn::kAnd, RefPart::kData, 3, 0x1234u, 2, 1).encode();
+  Instr want = Instr::decode(raw);
+  want.imm = 0xCAFEF00Du;
+  EXPECT_TRUE(Instr::decode(with_imm(raw, 0xCAFEF00Du)) == want);
+  EXPECT_EQ(with_imm(writes(4, 7).encode(), 9), writes(4, 9).encode());
+  EXPECT_THROW(with_imm(add(1, 2, 3).encode(), 5), std::invalid_argument) << "ADD has no IMM";
+  EXPECT_THROW(with_imm(map::kFieldOp.put(map::kNumOpcodes), 5), std::invalid_argument) << "unknown opcode";
+}
+
 TEST(Isa, LegalityRules) {
   EXPECT_FALSE(is_legal(uint64_t{14} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(uint64_t{31} << 59, 32)) << "unknown opcode";

@@ -7,7 +7,7 @@
 #include <functional>
 #include <random>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/io.h"
@@ -87,7 +87,9 @@ void expect_close_to_reference(const std::vector<Hit>& got, const std::vector<Hi
   ASSERT_EQ(got.size(), ref.size());
   for (size_t i = 0; i < got.size(); ++i) {
     EXPECT_EQ(got[i].tri, ref[i].tri) << "ray " << i;
-    if (ref[i].hit() && got[i].tri == ref[i].tri) EXPECT_NEAR(got[i].t, ref[i].t, rel * ref[i].t) << "ray " << i;
+    if (ref[i].hit() && got[i].tri == ref[i].tri) {
+      EXPECT_NEAR(got[i].t, ref[i].t, rel * ref[i].t) << "ray " << i;
+    }
   }
 }
 
@@ -318,7 +320,9 @@ TEST(KernelsWatertight, MatchesTheReferenceAwayFromEdges) {
   size_t same = 0;
   for (size_t i = 0; i < got.size(); ++i) {
     same += got[i].tri == ref[i].tri;
-    if (got[i].tri == ref[i].tri && ref[i].hit()) EXPECT_NEAR(got[i].t, ref[i].t, 1e-3 * ref[i].t);
+    if (got[i].tri == ref[i].tri && ref[i].hit()) {
+      EXPECT_NEAR(got[i].t, ref[i].t, 1e-3 * ref[i].t);
+    }
   }
   // Snapping vertices to the 14-bit grid moves edges by up to 2^-15 of the scene.
   EXPECT_GE(same, got.size() * 99 / 100);
@@ -353,7 +357,9 @@ TEST(CpuBaseline, AgreesWithTheReference) {
   for (size_t i = 0; i < s.rays.size(); ++i) {
     const Hit h = cpu.nearest(s.rays[i]);
     agree += h.tri == ref[i].tri;
-    if (h.tri == ref[i].tri && h.hit()) EXPECT_NEAR(h.t, ref[i].t, 1e-4 * ref[i].t);
+    if (h.tri == ref[i].tri && h.hit()) {
+      EXPECT_NEAR(h.t, ref[i].t, 1e-4 * ref[i].t);
+    }
   }
   EXPECT_GE(agree, s.rays.size() * 995 / 1000) << "single precision may differ only at edges";
 }

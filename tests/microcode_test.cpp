@@ -60,7 +60,9 @@ TEST(Csd, DigitsAreCanonicalAndExact) {
     int64_t v = 0;
     for (size_t i = 0; i < d.size(); ++i) {
       v += d[i] * (int64_t{1} << i);
-      if (i > 0) EXPECT_FALSE(d[i] != 0 && d[i - 1] != 0) << x;
+      if (i > 0) {
+        EXPECT_FALSE(d[i] != 0 && d[i - 1] != 0) << x;
+      }
     }
     EXPECT_EQ(v, x);
   }
@@ -205,7 +207,9 @@ TEST_P(Microcode, DataTransfer) {
   EXPECT_EQ(p.size(), 3u);
   r.dev->push(p.code());
   EXPECT_EQ(r.dev->read_word(last, 7), 0xCAFEBABEu);
-  if (last > 0) EXPECT_EQ(r.dev->read_word(last - 1, 7), 0u);
+  if (last > 0) {
+    EXPECT_EQ(r.dev->read_word(last - 1, 7), 0u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, Microcode, ::testing::Values("cmodel", "rtl"),

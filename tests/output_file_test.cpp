@@ -8,7 +8,7 @@
 #include <functional>
 #include <fstream>
 
-#include "sw/isect/output_file.h"
+#include "sw/util/output_file.h"
 #include "sw/report/output.h"
 #include "sw/rt/image.h"
 

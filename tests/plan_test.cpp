@@ -120,7 +120,7 @@ TEST(Plan, OverridesWin) {
 TEST(Plan, RtlChoosesABuiltConfiguration) {
   PlanRequest r;
   r.width = r.height = 30;  // 900 rays: the 1024-block machine
-  r.rtl = true;
+  r.rtl_configs = {"tiny", "small", "medium", "large"};  // as if only these were built
   r.bits = 24;
   const Plan p = make_plan(scene("cornell"), r);
   EXPECT_EQ(p.config.blocks, 1024u);

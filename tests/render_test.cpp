@@ -3,7 +3,7 @@
 // reference in at most a few pixels (bound and reason in docs/raytracer.md).
 #include <gtest/gtest.h>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/rt/render.h"
 
 #ifndef FMPP_SOURCE_DIR
@@ -57,7 +57,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Render,
                                            Case{"spheres_10k", 16}),
                          [](const auto& info) { return std::string(info.param.scene); });
 
-#ifdef FMPP_HAVE_SYSTEMC
 // The same render over the SystemC TLM-2.0 platform matches the direct RTL bit for bit.
 TEST(RenderSystemC, MatchesTheRtlImage) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/cornell.json");
@@ -67,7 +66,6 @@ TEST(RenderSystemC, MatchesTheRtlImage) {
   EXPECT_EQ(rtl.to_rgb8(), sc.to_rgb8());
   EXPECT_EQ(a.cycles, b.cycles);
 }
-#endif
 
 TEST(RenderCulling, SameImageFewerBroadcasts) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");

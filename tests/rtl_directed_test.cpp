@@ -105,7 +105,9 @@ TEST_P(RtlDirected, RespondersNoneOneAllLast) {
   push(ref(RefFn::kThrough, RefPart::kAddr, 0, 1, map::kFlagSEL));
   const uint64_t r = rd(map::kRegResp);
   EXPECT_EQ(r & 0xFFFFFFFF, cfg.blocks / 2);
-  if (cfg.blocks > 1) EXPECT_EQ((r >> 32) & 0x7FFFFFFF, 1u);
+  if (cfg.blocks > 1) {
+    EXPECT_EQ((r >> 32) & 0x7FFFFFFF, 1u);
+  }
 }
 
 TEST_P(RtlDirected, MaskedWriteAndMatch) {

@@ -7,39 +7,36 @@
 namespace fmpp {
 namespace {
 
-uint64_t field(uint64_t raw, unsigned lsb, unsigned width) {
-  return (raw >> lsb) & ((width >= 64) ? ~0ull : ((1ull << width) - 1));
+using map::BitField;
+
+uint64_t place(uint64_t v, const BitField& f, const char* name) {
+  if (!f.fits(v)) {
+    throw std::invalid_argument(std::string("fmpp::Instr::encode: field ") + name + " = " + std::to_string(v) +
+                                " does not fit in " + std::to_string(f.width) + " bits");
+  }
+  return f.put(v);
 }
 
-uint64_t place(uint64_t v, unsigned lsb, unsigned width, const char* name) {
-  const uint64_t max = (width >= 64) ? ~0ull : ((1ull << width) - 1);
-  if (v > max) {
-    throw std::invalid_argument(std::string("fmpp::Instr::encode: field ") + name + " = " +
-                                std::to_string(v) + " does not fit in " + std::to_string(width) + " bits");
-  }
-  return v << lsb;
-}
+bool defined(uint32_t legal_mask, uint64_t value) { return value < 32 && ((legal_mask >> value) & 1); }
 
 }  // namespace
 
 uint64_t Instr::encode() const {
   using namespace map;
-  return place(static_cast<uint64_t>(op), kFieldOpLsb, kFieldOpWidth, "OP") |
-         place(f, kFieldFLsb, kFieldFWidth, "F") | place(d, kFieldDLsb, kFieldDWidth, "D") |
-         place(a, kFieldALsb, kFieldAWidth, "A") | place(b, kFieldBLsb, kFieldBWidth, "B") |
-         place(x, kFieldXLsb, kFieldXWidth, "X") | place(imm, kFieldImmLsb, kFieldImmWidth, "IMM");
+  return place(static_cast<uint64_t>(op), kFieldOp, "OP") | place(f, kFieldF, "F") | place(d, kFieldD, "D") |
+         place(a, kFieldA, "A") | place(b, kFieldB, "B") | place(x, kFieldX, "X") | place(imm, kFieldImm, "IMM");
 }
 
 Instr Instr::decode(uint64_t raw) {
   using namespace map;
   Instr i;
-  i.op = static_cast<Op>(field(raw, kFieldOpLsb, kFieldOpWidth));
-  i.f = static_cast<uint8_t>(field(raw, kFieldFLsb, kFieldFWidth));
-  i.d = static_cast<uint8_t>(field(raw, kFieldDLsb, kFieldDWidth));
-  i.a = static_cast<uint8_t>(field(raw, kFieldALsb, kFieldAWidth));
-  i.b = static_cast<uint8_t>(field(raw, kFieldBLsb, kFieldBWidth));
-  i.x = static_cast<uint8_t>(field(raw, kFieldXLsb, kFieldXWidth));
-  i.imm = static_cast<uint32_t>(field(raw, kFieldImmLsb, kFieldImmWidth));
+  i.op = static_cast<Op>(kFieldOp.get(raw));
+  i.f = static_cast<uint8_t>(kFieldF.get(raw));
+  i.d = static_cast<uint8_t>(kFieldD.get(raw));
+  i.a = static_cast<uint8_t>(kFieldA.get(raw));
+  i.b = static_cast<uint8_t>(kFieldB.get(raw));
+  i.x = static_cast<uint8_t>(kFieldX.get(raw));
+  i.imm = static_cast<uint32_t>(kFieldImm.get(raw));
   return i;
 }
 
@@ -48,37 +45,51 @@ bool Instr::operator==(const Instr& o) const {
 }
 
 bool is_legal(uint64_t raw, unsigned num_words) {
+  using namespace map;
   const Instr i = Instr::decode(raw);
   const unsigned code = static_cast<unsigned>(i.op);
-  if (code >= map::kNumOpcodes) return false;
-  const unsigned uses = map::kOpUses[code];
-  // Field order of the uses mask: OP, F, D, A, B, X, IMM.
-  const bool nonzero[map::kNumFields] = {true, i.f != 0, i.d != 0, i.a != 0, i.b != 0, i.x != 0, i.imm != 0};
-  for (unsigned k = 0; k < map::kNumFields; ++k) {
-    if (nonzero[k] && !(uses & (1u << k))) return false;
-  }
-  if ((uses & (1u << 2)) && i.d >= num_words) return false;
-  if ((uses & (1u << 3)) && i.a >= num_words) return false;
-  if ((uses & (1u << 4)) && i.b >= num_words) return false;
+  if (code >= kNumOpcodes) return false;
+  const uint64_t reserved = kOpReserved[code];
+  if (raw & reserved) return false;
+  // Used word fields (their bits are not reserved) must address a word of the block.
+  if (!(reserved & kFieldD.mask()) && i.d >= num_words) return false;
+  if (!(reserved & kFieldA.mask()) && i.a >= num_words) return false;
+  if (!(reserved & kFieldB.mask()) && i.b >= num_words) return false;
   switch (i.op) {
     case Op::kRef:
-      if ((i.x & 3) == 3) return false;
-      if (((i.x >> 2) & 1) == map::kRefPartAddr && i.a != 0) return false;
+      if (!defined(kRefFnLegal, kRefFn.get(i.x)) || !defined(kRefPartLegal, kRefPart.get(i.x))) return false;
+      if (kRefPart.get(i.x) == static_cast<unsigned>(RefPart::kAddr) && i.a != 0) return false;
       break;
     case Op::kFunc:
-      if ((i.x & 3) == 3 || (i.x >> 2) != 0) return false;
-      break;
-    case Op::kBitcopy:
-      if ((i.imm & ~0x1F1Fu) != 0) return false;
-      break;
-    case Op::kFlagop:
-      if ((i.imm & ~0x10Fu) != 0) return false;
+      if (!defined(kFuncFnLegal, kFuncFn.get(i.x))) return false;
       break;
     default:
       break;
   }
   return true;
 }
+
+namespace {
+
+const char* ref_fn_name(unsigned fn) {
+  switch (static_cast<RefFn>(fn)) {
+    case RefFn::kThrough: return "through";
+    case RefFn::kAnd: return "and";
+    case RefFn::kOr: return "or";
+  }
+  return "?";
+}
+
+const char* func_fn_symbol(unsigned fn) {
+  switch (static_cast<FuncFn>(fn)) {
+    case FuncFn::kAnd: return "&";
+    case FuncFn::kOr: return "|";
+    case FuncFn::kXor: return "^";
+  }
+  return "?";
+}
+
+}  // namespace
 
 std::string disasm(uint64_t raw) {
   const Instr i = Instr::decode(raw);
@@ -88,9 +99,8 @@ std::string disasm(uint64_t raw) {
     std::snprintf(buf, sizeof buf, "ILLEGAL(op=%u raw=0x%016llx)", code, static_cast<unsigned long long>(raw));
     return buf;
   }
-  const char* name = map::kOpNames[code];
-  static const char* kRefFn[4] = {"through", "and", "or", "?"};
-  static const char* kFuncFn[4] = {"&", "|", "^", "?"};
+  using namespace map;
+  const char* name = kOpNames[code];
   switch (i.op) {
     case Op::kNop:
     case Op::kSets:
@@ -101,15 +111,18 @@ std::string disasm(uint64_t raw) {
     case Op::kSetsadr:
       std::snprintf(buf, sizeof buf, "%s 0x%08x", name, i.imm);
       break;
-    case Op::kRef:
-      if (((i.x >> 2) & 1) == map::kRefPartAddr) {
-        std::snprintf(buf, sizeof buf, "REF.%s f%u = f%u, addr ~ 0x%08x", kRefFn[i.x & 3], i.f, i.x >> 3, i.imm);
+    case Op::kRef: {
+      const unsigned fn = static_cast<unsigned>(kRefFn.get(i.x)), fs = static_cast<unsigned>(kRefFs.get(i.x));
+      if (kRefPart.get(i.x) == static_cast<unsigned>(RefPart::kAddr)) {
+        std::snprintf(buf, sizeof buf, "REF.%s f%u = f%u, addr ~ 0x%08x", ref_fn_name(fn), i.f, fs, i.imm);
       } else {
-        std::snprintf(buf, sizeof buf, "REF.%s f%u = f%u, w%u ~ 0x%08x", kRefFn[i.x & 3], i.f, i.x >> 3, i.a, i.imm);
+        std::snprintf(buf, sizeof buf, "REF.%s f%u = f%u, w%u ~ 0x%08x", ref_fn_name(fn), i.f, fs, i.a, i.imm);
       }
       break;
+    }
     case Op::kFunc:
-      std::snprintf(buf, sizeof buf, "FUNC w%u = w%u %s w%u ?f%u", i.d, i.a, kFuncFn[i.x & 3], i.b, i.f);
+      std::snprintf(buf, sizeof buf, "FUNC w%u = w%u %s w%u ?f%u", i.d, i.a,
+                    func_fn_symbol(static_cast<unsigned>(kFuncFn.get(i.x))), i.b, i.f);
       break;
     case Op::kAdd:
       std::snprintf(buf, sizeof buf, "ADD w%u = w%u + w%u ?f%u", i.d, i.a, i.b, i.f);
@@ -118,7 +131,8 @@ std::string disasm(uint64_t raw) {
       std::snprintf(buf, sizeof buf, "SUB w%u = w%u - w%u ?f%u", i.d, i.a, i.b, i.f);
       break;
     case Op::kBitcopy:
-      std::snprintf(buf, sizeof buf, "BITCOPY w%u[%u] = w%u[%u] ?f%u", i.d, (i.imm >> 8) & 31, i.a, i.imm & 31, i.f);
+      std::snprintf(buf, sizeof buf, "BITCOPY w%u[%u] = w%u[%u] ?f%u", i.d, static_cast<unsigned>(kBitJ.get(i.imm)),
+                    i.a, static_cast<unsigned>(kBitI.get(i.imm)), i.f);
       break;
     case Op::kLshift:
       std::snprintf(buf, sizeof buf, "LSHIFT w%u = w%u << 1 ?f%u", i.d, i.a, i.f);
@@ -130,8 +144,9 @@ std::string disasm(uint64_t raw) {
       std::snprintf(buf, sizeof buf, "WRITES w%u = 0x%08x ?f%u", i.d, i.imm, i.f);
       break;
     case Op::kFlagop:
-      std::snprintf(buf, sizeof buf, "FLAGOP%s f%u = lut%x(f%u, f%u)", (i.imm & 0x100) ? ".any" : "", i.f,
-                    i.imm & 0xF, i.x >> 3, i.x & 7);
+      std::snprintf(buf, sizeof buf, "FLAGOP%s f%u = lut%x(f%u, f%u)", kFlagAny.get(i.imm) ? ".any" : "", i.f,
+                    static_cast<unsigned>(kFlagLut.get(i.imm)), static_cast<unsigned>(kFlagFa.get(i.x)),
+                    static_cast<unsigned>(kFlagFb.get(i.x)));
       break;
   }
   return buf;
@@ -152,6 +167,14 @@ unsigned field(const char* op, const char* name, unsigned v, unsigned limit) {
   return v;
 }
 unsigned word(const char* op, const char* name, unsigned v) { return field(op, name, v, map::kMaxWords); }
+// A function code must be one the map names (bit v of `legal`).
+unsigned code(const char* op, const char* name, unsigned v, uint32_t legal) {
+  if (!defined(legal, v)) {
+    throw std::invalid_argument(std::string("fmpp::ins::") + op + ": " + name + " = " + std::to_string(v) +
+                                " is not a code the map defines");
+  }
+  return v;
+}
 unsigned flag(const char* op, const char* name, unsigned v) { return field(op, name, v, map::kNumFlags); }
 Instr make(Op op, unsigned f, unsigned d, unsigned a, unsigned b, unsigned x, uint32_t imm) {
   Instr i;
@@ -166,17 +189,27 @@ Instr make(Op op, unsigned f, unsigned d, unsigned a, unsigned b, unsigned x, ui
 }
 }  // namespace
 
+uint64_t with_imm(uint64_t raw, uint32_t imm) {
+  static_assert(map::kFieldImm.width == 32, "the immediate field holds a whole word");
+  const uint64_t op = map::kFieldOp.get(raw);
+  if (op >= map::kNumOpcodes || (map::kOpReserved[op] & map::kFieldImm.mask())) {
+    throw std::invalid_argument("fmpp::ins::with_imm: " + disasm(raw) + " has no IMM field to set");
+  }
+  return map::kFieldImm.set(raw, imm);
+}
+
 Instr nop() { return make(Op::kNop, 0, 0, 0, 0, 0, 0); }
 Instr maskset(uint32_t mask) { return make(Op::kMaskset, 0, 0, 0, 0, 0, mask); }
 Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs) {
-  field("ref", "fn", static_cast<unsigned>(fn), 3);
-  field("ref", "part", static_cast<unsigned>(part), 2);
-  return make(Op::kRef, flag("ref", "fd", fd), 0, word("ref", "a", a), 0,
-              (flag("ref", "fs", fs) << 3) | (static_cast<unsigned>(part) << 2) | static_cast<unsigned>(fn), key);
+  const uint64_t x = map::kRefFn.put(code("ref", "fn", static_cast<unsigned>(fn), map::kRefFnLegal)) |
+                     map::kRefPart.put(code("ref", "part", static_cast<unsigned>(part), map::kRefPartLegal)) |
+                     map::kRefFs.put(flag("ref", "fs", fs));
+  return make(Op::kRef, flag("ref", "fd", fd), 0, word("ref", "a", a), 0, static_cast<unsigned>(x), key);
 }
 Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred) {
+  const uint64_t x = map::kFuncFn.put(code("func", "fn", static_cast<unsigned>(fn), map::kFuncFnLegal));
   return make(Op::kFunc, flag("func", "pred", pred), word("func", "d", d), word("func", "a", a), word("func", "b", b),
-              field("func", "fn", static_cast<unsigned>(fn), 3), 0);
+              static_cast<unsigned>(x), 0);
 }
 Instr add(unsigned d, unsigned a, unsigned b, unsigned pred) {
   return make(Op::kAdd, flag("add", "pred", pred), word("add", "d", d), word("add", "a", a), word("add", "b", b), 0, 0);
@@ -185,8 +218,10 @@ Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred) {
   return make(Op::kSub, flag("sub", "pred", pred), word("sub", "d", d), word("sub", "a", a), word("sub", "b", b), 0, 0);
 }
 Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred) {
+  const uint64_t imm = map::kBitJ.put(field("bitcopy", "j", j, map::kWordW)) |
+                       map::kBitI.put(field("bitcopy", "i", i, map::kWordW));
   return make(Op::kBitcopy, flag("bitcopy", "pred", pred), word("bitcopy", "d", d), word("bitcopy", "a", a), 0, 0,
-              (field("bitcopy", "j", j, 32) << 8) | field("bitcopy", "i", i, 32));
+              static_cast<uint32_t>(imm));
 }
 Instr lshift(unsigned d, unsigned a, unsigned pred) {
   return make(Op::kLshift, flag("lshift", "pred", pred), word("lshift", "d", d), word("lshift", "a", a), 0, 0, 0);
@@ -201,8 +236,10 @@ Instr sets() { return make(Op::kSets, 0, 0, 0, 0, 0, 0); }
 Instr resets() { return make(Op::kResets, 0, 0, 0, 0, 0, 0); }
 Instr setsadr(uint32_t index) { return make(Op::kSetsadr, 0, 0, 0, 0, 0, index); }
 Instr flagop(unsigned fd, unsigned fa, unsigned fb, uint8_t lut, bool if_any) {
-  return make(Op::kFlagop, flag("flagop", "fd", fd), 0, 0, 0, (flag("flagop", "fa", fa) << 3) | flag("flagop", "fb", fb),
-              field("flagop", "lut", lut, 16) | (if_any ? 0x100u : 0u));
+  const uint64_t x = map::kFlagFa.put(flag("flagop", "fa", fa)) | map::kFlagFb.put(flag("flagop", "fb", fb));
+  const uint64_t imm = map::kFlagLut.put(field("flagop", "lut", lut, 1u << map::kFlagLut.width)) |
+                       map::kFlagAny.put(if_any ? 1 : 0);
+  return make(Op::kFlagop, flag("flagop", "fd", fd), 0, 0, 0, static_cast<unsigned>(x), static_cast<uint32_t>(imm));
 }
 }  // namespace ins
 

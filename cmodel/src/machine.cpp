@@ -9,34 +9,6 @@
 
 namespace fmpp {
 
-void Config::validate() const {
-  if (blocks < 1 || blocks > map::kMaxBlocks) {
-    throw std::invalid_argument("fmpp::Config: blocks = " + std::to_string(blocks) + " outside [1, " +
-                                std::to_string(map::kMaxBlocks) + "]");
-  }
-  if (words < 2 || words > map::kMaxWords || words % 2 != 0) {
-    throw std::invalid_argument("fmpp::Config: words = " + std::to_string(words) + " must be even and in [2, " +
-                                std::to_string(map::kMaxWords) + "]");
-  }
-}
-
-unsigned Config::word_shift() const {
-  unsigned l = 0;
-  while ((1u << l) < words) ++l;
-  return 3 + l;
-}
-
-std::string Config::str() const { return std::to_string(blocks) + "x" + std::to_string(words); }
-
-Config named_config(const std::string& name) {
-  std::string known;
-  for (const auto& c : map::kConfigs) {
-    if (name == c.name) return Config{c.blocks, c.words};
-    known += known.empty() ? c.name : std::string(", ") + c.name;
-  }
-  throw std::invalid_argument("unknown FMPP configuration '" + name + "' (known: " + known + ")");
-}
-
 Machine::Machine(const Config& cfg) : cfg_(cfg) {
   cfg_.validate();
   stride_ = (size_t{cfg_.blocks} + 15) & ~size_t{15};
@@ -48,6 +20,11 @@ namespace {
 
 constexpr unsigned kC = map::kFlagC;
 constexpr unsigned kV = map::kFlagV;
+// Function codes as plain numbers, for the branch-free kernels.
+constexpr unsigned kRefThrough = static_cast<unsigned>(RefFn::kThrough);
+constexpr unsigned kRefAnd = static_cast<unsigned>(RefFn::kAnd);
+constexpr unsigned kFuncAnd = static_cast<unsigned>(FuncFn::kAnd);
+constexpr unsigned kFuncOr = static_cast<unsigned>(FuncFn::kOr);
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define FMPP_KERNEL __attribute__((target_clones("avx2", "default")))
@@ -60,7 +37,7 @@ FMPP_KERNEL void k_logic(uint32_t* d, const uint32_t* a, const uint32_t* b, uint
   for (size_t i = 0; i < n; ++i) {
     const uint32_t m = 0u - ((fl[i] >> p) & 1u);
     const uint32_t x = a[i], y = b[i];
-    const uint32_t r = fn == 0 ? (x & y) : fn == 1 ? (x | y) : (x ^ y);
+    const uint32_t r = fn == kFuncAnd ? (x & y) : fn == kFuncOr ? (x | y) : (x ^ y);
     d[i] = (r & m) | (d[i] & ~m);
   }
 }
@@ -128,7 +105,7 @@ FMPP_KERNEL void k_ref_data(const uint32_t* a, uint8_t* fl, size_t n, uint32_t k
     const uint8_t f = fl[i];
     const uint32_t match = ((a[i] ^ key) & care) == 0;
     const uint32_t old = (f >> fs) & 1u;
-    const uint32_t v = fn == 0 ? match : fn == 1 ? (old & match) : (old | match);
+    const uint32_t v = fn == kRefThrough ? match : fn == kRefAnd ? (old & match) : (old | match);
     fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
   }
 }
@@ -164,13 +141,14 @@ void Machine::execute(uint64_t raw) {
       mask_ = in.imm;
       break;
     case Op::kRef: {
-      const unsigned fn = in.x & 3, fs = in.x >> 3, fd = in.f;
-      if (((in.x >> 2) & 1) == map::kRefPartAddr) {
+      const unsigned fn = static_cast<unsigned>(map::kRefFn.get(in.x));
+      const unsigned fs = static_cast<unsigned>(map::kRefFs.get(in.x)), fd = in.f;
+      if (map::kRefPart.get(in.x) == static_cast<unsigned>(RefPart::kAddr)) {
         for (size_t i = 0; i < n; ++i) {
           const uint8_t f = fl[i];
           const uint32_t match = ((static_cast<uint32_t>(i) ^ in.imm) & ~mask_) == 0;
           const uint32_t old = (f >> fs) & 1u;
-          const uint32_t v = fn == 0 ? match : fn == 1 ? (old & match) : (old | match);
+          const uint32_t v = fn == kRefThrough ? match : fn == kRefAnd ? (old & match) : (old | match);
           fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
         }
       } else {
@@ -179,14 +157,15 @@ void Machine::execute(uint64_t raw) {
       break;
     }
     case Op::kFunc:
-      k_logic(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.x & 3);
+      k_logic(row(in.d), row(in.a), row(in.b), fl, n, in.f, static_cast<unsigned>(map::kFuncFn.get(in.x)));
       break;
     case Op::kAdd:
     case Op::kSub:
       k_addsub(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.op == Op::kSub);
       break;
     case Op::kBitcopy:
-      k_bitcopy(row(in.d), row(in.a), fl, n, in.f, in.imm & 31, (in.imm >> 8) & 31);
+      k_bitcopy(row(in.d), row(in.a), fl, n, in.f, static_cast<unsigned>(map::kBitI.get(in.imm)),
+                static_cast<unsigned>(map::kBitJ.get(in.imm)));
       break;
     case Op::kLshift:
     case Op::kRshift:
@@ -208,7 +187,8 @@ void Machine::execute(uint64_t raw) {
       }
       break;
     case Op::kFlagop:
-      k_flagop(fl, n, in.x >> 3, in.x & 7, in.f, in.imm & 0xF, (in.imm >> 8) & 1);
+      k_flagop(fl, n, static_cast<unsigned>(map::kFlagFa.get(in.x)), static_cast<unsigned>(map::kFlagFb.get(in.x)), in.f,
+               static_cast<unsigned>(map::kFlagLut.get(in.imm)), map::kFlagAny.get(in.imm) != 0);
       break;
     default:
       throw std::logic_error("fmpp::Machine::execute: illegal instruction " + disasm(raw));

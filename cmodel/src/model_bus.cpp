@@ -9,6 +9,10 @@ namespace fmpp {
 
 using map::Err;
 
+// The Bus interface carries the map's beats and addresses in these types.
+static_assert(map::kDataW == 64, "fmpp::Bus moves 64-bit beats (uint64_t)");
+static_assert(map::kAddrW == 32, "fmpp::Bus addresses are 32 bits (uint32_t)");
+
 Decoded decode_address(const Config& cfg, uint32_t addr) {
   Decoded d;
   d.aligned = (addr & 7) == 0;
@@ -41,8 +45,8 @@ Decoded decode_address(const Config& cfg, uint32_t addr) {
 }
 
 uint64_t ErrorState::reg() const {
-  return (uint64_t{addr} << map::kErrorAddrLsb) | (uint64_t{count} << map::kErrorCountLsb) |
-         (uint64_t{static_cast<uint8_t>(cause)} << map::kErrorCauseLsb) | (sticky ? 1u : 0u);
+  return map::kErrorAddr.put(addr) | map::kErrorCount.put(count) | map::kErrorCause.put(static_cast<uint8_t>(cause)) |
+         map::kErrorSticky.put(sticky);
 }
 
 void ErrorState::record(Err c, uint32_t a) {
@@ -51,7 +55,7 @@ void ErrorState::record(Err c, uint32_t a) {
     addr = a;
   }
   sticky = true;
-  if (count != 0xFFFF) ++count;
+  if (count != map::kErrorCount.max()) ++count;
 }
 
 bool ErrorState::operator==(const ErrorState& o) const {
@@ -69,9 +73,9 @@ Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry
       switch (d.reg) {
         case map::kRegQueue:
           if (strb != 0xFF) return Err::kStrobe;
-          if (!is_legal(data, config().words)) return Err::kIllegal;
+          if (!is_legal(map::kQueueInstr.get(data), config().words)) return Err::kIllegal;
           *is_push = true;
-          *push = QueueEntry{QueueEntry::Kind::kInstr, 0, 0, 0, data};
+          *push = QueueEntry{QueueEntry::Kind::kInstr, 0, 0, 0, map::kQueueInstr.get(data)};
           return Err::kNone;
         case map::kRegCtrl:
         case map::kRegError:
@@ -161,8 +165,8 @@ Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
   if (e != Err::kNone) {
     err_.record(e, addr);
   } else if (addr == map::kRegCtrl) {
-    gap_ = static_cast<uint8_t>(data);
-  } else if (addr == map::kRegError && (data & 1)) {
+    gap_ = static_cast<uint8_t>(map::kCtrlGap.get(data));
+  } else if (addr == map::kRegError && map::kErrorSticky.get(data)) {
     err_ = ErrorState{};
   }
   tick(nullptr);
@@ -173,30 +177,28 @@ uint64_t ModelBus::register_value(uint32_t reg) const {
   const Config& c = config();
   switch (reg) {
     case map::kRegId:
-      return (uint64_t{map::kMagic} << 32) | (uint64_t{map::kVersionMajor} << 16) | map::kVersionMinor;
+      return map::kIdMagic.put(map::kMagic) | map::kIdMajor.put(map::kVersionMajor) | map::kIdMinor.put(map::kVersionMinor);
     case map::kRegConfig:
-      return (uint64_t{c.word_shift()} << map::kConfigWshiftLsb) | (uint64_t{map::kLaneW} << map::kConfigLanesLsb) |
-             (uint64_t{map::kQueueDepth} << map::kConfigQdepthLsb) | (uint64_t{c.words} << map::kConfigWordsLsb) |
-             c.blocks;
+      return map::kConfigWshift.put(c.word_shift()) | map::kConfigLanes.put(map::kLaneW) |
+             map::kConfigQdepth.put(map::kQueueDepth) | map::kConfigWords.put(c.words) | map::kConfigBlocks.put(c.blocks);
     case map::kRegStatus: {
       const Responders r = m_.responders();
-      return (uint64_t{r.any} << map::kStatusAnyLsb) | (uint64_t{m_.ovf_any()} << map::kStatusOvfLsb) |
-             (uint64_t{err_.sticky} << map::kStatusErrLsb);
+      return map::kStatusAny.put(r.any) | map::kStatusOvf.put(m_.ovf_any()) | map::kStatusErr.put(err_.sticky);
     }
     case map::kRegError:
       return err_.reg();
     case map::kRegCtrl:
-      return gap_;
+      return map::kCtrlGap.put(gap_);
     case map::kRegResp: {
       const Responders r = m_.responders();
-      return (uint64_t{r.any} << map::kRespAnyLsb) | (uint64_t{r.first} << map::kRespFirstLsb) | r.count;
+      return map::kRespAny.put(r.any) | map::kRespFirst.put(r.first) | map::kRespCount.put(r.count);
     }
     case map::kRegCycles:
-      return cycle_;
+      return map::kCyclesValue.put(cycle_);
     case map::kRegInstret:
-      return m_.instret();
+      return map::kInstretValue.put(m_.instret());
     case map::kRegMask:
-      return m_.mask();
+      return map::kMaskValue.put(m_.mask());
     default:
       throw std::logic_error("fmpp::ModelBus::register_value: unmapped register");
   }

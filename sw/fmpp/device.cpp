@@ -9,30 +9,30 @@ namespace fmpp {
 
 Device::Device(Bus& bus) : bus_(bus) {
   const uint64_t id = read_reg(map::kRegId);
-  if ((id >> 32) != map::kMagic) {
+  if (map::kIdMagic.get(id) != map::kMagic) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "fmpp::Device: bus '%s' has no FMPP (ID = 0x%016llx)", bus.name().c_str(),
                   static_cast<unsigned long long>(id));
     throw DeviceError(buf);
   }
-  const unsigned major = static_cast<unsigned>((id >> map::kIdMajorLsb) & 0xFFFF);
+  const unsigned major = static_cast<unsigned>(map::kIdMajor.get(id));
   if (major != map::kVersionMajor) {
     throw DeviceError("fmpp::Device: bus '" + bus.name() + "' has an FMPP of major version " + std::to_string(major) +
                       "; this host software speaks version " + std::to_string(map::kVersionMajor));
   }
   const uint64_t c = read_reg(map::kRegConfig);
-  cfg_.blocks = static_cast<unsigned>(c & 0xFFFFFFFF);
-  cfg_.words = static_cast<unsigned>((c >> 32) & 0xFF);
+  cfg_.blocks = static_cast<unsigned>(map::kConfigBlocks.get(c));
+  cfg_.words = static_cast<unsigned>(map::kConfigWords.get(c));
   cfg_.validate();
   // The host computes window addresses itself: its block stride must be the device's.
-  const unsigned wshift = static_cast<unsigned>((c >> map::kConfigWshiftLsb) & 0xFF);
+  const unsigned wshift = static_cast<unsigned>(map::kConfigWshift.get(c));
   if (wshift != cfg_.word_shift()) {
     throw DeviceError("fmpp::Device: bus '" + bus.name() + "' reports WSHIFT " + std::to_string(wshift) + " for " +
                       cfg_.str() + "; expected " + std::to_string(cfg_.word_shift()));
   }
   // An error someone else left would be reported as ours later: refuse it now.
   const uint64_t err = read_reg(map::kRegError);
-  if ((err >> map::kErrorStickyLsb) & 1) {
+  if (map::kErrorSticky.get(err)) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "fmpp::Device: bus '%s' has an uncleared error (ERROR = 0x%016llx)",
                   bus.name().c_str(), static_cast<unsigned long long>(err));
@@ -44,11 +44,12 @@ void Device::fail(const char* what, uint32_t addr) {
   uint64_t err = 0;
   const bool read_ok = bus_.read(map::kRegError, &err) == Resp::kOkay;
   // Clear it, so that the next error's message reports that error's own cause.
-  const bool clear_ok = bus_.write(map::kRegError, uint64_t{1} << map::kErrorStickyLsb) == Resp::kOkay;
+  const bool clear_ok = bus_.write(map::kRegError, map::kErrorSticky.put(1)) == Resp::kOkay;
   char buf[240];
-  std::snprintf(buf, sizeof buf, "FMPP bus error: %s at 0x%08x answered SLVERR (ERROR = 0x%016llx: cause %u)%s", what,
-                addr, static_cast<unsigned long long>(err),
-                static_cast<unsigned>((err >> map::kErrorCauseLsb) & ((1u << map::kErrorCauseWidth) - 1)),
+  const unsigned cause = static_cast<unsigned>(map::kErrorCause.get(err));
+  std::snprintf(buf, sizeof buf, "FMPP bus error: %s at 0x%08x answered SLVERR (ERROR = 0x%016llx: cause %u %s)%s",
+                what, addr, static_cast<unsigned long long>(err), cause,
+                cause < map::kNumErrs ? map::kErrNames[cause] : "unknown",
                 read_ok && clear_ok ? "" : "; the ERROR register could not be read or cleared");
   throw DeviceError(buf);
 }
@@ -67,7 +68,7 @@ uint64_t Device::read_reg(uint32_t addr) {
 }
 
 void Device::push(uint64_t raw) {
-  if (bus_.write(map::kRegQueue, raw) != Resp::kOkay) {
+  if (bus_.write(map::kRegQueue, map::kQueueInstr.put(raw)) != Resp::kOkay) {
     const std::string what = "push of " + disasm(raw);
     fail(what.c_str(), map::kRegQueue);
   }
@@ -119,18 +120,18 @@ std::vector<bool> Device::read_flag_all(unsigned flag) {
 Responders Device::responders() {
   const uint64_t r = read_reg(map::kRegResp);
   Responders out;
-  out.any = (r >> 63) & 1;
-  out.count = static_cast<uint32_t>(r & 0xFFFFFFFF);
-  out.first = static_cast<uint32_t>((r >> 32) & 0x7FFFFFFF);
+  out.any = map::kRespAny.get(r) != 0;
+  out.count = static_cast<uint32_t>(map::kRespCount.get(r));
+  out.first = static_cast<uint32_t>(map::kRespFirst.get(r));
   return out;
 }
 
-bool Device::overflow() { return (read_reg(map::kRegStatus) >> map::kStatusOvfLsb) & 1; }
+bool Device::overflow() { return map::kStatusOvf.get(read_reg(map::kRegStatus)) != 0; }
 
 uint64_t Device::instret() { return read_reg(map::kRegInstret); }
 
 void Device::set_gap(uint8_t gap) {
-  if (bus_.write(map::kRegCtrl, gap) != Resp::kOkay) fail("CTRL write", map::kRegCtrl);
+  if (bus_.write(map::kRegCtrl, map::kCtrlGap.put(gap)) != Resp::kOkay) fail("CTRL write", map::kRegCtrl);
 }
 
 }  // namespace fmpp

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "fmpp/bus.h"
+#include "fmpp/config.h"
 #include "fmpp/isa.h"
-#include "fmpp/machine.h"
 
 namespace fmpp {
 

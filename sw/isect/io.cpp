@@ -13,7 +13,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "sw/isect/output_file.h"
+#include "sw/util/output_file.h"
 
 namespace fmpp::isect {
 namespace {

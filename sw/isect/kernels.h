@@ -105,7 +105,7 @@ struct KernelStats {
 unsigned words_needed(const KernelOptions& opt);
 
 // Words per block the arbitrary-origin kernel needs (rays with their own origins).
-inline constexpr unsigned kGeneralWords = 24;
+inline constexpr unsigned kGeneralWords = 24;  // = layout::general::kWords (asserted in form_general.cpp)
 
 // Which kernel takes each ray: groups of rays sharing an origin (the paper's inverse
 // matrices, by origin), and the rest (the arbitrary-origin kernel, ray-parallel):

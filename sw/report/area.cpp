@@ -17,7 +17,7 @@
 #include <stdexcept>
 
 #include "sw/report/report.h"
-#include "sw/tools/cli_options.h"
+#include "sw/util/files.h"
 
 namespace fmpp::report {
 

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sw/isect/output_file.h"
-#include "sw/tools/cli_options.h"
+#include "sw/util/files.h"
+#include "sw/util/output_file.h"
 
 extern char** environ;
 

@@ -18,11 +18,12 @@
 #include <random>
 #include <sstream>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/report/output.h"
 #include "sw/report/report.h"
@@ -76,7 +77,7 @@ Run run_kernels(const std::string& backend, const Config& cfg, const std::vector
   o.mapping = m;
   o.mul = mul;
   o.n = n;
-  o.cond_bits = 60;  // count every triangle as an FMPP broadcast
+  o.cond_bits = policy::kRawCondBits;  // count every triangle as an FMPP broadcast
   Run r;
   const auto t0 = std::chrono::steady_clock::now();
   intersect_fmpp(dev, rays, tris, o, &r.st);
@@ -237,7 +238,7 @@ Command add_paper(CLI::App& app) {
     const std::vector<Ray> rays_op = eye_rays(o.quick ? 64 : 512, 5);
     const Run op_const = run_kernels("rtl", rcfg, rays_op, scene_op, Mapping::kObject, MulMode::kConst, n);
     const Run op_gen = run_kernels("rtl", rcfg, rays_op, scene_op, Mapping::kObject, MulMode::kGeneric, n);
-    const unsigned sbits = 29;  // bits of S searched in the object-parallel maximum search (mbits + 1)
+    const unsigned sbits = policy::object_search_bits(KernelOptions{});  // bits of S the maximum search scans
     const double op_search = 3.0 * sbits + 1;
 
     CostModel cm;

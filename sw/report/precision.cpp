@@ -20,10 +20,11 @@
 #include <sstream>
 #include <thread>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/report/output.h"
 #include "sw/report/report.h"
@@ -388,7 +389,7 @@ Command add_precision(CLI::App& app) {
           Row r;
           r.n = n;
           r.form = f.name;
-          const Run raw = run_kernel(machine, rays, scene.triangles, kernel_options(f, n, 60));
+          const Run raw = run_kernel(machine, rays, scene.triangles, kernel_options(f, n, policy::kRawCondBits));
           r.steps = raw.st.steps_per_broadcast();
           r.broadcasts = raw.st.broadcasts;
           r.raw_cycles = raw.st.cycles;
@@ -440,7 +441,7 @@ Command add_precision(CLI::App& app) {
       int cond_bits;
     };
     for (unsigned n : leak_bits) {
-      for (const LeakForm& lf : {LeakForm{"paper, raw", false, 60}, LeakForm{"paper, fallback", false, -1},
+      for (const LeakForm& lf : {LeakForm{"paper, raw", false, policy::kRawCondBits}, LeakForm{"paper, fallback", false, -1},
                                  LeakForm{"watertight", true, -1}}) {
         KernelOptions ko;
         ko.n = n;

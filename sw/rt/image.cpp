@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "sw/isect/output_file.h"
+#include "sw/util/output_file.h"
 
 namespace rt {
 

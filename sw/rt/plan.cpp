@@ -1,4 +1,5 @@
-// The precision plan (see plan.h).
+// The precision plan (see plan.h): one function per decision, each returning its value
+// and the reason the report prints.
 #include "sw/rt/plan.h"
 
 #include <algorithm>
@@ -8,9 +9,9 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "sw/rt/render.h"
-#include "tb/rtl_bus.h"
 
 namespace rt {
 
@@ -19,18 +20,11 @@ namespace {
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
-// Condition number of P (vertices relative to o) in the infinity norm, inf if singular.
-double condition(const fmpp::isect::Triangle& t, const glm::dvec3& o) {
-  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);
-  const double det = glm::determinant(P);
-  if (det == 0 || !std::isfinite(det)) return std::numeric_limits<double>::infinity();
-  auto norm = [](const glm::dmat3& a) {
-    double m = 0;
-    for (int r = 0; r < 3; ++r) m = std::max(m, std::abs(a[0][r]) + std::abs(a[1][r]) + std::abs(a[2][r]));
-    return m;
-  };
-  return norm(P) * norm(glm::inverse(P));
-}
+template <class T>
+struct Decision {
+  T value;
+  std::string why;
+};
 
 std::string pct(double v) {
   std::ostringstream o;
@@ -39,104 +33,71 @@ std::string pct(double v) {
   return o.str();
 }
 
-}  // namespace
-
-Plan make_plan(const Scene& scene, const PlanRequest& req) {
-  Plan plan;
-  plan.options = req.base;
-  const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
-  const size_t pixels = static_cast<size_t>(req.width) * req.height;
-
-  // Words.
+// Words per block: what the kernels the scene's rays take need.
+Decision<unsigned> decide_words(const Scene& scene, const PlanRequest& req, int depth) {
+  if (req.words) return {*req.words, "set by the user"};
   bool secondary = false;
   if (depth > 1) {
     for (int m : scene.material_of) {
       secondary = secondary || scene.materials[m].reflectivity > 0 || scene.materials[m].transparency > 0;
     }
   }
-  const unsigned need = secondary ? fmpp::isect::kGeneralWords : (fmpp::isect::words_needed(req.base) + 1) & ~1u;
-  unsigned words = req.words.value_or(need);
-  if (req.words) {
-    plan.why_words = "set by the user";
-  } else {
-    plan.why_words = secondary ? "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin "
-                                 "kernel, which needs " + std::to_string(fmpp::isect::kGeneralWords) + " words per block"
-                               : "all rays share an origin (eye or light): the kernel needs " + std::to_string(need) +
-                                     " words per block";
+  if (secondary) {
+    return {fmpp::isect::kGeneralWords,
+            "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin kernel, which "
+            "needs " + std::to_string(fmpp::isect::kGeneralWords) + " words per block"};
   }
+  const unsigned need = (fmpp::isect::words_needed(req.base) + 1) & ~1u;
+  return {need, "all rays share an origin (eye or light): the kernel needs " + std::to_string(need) +
+                    " words per block"};
+}
 
-  // Blocks.
-  unsigned blocks = req.blocks.value_or(static_cast<unsigned>(std::min<size_t>(pixels, fmpp::map::kMaxBlocks)));
-  if (req.blocks) {
-    plan.why_blocks = "set by the user";
-  } else {
-    if (pixels <= fmpp::map::kMaxBlocks) {
-      plan.why_blocks = "one block per primary ray (" + std::to_string(pixels) +
-                        " rays): one pass, so every triangle is broadcast once per batch";
-    } else {
-      plan.why_blocks = std::to_string(pixels) + " primary rays, more than the memory map's " +
-                        std::to_string(fmpp::map::kMaxBlocks) + " blocks: " +
-                        std::to_string((pixels + fmpp::map::kMaxBlocks - 1) / fmpp::map::kMaxBlocks) + " passes";
-    }
+// Blocks: one pass of primary rays if the memory map allows it.
+Decision<unsigned> decide_blocks(const PlanRequest& req, size_t pixels) {
+  if (req.blocks) return {*req.blocks, "set by the user"};
+  const unsigned max = fmpp::map::kMaxBlocks;
+  if (pixels <= max) {
+    return {static_cast<unsigned>(pixels), "one block per primary ray (" + std::to_string(pixels) +
+                                               " rays): one pass, so every triangle is broadcast once per batch"};
   }
-  if (req.rtl) {
-    // The RTL exists only in its built configurations.
-    std::string best;
-    fmpp::Config best_cfg{0, 0}, largest{0, 0};
-    std::string largest_name;
-    for (const std::string& name : fmpp::tb::rtl_configs()) {
-      const fmpp::Config c = fmpp::named_config(name);
-      if (c.words < words) continue;
-      if (c.blocks > largest.blocks) {
-        largest = c;
-        largest_name = name;
-      }
-      if (c.blocks >= blocks && (best.empty() || c.blocks < best_cfg.blocks)) {
-        best = name;
-        best_cfg = c;
-      }
-    }
-    if (best.empty()) {
-      if (largest_name.empty()) throw std::invalid_argument("no built RTL configuration has " + std::to_string(words) + " words");
-      best = largest_name;
-      best_cfg = largest;
-      plan.why_blocks += "; the largest built RTL configuration with " + std::to_string(words) + " words is '" + best +
-                         "' (" + best_cfg.str() + "), so " +
-                         std::to_string((pixels + best_cfg.blocks - 1) / best_cfg.blocks) + " passes";
-    } else {
-      plan.why_blocks += "; the smallest built RTL configuration that holds it is '" + best + "' (" + best_cfg.str() + ")";
-    }
-    // Sizes the user gave are kept or refused, never replaced silently.
-    if ((req.blocks && best_cfg.blocks != blocks) || (req.words && best_cfg.words != words)) {
-      std::string built;
-      for (const std::string& name : fmpp::tb::rtl_configs()) {
-        built += (built.empty() ? "" : ", ") + name + " (" + fmpp::named_config(name).str() + ")";
-      }
-      throw std::invalid_argument("no built RTL configuration has " +
-                                  (req.blocks ? std::to_string(blocks) + " blocks" : std::string()) +
-                                  (req.blocks && req.words ? " and " : "") +
-                                  (req.words ? std::to_string(words) + " words" : std::string()) +
-                                  ": the built ones are " + built + "; use --config NAME, or backend cmodel for any size");
-    }
-    blocks = best_cfg.blocks;
-    words = best_cfg.words;
-  }
-  if (req.words && words < need) {
-    throw std::invalid_argument(std::to_string(words) + " words per block are too few: " +
-                                (secondary ? "mirrors or glass within the recursion depth send secondary rays to the "
-                                             "arbitrary-origin kernel, which needs "
-                                           : "the kernel needs ") +
-                                std::to_string(need) + " words per block");
-  }
-  plan.config = fmpp::Config{blocks, words};
-  plan.config.validate();
+  return {max, std::to_string(pixels) + " primary rays, more than the memory map's " + std::to_string(max) +
+                   " blocks: " + std::to_string((pixels + max - 1) / max) + " passes"};
+}
 
-  // Precision.
-  if (req.bits) {
-    plan.options.n = *req.bits;
-    plan.why_bits = "set by the user";
-    return plan;
+// The RTL exists only in its built configurations: the smallest one that holds
+// `blocks` blocks of `words` words, else the largest one with the words.
+Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned blocks, unsigned words,
+                               size_t pixels) {
+  std::string best, largest_name;
+  fmpp::Config best_cfg{0, 0}, largest{0, 0};
+  for (const std::string& name : built) {
+    const fmpp::Config c = fmpp::named_config(name);
+    if (c.words < words) continue;
+    if (c.blocks > largest.blocks) {
+      largest = c;
+      largest_name = name;
+    }
+    if (c.blocks >= blocks && (best.empty() || c.blocks < best_cfg.blocks)) {
+      best = name;
+      best_cfg = c;
+    }
   }
+  if (!best.empty()) {
+    return {best_cfg, "; the smallest built RTL configuration that holds it is '" + best + "' (" + best_cfg.str() + ")"};
+  }
+  if (largest_name.empty()) {
+    throw std::invalid_argument("no built RTL configuration has " + std::to_string(words) + " words");
+  }
+  return {largest, "; the largest built RTL configuration with " + std::to_string(words) + " words is '" +
+                       largest_name + "' (" + largest.str() + "), so " +
+                       std::to_string((pixels + largest.blocks - 1) / largest.blocks) + " passes"};
+}
+
+// Precision: the smallest candidate n whose sampled primary rays and sampled frame
+// meet the target (see plan.h). Fills plan.candidates.
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan) {
+  if (req.bits) return {*req.bits, "set by the user"};
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
   // Sample: every k-th primary ray of the frame.
   const std::vector<Ray> all = primary_rays(scene.camera, req.width, req.height);
   const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
@@ -144,7 +105,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
   const std::vector<Hit> ref = fmpp::isect::nearest_reference(sample, scene.triangles);
   std::vector<double> cond;
-  for (const auto& t : scene.triangles) cond.push_back(condition(t, scene.camera.eye));
+  for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
   const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
   // The sampled frame: the same camera at about sample_rays pixels, rendered whole
   // (shadow, reflection and refraction rays too) and compared with the reference render
@@ -163,17 +124,17 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     o.progress = nullptr;
     return o;
   };
-  std::ostringstream why;
   for (unsigned n : {8u, 10u, 12u, 16u, 20u, 24u, 28u, 32u}) {
     PlanCandidate c;
     c.n = n;
     size_t over = 0;
-    for (double k : cond) over += !(k <= std::ldexp(1.0, static_cast<int>(n) - 3));
+    const double limit = fmpp::isect::policy::paper_cond_limit(options(n));  // the kernel's own limit
+    for (double k : cond) over += !(k <= limit);
     c.host_share = static_cast<double>(over) / static_cast<double>(cond.size());
     fmpp::ModelBus bus(sample_cfg);
     fmpp::Device dev(bus);
     fmpp::isect::KernelOptions o = options(n);
-    o.cond_bits = 60;  // the machine's own answers, no host fallback
+    o.cond_bits = fmpp::isect::policy::kRawCondBits;  // the machine's own answers, no host fallback
     fmpp::isect::KernelStats st;
     const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
     size_t wrong = 0;
@@ -197,7 +158,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     }
     plan.candidates.push_back(c);
     if (primary_ok && c.pixel_rate <= req.target_wrong_rate) {
-      plan.options.n = n;
+      std::ostringstream why;
       why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
           << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and in a "
@@ -209,12 +170,56 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
         if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the frame's pixels off";
         why << ")";
       }
-      plan.why_bits = why.str();
-      return plan;
+      return {n, why.str()};
     }
   }
-  plan.options.n = 32;
-  plan.why_bits = "no candidate met the target; using the widest format, n = 32";
+  return {32, "no candidate met the target; using the widest format, n = 32"};
+}
+
+}  // namespace
+
+Plan make_plan(const Scene& scene, const PlanRequest& req) {
+  Plan plan;
+  plan.options = req.base;
+  const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+
+  const Decision<unsigned> words = decide_words(scene, req, depth);
+  const Decision<unsigned> blocks = decide_blocks(req, pixels);
+  plan.why_words = words.why;
+  plan.why_blocks = blocks.why;
+  plan.config = fmpp::Config{blocks.value, words.value};
+  if (req.words) {
+    // Too few words would fail later inside a kernel ("the FMPP has 2"): said here.
+    PlanRequest auto_words = req;
+    auto_words.words.reset();
+    const Decision<unsigned> need = decide_words(scene, auto_words, depth);
+    if (*req.words < need.value) {
+      throw std::invalid_argument(std::to_string(*req.words) + " words per block are too few: " + need.why);
+    }
+  }
+  if (!req.rtl_configs.empty()) {
+    const Decision<fmpp::Config> rtl = fit_rtl(req.rtl_configs, blocks.value, words.value, pixels);
+    // Sizes the user gave are kept or refused, never replaced silently.
+    if ((req.blocks && rtl.value.blocks != blocks.value) || (req.words && rtl.value.words != words.value)) {
+      std::string built;
+      for (const std::string& name : req.rtl_configs) {
+        built += (built.empty() ? "" : ", ") + name + " (" + fmpp::named_config(name).str() + ")";
+      }
+      throw std::invalid_argument("no built RTL configuration has " +
+                                  (req.blocks ? std::to_string(blocks.value) + " blocks" : std::string()) +
+                                  (req.blocks && req.words ? " and " : "") +
+                                  (req.words ? std::to_string(words.value) + " words" : std::string()) +
+                                  ": the built ones are " + built + "; use --config NAME, or backend cmodel for any size");
+    }
+    plan.config = rtl.value;
+    plan.why_blocks += rtl.why;
+  }
+  plan.config.validate();
+
+  const Decision<unsigned> bits = decide_bits(scene, req, depth, plan);
+  plan.options.n = bits.value;
+  plan.why_bits = bits.why;
   return plan;
 }
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "fmpp/machine.h"
+#include "fmpp/config.h"
 #include "sw/isect/kernels.h"
 #include "sw/rt/scene.h"
 
@@ -34,7 +34,9 @@ struct PlanRequest {
   double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the sampled frame
   double max_host_share = 0.01;       // triangles the host may take over
   int sample_rays = 1024;             // primary rays measured per candidate
-  bool rtl = false;                   // choose among the built RTL configurations
+  // The machine is the RTL, built only in these configurations (names of
+  // rtl/fmpp_map.json): the plan chooses among them. Empty: any size (the golden model).
+  std::vector<std::string> rtl_configs;
   // Overrides.
   std::optional<unsigned> bits, blocks, words;
   fmpp::isect::KernelOptions base;    // mapping, multiply, watertight, cull...

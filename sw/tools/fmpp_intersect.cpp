@@ -1,6 +1,6 @@
 // fmpp-intersect: nearest ray-triangle hits computed on an FMPP (or the reference).
 //
-//   fmpp-intersect --triangles scene.tri --rays rays.txt --backend rtl --mapping ray \
+//   fmpp-intersect --triangles scene.tri --rays rays.txt --backend rtl --mapping ray
 //                  --bits 24 --blocks 64 --out hits.txt --report report.json
 //
 // Output: one line per ray, in input order: "triangle_index t" (hit point o + t d), or
@@ -13,7 +13,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/io.h"
 #include "sw/isect/kernels.h"

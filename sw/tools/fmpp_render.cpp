@@ -1,6 +1,6 @@
 // fmpp-render: Whitted ray tracing with every intersection computed on the FMPP.
 //
-//   fmpp-render --scene scenes/cornell.json --backend rtl --width 128 --height 128 \
+//   fmpp-render --scene scenes/cornell.json --backend rtl --width 128 --height 128
 //               --out cornell.png --report cornell.json
 //
 // Backends: reference (double precision on the host), cmodel (golden model), rtl
@@ -14,7 +14,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
 #include "sw/rt/plan.h"
@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
       pr.height = height;
       pr.max_depth = depth;
       pr.target_wrong_rate = target;
-      pr.rtl = backend != "cmodel";
+      if (backend != "cmodel") pr.rtl_configs = tb::rtl_configs();
       pr.base.mapping = isect::parse_mapping(mapping);
       pr.base.mul = isect::parse_mul_mode(mul);
       pr.base.watertight = watertight;

@@ -1,7 +1,8 @@
 // FMPP instructions: field access, encoding, legality and disassembly.
 //
-// The encoding is generated from rtl/fmpp_map.json (map.h); the legality rules
-// here are the C++ twin of rtl/fmpp_instr_check.sv and are documented in docs/isa.md.
+// The encoding is generated from rtl/fmpp_map.json (map.h: field positions, codes,
+// reserved bits and legal values); the legality rules here are the C++ twin of
+// rtl/fmpp_instr_check.sv and are documented in docs/isa.md.
 #pragma once
 
 #include <cstdint>
@@ -35,47 +36,41 @@ bool is_legal(uint64_t raw, unsigned num_words);
 // Human-readable form, e.g. "ADD w3 = w1 + w2 ?f0".
 std::string disasm(uint64_t raw);
 
-// Operation codes of the sub-fields.
-enum class RefFn : uint8_t { kThrough = 0, kAnd = 1, kOr = 2 };
-enum class RefPart : uint8_t { kData = 0, kAddr = 1 };
-enum class FuncFn : uint8_t { kAnd = 0, kOr = 1, kXor = 2 };
+// Codes of the sub-fields (generated from the map, like every position used here).
+using map::FuncFn;
+using map::RefFn;
+using map::RefPart;
 
 // Instruction constructors. Word operands are word addresses inside the block;
-// `pred` is the flag that must be set in a block for the instruction to act there.
+// `pred` is the flag that must be set in a block for the instruction to act there
+// (by default SEL, wherever the map puts it).
 namespace ins {
 Instr nop();
 Instr maskset(uint32_t mask);
 // fd <- fn(flag fs, match) where match = (((src ^ key) & ~mask) == 0),
 // src = word `a` (kData) or the block index (kAddr; `a` must be 0).
-Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs = 0);
-Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred = 0);
-Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = 0);
-Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = 0);
-Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred = 0);
-Instr lshift(unsigned d, unsigned a, unsigned pred = 0);
-Instr rshift(unsigned d, unsigned a, unsigned pred = 0);
-Instr writes(unsigned d, uint32_t data, unsigned pred = 0);
+Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs = map::kFlagSEL);
+Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
+Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
+Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
+Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred = map::kFlagSEL);
+Instr lshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL);
+Instr rshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL);
+Instr writes(unsigned d, uint32_t data, unsigned pred = map::kFlagSEL);
 Instr sets();
 Instr resets();
 Instr setsadr(uint32_t index);
 // fd <- lut[(fa << 1) | fb] in every block; with `if_any`, only when that value
 // is 1 in at least one block (otherwise fd is left unchanged everywhere).
 Instr flagop(unsigned fd, unsigned fa, unsigned fb, uint8_t lut, bool if_any = false);
+// The encoded instruction `raw` with its immediate field (REF key, WRITES data, MASKSET
+// mask, SETSADR index) replaced by `imm`, wherever the map puts IMM: for code built once
+// and patched per use. Throws std::invalid_argument if `raw`'s opcode is unknown or does
+// not use IMM (the patched instruction would be illegal).
+uint64_t with_imm(uint64_t raw, uint32_t imm);
 }  // namespace ins
 
-// Look-up tables for FLAGOP: index (fa << 1) | fb.
-namespace lut {
-inline constexpr uint8_t kZero = 0x0;
-inline constexpr uint8_t kOne = 0xF;
-inline constexpr uint8_t kA = 0xC;        // fa
-inline constexpr uint8_t kB = 0xA;        // fb
-inline constexpr uint8_t kNotA = 0x3;
-inline constexpr uint8_t kNotB = 0x5;
-inline constexpr uint8_t kAnd = 0x8;
-inline constexpr uint8_t kOr = 0xE;
-inline constexpr uint8_t kXor = 0x6;
-inline constexpr uint8_t kAndNotB = 0x4;  // fa & ~fb
-inline constexpr uint8_t kNotAAndB = 0x2; // ~fa & fb
-}  // namespace lut
+// FLAGOP truth tables (lut::kA, lut::kAndNotB, ...): the map names them, index 2 fa + fb.
+namespace lut = map::lut;
 
 }  // namespace fmpp

@@ -10,31 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "fmpp/config.h"
 #include "fmpp/isa.h"
 
 namespace fmpp {
-
-struct Config {
-  unsigned blocks = 64;  // NumBlocks, 1 .. map::kMaxBlocks
-  unsigned words = 32;   // NumWords, even, 2 .. map::kMaxWords
-
-  // Throws std::invalid_argument naming the bad value.
-  void validate() const;
-  unsigned tiles() const { return (blocks + map::kLaneW - 1) / map::kLaneW; }
-  // log2 of the WORDS window block stride in bytes.
-  unsigned word_shift() const;
-  std::string str() const;
-};
-
-// Looks up a named configuration of rtl/fmpp_map.json ("small", "large", ...).
-// Throws std::invalid_argument listing the known names.
-Config named_config(const std::string& name);
-
-struct Responders {
-  bool any = false;
-  uint32_t count = 0;
-  uint32_t first = 0;  // lowest selected block; 0 when none
-};
 
 // FNV-1a digest of an architectural state visited block by block (its words in order,
 // then its flags), then the mask. A layout-independent order: Machine::state_hash and

@@ -1,21 +1,13 @@
 // Backend selection by name (see backend.h).
-#include "sw/fmpp/backend.h"
+#include "tb/backend.h"
 
 #include <stdexcept>
 
-#ifdef FMPP_HAVE_SYSTEMC
 #include "tb/sc/systemc_bus.h"
-#endif
 
 namespace fmpp {
 
-std::vector<std::string> backend_names() {
-#ifdef FMPP_HAVE_SYSTEMC
-  return {"cmodel", "rtl", "lockstep", "systemc"};
-#else
-  return {"cmodel", "rtl", "lockstep"};
-#endif
-}
+std::vector<std::string> backend_names() { return {"cmodel", "rtl", "lockstep", "systemc"}; }
 
 namespace {
 
@@ -97,14 +89,12 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const Config& cfg
     lo.mode = tb::parse_lockstep_mode(opt.lockstep_mode);
     b->lock_ = std::make_unique<tb::Lockstep>(*b->rtl_, *b->model_, lo);
     b->bus_ = b->lock_.get();
-#ifdef FMPP_HAVE_SYSTEMC
   } else if (name == "systemc") {
     std::unique_ptr<tb::RtlBus> rtl = exact_rtl(cfg, opt);
     b->rtl_view_ = rtl.get();
     b->owned_ = sc::make_systemc_bus(std::move(rtl));
     b->checked_ = std::make_unique<CheckedBus>(*b->owned_, *b->rtl_view_);
     b->bus_ = b->checked_.get();
-#endif
   } else {
     std::string known;
     for (const auto& n : backend_names()) known += (known.empty() ? "" : ", ") + n;

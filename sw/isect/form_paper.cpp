@@ -1,0 +1,141 @@
+// The paper's form: for rays sharing an origin O, T = P^-1 V (P: the triangle's vertices
+// relative to O, as columns); the ray hits iff T_1, T_2, T_3 >= 0, and the nearest hit
+// has the largest S = T_1 + T_2 + T_3 (t = 1 / S). The host computes P^-1 in double
+// and quantizes it: per triangle an exponent and n-bit mantissas (docs/intersection.md).
+// Both mappings use it: this file has the ray-parallel form and the object-parallel
+// mapping's ray program.
+#include <cmath>
+#include <stdexcept>
+
+#include "sw/isect/fixed_point.h"
+#include "sw/isect/forms.h"
+#include "sw/isect/policy.h"
+
+namespace fmpp::isect {
+
+using namespace ins;
+
+bool paper_inverse(const Triangle& t, const glm::dvec3& o, double cond_limit, double m[3][3]) {
+  const glm::dmat3 P(t.p[0] - o, t.p[1] - o, t.p[2] - o);  // columns
+  const double det = glm::determinant(P);
+  if (det == 0 || !std::isfinite(det)) return false;
+  const glm::dmat3 M = glm::inverse(P);
+  const double cond = policy::condition(P, M);
+  if (!std::isfinite(cond) || cond > cond_limit) return false;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m[i][j] = M[j][i];  // glm is column-major: M[col][row]
+  }
+  return true;
+}
+
+Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, const KernelOptions& opt,
+                             size_t* test_steps) {
+  using namespace layout::object;
+  using layout::kHit;
+  using layout::kLoaded;
+  using layout::kTmp;
+  Program p;
+  std::vector<Row> rows(4);
+  for (unsigned i = 0; i < 4; ++i) {
+    rows[i].r = (i < 3) ? kT + i : kS;
+    for (unsigned j = 0; j < 3; ++j) {
+      const unsigned y = (i < 3) ? kX + 3 * i + j : kY + j;
+      rows[i].terms.push_back(Term{y, v[j], kV + j});
+    }
+  }
+  if (opt.mul == MulMode::kGeneric) {
+    p.mask(0);
+    for (unsigned j = 0; j < 3; ++j) p << writes(kV + j, static_cast<uint32_t>(v[j]), kLoaded);
+    dot_rows(p, rows, opt.n, kLoaded, kTmp);
+  } else {
+    dot_rows_const(p, rows, opt.n, kLoaded);
+  }
+  nonneg(p, kHit, kLoaded, kT + 0);
+  nonneg(p, kHit, kHit, kT + 1);
+  nonneg(p, kHit, kHit, kT + 2);
+  *test_steps = p.size();
+  nonneg(p, kHit, kHit, kS);
+  p.mask(0);
+  p << ref(RefFn::kAnd, RefPart::kData, kS, 0, kTmp, kHit);  // S = 0: not in front of the origin
+  p << flagop(kHit, kHit, kTmp, lut::kAndNotB);
+  max_search(p, kHit, kTmp, kS, sbits);
+  p << flagop(layout::kSel, kHit, kHit, lut::kA);
+  return p;
+}
+
+namespace {
+
+class PaperForm : public SharedOriginForm {
+ public:
+  explicit PaperForm(const FormInputs& in) : SharedOriginForm(in.opt) {
+    // Every ray's V_q has the same largest component 2^vbits; its length varies with
+    // the direction's shape.
+    double vq_len = 0;  // largest |V_q|
+    for (size_t i : in.idx) {
+      const glm::dvec3& d = in.rays[i].d;
+      vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
+    }
+    // Common exponent E for the compared sums: S = 1/lambda <= |V_q| / dmin (lambda in
+    // units of V_q), and S_c = S / 2^(E+1) must stay below 2^kSumBits.
+    const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
+    const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
+    if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
+    const int E = static_cast<int>(e_real) - 1;
+    t_scale_ = std::ldexp(1.0, E + 1);
+
+    const double cond_limit = policy::paper_cond_limit(opt_);
+    for (size_t k = 0; k < in.tris.size(); ++k) {
+      double m[3][3];
+      int64_t x[9];
+      if (!paper_inverse(in.tris[k], in.origin, cond_limit, m)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      const int e = mantissas(&m[0][0], 9, opt_.n - 1, x);
+      Broadcast b;
+      b.program = program(x, e - E, &b.test_steps);
+      b.tri = static_cast<int>(k);
+      broadcasts.push_back(std::move(b));
+    }
+  }
+
+ private:
+  // One triangle broadcast: T = X V, inside test, S = T_1 + T_2 + T_3 shifted by 2^shift
+  // to the common exponent, then keep_nearest.
+  Program program(const int64_t x[9], int shift, size_t* test_steps) const {
+    using namespace layout::ray;
+    using layout::kHit;
+    using layout::kSel;
+    Program p;
+    p.assume_mask(layout::kDataMask);  // set by the pass's init, and kept by every broadcast
+    p << add(kCnt, kCnt, kOne, kSel);
+    std::vector<Row> rows(3);
+    for (unsigned i = 0; i < 3; ++i) {
+      rows[i].r = kT + i;
+      for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, x[3 * i + j], kX + 3 * i + j});
+    }
+    if (opt_.mul == MulMode::kGeneric) {
+      p.mask(0);
+      for (unsigned k = 0; k < 9; ++k) p << writes(kX + k, static_cast<uint32_t>(x[k]), kSel);
+      dot_rows(p, rows, opt_.n, kSel, layout::kTmp);
+    } else {
+      p.mask(layout::kDataMask);
+      dot_rows_const(p, rows, opt_.n, kSel);
+    }
+    nonneg(p, kHit, kSel, kT + 0);
+    nonneg(p, kHit, kHit, kT + 1);
+    nonneg(p, kHit, kHit, kT + 2);
+    *test_steps = p.size();
+    p << add(kS, kT + 0, kT + 1, kHit) << add(kS, kS, kT + 2, kHit);
+    for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
+    for (int s = 0; s > shift; --s) p << rshift(kS, kS, kHit);
+    keep_nearest(p);
+    return p;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RayForm> make_paper_form(const FormInputs& in) { return std::make_unique<PaperForm>(in); }
+
+}  // namespace fmpp::isect

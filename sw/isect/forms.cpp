@@ -1,0 +1,64 @@
+// The table of ray-parallel forms and what the shared-origin forms have in common
+// (see forms.h).
+#include "sw/isect/forms.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "sw/isect/fixed_point.h"
+
+namespace fmpp::isect {
+
+using namespace ins;
+using namespace layout::ray;
+
+const std::vector<FormInfo>& ray_forms() {
+  static const std::vector<FormInfo> forms = {
+      {FormId::kPaper, "paper", true, make_paper_form},
+      {FormId::kWatertight, "watertight", true, make_watertight_form},
+      {FormId::kGeneral, "arbitrary-origin", false, make_general_form},
+  };
+  return forms;
+}
+
+const FormInfo& form_for(const KernelOptions& opt, bool shared) {
+  const FormId id = !shared ? FormId::kGeneral : opt.watertight ? FormId::kWatertight : FormId::kPaper;
+  for (const FormInfo& f : ray_forms()) {
+    if (f.id == id) return f;
+  }
+  throw std::logic_error("fmpp::isect: no form in the table for this ray group");
+}
+
+double SharedOriginForm::ray_scale(const glm::dvec3& d) const {
+  return max_component(d) / std::ldexp(1.0, static_cast<int>(opt_.vbits));
+}
+
+void SharedOriginForm::load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>&) const {
+  const int64_t lim = int64_t{1} << opt_.vbits;
+  const double sv = ray_scale(r.d);
+  for (unsigned j = 0; j < 3; ++j) {
+    dev.write_word(b, kV + j, static_cast<uint32_t>(quantize(r.d[static_cast<int>(j)], sv, lim, "ray component")));
+  }
+}
+
+void SharedOriginForm::init(Program& p) const {
+  p << writes(kBest, 0, layout::kSel) << writes(kIdx, 0, layout::kSel) << writes(kCnt, 0, layout::kSel)
+    << writes(kOne, 1, layout::kSel);
+}
+
+double SharedOriginForm::t_of(uint32_t best, const Ray& r) const {
+  return 1.0 / (static_cast<double>(best) * t_scale_ * ray_scale(r.d));
+}
+
+void SharedOriginForm::keep_nearest(Program& p) {
+  using layout::kHit;
+  using layout::kWin;
+  // win <- hit and best - S < 0 (S > best >= 0; S <= 0 never wins, a tie keeps the earlier)
+  p << sub(kD, kBest, kS, kHit);
+  p.mask(layout::kDataMask);
+  p << ref(RefFn::kAnd, RefPart::kData, kD, layout::kSignBit, kWin, kHit);
+  p << func(FuncFn::kOr, kBest, kS, kS, kWin);
+  p << func(FuncFn::kOr, kIdx, kCnt, kCnt, kWin);
+}
+
+}  // namespace fmpp::isect

@@ -1,0 +1,51 @@
+// Where the intersection kernels keep their data inside a block: the flags and the
+// word addresses of each form and mapping (docs/intersection.md, "The code, file by file").
+// Every kernel file takes its addresses from here, so two forms can never disagree on
+// what a word holds, and words_needed() is computed from the same numbers.
+#pragma once
+
+#include "fmpp/map.h"
+
+namespace fmpp::isect::layout {
+
+// Flags (flag 0 is the machine's selection flag, map::kFlagV its overflow flag).
+inline constexpr unsigned kSel = 0;     // SEL: the block takes part
+inline constexpr unsigned kHit = 1;     // the ray passes the inside test of this broadcast
+inline constexpr unsigned kWin = 2;     // the hit is nearer than the block's best so far
+inline constexpr unsigned kTmp = 3;     // scratch (multiply digits, sign tests)
+inline constexpr unsigned kLoaded = 4;  // object-parallel: the block holds a triangle
+inline constexpr unsigned kNeg = 4;     // arbitrary-origin: det < 0 (never loaded at the same time)
+static_assert(kLoaded < map::kFlagV && kNeg < map::kFlagV, "kernel flags stay clear of the overflow flag");
+
+// The one mask every ray-parallel broadcast runs under (set by the pass's init).
+inline constexpr uint32_t kDataMask = 0x7FFFFFFFu;
+// The sign bit of a word, for REF sign tests.
+inline constexpr uint32_t kSignBit = 0x80000000u;
+
+// Ray-parallel, rays sharing an origin (the paper's form and the watertight form):
+// the ray's direction, T_1..3, the compared sum S, the best S and its broadcast number,
+// scratch, the broadcast counter (the best's number is copied from it, so no WRITES per
+// broadcast), the constant 1, and (generic multiply only) the 9 multiplier words.
+namespace ray {
+inline constexpr unsigned kV = 0, kT = 3, kS = 6, kBest = 7, kIdx = 8, kD = 9, kCnt = 10, kOne = 11, kX = 12;
+inline constexpr unsigned kWordsConst = kX, kWordsGeneric = kX + 9;
+}  // namespace ray
+
+// Object-parallel (one triangle per block): the 9 mantissas of P^-1, the 3 of its column
+// sums, T_1..3, S, and (generic multiply only) the broadcast ray's 3 components.
+namespace object {
+inline constexpr unsigned kX = 0, kY = 9, kT = 12, kS = 15, kV = 16;
+inline constexpr unsigned kWordsConst = kV, kWordsGeneric = kV + 3;
+}  // namespace object
+
+// Ray-parallel, every ray with its own origin (the arbitrary-origin form): direction V,
+// moment L = O x V, origin O, edge values A_1..3, det, n . V, scratch, quotient, best
+// quotient and broadcast number, counter, constants 1, 0 and 2^kBits, the ray's
+// smallest quotient, and the broadcast number of its excluded triangle.
+namespace general {
+inline constexpr unsigned kV = 0, kL = 3, kO = 6, kA = 9, kDet = 12, kNv = 13, kTmp = 14, kQ = 15, kBest = 16,
+                          kIdx = 17, kCnt = 18, kOne = 19, kZero = 20, kUnit = 21, kQmin = 22, kExcl = 23;
+inline constexpr unsigned kWords = kExcl + 1;
+}  // namespace general
+
+}  // namespace fmpp::isect::layout

@@ -1,0 +1,86 @@
+// The pass loop of the intersection kernels (see pass.h).
+#include "sw/isect/pass.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "sw/isect/reference.h"
+
+namespace fmpp::isect {
+
+void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* st) {
+  dev.push(code);
+  st->instructions += code.size();
+}
+
+void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelStats* st) {
+  const unsigned blocks = dev.config().blocks;
+  const size_t items = plan.items();
+  const uint64_t planned = (items + blocks - 1) / blocks;
+  for (size_t base = 0; base < items; base += blocks) {
+    const unsigned count = static_cast<unsigned>(std::min<size_t>(blocks, items - base));
+    ++st->passes;
+    const std::vector<size_t> order = plan.select(base, count);
+
+    uint64_t c0 = dev.cycles();
+    plan.load(dev, base, count);
+    st->load_cycles += dev.cycles() - c0;
+
+    for (size_t j = 0; j < order.size(); ++j) {
+      size_t test_steps = 0;
+      const std::vector<uint64_t>& code = plan.code(order[j], static_cast<uint32_t>(j + 1), &test_steps);
+      c0 = dev.cycles();
+      push_counted(dev, code, st);
+      st->compute_cycles += dev.cycles() - c0;
+      st->broadcast_steps += code.size();
+      st->test_steps += test_steps;
+      ++st->broadcasts;
+      c0 = dev.cycles();
+      plan.after_broadcast(dev, order[j]);
+      st->readback_cycles += dev.cycles() - c0;
+    }
+
+    c0 = dev.cycles();
+    plan.read_back(dev, base, count, order);
+    st->readback_cycles += dev.cycles() - c0;
+    plan.host(base, count);
+    if (opt.progress) opt.progress(base / blocks + 1, planned);
+  }
+}
+
+void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
+                KernelStats* st) {
+  for (int k : host) {
+    if (k == r.exclude) continue;
+    const double t = intersect_reference(r, tris[k]);
+    ++st->host_tests;
+    if (t <= r.tmin) continue;
+    if (t < hit->t || (t == hit->t && k < hit->tri)) {
+      hit->t = t;
+      hit->tri = k;
+    }
+  }
+}
+
+std::vector<int> all_triangles(const std::vector<Triangle>& tris) {
+  std::vector<int> all(tris.size());
+  for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
+  return all;
+}
+
+std::vector<bool> read_overflow(Device& dev, unsigned count) {
+  std::vector<bool> ovf(count, false);
+  if (dev.overflow()) {
+    const std::vector<bool> v = dev.read_flag_all(map::kFlagV);
+    for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
+  }
+  return ovf;
+}
+
+void bad_broadcast_number(unsigned block, uint32_t number, size_t broadcasts) {
+  throw std::logic_error("fmpp::isect: block " + std::to_string(block) + " holds broadcast number " +
+                         std::to_string(number) + " of " + std::to_string(broadcasts));
+}
+
+}  // namespace fmpp::isect

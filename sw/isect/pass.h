@@ -1,0 +1,85 @@
+// The one pass loop of the intersection kernels, shared by every form and both
+// mappings (docs/intersection.md, "Passes"). A mapping keeps up to NumBlocks items in
+// the blocks (rays in the ray-parallel mapping, triangles in the object-parallel one)
+// and broadcasts the other side; items beyond NumBlocks run in further passes. Each
+// pass: choose the broadcasts (culling), load the blocks, broadcast, read back, and let
+// the host redo what the FMPP could not answer. The loop counts every step's clocks.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/fmpp/program.h"
+#include "sw/isect/geometry.h"
+#include "sw/isect/kernels.h"
+
+namespace fmpp::isect {
+
+// What a mapping tells the pass loop. Blocks [0, count) of a pass hold items
+// [base, base + count); broadcasts are numbered 1, 2, ... in the order select() returns.
+class PassPlan {
+ public:
+  virtual ~PassPlan() = default;
+  // Items held in blocks, NumBlocks per pass.
+  virtual size_t items() const = 0;
+  // The broadcasts of this pass, in order (the culled ones left out and counted).
+  virtual std::vector<size_t> select(size_t base, unsigned count) = 0;
+  // Writes the pass's items into the blocks and runs its initialisation.
+  virtual void load(Device& dev, size_t base, unsigned count) = 0;
+  // The code of broadcast k, sent as number `number` of the pass; *test_steps gets the
+  // instructions up to the inside test (the paper's step count).
+  virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) = 0;
+  // After each broadcast (object-parallel: the responders name the nearest triangle).
+  virtual void after_broadcast(Device& /*dev*/, size_t /*k*/) {}
+  // After the pass's broadcasts: results and overflow flags.
+  virtual void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) = 0;
+  // Host work of the pass (overflowed items, triangles the FMPP does not take).
+  virtual void host(size_t /*base*/, unsigned /*count*/) {}
+};
+
+// Runs every pass of `plan` on `dev`, adding clocks, instructions, broadcasts and passes
+// to *st and calling opt.progress after each pass.
+void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelStats* st);
+
+// Pushes `code`, counting its instructions.
+void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* st);
+
+// Merges the host's results for triangles `host` into *hit (nearest wins, an exact tie
+// goes to the lower index), counting the host's tests.
+void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
+                KernelStats* st);
+
+// Every triangle index of `tris` (a ray the FMPP could not answer is redone against all).
+std::vector<int> all_triangles(const std::vector<Triangle>& tris);
+
+// The ray-parallel read-back of `count` blocks: the overflow flags, then the best word of
+// every block without overflow and, when it is not `none`, the 1-based number of the
+// broadcast that set it (idx_word). Calls on_hit(block, best, position in the pass);
+// returns the overflow flag of each block.
+struct BestWords {
+  unsigned best_word, idx_word;
+  uint32_t none;
+};
+template <class OnHit>
+std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit);
+
+std::vector<bool> read_overflow(Device& dev, unsigned count);
+[[noreturn]] void bad_broadcast_number(unsigned block, uint32_t number, size_t broadcasts);
+
+template <class OnHit>
+std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit) {
+  const std::vector<bool> ovf = read_overflow(dev, count);
+  for (unsigned b = 0; b < count; ++b) {
+    if (ovf[b]) continue;
+    const uint32_t best = dev.read_word(b, w.best_word);
+    if (best == w.none) continue;
+    const uint32_t number = dev.read_word(b, w.idx_word);
+    if (number < 1 || number > broadcasts) bad_broadcast_number(b, number, broadcasts);
+    on_hit(b, best, number - 1);
+  }
+  return ovf;
+}
+
+}  // namespace fmpp::isect

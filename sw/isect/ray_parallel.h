@@ -1,0 +1,54 @@
+// The ray-parallel mapping: one ray per block, each triangle broadcast as a program
+// (docs/intersection.md). What differs between intersection forms - the triangle
+// programs, the words a ray occupies, how a block's best becomes a distance - is a
+// RayForm; the passes themselves (culling, loading, broadcasting, reading back, the
+// host's share) are the same for every form and live in ray_parallel.cpp.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/fmpp/program.h"
+#include "sw/isect/geometry.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/pass.h"
+
+namespace fmpp::isect {
+
+// One triangle's broadcast.
+struct Broadcast {
+  Program program;
+  size_t test_steps = 0;  // instructions up to the inside test
+  int tri = -1;           // the triangle
+};
+
+// An intersection form of the ray-parallel mapping, prepared for one batch of rays.
+class RayForm {
+ public:
+  virtual ~RayForm() = default;
+  // The triangles on the FMPP, and those every ray tests on the host instead.
+  std::vector<Broadcast> broadcasts;
+  std::vector<int> host;
+
+  // Where each block keeps its best and the number of the broadcast that set it.
+  virtual BestWords best_words() const = 0;
+  // Writes one ray into block b. number_of[k] is broadcast k's number in this pass
+  // (0: culled).
+  virtual void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const = 0;
+  // The per-pass WRITES of the selected blocks (run with mask 0; kDataMask follows).
+  virtual void init(Program& p) const = 0;
+  // Broadcast k's code, sent as number `number` (a form may patch it in).
+  virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program.code(); }
+  // The distance of a block's best.
+  virtual double t_of(uint32_t best, const Ray& r) const = 0;
+};
+
+// Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]].
+void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
+                      const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
+                      std::vector<Hit>& out, KernelStats* st);
+
+}  // namespace fmpp::isect

@@ -1,0 +1,1 @@
+"""The FMPP map generator's parts: model (load, check, derive), sv, cpp, md."""
