@@ -139,6 +139,9 @@ TEST(HostileInput, LibraryLoopsEndInAnError) {
   EXPECT_EQ(error_of([&] { load_mesh(path); }), path + ": cannot read mesh: gave no result within 2 s");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10);
   set_mesh_time_limit(60);
+  // An OFF face line that makes assimp's triangulation fail an assertion and abort.
+  const std::string off = std::string(FMPP_SOURCE_DIR) + "/tests/data/off_triangulate_abort.off";
+  EXPECT_EQ(error_of([&] { load_mesh(off); }), off + ": cannot read mesh: the reader crashed (signal 6)");
 }
 
 TEST(HostileInput, RealMeshesInEveryFormat) {
