@@ -80,8 +80,10 @@ fails "not a regular file (character device)" "$render" --scene /dev/zero "${r8[
 fails "--width: 'abc' is not a whole number" "$render" --scene "$scene" "${r8[@]}" --width abc --out "$dir/a.png"
 fails "resolution 16384x16384 needs about 8448 MiB" "$render" --scene "$scene" --backend reference --width 16384 \
   --height 16384 --out "$dir/a.png"
-fails "no built RTL configuration has 7 blocks and 6 words" "$render" --scene "$scene" --backend rtl --blocks 7 \
-  --words 6 --width 8 --height 8 --out "$dir/a.png"
+fails "no built RTL configuration has 7 blocks and 32 words" "$render" --scene "$scene" --backend rtl --blocks 7 \
+  --words 32 --width 8 --height 8 --out "$dir/a.png"
+fails "6 words per block are too few" "$render" --scene "$scene" --backend rtl --blocks 7 --words 6 --width 8 \
+  --height 8 --out "$dir/a.png"
 fails "2 words per block are too few" "$render" --scene "$scene" --backend cmodel --blocks 1 --words 2 --width 8 \
   --height 8 --out "$dir/a.png"
 fails "--trace /dev/full: not a regular file" "$sim" --config tiny --ops 10 --trace /dev/full
