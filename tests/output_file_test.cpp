@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "sw/util/output_file.h"
-#include "sw/report/output.h"
+#include "sw/util/process.h"
 #include "sw/rt/image.h"
 
 namespace fmpp {
@@ -71,14 +71,14 @@ TEST(OutputFile, AliasesAreRefused) {
 TEST(RunProgram, ArgumentsReachTheProgramUninterpreted) {
   // Through a shell, this name would run "touch PWNED-14" in the working directory.
   const std::string odd = tmp() + "/x'; touch PWNED-14; echo '";
-  report::run_program({"/usr/bin/touch", odd});
+  run_program({"/usr/bin/touch", odd});
   EXPECT_TRUE(std::filesystem::exists(odd));
   EXPECT_FALSE(std::filesystem::exists("PWNED-14"));
   const std::string spaced = tmp() + "/bob's plots";
-  report::run_program({"/bin/mkdir", spaced});
+  run_program({"/bin/mkdir", spaced});
   EXPECT_TRUE(std::filesystem::is_directory(spaced));
-  EXPECT_NE(error_of([] { report::run_program({"/bin/false"}); }).find("failed with exit status 1"), std::string::npos);
-  EXPECT_NE(error_of([] { report::run_program({"/no/such/program"}); }).find("cannot run '/no/such/program'"),
+  EXPECT_NE(error_of([] { run_program({"/bin/false"}); }).find("failed with exit status 1"), std::string::npos);
+  EXPECT_NE(error_of([] { run_program({"/no/such/program"}); }).find("cannot run '/no/such/program'"),
             std::string::npos);
 }
 

@@ -1,8 +1,5 @@
 #include "sw/report/output.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,8 +10,8 @@
 
 #include "sw/util/files.h"
 #include "sw/util/output_file.h"
+#include "sw/util/process.h"
 
-extern char** environ;
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -28,37 +25,6 @@ std::string fmt(double v, int prec) {
   return buf;
 }
 
-namespace {
-
-// The command line of `argv` for a message, each argument quoted.
-std::string shown(const std::vector<std::string>& argv) {
-  std::string s;
-  for (const auto& a : argv) s += (s.empty() ? "'" : " '") + a + "'";
-  return s;
-}
-
-}  // namespace
-
-void run_program(const std::vector<std::string>& argv) {
-  if (argv.empty()) throw std::invalid_argument("run_program: no program");
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  std::fflush(nullptr);
-  pid_t pid = 0;
-  const int err = ::posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ);
-  if (err != 0) throw std::runtime_error("cannot run " + shown(argv) + ": " + std::strerror(err));
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw std::runtime_error("waiting for " + shown(argv) + ": " + std::strerror(errno));
-  }
-  if (WIFSIGNALED(status)) {
-    throw std::runtime_error(shown(argv) + " was killed by signal " + std::to_string(WTERMSIG(status)));
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error(shown(argv) + " failed with exit status " + std::to_string(WEXITSTATUS(status)));
-  }
-}
 
 std::string today() {
   char date[32];

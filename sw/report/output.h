@@ -43,14 +43,10 @@ void add_output_options(CLI::App* sub, ReportOutput& o);
 // its data and plots, not to stdout).
 void prepare_outputs(ReportOutput& o);
 
-// Runs argv[0] (a full path) with the arguments argv[1..] and waits for it: no shell, so
-// no argument is interpreted. Throws std::runtime_error naming the command if it cannot
-// be started, is killed by a signal, or exits non-zero.
-void run_program(const std::vector<std::string>& argv);
-
 // Writes `markdown` to o.out and `data` to o.img_dir/o.data_name (creating both
 // directories), then, unless --no-plots, runs
-// python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir> (run_program).
+// python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir> (fmpp::run_program,
+// sw/util/process.h: no shell).
 // Throws std::runtime_error naming the file or command that failed.
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data);
 
