@@ -49,7 +49,10 @@ module fmpp_array #(
   logic        is_instr;
   logic [63:0] instr;
 
-  assign pop      = head_valid_i && gap_q == '0;
+  // No entry executes while rst_ni is low: the queue's level resets at the same edge,
+  // and an entry executed then would write a word (words have no reset) that the reset
+  // was meant to drop (found by the soak's resets in the middle of programs).
+  assign pop      = rst_ni && head_valid_i && gap_q == '0;
   assign pop_o    = pop;
   assign is_instr = head_i.kind == fmpp_pkg::QE_INSTR;
   assign instr    = head_i.data;
@@ -173,6 +176,38 @@ module fmpp_array #(
   fmpp_pkg::opcode_e dbg_op;
   /* verilator lint_on UNUSEDSIGNAL */
   assign dbg_op = fmpp_pkg::opcode_e'(op);
+`endif
+
+  // Coverage (make coverage): every opcode executed, every REF function on the data and
+  // on the address part, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP.
+`ifdef FMPP_COVERAGE
+  // One line per point: Verilator 5.006 merges the iterations of a generate loop into one
+  // cover point, so a loop would not tell the opcodes apart.
+  c_op_nop: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_NOP);
+  c_op_maskset: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_MASKSET);
+  c_op_ref: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF);
+  c_op_func: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FUNC);
+  c_op_add: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_ADD);
+  c_op_sub: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SUB);
+  c_op_bitcopy: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_BITCOPY);
+  c_op_lshift: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_LSHIFT);
+  c_op_rshift: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_RSHIFT);
+  c_op_writes: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_WRITES);
+  c_op_sets: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SETS);
+  c_op_resets: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_RESETS);
+  c_op_setsadr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SETSADR);
+  c_op_flagop: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP);
+  c_ref_through_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b0);
+  c_ref_through_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b1);
+  c_ref_and_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b0);
+  c_ref_and_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b1);
+  c_ref_or_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b0);
+  c_ref_or_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b1);
+  c_flagop_any_taken: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
+  c_flagop_any_skipped: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
+  c_word_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_WORD);
+  c_flags_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_FLAGS);
+  c_gap_stall: cover property (@(posedge clk_i) head_valid_i && gap_q != '0);
 `endif
 
   // Assertions

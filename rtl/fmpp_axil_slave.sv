@@ -372,6 +372,33 @@ module fmpp_axil_slave #(
     end
   end
 
+  // Coverage (make coverage): every error cause of a write and of a read, every
+  // responder read (RESP and STATUS, with and without a selected block), response
+  // back-pressure, and a push into a queue with one free entry.
+`ifdef FMPP_COVERAGE
+  // (One line per point: Verilator merges the iterations of a generate loop. WRITEONLY
+  // is a read's cause only; READONLY, ILLEGAL and STROBE a write's only.)
+  c_w_err_unmapped: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::ERR_UNMAPPED);
+  c_w_err_readonly: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::ERR_READONLY);
+  c_w_err_illegal: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::ERR_ILLEGAL);
+  c_w_err_strobe: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::ERR_STROBE);
+  c_w_err_align: cover property (@(posedge clk_i) rst_ni && w_accept && w_cause == fmpp_pkg::ERR_ALIGN);
+  c_r_err_unmapped: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_UNMAPPED);
+  c_r_err_writeonly: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_WRITEONLY);
+  c_r_err_align: cover property (@(posedge clk_i) rst_ni && r_accept && r_cause == fmpp_pkg::ERR_ALIGN);
+  c_resp_any0: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_RESP[11:0] &&
+                                 resp_any_i == 1'b0);
+  c_resp_any1: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_RESP[11:0] &&
+                                 resp_any_i == 1'b1);
+  c_status_any0: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_STATUS[11:0] &&
+                                 resp_any_i == 1'b0);
+  c_status_any1: cover property (@(posedge clk_i) rst_ni && r_accept && ar_is_reg && ar_reg == fmpp_pkg::REG_STATUS[11:0] &&
+                                 resp_any_i == 1'b1);
+  c_b_backpressure: cover property (@(posedge clk_i) rst_ni && bvalid_q && !bready_i);
+  c_r_backpressure: cover property (@(posedge clk_i) rst_ni && rvalid_q && !rready_i);
+  c_push_full: cover property (@(posedge clk_i) rst_ni && awvalid_i && wvalid_i && w_push && !w_err && q_full_i);
+`endif
+
   logic unused_prot;
   assign unused_prot = ^{awprot_i, arprot_i, aw_flag, w_ctrl_v, w_error_v};
 

@@ -332,11 +332,28 @@ module fmpp_tile #(
     end
   end
 
+  // Coverage (make coverage only: named cover points would give each tile its own code)
+`ifdef FMPP_COVERAGE
+  // A lane's adder carries out and overflows. Verilator 5.006 merges the iterations of
+  // this loop into one point per tile, so these say "some lane"; that every lane does
+  // is checked by the ALU's unit test (tests/rtl_units/alu_unit_test.cpp).
+  for (genvar l = 0; l < Lanes; l++) begin : g_cov_lane
+    c_carry: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_c && pred[l] && alu_c[l]);
+    c_ovf: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_v && pred[l] && alu_v[l]);
+  end
+`endif
+
   // Elaboration check. (Run-time properties of the tile's inputs are asserted in
   // fmpp_array: assertions here would carry each tile's name into its code.)
 `ifndef SYNTHESIS
   if (Lanes < 1 || Lanes > fmpp_pkg::LaneW) begin : g_bad_lanes
     $error("fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
+  end
+  // The tile's 64-lane bit-plane indexing: a block's lane is block[5:0], its tile is
+  // block[15:6] (compared with base_i[15:6]), and the index bits 0-5 of a lane come from
+  // its lane number. All of that holds only for 64 lanes per tile.
+  if (fmpp_pkg::LaneW != 64) begin : g_bad_lane_width
+    $error("fmpp_tile: the lane indexing assumes fmpp_pkg::LaneW = 64, not %0d", fmpp_pkg::LaneW);
   end
 `endif
 

@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
   int64_t inject_block = -1;
   unsigned inject_word = 0;
   uint32_t inject_value = 0xDEADBEEF;
+  uint64_t random_init = 0;
+  bool max_backpressure = false, storms = false;
+  uint64_t reset_every = 0;
+  std::string coverage_out;
   app.add_option("--config", config, "named configuration (see --list)");
   app.add_option("--seed", seed, "random seed")->capture_default_str()->check(non_negative());
   app.add_option("--ops", ops, "bus accesses to generate")->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
@@ -101,6 +105,15 @@ int main(int argc, char** argv) {
   app.add_option("--inject-value", inject_value, "value the RTL gets (default 0xDEADBEEF)")
       ->check(non_negative())
       ->needs(inject_opt);
+  app.add_option("--random-init", random_init,
+                 "soak: RTL powers up with random values from this seed (words too); the model is preloaded")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{0x7FFFFFFF}));
+  app.add_flag("--max-backpressure", max_backpressure, "soak: with --stress, READY low 8 clocks after every response");
+  app.add_flag("--storms", storms, "soak: bursts of 60 bad accesses in every 1000");
+  app.add_option("--reset-every", reset_every,
+                 "soak: reset both sides at random, on average once in N accesses (queue not drained)")
+      ->check(CLI::Range(uint64_t{2}, uint64_t{1} << 40));
+  app.add_option("--coverage-out", coverage_out, "coverage builds: write the Verilator coverage counts here");
   CLI11_PARSE(app, argc, argv);
 
   if (list) {
@@ -118,6 +131,11 @@ int main(int argc, char** argv) {
     ro.trace_end = trace_end;
     ro.stress = stress;
     ro.stress_seed = seed ^ 0x5EEDull;
+    if (max_backpressure && !stress) throw std::invalid_argument("--max-backpressure needs --stress");
+    if (reset_every && backend != "rtl") throw std::invalid_argument("--reset-every needs --backend rtl");
+    ro.random_init = random_init;
+    ro.max_backpressure = max_backpressure;
+    ro.coverage_file = coverage_out;
     const bool inject = inject_opt->count() > 0;
     const unsigned iblock = inject_block < 0 ? cfg.blocks - 1 : static_cast<unsigned>(inject_block);
     if (inject && (inject_at >= ops || iblock >= cfg.blocks || inject_word >= cfg.words)) {
@@ -127,19 +145,29 @@ int main(int argc, char** argv) {
     }
     auto rtl = make_backend(backend, config, ro);
     ModelBus model(cfg);
+    if (random_init != 0) {
+      // The words survive the reset with their power-up values: start the model there.
+      const tb::ArchState s = rtl->state();
+      for (unsigned b = 0; b < cfg.blocks; ++b) {
+        for (unsigned w = 0; w < cfg.words; ++w) model.preload_word(b, w, s.word(b, w));
+      }
+    }
     tb::LockstepOptions lo;
     lo.mode = tb::parse_lockstep_mode(mode);
     lo.hash_interval = hash_interval;
     lo.compare_cycles = !stress;
     tb::Lockstep lock(*rtl, model, lo);
     tb::ProgramGenerator gen(cfg, seed);
+    gen.set_storms(storms);
 
     const auto t0 = std::chrono::steady_clock::now();
     uint64_t mismatches = 0;
     std::string report;
     try {
+      std::mt19937_64 reset_rng(seed ^ 0xBE5E7ull);
       for (uint64_t i = 0; i < ops; ++i) {
         if (inject && i == inject_at) inject_fault(*rtl, model, iblock, inject_word, inject_value);
+        if (reset_every && reset_rng() % reset_every == 0) lock.reset();
         gen.step(lock);
       }
       lock.final_check();
@@ -151,14 +179,19 @@ int main(int argc, char** argv) {
     const tb::GenStats& st = gen.stats();
     std::printf(
         "config=%s blocks=%u words=%u backend=%s seed=%llu mode=%s%s accesses=%llu instructions=%llu entries=%llu "
-        "cycles=%llu state_checks=%llu bad_accesses=%llu mismatches=%llu seconds=%.1f\n",
+        "cycles=%llu state_checks=%llu bad_accesses=%llu resets=%llu mismatches=%llu seconds=%.1f\n",
         config.c_str(), cfg.blocks, cfg.words, backend.c_str(), static_cast<unsigned long long>(seed), mode.c_str(),
-        stress ? "+stress" : "", static_cast<unsigned long long>(st.accesses),
+        (std::string(stress ? "+stress" : "") + (max_backpressure ? "+maxbp" : "") + (storms ? "+storms" : "") +
+         (random_init ? "+randinit" : "") + (reset_every ? "+resets" : "")).c_str(), static_cast<unsigned long long>(st.accesses),
         static_cast<unsigned long long>(st.instructions), static_cast<unsigned long long>(lock.entries()),
         static_cast<unsigned long long>(rtl->cycles()), static_cast<unsigned long long>(lock.state_checks()),
-        static_cast<unsigned long long>(st.bad), static_cast<unsigned long long>(mismatches), secs);
+        static_cast<unsigned long long>(st.bad), static_cast<unsigned long long>(lock.resets()),
+        static_cast<unsigned long long>(mismatches), secs);
     if (mismatches) {
-      std::string again = " --backend " + backend + (stress ? " --stress" : "");
+      std::string again = " --backend " + backend + (stress ? " --stress" : "") +
+                          (max_backpressure ? " --max-backpressure" : "") + (storms ? " --storms" : "") +
+                          (random_init ? " --random-init " + std::to_string(random_init) : "") +
+                          (reset_every ? " --reset-every " + std::to_string(reset_every) : "");
       if (inject) {
         char value[16];
         std::snprintf(value, sizeof value, "0x%08x", inject_value);

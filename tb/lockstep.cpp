@@ -144,6 +144,23 @@ Resp Lockstep::read(uint32_t addr, uint64_t* data) {
   return r;
 }
 
+void Lockstep::reset() {
+  if (!opt_.compare_cycles) {
+    uint64_t id = 0;
+    read(map::kRegId, &id);
+  }
+  rtl_.reset();
+  model_.reset();
+  rtl_snapshots_.clear();  // entries dropped from the queues never executed on either side
+  rtl_entries_ = model_entries_;
+  last_hash_entries_ = model_entries_;
+  ++resets_;
+  if (!rtl_.failure().empty()) mismatch("at reset: " + rtl_.failure());
+  const std::string d = diff_states(rtl_.state(), model_state(model_));
+  if (!d.empty()) mismatch("state differs after a reset:\n" + d);
+  ++state_checks_;
+}
+
 void Lockstep::final_check() {
   uint64_t id = 0;
   read(map::kRegId, &id);  // drains both queues

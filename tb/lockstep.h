@@ -54,6 +54,11 @@ class Lockstep : public Bus {
   uint64_t state_checks() const { return state_checks_; }
   // Compares the full state now (after draining both queues with a read of ID).
   void final_check();
+  // Resets both sides between accesses (RtlBus::reset, ModelBus::reset) and compares
+  // the full state after it. With compare_cycles off (stress mode) the two sides are at
+  // different clocks, so both queues are drained first (a read of ID).
+  void reset();
+  uint64_t resets() const { return resets_; }
 
  private:
   void after_access(const char* what, uint32_t addr);
@@ -71,6 +76,7 @@ class Lockstep : public Bus {
   QueueEntry last_entry_;
   uint64_t last_entry_cycle_ = 0;
   bool in_read_ = false;
+  uint64_t resets_ = 0;
 };
 
 }  // namespace fmpp::tb

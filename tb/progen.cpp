@@ -256,6 +256,10 @@ void ProgramGenerator::step(Bus& bus) {
     push_instruction(bus, random_instruction());
     return;
   }
+  if (storms_ && stats_.accesses % 1000 < 60) {
+    bad_access(bus);
+    return;
+  }
   const unsigned pick = std::uniform_int_distribution<unsigned>(0, 999)(rng_);
   if (pick < 700) {
     push_instruction(bus, random_instruction());

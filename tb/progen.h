@@ -41,6 +41,9 @@ class ProgramGenerator {
   void step(Bus& bus);
   const GenStats& stats() const { return stats_; }
 
+  // Bad-access storms (soak): in every 1000 accesses, 60 in a row are bad accesses.
+  void set_storms(bool on) { storms_ = on; }
+
   // A random legal instruction for this configuration (also used by unit tests).
   uint64_t random_instruction();
 
@@ -60,6 +63,7 @@ class ProgramGenerator {
   std::mt19937_64 rng_;
   GenStats stats_;
   unsigned burst_ = 0;  // instructions left in a back-to-back burst
+  bool storms_ = false;
 };
 
 }  // namespace fmpp::tb

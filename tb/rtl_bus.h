@@ -50,6 +50,14 @@ struct RtlOptions {
   uint64_t timeout = 1000000;  // clocks an access may wait for READY before failing
   bool stress = false;         // random idle clocks and READY back-pressure
   uint64_t stress_seed = 1;
+  // Soak options (tools/soak.sh). random_init != 0: every variable, the words included,
+  // powers up with random values from this seed (Verilator randReset(2)); the reset
+  // then clears all but the words, which the golden model must be given (preload).
+  uint64_t random_init = 0;
+  bool max_backpressure = false;  // stress mode: READY held low 8 clocks after every response
+  // Coverage builds (cmake -DFMPP_COVERAGE=ON, make coverage): where the Verilator
+  // coverage counts go when the bus is destroyed. Refused by a build without coverage.
+  std::string coverage_file;
 };
 
 class RtlBus : public Bus {
@@ -66,6 +74,9 @@ class RtlBus : public Bus {
   // Called after each clock edge at which the array executed a queue entry.
   using ExecHook = std::function<void()>;
   virtual void set_exec_hook(ExecHook h) = 0;
+  // Pulls rst_ni low for two clocks between accesses: the queue empties without
+  // executing, every register resets, the words keep their values; cycles() restarts.
+  virtual void reset() = 0;
   // Clocks the model without any bus access (the array keeps draining its queue).
   virtual void idle(uint64_t clocks) = 0;
   // Assertion failures and timeouts seen so far (empty = none).
@@ -78,6 +89,9 @@ class RtlBus : public Bus {
 // The Verilated configurations linked into this binary (generated per binary from
 // tb/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
 std::vector<std::string> rtl_configs();
+// The version of the Verilator that built them ("5.006 2023-01-22"; defined beside
+// rtl_configs(), so a binary without RTL configurations has none).
+std::string verilator_version();
 // Builds the configuration `name` (see rtl_configs()). Throws std::invalid_argument
 // naming the configurations this binary has.
 std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});

@@ -5,6 +5,9 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 #include <verilated_syms.h>
+#if VM_COVERAGE
+#include <verilated_cov.h>
+#endif
 
 #include <cstring>
 #include <string>
@@ -54,9 +57,19 @@ class RtlBusImpl final : public RtlBus {
       throw std::invalid_argument("trace window: first cycle " + std::to_string(opt.trace_start) +
                                   " is after the last cycle " + std::to_string(opt.trace_end));
     }
+#if !VM_COVERAGE
+    if (!opt.coverage_file.empty()) {
+      throw std::invalid_argument("coverage file " + opt.coverage_file +
+                                  ": this build has no coverage (configure with -DFMPP_COVERAGE=ON: make coverage)");
+    }
+#endif
     ctx_ = std::make_unique<VerilatedContext>();
     ctx_->fatalOnError(false);  // an assertion failure is reported by failure(), not abort()
     ctx_->randReset(0);         // memories start at zero, as in the golden model
+    if (opt_.random_init != 0) {
+      ctx_->randReset(2);       // random power-up values (the soak preloads the model with them)
+      ctx_->randSeed(static_cast<int>(opt_.random_init & 0x7FFFFFFF));
+    }
     ctx_->traceEverOn(!opt_.trace_file.empty());
     top_ = std::make_unique<V>(ctx_.get(), "TOP");
     if (!opt_.trace_file.empty()) {
@@ -88,6 +101,9 @@ class RtlBusImpl final : public RtlBus {
     activate();
     top_->final();
     if (fst_) fst_->close();
+#if VM_COVERAGE
+    if (!opt_.coverage_file.empty()) ctx_->coveragep()->write(opt_.coverage_file.c_str());
+#endif
   }
 
   const Config& config() const override { return cfg_; }
@@ -207,12 +223,19 @@ class RtlBusImpl final : public RtlBus {
   // context rather than the model's; point it at ours whenever several models coexist.
   void activate() { Verilated::threadContextp(ctx_.get()); }
 
-  void reset() {
+  void reset() override {
     activate();
+    bhold_ = Hold{};
+    rhold_ = Hold{};
     top_->clk_i = 0;
     top_->rst_ni = 0;
     top_->s_axil_bready_i = 1;
     top_->s_axil_rready_i = 1;
+    // No request pending: with random power-up values (RtlOptions::random_init) the
+    // inputs would otherwise start with a random request on the bus.
+    top_->s_axil_awvalid_i = 0;
+    top_->s_axil_wvalid_i = 0;
+    top_->s_axil_arvalid_i = 0;
     top_->eval();
     for (int i = 0; i < 2; ++i) {
       top_->clk_i = 1;
@@ -286,6 +309,11 @@ class RtlBusImpl final : public RtlBus {
   };
 
   void stress_hold(Hold& h, uint8_t* ready, const uint8_t* valid) {
+    if (opt_.max_backpressure) {
+      *ready = 0;
+      h = Hold{ready, valid, 8};
+      return;
+    }
     if (std::uniform_int_distribution<unsigned>(0, 1)(rng_) == 0) return;
     *ready = 0;
     h = Hold{ready, valid, std::uniform_int_distribution<unsigned>(1, 4)(rng_)};

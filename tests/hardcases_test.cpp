@@ -1,5 +1,5 @@
 // Numerically hard inputs for the ray-triangle intersection, each with the behaviour it
-// must show, run on the double-precision reference, on the golden model (tests named
+// must show, run on the exact reference, on the golden model (tests named
 // Model/..., ctest label unit) and on the Verilated RTL in lockstep with the model
 // (Rtl/..., label rtl, configuration small: 64 blocks x 32 words).
 //

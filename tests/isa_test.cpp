@@ -1,7 +1,12 @@
 // Instruction encoding, legality and disassembly.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <map>
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "fmpp/isa.h"
 
@@ -156,13 +161,75 @@ TEST(Isa, LegalityRules) {
   EXPECT_TRUE(is_legal(flagop(7, 7, 7, 0xF, true).encode(), 8));
 }
 
-TEST(Isa, RandomWordsAreRarelyLegalAndNeverCrashTheDisassembler) {
+// A random legal instruction of opcode `op`, every field drawn at random within its
+// range (word addresses up to kMaxWords - 1, function codes among those the map names).
+Instr random_legal(Op op, std::mt19937_64& rng) {
+  auto u = [&rng](unsigned n) { return static_cast<unsigned>(rng() % n); };
+  auto code = [&rng](uint32_t legal) {  // a random set bit of `legal`
+    std::vector<unsigned> codes;
+    for (unsigned v = 0; v < 32; ++v) {
+      if ((legal >> v) & 1) codes.push_back(v);
+    }
+    return codes[rng() % codes.size()];
+  };
+  const unsigned W = map::kMaxWords, F = map::kNumFlags;
+  const uint32_t imm = static_cast<uint32_t>(rng());
+  switch (op) {
+    case Op::kNop: return nop();
+    case Op::kMaskset: return maskset(imm);
+    case Op::kRef: {
+      const auto part = static_cast<RefPart>(code(map::kRefPartLegal));
+      return ref(static_cast<RefFn>(code(map::kRefFnLegal)), part, part == RefPart::kAddr ? 0 : u(W), imm, u(F), u(F));
+    }
+    case Op::kFunc: return func(static_cast<FuncFn>(code(map::kFuncFnLegal)), u(W), u(W), u(W), u(F));
+    case Op::kAdd: return add(u(W), u(W), u(W), u(F));
+    case Op::kSub: return sub(u(W), u(W), u(W), u(F));
+    case Op::kBitcopy: return bitcopy(u(W), u(32), u(W), u(32), u(F));
+    case Op::kLshift: return lshift(u(W), u(W), u(F));
+    case Op::kRshift: return rshift(u(W), u(W), u(F));
+    case Op::kWrites: return writes(u(W), imm, u(F));
+    case Op::kSets: return sets();
+    case Op::kResets: return resets();
+    case Op::kSetsadr: return setsadr(imm);
+    case Op::kFlagop: return flagop(u(F), u(F), u(F), static_cast<uint8_t>(u(16)), u(2) == 1);
+  }
+  throw std::logic_error("random_legal: opcode " + std::to_string(static_cast<unsigned>(op)));
+}
+
+TEST(Isa, DisassemblyNamesEveryFieldOfALegalInstruction) {
+  // Two different legal instructions never read the same, so a lockstep report or a
+  // trace shows exactly which instruction ran; and each starts with its opcode's name.
+  std::mt19937_64 rng(5);
+  std::map<std::string, uint64_t> seen;
+  for (int k = 0; k < 40000; ++k) {
+    const auto op = static_cast<Op>(k % map::kNumOpcodes);
+    const uint64_t raw = random_legal(op, rng).encode();
+    ASSERT_TRUE(is_legal(raw, map::kMaxWords)) << std::hex << raw;
+    const std::string text = disasm(raw);
+    EXPECT_EQ(text.rfind(map::kOpNames[k % map::kNumOpcodes], 0), 0u) << text;
+    const auto [it, fresh] = seen.emplace(text, raw);
+    if (!fresh) {
+      EXPECT_EQ(it->second, raw) << "two instructions disassemble as \"" << text << "\"";
+    }
+  }
+  EXPECT_GT(seen.size(), 30000u) << "the random fields repeat too often to test anything";
+}
+
+TEST(Isa, RandomWordsAreRarelyLegalAndDisassembleByTheirOpcode) {
   std::mt19937_64 rng(7);
   unsigned legal = 0;
   for (int k = 0; k < 20000; ++k) {
     const uint64_t raw = rng();
     if (is_legal(raw, 32)) ++legal;
-    EXPECT_FALSE(disasm(raw).empty());
+    const unsigned code = static_cast<unsigned>(map::kFieldOp.get(raw));
+    const std::string text = disasm(raw);
+    if (code >= map::kNumOpcodes) {
+      char want[64];
+      std::snprintf(want, sizeof want, "ILLEGAL(op=%u raw=0x%016llx)", code, static_cast<unsigned long long>(raw));
+      EXPECT_EQ(text, want);
+    } else {
+      EXPECT_EQ(text.rfind(map::kOpNames[code], 0), 0u) << text;
+    }
   }
   EXPECT_LT(legal, 200u);
 }

@@ -63,16 +63,35 @@ TEST(Lockstep, CatchesReadDataAndClockDifferences) {
   }
 }
 
-TEST(Lockstep, RandomProgramRunsCleanInEveryMode) {
-  for (auto mode : {LockstepOptions::Mode::kCheck, LockstepOptions::Mode::kFast}) {
-    Rig r("odd", LockstepOptions{mode, 64});
-    ProgramGenerator gen(r.cfg, 11);
-    for (int k = 0; k < 3000; ++k) gen.step(r.lock);
-    r.lock.final_check();
+class LockstepModes : public ::testing::TestWithParam<LockstepOptions::Mode> {};
+
+TEST_P(LockstepModes, RandomProgramRunsClean) {
+  const LockstepOptions::Mode mode = GetParam();
+  Rig r("odd", LockstepOptions{mode, 64});
+  ProgramGenerator gen(r.cfg, 11);
+  for (int k = 0; k < 3000; ++k) gen.step(r.lock);
+  EXPECT_GT(gen.stats().reads, 100u) << "off mode checks read data: the program must read";
+  r.lock.final_check();
+  if (mode == LockstepOptions::Mode::kOff) {
+    EXPECT_EQ(r.lock.state_checks(), 1u) << "off mode compares the state only in final_check()";
+  } else {
     EXPECT_GT(r.lock.state_checks(), 10u);
-    EXPECT_EQ(r.rtl->failure(), "");
   }
+  EXPECT_GT(r.lock.entries(), 1000u);
+  EXPECT_EQ(r.rtl->failure(), "");
 }
+
+INSTANTIATE_TEST_SUITE_P(Every, LockstepModes,
+                         ::testing::Values(LockstepOptions::Mode::kCheck, LockstepOptions::Mode::kFast,
+                                           LockstepOptions::Mode::kOff),
+                         [](const auto& info) {
+                           switch (info.param) {
+                             case LockstepOptions::Mode::kCheck: return std::string("check");
+                             case LockstepOptions::Mode::kFast: return std::string("fast");
+                             case LockstepOptions::Mode::kOff: return std::string("off");
+                           }
+                           return std::string("unknown");
+                         });
 
 TEST(Lockstep, RandomProgramUnderBusStalls) {
   RtlOptions ro;

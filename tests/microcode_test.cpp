@@ -4,7 +4,9 @@
 // the extremes of each format and values that overflow.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
@@ -52,6 +54,29 @@ int64_t random_signed(std::mt19937_64& rng, unsigned bits) {
   }
 }
 
+// Instructions of a constant-multiplier row R <- floor(sum c_j Y_j / 2^n), from the
+// canonical signed digits of the constants: one ADD or SUB per non-zero digit, one
+// RSHIFT per digit position from the lowest non-zero digit up, one FUNC to clear R
+// first when the first digit is negative (a positive one copies Y instead of adding);
+// a row of zero constants is one FUNC that clears R.
+size_t const_row_instructions(const std::vector<int64_t>& cs, unsigned n) {
+  size_t nonzero = 0;
+  unsigned lowest = n;
+  int first = 0;
+  for (unsigned k = 0; k < n; ++k) {
+    for (int64_t c : cs) {
+      const std::vector<int8_t> d = csd(c);
+      const int digit = k < d.size() ? d[k] : 0;
+      if (digit == 0) continue;
+      ++nonzero;
+      if (first == 0) first = digit;
+      lowest = std::min(lowest, k);
+    }
+  }
+  if (nonzero == 0) return 1;
+  return nonzero + (n - lowest) + (first < 0 ? 1 : 0);
+}
+
 TEST(Csd, DigitsAreCanonicalAndExact) {
   std::mt19937_64 rng(3);
   for (int k = 0; k < 20000; ++k) {
@@ -97,7 +122,7 @@ TEST_P(Microcode, MultiplyMatchesExactArithmetic) {
       Program q;
       q << setsadr(b);
       mul_const(q, 4, xs[b], 2, n, kSel);
-      EXPECT_LE(q.size(), 1 + n + csd_weight(xs[b]) + 1);
+      EXPECT_EQ(q.size(), 1 + const_row_instructions({xs[b]}, n)) << "n=" << n << " c=" << xs[b];
       r.dev->push(q.code());
       EXPECT_EQ(r.dev->read_word(b, 4), r.dev->read_word(b, 3)) << "n=" << n << " c=" << xs[b];
     }
@@ -144,6 +169,9 @@ TEST_P(Microcode, DotRowsGenericAndConstantAgreeWithExactArithmetic) {
     }
   }
   EXPECT_EQ(generic, 1 + 3 + n * (1 + 18 + 3));
+  size_t want_constant = 0;
+  for (unsigned i = 0; i < 3; ++i) want_constant += const_row_instructions({c[3 * i], c[3 * i + 1], c[3 * i + 2]}, n);
+  EXPECT_EQ(constant, want_constant);
   EXPECT_LT(constant, generic / 2);
   EXPECT_FALSE(r.dev->overflow());
 }

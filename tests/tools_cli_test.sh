@@ -46,6 +46,9 @@ fails "--inject-block: value -2 is negative" "$sim" --config tiny --ops 10 --inj
 fails "--trace-start requires --trace" "$sim" --config tiny --ops 10 --trace-start 10 --trace-end 5
 fails "trace window: first cycle 10 is after the last cycle 5" \
   "$sim" --config tiny --ops 10 --trace "$dir/s.fst" --trace-start 10 --trace-end 5
+fails "--max-backpressure needs --stress" "$sim" --config tiny --ops 10 --max-backpressure
+fails "--reset-every needs --backend rtl" "$sim" --config tiny --ops 10 --reset-every 5 --backend systemc
+fails "this build has no coverage" "$sim" --config tiny --ops 10 --coverage-out "$dir/c.dat"
 
 # ---------------------------------------------------------------- fmpp-report
 fails "unknown subcommand 'foo' (one of: area, paper, precision)" "$report" foo
@@ -54,6 +57,8 @@ fails "--out -: the report needs a file name" "$report" precision --quick --out 
 fails "--out $dir: is a directory" "$report" precision --quick --out "$dir"
 test ! -e "$dir/precision-quick"  # a refused run creates nothing
 fails "--size excludes --quick" "$report" precision --quick --size 16
+fails "$dir/none.csv: cannot open" "$report" area --synth-dir "$src/docs/synth" --fpga-csv "$dir/none.csv" --out -
+fails "$dir/none.csv: cannot open" "$report" paper --quick --fpga-csv "$dir/none.csv" --out "$dir/p.md"
 "$report" area --synth-dir "$src/docs/synth" --out - > "$dir/area.md"
 grep -q "^# FMPP area" "$dir/area.md"
 "$report" paper --help > "$dir/help.txt"

@@ -16,6 +16,12 @@ Machine::Machine(const Config& cfg) : cfg_(cfg) {
   flags_.assign(stride_, 0);
 }
 
+void Machine::reset() {
+  flags_.assign(stride_, 0);
+  mask_ = 0;
+  instret_ = 0;
+}
+
 namespace {
 
 constexpr unsigned kC = map::kFlagC;

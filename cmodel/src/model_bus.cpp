@@ -64,6 +64,16 @@ bool ErrorState::operator==(const ErrorState& o) const {
 
 ModelBus::ModelBus(const Config& cfg) : m_(cfg), ring_(map::kQueueDepth) {}
 
+void ModelBus::reset() {
+  m_.reset();
+  head_ = 0;
+  count_ = 0;
+  cycle_ = 0;
+  gap_ = 0;
+  gap_cnt_ = 0;
+  err_ = ErrorState{};
+}
+
 Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry* push, bool* is_push) const {
   const Decoded d = decode_address(config(), addr);
   *is_push = false;

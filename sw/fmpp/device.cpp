@@ -130,8 +130,4 @@ bool Device::overflow() { return map::kStatusOvf.get(read_reg(map::kRegStatus)) 
 
 uint64_t Device::instret() { return read_reg(map::kRegInstret); }
 
-void Device::set_gap(uint8_t gap) {
-  if (bus_.write(map::kRegCtrl, map::kCtrlGap.put(gap)) != Resp::kOkay) fail("CTRL write", map::kRegCtrl);
-}
-
 }  // namespace fmpp

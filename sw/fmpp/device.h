@@ -44,7 +44,6 @@ class Device {
   bool overflow();  // STATUS.OVF: some block has V set
   uint64_t cycles() const { return bus_.cycles(); }
   uint64_t instret();
-  void set_gap(uint8_t gap);
 
   // Every block, word, flag and tile index is checked against the device's size:
   // std::out_of_range, never an access to some other address.

@@ -20,16 +20,6 @@ void Program::mask(uint32_t m) {
   *this << maskset(m);
 }
 
-void Program::clear() {
-  code_.clear();
-  mask_.reset();
-}
-
-void Program::append(const Program& p) {
-  code_.insert(code_.end(), p.code_.begin(), p.code_.end());
-  mask_ = p.mask_;
-}
-
 std::vector<int8_t> csd(int64_t x) {
   std::vector<int8_t> d;
   while (x != 0) {

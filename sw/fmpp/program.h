@@ -28,14 +28,10 @@ class Program {
   Program& operator<<(const Instr& i);
   // Sets the mask, unless it is known to hold `m` already.
   void mask(uint32_t m);
-  // The mask is no longer known (after code emitted elsewhere ran on the device).
-  void forget_mask() { mask_.reset(); }
   // The program will run after code that left the mask at `m` (emits nothing).
   void assume_mask(uint32_t m) { mask_ = m; }
   const std::vector<uint64_t>& code() const { return code_; }
   size_t size() const { return code_.size(); }
-  void clear();
-  void append(const Program& p);
 
  private:
   std::vector<uint64_t> code_;

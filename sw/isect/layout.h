@@ -9,7 +9,7 @@
 namespace fmpp::isect::layout {
 
 // Flags (flag 0 is the machine's selection flag, map::kFlagV its overflow flag).
-inline constexpr unsigned kSel = 0;     // SEL: the block takes part
+inline constexpr unsigned kSel = map::kFlagSEL;  // SEL: the block takes part
 inline constexpr unsigned kHit = 1;     // the ray passes the inside test of this broadcast
 inline constexpr unsigned kWin = 2;     // the hit is nearer than the block's best so far
 inline constexpr unsigned kTmp = 3;     // scratch (multiply digits, sign tests)

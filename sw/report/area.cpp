@@ -3,6 +3,7 @@
 // (FMPP vs DRAM transistors for 128^2, 512^2 and 1024^2 pixels) and its figures of
 // 18 transistors per CAM bit and about 1000 per block ALU.
 #include "sw/report/area.h"
+#include "sw/report/fpga.h"
 
 #include <algorithm>
 #include <array>
@@ -425,7 +426,7 @@ void write_area_report(const SynthData& data, unsigned words, std::ostream& out)
   out << "`make synth` runs tools/synth.sh (yosys on every size above, flip-flops legalized so that `stat -tech cmos` "
          "counts them, writing summary.csv and cells.csv) and then this report. docs/area.md is this report over the "
          "results committed in docs/synth/: after `make synth`, `cp build/synth/*.csv docs/synth/` and "
-         "`build/fmpp-report area --synth-dir docs/synth --out docs/area.md` (the ctest report_area_doc checks that "
+         "`build/fmpp-report area --synth-dir docs/synth --fpga-csv docs/fpga/summary.csv --out docs/area.md` (the ctest report_area_doc checks that "
          "it is current).\n";
 }
 
@@ -436,6 +437,7 @@ struct AreaOptions {
   std::string synth_dir = "build/synth";
   unsigned words = kPaperWordsRayParallel;
   std::string out;
+  std::string fpga_csv;  // tools/fpga.sh summary.csv: adds the FPGA section (fpga.cpp)
 };
 }  // namespace
 
@@ -449,16 +451,23 @@ void register_area(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1u, 64u));
   sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout ('-': stdout)");
+  sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh: adds the measured FPGA clock and size");
   sub->callback([opt] {
     if (!opt->out.empty()) check_writable("--out", opt->out);
     const SynthData data = read_synth(opt->synth_dir);
+    FpgaData fpga;
+    if (!opt->fpga_csv.empty()) fpga = read_fpga(opt->fpga_csv);
+    auto write = [&](std::ostream& os) {
+      write_area_report(data, opt->words, os);
+      if (!fpga.runs.empty()) write_fpga_section(fpga, os);
+    };
     if (opt->out.empty() || opt->out == "-") {
-      write_area_report(data, opt->words, std::cout);
+      write(std::cout);
       return;
     }
     std::ofstream f(opt->out);
     if (!f) throw std::runtime_error(opt->out + ": cannot write");
-    write_area_report(data, opt->words, f);
+    write(f);
   });
 }
 

@@ -17,6 +17,10 @@ std::string fmt(double v, int prec = 0);
 // Today's local date, YYYY-MM-DD, for a report's "Generated ... on" line.
 std::string today();
 
+// The machine a report was measured on, for the same line: the CPU model from
+// /proc/cpuinfo ("unknown CPU" where there is none) and the number of cores.
+std::string machine_description();
+
 // Where a report subcommand (`fmpp-report paper`, `precision`) writes: its Markdown,
 // and in img_dir its JSON data (data_name) and the plots tools/<plot_script> draws from
 // it. A --quick run (a smoke test, the subcommand's own flag) given no --out or

@@ -15,10 +15,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <map>
 #include <sstream>
-#include <thread>
 
 #include "tb/backend.h"
 #include "sw/fmpp/device.h"
@@ -222,18 +220,6 @@ std::string big(uint64_t v) {
 }
 
 std::string db(double v) { return std::isfinite(v) ? fmt(v, 1) : "identical"; }
-
-std::string machine_description() {
-  std::string cpu = "unknown CPU";
-  std::ifstream f("/proc/cpuinfo");
-  for (std::string line; std::getline(f, line);) {
-    if (line.rfind("model name", 0) == 0) {
-      cpu = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
-}
 
 // One row of the leak table.
 struct LeakRow {

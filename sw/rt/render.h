@@ -1,5 +1,5 @@
 // The Whitted ray tracer. The host generates rays, shades hits and spawns new rays;
-// every intersection goes to an Intersector: the double-precision reference, or the
+// every intersection goes to an Intersector: the exact reference, or the
 // FMPP over any Bus (golden model, Verilated RTL, lockstep, SystemC).
 //
 // Rays travel in batches, one ray type per call, so the FMPP sees what suits it:

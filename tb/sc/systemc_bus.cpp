@@ -173,6 +173,8 @@ class SystemCRtlBus final : public tb::RtlBus {
     bus_.advance(clocks);
   }
   std::string failure() const override { return rtl_->failure(); }
+  // The TLM side keeps its own clock count; a reset under it is not modelled.
+  void reset() override { throw std::logic_error("fmpp::sc: reset is not supported through the SystemC platform"); }
   void withdraw_write_for_test(uint32_t addr, uint64_t data) override {
     rtl_->withdraw_write_for_test(addr, data);
     bus_.advance(2);

@@ -46,6 +46,9 @@ class Machine {
   // Window writes (queued host writes). strb4: byte enables of the 32-bit word.
   void write_word(unsigned block, unsigned word, uint32_t data, uint8_t strb4 = 0xF);
   void write_flags(unsigned block, uint8_t flags);
+  // The RTL's reset: flags, mask and INSTRET to zero; the words keep their values
+  // (memory has no reset).
+  void reset();
 
   uint32_t word(unsigned block, unsigned word) const { return mem_[word * stride_ + block]; }
   uint8_t flags(unsigned block) const { return flags_[block]; }
@@ -58,7 +61,8 @@ class Machine {
   Responders responders() const;
   bool ovf_any() const;
 
-  // Order-independent digest of words, flags, mask (for fast lockstep checks).
+  // state_digest of words, flags and mask: the blocks in index order whatever the
+  // storage layout, so the RTL's digest of an equal state is equal (fast lockstep checks).
   uint64_t state_hash() const;
 
  private:

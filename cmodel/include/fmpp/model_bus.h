@@ -62,6 +62,12 @@ class ModelBus : public Bus {
   std::string name() const override { return "cmodel"; }
 
   const Machine& machine() const { return m_; }
+  // Sets one word before the run, as the RTL's memory powered up (soak with random
+  // initial state). Not a bus access: no clock, no queue.
+  void preload_word(unsigned block, unsigned word, uint32_t value) { m_.write_word(block, word, value); }
+  // The RTL's reset (rst_ni low): the queue is emptied without executing, CYCLES,
+  // CTRL and ERROR restart from zero, the machine resets (Machine::reset: words kept).
+  void reset();
   const Config& config() const { return m_.config(); }
   const ErrorState& error() const { return err_; }
   uint8_t gap() const { return gap_; }

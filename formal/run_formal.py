@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Runs the FMPP's formal properties with yosys and yosys-smtbmc (make formal).
+
+Each property (an assertion labelled p_* in a harness of formal/ or in an `ifdef FORMAL`
+block of rtl/) is checked alone: yosys keeps that one assertion (chformal), then
+yosys-smtbmc runs a bounded model check from reset to the job's depth and, if that
+passes, k-induction. The result per property is
+  proved            BMC and k-induction both passed (holds at every depth),
+  bounded to N      BMC passed to depth N, induction did not close at the tried k,
+  failed at step S  a counterexample: a VCD trace (open it in GTKWave) is written.
+Jobs marked joint (the FIFO's scoreboard) need their invariants together: their
+k-induction runs once over all of the job's assertions, which proves them all if it
+passes. The cover statements (c_*) of each job are run too (each must be reached).
+
+Usage: run_formal.py --root DIR --out DIR [--quick] [--jobs NAME,...]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+
+SOLVER = "z3"
+
+
+def jobs(root, out, quick):
+    rtl = lambda n: os.path.join(root, "rtl", n)
+    frm = lambda n: os.path.join(root, "formal", n)
+    ref = os.path.join(out, "fmpp_instr_ref.sv")
+    pkg = rtl("fmpp_pkg.sv")
+    slave_src = [pkg, rtl("fmpp_addr_decode.sv"), rtl("fmpp_instr_check.sv"), rtl("fmpp_axil_slave.sv"), ref,
+                 frm("fmpp_axil_slave_formal.sv")]
+    js = []
+    for words in ([10, 32] if quick else [2, 10, 16, 32, 64]):
+        js.append(dict(name=f"instr_check_w{words}", top="fmpp_instr_check_formal",
+                       src=[pkg, rtl("fmpp_instr_check.sv"), ref, frm("fmpp_instr_check_formal.sv")],
+                       params={"NumWords": words}, depth=1, kind=0, comb=True))
+    js.append(dict(name="fifo_w8", top="fmpp_fifo_formal", src=[pkg, rtl("fmpp_fifo.sv"), frm("fmpp_fifo_formal.sv")],
+                   params={"Width": 8}, depth=12 if quick else 24, kind=3, joint=True))
+    js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=[pkg, rtl("fmpp_fifo.sv"), frm("fmpp_fifo_formal.sv")],
+                   params={"Width": 92}, depth=4 if quick else 8, kind=3, joint=True))
+    for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
+        js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal", src=slave_src,
+                       params={"NumBlocks": blocks, "NumWords": words}, depth=6 if quick else 12, kind=4))
+    return js
+
+
+def yosys(job, keep, mode, smt2, log):
+    """Writes smt2 with only assertion `keep` (mode 'assert') or only the covers ('cover')."""
+    chp = "".join(f"chparam -set {k} {v} {job['top']}; " for k, v in job["params"].items())
+    if mode == "assert":
+        sel = f"chformal -assert -remove t:$assert n:{keep} %d; chformal -cover -remove; "
+    elif mode == "cover":
+        sel = "chformal -assert -remove; "
+    elif mode == "all":
+        sel = "chformal -cover -remove; "
+    else:
+        sel = ""
+    script = (f"read_verilog -DSYNTHESIS -sv -formal {' '.join(job['src'])}; {chp}prep -top {job['top']}; "
+              f"flatten; {sel}opt -fast; dffunmap; write_smt2 -wires {smt2}")
+    if mode == "list":
+        script = (f"read_verilog -DSYNTHESIS -sv -formal {' '.join(job['src'])}; {chp}prep -top {job['top']}; "
+                  f"flatten; tee -q -o {smt2} select -list t:$assert t:$cover")
+    r = subprocess.run(["yosys", "-q", "-l", log, "-p", script], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"run_formal.py: yosys failed for job {job['name']} (log: {log}):\n{r.stderr[-2000:]}")
+
+
+def smtbmc(args, timeout):
+    t0 = time.time()
+    try:
+        r = subprocess.run(["yosys-smtbmc", "-s", SOLVER] + args, capture_output=True, text=True, timeout=timeout)
+        text = r.stdout.replace("\r", "\n")
+        status = "PASSED" if "Status: PASSED" in text else "FAILED" if "Status: FAILED" in text else "ERROR"
+    except subprocess.TimeoutExpired:
+        text, status = "", "TIMEOUT"
+    return status, text, time.time() - t0
+
+
+def run_joint(job, jdir, props, timeout, counts):
+    """All of a job's assertions at once: BMC, then k-induction over them together."""
+    smt2 = os.path.join(jdir, "all.smt2")
+    yosys(job, None, "all", smt2, os.path.join(jdir, "all.yosys.log"))
+    vcd = os.path.join(jdir, "all.vcd")
+    st, text, secs = smtbmc(["-t", str(job["depth"]), "--dump-vcd", vcd, smt2], timeout)
+    failed = set(re.findall(r"Assert failed in \S+: (\S+)", text))
+    step = re.findall(r"Checking assertions in step (\d+)", text)
+    proved = False
+    if st == "PASSED":
+        st2, _, secs2 = smtbmc(["-i", "-t", str(job["kind"]), smt2], timeout)
+        proved = st2 == "PASSED"
+        secs += secs2
+    for p in props:
+        if st != "PASSED":
+            if p in failed or (not failed and st != "FAILED"):
+                res = f"FAILED at step {step[-1] if step else '?'}: counterexample {os.path.relpath(vcd)}"
+                counts["failed"] += 1
+            else:
+                res = f"bounded to depth {int(step[-1]) if step else 0} (the joint run stopped at another failure)"
+                counts["bounded"] += 1
+        elif proved:
+            res = f"proved (joint BMC depth {job['depth']} and k-induction k={job['kind']}; {secs:.1f} s for all)"
+            counts["proved"] += 1
+        else:
+            res = f"bounded to depth {job['depth']} (joint induction k={job['kind']} did not close)"
+            counts["bounded"] += 1
+        print(f"{job['name']:<22} {p:<22} {res}", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--root", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--quick", action="store_true", help="modest depths (CI)")
+    ap.add_argument("--jobs", default="", help="comma-separated job names (default: all)")
+    ap.add_argument("--timeout", type=int, default=600, help="seconds per solver run")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    r = subprocess.run([sys.executable, os.path.join(a.root, "formal", "gen_instr_ref.py"), "--map",
+                        os.path.join(a.root, "rtl", "fmpp_map.json"), "--out", os.path.join(a.out, "fmpp_instr_ref.sv")])
+    if r.returncode != 0:
+        sys.exit(r.returncode)
+    selected = [j for j in jobs(a.root, a.out, a.quick) if not a.jobs or j["name"] in a.jobs.split(",")]
+    if not selected:
+        sys.exit(f"run_formal.py: no job matches '{a.jobs}'")
+    counts = {"proved": 0, "bounded": 0, "failed": 0, "covered": 0, "uncovered": 0}
+    t_all = time.time()
+    print(f"{'job':<22} {'property':<22} result")
+    for job in selected:
+        jdir = os.path.join(a.out, job["name"])
+        os.makedirs(jdir, exist_ok=True)
+        lst = os.path.join(jdir, "list.txt")
+        yosys(job, None, "list", lst, os.path.join(jdir, "list.log"))
+        names = [l.strip().split("/")[-1] for l in open(lst) if l.strip()]
+        # Flattened cells keep their instance path (u_fifo.p_level_bound).
+        props = [n for n in names if n.split(".")[-1].startswith("p_")]
+        covers = [n for n in names if n.split(".")[-1].startswith("c_")]
+        if not props:
+            sys.exit(f"run_formal.py: job {job['name']} has no p_* assertion")
+        if job.get("joint"):
+            run_joint(job, jdir, props, a.timeout, counts)
+            props = []
+        for p in props:
+            smt2 = os.path.join(jdir, f"{p}.smt2")
+            yosys(job, p, "assert", smt2, os.path.join(jdir, f"{p}.yosys.log"))
+            vcd = os.path.join(jdir, f"{p}.vcd")
+            st, text, secs = smtbmc(["-t", str(job["depth"]), "--dump-vcd", vcd, smt2], a.timeout)
+            if st == "FAILED":
+                step = re.findall(r"Checking assertions in step (\d+)", text)
+                res = f"FAILED at step {step[-1] if step else '?'}: counterexample {os.path.relpath(vcd)}"
+                counts["failed"] += 1
+            elif st != "PASSED":
+                res = f"FAILED: solver {st.lower()} in BMC after {secs:.0f} s"
+                counts["failed"] += 1
+            elif job.get("comb"):
+                res = f"proved (combinational: one step covers every input; {secs:.1f} s)"
+                counts["proved"] += 1
+            else:
+                st2, text2, secs2 = smtbmc(["-i", "-t", str(job["kind"]), smt2], a.timeout)
+                if st2 == "PASSED":
+                    res = f"proved (BMC depth {job['depth']}, k-induction k={job['kind']}; {secs + secs2:.1f} s)"
+                    counts["proved"] += 1
+                else:
+                    res = f"bounded to depth {job['depth']} (induction k={job['kind']} did not close; {secs + secs2:.1f} s)"
+                    counts["bounded"] += 1
+            print(f"{job['name']:<22} {p:<22} {res}", flush=True)
+        if covers:
+            smt2 = os.path.join(jdir, "covers.smt2")
+            yosys(job, None, "cover", smt2, os.path.join(jdir, "covers.yosys.log"))
+            st, text, secs = smtbmc(["-c", "-t", str(max(job["depth"], 2)), smt2], a.timeout)
+            reached = set(re.findall(r"Reached cover statement at (\S+)", text))
+            for c in covers:
+                hit = any(x.rstrip(".").endswith(c) for x in reached)
+                counts["covered" if hit else "uncovered"] += 1
+                print(f"{job['name']:<22} {c:<22} {'covered' if hit else 'NOT COVERED within depth ' + str(job['depth'])}",
+                      flush=True)
+    print(f"formal: {counts['proved']} proved, {counts['bounded']} bounded, {counts['failed']} failed; "
+          f"covers {counts['covered']} reached, {counts['uncovered']} not; {time.time() - t_all:.0f} s")
+    print(f"{counts['proved'] + counts['bounded'] + counts['covered']} passed, {counts['failed'] + counts['uncovered']} failed")
+    return 1 if counts["failed"] or counts["uncovered"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

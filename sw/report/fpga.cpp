@@ -1,0 +1,216 @@
+// FPGA figures for the reports (fpga.h).
+#include "sw/report/fpga.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace fmpp::report {
+
+namespace {
+
+const char* const kColumns[] = {"device", "package", "blocks", "words", "lcs",     "lcs_avail", "luts",    "dffs",
+                                "brams",  "ios",     "fmax_mhz", "placed", "crit_ns", "crit_from", "crit_to"};
+
+[[noreturn]] void fail(const std::string& where, const std::string& what) { throw std::runtime_error(where + ": " + what); }
+
+double parse_number(const std::string& where, const std::string& field, const std::string& text, bool allow_empty) {
+  if (text.empty() && allow_empty) return 0;
+  size_t used = 0;
+  double v = -1;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !(v >= 0)) {
+    fail(where, "field '" + field + "' is '" + text + "', not a non-negative number");
+  }
+  return v;
+}
+
+unsigned parse_count(const std::string& where, const std::string& field, const std::string& text) {
+  const double v = parse_number(where, field, text, false);
+  if (v != std::floor(v) || v > 1e9) fail(where, "field '" + field + "' is '" + text + "', not a count");
+  return static_cast<unsigned>(v);
+}
+
+std::string fixed(double v, int prec) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(prec) << v;
+  return s.str();
+}
+
+// Three significant digits (e.g. 4.88e+09), on a stream of its own.
+std::string sig3(double v) {
+  std::ostringstream s;
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+
+}  // namespace
+
+FpgaData read_fpga(const std::string& csv) {
+  std::ifstream in(csv);
+  if (!in) fail(csv, "cannot open (run tools/fpga.sh or make fpga first)");
+  FpgaData d;
+  std::vector<std::string> header;
+  std::string text;
+  for (unsigned n = 1; std::getline(in, text); ++n) {
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.empty()) continue;
+    if (text[0] == '#') {
+      d.provenance += text.substr(std::min(text.size(), text.find_first_not_of("# "))) + "\n";
+      continue;
+    }
+    std::vector<std::string> f;
+    std::istringstream ls(text);
+    for (std::string cell; std::getline(ls, cell, ',');) f.push_back(cell);
+    if (text.back() == ',') f.emplace_back();
+    const std::string where = csv + ":" + std::to_string(n);
+    if (header.empty()) {
+      header = f;
+      for (const char* c : kColumns) {
+        if (std::find(header.begin(), header.end(), c) == header.end()) fail(where, std::string("header has no column '") + c + "'");
+      }
+      continue;
+    }
+    if (f.size() != header.size()) {
+      fail(where, std::to_string(f.size()) + " fields, the header has " + std::to_string(header.size()));
+    }
+    std::map<std::string, std::string> v;
+    for (size_t i = 0; i < f.size(); ++i) v[header[i]] = f[i];
+    FpgaRun r;
+    r.device = v["device"];
+    r.package = v["package"];
+    if (r.device.empty()) fail(where, "field 'device' is empty");
+    r.blocks = parse_count(where, "blocks", v["blocks"]);
+    r.words = parse_count(where, "words", v["words"]);
+    r.lcs = parse_count(where, "lcs", v["lcs"]);
+    r.lcs_avail = parse_count(where, "lcs_avail", v["lcs_avail"]);
+    r.luts = parse_count(where, "luts", v["luts"]);
+    r.dffs = parse_count(where, "dffs", v["dffs"]);
+    r.brams = parse_count(where, "brams", v["brams"]);
+    r.ios = parse_count(where, "ios", v["ios"]);
+    if (v["placed"] != "0" && v["placed"] != "1") fail(where, "field 'placed' is '" + v["placed"] + "', not 0 or 1");
+    r.placed = v["placed"] == "1";
+    r.fmax_mhz = parse_number(where, "fmax_mhz", v["fmax_mhz"], !r.placed);
+    r.crit_ns = parse_number(where, "crit_ns", v["crit_ns"], !r.placed);
+    if (r.placed && r.fmax_mhz <= 0) fail(where, "a placed run needs a maximum frequency");
+    r.crit_from = v["crit_from"];
+    r.crit_to = v["crit_to"];
+    d.runs.push_back(r);
+  }
+  if (header.empty()) fail(csv, "no header line");
+  if (d.runs.empty()) fail(csv, "no run");
+  return d;
+}
+
+const FpgaRun& reference_run(const FpgaData& d) {
+  const FpgaRun* best = nullptr;
+  for (const FpgaRun& r : d.runs) {
+    if (!r.placed) continue;
+    if (!best || r.lcs_avail > best->lcs_avail ||
+        (r.lcs_avail == best->lcs_avail && (r.blocks > best->blocks ||
+                                            (r.blocks == best->blocks && r.fmax_mhz > best->fmax_mhz)))) {
+      best = &r;
+    }
+  }
+  if (!best) throw std::runtime_error("FPGA figures: no run was placed and routed");
+  return *best;
+}
+
+void write_fpga_section(const FpgaData& d, std::ostream& out) {
+  out << "\n## On an FPGA: measured clock and size\n\n";
+  out << "Placed and routed by `make fpga` (tools/fpga.sh: yosys `synth_ice40`, nextpnr-ice40 with a 50 MHz "
+         "target) behind the pin-saving harness fpga/fmpp_fpga_top.sv (every input from one shift chain, every "
+         "output folded into one registered pin; the full AXI port needs about 220 pins, more than the packages "
+         "have). All paths of the FMPP start and end at flip-flops of one clock, so the frequency is the FMPP's.\n\n";
+  std::istringstream prov(d.provenance);
+  for (std::string l; std::getline(prov, l);) out << "    " << l << "\n";
+  out << "\n| device | blocks x words | logic cells | LUTs | flip-flops | block RAMs | Fmax (MHz) | critical path (ns) |\n";
+  out << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  for (const FpgaRun& r : d.runs) {
+    out << "| iCE40" << r.device << "-" << r.package << " | " << r.blocks << " x " << r.words << " | " << r.lcs << " / "
+        << r.lcs_avail << " (" << fixed(100.0 * r.lcs / r.lcs_avail, 0) << " %) | " << r.luts << " | " << r.dffs
+        << " | " << r.brams << " | " << (r.placed ? fixed(r.fmax_mhz, 1) : "does not fit") << " | "
+        << (r.placed ? fixed(r.crit_ns, 1) : "-") << " |\n";
+  }
+  // Cost per block: slope between the smallest and the largest block count of one device and word count.
+  out << "\n**Per block** (difference between the runs of one device, the same words, and different block "
+         "counts, divided by the block difference):\n\n";
+  out << "| device | words | blocks | LUTs per block | flip-flops per block | logic cells per block | Fmax lost per block (MHz) |\n";
+  out << "| --- | ---: | --- | ---: | ---: | ---: | ---: |\n";
+  std::map<std::pair<std::string, unsigned>, std::vector<const FpgaRun*>> groups;
+  for (const FpgaRun& r : d.runs) groups[{r.device, r.words}].push_back(&r);
+  for (auto& [key, g] : groups) {
+    std::sort(g.begin(), g.end(), [](const FpgaRun* a, const FpgaRun* b) { return a->blocks < b->blocks; });
+    const FpgaRun& lo = *g.front();
+    const FpgaRun& hi = *g.back();
+    if (hi.blocks == lo.blocks) continue;
+    const double db = hi.blocks - lo.blocks;
+    out << "| iCE40" << key.first << " | " << key.second << " | " << lo.blocks << " .. " << hi.blocks << " | "
+        << fixed((double(hi.luts) - lo.luts) / db, 0) << " | " << fixed((double(hi.dffs) - lo.dffs) / db, 0) << " | "
+        << fixed((double(hi.lcs) - lo.lcs) / db, 0) << " | "
+        << (hi.placed && lo.placed ? fixed((lo.fmax_mhz - hi.fmax_mhz) / db, 2) : "-") << " |\n";
+  }
+  const FpgaRun& ref = reference_run(d);
+  const FpgaRun* small = &ref;
+  for (const FpgaRun& r : d.runs) {
+    if (r.placed && r.device == ref.device && r.words == ref.words && r.blocks < small->blocks) small = &r;
+  }
+  out << "\nThe critical path of the " << ref.blocks << " x " << ref.words << " run on iCE40" << ref.device << " ("
+      << fixed(ref.crit_ns, 1) << " ns) starts at `" << ref.crit_from << "` and ends at `" << ref.crit_to
+      << "`; docs/fpga/ keeps nextpnr's listing of each run's path, net by net.\n\n";
+  out << "**What this implies.** The measured " << fixed(ref.fmax_mhz, 1) << " MHz (" << ref.blocks
+      << " blocks; " << fixed(small->fmax_mhz, 1) << " MHz with " << small->blocks
+      << ") is below the paper's assumed 50 MHz by a factor of " << fixed(50.0 / ref.fmax_mhz, 1)
+      << ". For a chip it is a pessimistic bound: each level of iCE40 logic is a 4-input LUT plus programmable "
+         "routing (the listings show routing as more than half of the path), where a standard-cell gate of a current "
+         "process switches in tens of picoseconds. The path is one clock from the queue's block RAM through "
+         "the instruction decode and a block's predicate and operand selection into the write data of a word; "
+         "its logic part stays the same as blocks are added and its routing grows as the device fills. Every block "
+         "has its own ALU, so in an ASIC the clock is set by one block's datapath plus the broadcast of the "
+         "instruction to all blocks, which grows with the array and is where a pipeline register between the "
+         "queue and the array would go (one clock of latency per queue entry; not implemented here, the model would "
+         "have to follow). The FPGA counts also "
+         "confirm the gate-level picture above: a block's words are flip-flops with multiplexers in front, not "
+         "memory; the block RAMs hold only the instruction queue, because each block reads three words and the "
+         "host a fourth in one clock, more ports than a block RAM has.\n";
+}
+
+void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, double cpu_tests_per_s,
+                            std::ostream& out) {
+  if (!(clocks_per_broadcast > 0) || !(cpu_tests_per_s > 0)) {
+    throw std::invalid_argument("write_clock_comparison: clocks per broadcast " + fixed(clocks_per_broadcast, 1) +
+                                " and CPU rate " + fixed(cpu_tests_per_s, 1) + " must be positive");
+  }
+  const FpgaRun& ref = reference_run(d);
+  const double f = ref.fmax_mhz * 1e6;
+  out << "## The paper's 50 MHz beside a measured clock\n\n";
+  out << "Every clock figure above assumes the paper's 50 MHz. The one measured clock of this design is "
+      << fixed(ref.fmax_mhz, 1) << " MHz: " << ref.blocks << " blocks of " << ref.words << " words placed and routed on "
+      << "an iCE40" << ref.device << " FPGA (`make fpga`, docs/area.md). The ray-parallel test rates at both clocks:\n\n";
+  out << "| blocks | tests/s at 50 MHz (paper) | x one CPU core | tests/s at " << fixed(ref.fmax_mhz, 1)
+      << " MHz (measured, iCE40) | x one CPU core |\n| --- | --- | --- | --- | --- |\n";
+  for (double side : {64.0, 256.0, 1024.0}) {
+    const double p = side * side;
+    const double t50 = p * 50e6 / clocks_per_broadcast, tf = p * f / clocks_per_broadcast;
+    out << "| " << fixed(side, 0) << "^2 | " << sig3(t50) << " | " << fixed(t50 / cpu_tests_per_s, 1) << " | " << sig3(tf)
+        << " | " << fixed(tf / cpu_tests_per_s, 1) << " |\n";
+  }
+  out << "\nTable 2 compares the FMPP with the sequential machine at one and the same clock, so its speed-ups do "
+         "not depend on the clock; with the FMPP at the measured "
+      << fixed(ref.fmax_mhz, 1) << " MHz and the sequential machine at 50 MHz each would be "
+      << fixed(ref.fmax_mhz / 50.0, 2) << " times as large. The times of Fig. 7 grow by "
+      << fixed(50.0 / ref.fmax_mhz, 2)
+      << " at the measured clock. An FPGA clock is a lower bound for the chip the paper has in mind "
+         "(docs/area.md explains why).\n\n";
+}
+
+}  // namespace fmpp::report

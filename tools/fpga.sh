@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# make fpga: synthesis, placement and routing of small FMPP configurations for
+# Lattice iCE40 FPGAs with the open flow (yosys synth_ice40, nextpnr-ice40), behind
+# the pin-saving harness fpga/fmpp_fpga_top.sv. Reports per run the measured maximum
+# clock frequency (nextpnr's timing analysis after routing), the logic cells, LUTs,
+# flip-flops, block RAMs and I/Os used, and the critical path.
+#
+# Writes under $FPGA_OUT (default build/fpga):
+#   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
+#   summary.csv   device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
+#   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing
+# `cp build/fpga/summary.csv build/fpga/critical_*.txt docs/fpga/` keeps a run's figures
+# with the docs (docs/area.md reads them through fmpp-report area).
+#
+# Usage: fpga.sh [DEVICE:PACKAGE:BLOCKSxWORDS ...]
+#   default: hx8k:ct256:1x8 hx8k:ct256:2x8 hx8k:ct256:3x8 up5k:sg48:1x8 up5k:sg48:2x8
+# Environment: FPGA_FREQ (target MHz for timing-driven placement, default 50),
+# FPGA_SEED (placer seed, default 1).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+runs=("$@")
+[ ${#runs[@]} -gt 0 ] || runs=(hx8k:ct256:1x8 hx8k:ct256:2x8 hx8k:ct256:3x8 up5k:sg48:1x8 up5k:sg48:2x8)
+out=${FPGA_OUT:-$root/build/fpga}
+freq=${FPGA_FREQ:-50}
+seed=${FPGA_SEED:-1}
+for tool in yosys nextpnr-ice40 python3; do
+  command -v "$tool" >/dev/null || { echo "fpga.sh: $tool not found (make deps installs yosys and nextpnr-ice40)" >&2; exit 2; }
+done
+mkdir -p "$out"
+sources="$root/rtl/fmpp_pkg.sv $(ls "$root"/rtl/*.sv | grep -v _pkg.sv | tr '\n' ' ') $root/fpga/fmpp_fpga_top.sv"
+stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
+cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
+machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"
+summary=$(mktemp)
+trap 'rm -f "$summary"' EXIT
+{
+  echo "# FMPP on iCE40: tools/fpga.sh ${runs[*]}"
+  echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); target ${freq} MHz, seed $seed; $stamp, on $machine"
+  echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to"
+} > "$summary"
+
+printf "%-6s %-6s %-6s %8s %8s %7s %6s %5s %9s %7s\n" device pkg size LCs LUTs DFFs BRAMs IOs Fmax/MHz seconds
+for r in "${runs[@]}"; do
+  if ! [[ $r =~ ^([a-z0-9]+):([a-z0-9]+):([0-9]+)x([0-9]+)$ ]]; then
+    echo "fpga.sh: run '$r' is not DEVICE:PACKAGE:BLOCKSxWORDS (e.g. hx8k:ct256:2x8)" >&2
+    exit 2
+  fi
+  dev=${BASH_REMATCH[1]}; pkg=${BASH_REMATCH[2]}; b=${BASH_REMATCH[3]}; w=${BASH_REMATCH[4]}
+  name="${dev}_${b}x${w}"
+  t0=$(date +%s)
+  if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv $sources; \
+      chparam -set NumBlocks $b -set NumWords $w fmpp_fpga_top; \
+      synth_ice40 -top fmpp_fpga_top -json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
+    echo "fpga.sh: yosys failed for $r:" >&2; tail -20 "$out/$name.yosys.log" >&2; exit 1
+  fi
+  # nextpnr exits non-zero when the design does not fit; that is a result, not an error.
+  placed=1
+  if ! nextpnr-ice40 "--$dev" --package "$pkg" --json "$out/$name.json" --pcf-allow-unconstrained \
+      --freq "$freq" --timing-allow-fail --seed "$seed" --report "$out/$name.report.json" \
+      -l "$out/$name.pnr.log" -q >/dev/null 2>&1; then
+    placed=0
+  fi
+  secs=$(( $(date +%s) - t0 ))
+  python3 - "$out" "$name" "$dev" "$pkg" "$b" "$w" "$placed" >> "$summary" <<'PY'
+import json, re, sys
+out, name, dev, pkg, b, w, placed = sys.argv[1:]
+stat = open(f"{out}/{name}.stat").read()
+def cells(pattern):
+    return sum(int(n) for c, n in re.findall(r"^\s+(SB_\w+)\s+(\d+)\s*$", stat, re.M) if re.fullmatch(pattern, c))
+luts, dffs, brams = cells(r"SB_LUT4"), cells(r"SB_DFF\w*"), cells(r"SB_RAM40_4K\w*|SB_SPRAM256KA")
+log = open(f"{out}/{name}.pnr.log").read()
+m = re.search(r"ICESTORM_LC:\s+(\d+)/\s*(\d+)", log)
+lcs, avail = (m.group(1), m.group(2)) if m else ("", "")
+m = re.search(r"SB_IO:\s+(\d+)/", log)
+ios = m.group(1) if m else ""
+fmax, crit, cfrom, cto = "", "", "", ""
+if placed == "1":
+    fm = re.findall(r"Max frequency for clock\s+'[^']*':\s+([\d.]+) MHz", log)
+    fmax = fm[-1] if fm else ""
+    # The last critical path listing (after routing): its total delay and end points.
+    blocks = log.split("Critical path report for clock")
+    if len(blocks) > 1:
+        # Only the clock-to-clock path, up to its "N ns logic, M ns routing" total.
+        t = re.search(r"([\d.]+) ns logic, ([\d.]+) ns routing", blocks[-1])
+        last = blocks[-1][:t.end()] if t else blocks[-1]
+        if t:
+            crit = "%.2f" % (float(t.group(1)) + float(t.group(2)))
+        srcs = re.findall(r"Source ([^\s]+)", last)
+        sinks = re.findall(r"Setup ([^\s]+)", last)
+        if srcs and sinks:
+            cfrom, cto = srcs[0], sinks[-1]
+        with open(f"{out}/critical_{name}.txt", "w") as f:
+            f.write("Critical path report for clock" + last + "\n")
+print(",".join([dev, pkg, b, w, lcs, avail, str(luts), str(dffs), str(brams), ios, fmax, placed, crit, cfrom, cto]))
+PY
+  tail -1 "$summary" | awk -F, -v s="$secs" '{ printf "%-6s %-6s %-6s %8s %8s %7s %6s %5s %9s %7s%s\n",
+      $1, $2, $3 "x" $4, $5 "/" $6, $7, $8, $9, $10, ($12 == 1 ? $11 : "no fit"), s, "" }'
+done
+cp "$summary" "$out/summary.csv"
+echo
+echo "wrote $out/summary.csv (logs, nextpnr reports and critical paths beside it)"
