@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
 
   try {
     check_trace_window(trace_start, trace_end);
+    check_trace_file(trace);
     const Config cfg = named_config(config);
     tb::RtlOptions ro;
     ro.trace_file = trace;

@@ -31,6 +31,26 @@ for be in cmodel rtl; do
   done
 done
 cmp "$dir/cmodel.ray.txt" "$dir/rtl.ray.txt"
+# The RTL backend with its default options runs (a built configuration of 64 blocks).
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend rtl --origins group --out "$dir/rtl.default.txt"
+diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/rtl.default.txt")
+# Outputs that would overwrite an input, or each other, are refused before the work.
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --out "$dir/tris.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--out $dir/tris.txt is the input --triangles" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --out "$dir/o.txt" --report "$dir/o.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--report and --out name the same file" "$dir/err.txt"
+if "$bin" --triangles /dev/zero --rays "$dir/rays.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "/dev/zero: cannot read triangle file: not a regular file (character device)" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend reference --out /dev/full 2> "$dir/err.txt"; then exit 1; fi
+grep -q "/dev/full: write failed (No space left on device)" "$dir/err.txt"
+# Out of memory names what was being done (not a bare std::bad_alloc). Not under the
+# sanitizers, whose shadow memory needs far more address space than this limit.
+if [ -z "${ASAN_OPTIONS:-}" ]; then
+  awk 'BEGIN { for (i = 0; i < 400000; i++) printf "0 0 0 %.6f %.6f -1\n", (i % 997) / 997, (i % 991) / 991 }' > "$dir/many.txt"
+  if (ulimit -v 50000; "$bin" --triangles "$dir/tris.txt" --rays "$dir/many.txt" --backend reference --out /dev/null) \
+      2> "$dir/err.txt"; then exit 1; fi
+  grep -q "out of memory while reading $dir/many.txt" "$dir/err.txt"
+fi
 # Malformed input: the error names the file and the line.
 printf '0 0 0  1 0 0  0 1\n' > "$dir/bad.txt"
 if "$bin" --triangles "$dir/bad.txt" --rays "$dir/rays.txt" 2> "$dir/err.txt"; then exit 1; fi

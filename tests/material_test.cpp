@@ -125,7 +125,7 @@ Scene one_triangle_scene(double reflectivity) {
 
 TEST(Shade, AMissAddsTheBackgroundOnly) {
   const Scene sc = one_triangle_scene(0);
-  const Shader shader(sc);
+  const Shader shader(sc, 0);
   Image img(1, 1);
   ShadeOutput out;
   shader.shade(fmpp::isect::Ray{glm::dvec3(5, 5, 1), glm::dvec3(0, 0, -1)}, Path{0, glm::dvec3(2), RayKind::kPrimary},
@@ -137,7 +137,7 @@ TEST(Shade, AMissAddsTheBackgroundOnly) {
 
 TEST(Shade, AHitQueriesTheLightsInFrontAndSpawnsItsMaterialsRays) {
   const Scene sc = one_triangle_scene(0.5);
-  const Shader shader(sc);
+  const Shader shader(sc, 0);
   const fmpp::isect::Ray r{glm::dvec3(0.25, 0.25, 1), glm::dvec3(0, 0, -1)};
   const fmpp::isect::Hit h{0, 1.0};
   Image img(1, 1);

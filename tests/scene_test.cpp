@@ -83,28 +83,30 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
     "materials": {"m": {}}, "meshes": [{"file": "ok.obj", "material": "m"}]})");
   EXPECT_EQ(error_of("missing.json"), dir() + "/missing.json: field 'lights': missing");
 
-  // OBJ files: each error names the file and the line.
+  // Mesh files: each error names the file and the cause (the mesh library gives no line).
   struct BadObj {
     const char* name;
     const char* text;
-    const char* error;  // after "<dir>/<name>.obj:"
+    const char* error;  // after "<dir>/<name>.obj: "
   };
   const BadObj bad_objs[] = {
-      {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n", "2: 'zero' is not a finite number"},
-      {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n", "4: face index 4 refers to a missing vertex"},
-      {"badtag", "v 0 0 -3\nvx 1 0 -3\n", "2: unknown statement 'vx'"},
+      {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n",
+       "cannot read mesh: not a valid obj file (OBJ: vertex index out of range)"},
+      {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n",
+       "cannot read mesh: not a valid obj file (OBJ: vertex index out of range)"},
+      {"nofaces", "v 0 0 -3\nv 1 0 -3\n", "cannot read mesh: not a valid obj file (Validation failed: Mesh  contains no faces)"},
       {"bignum", "v 0 0 -3\nv 1e160 0 -3\nv 0 1 -3\nf 1 2 3\n",
-       "2: vertex is too far out: |1e+160| exceeds the limit 1e+100"},
-      {"huge", "v 0 0 -3\nv 1 0 -3\nv 0 1e300 -3\nf 1 2 3\n",
-       "3: vertex is too far out: |1e+300| exceeds the limit 1e+100"},
+       "vertex of face 0 of part 'defaultobject' is too far out: |1e+160| exceeds the limit 1e+100"},
+      {"huge", "v 0 0 -3\nv 1 0 -3\nv 0 1e300 -3\no big\nf 1 2 3\n",
+       "vertex of face 0 of part 'big' is too far out: |1e+300| exceeds the limit 1e+100"},
       {"bignormal", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 -1e101\nf 1//1 2//1 3//1\n",
-       "4: normal is too far out: |-1e+101| exceeds the limit 1e+100"},
+       "normal of face 0 of part 'defaultobject' is too far out: |-1e+101| exceeds the limit 1e+100"},
   };
   for (const BadObj& b : bad_objs) {
     const std::string obj = std::string(b.name) + ".obj", json = std::string(b.name) + ".json";
     write(obj, b.text);
     write(json, scene_json(R"({"file": ")" + obj + R"(", "material": "m"})"));
-    EXPECT_EQ(error_of(json), dir() + "/" + obj + ":" + b.error);
+    EXPECT_EQ(error_of(json), dir() + "/" + obj + ": " + b.error);
   }
 
   write("dirmesh.json", scene_json(R"({"file": ".", "material": "m"})"));
@@ -172,16 +174,20 @@ TEST(Scene, DuplicateKeysAreErrors) {
   EXPECT_EQ(error_of("twice.json"), "no error");
 }
 
-TEST(Scene, ObjAcceptsSubnormalsAndShortTextureCoordinates) {
-  // 1e-310 is a finite (subnormal) number: read as its value. A vt may have 1 to 3
-  // numbers (textures are not used).
-  write("sub.obj", "v 0 0 -3\nv 1 1e-310 -3\nv 0 1 -3\nvt 0.5\nvt 0.5 0.25 1e-310\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");
+TEST(Scene, ObjKeepsDoublePrecisionAndSubnormals) {
+  // OBJ coordinates are read in double, as written (the mesh library's single precision
+  // would round 0.1 and turn 1e-310 into 0). A vt has 2 or 3 numbers (the library's rule;
+  // textures are not used).
+  write("sub.obj", "v 0 0 -3\nv 1 1e-310 -3\nv 0.1 1 -3\nvt 0.5 0.5\nvt 0.5 0.25 1e-310\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n");
   write("sub.json", scene_json(R"({"file": "sub.obj", "material": "m"})"));
   EXPECT_EQ(error_of("sub.json"), "no error");
-  EXPECT_EQ(load_scene(dir() + "/sub.json").triangles.at(0).p[1].y, 1e-310);
+  const Scene s = load_scene(dir() + "/sub.json");
+  EXPECT_EQ(s.triangles.at(0).p[1].y, 1e-310);
+  EXPECT_EQ(s.triangles.at(0).p[2].x, 0.1);
   write("novt.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvt\nf 1 2 3\n");
   write("novt.json", scene_json(R"({"file": "novt.obj", "material": "m"})"));
-  EXPECT_EQ(error_of("novt.json"), dir() + "/novt.obj:4: vt needs 1 to 3 numbers, found 0");
+  EXPECT_EQ(error_of("novt.json"),
+            dir() + "/novt.obj: cannot read mesh: not a valid obj file (OBJ: Invalid number of components)");
 }
 
 }  // namespace

@@ -73,4 +73,26 @@ mkdir -p "$dir/run/docs"
 test -s "$dir/run/precision-quick.md"
 test -s "$dir/run/precision-quick/precision_data.json"
 test -z "$(ls -A "$dir/run/docs")"
+# ------------------------------------------------ hostile input and outputs (issue 14)
+r8=(--backend reference --width 8 --height 8 --quiet)
+fails "/dev/full: write failed (No space left on device)" "$render" --scene "$scene" "${r8[@]}" --out /dev/full
+cp "$src/scenes/one_triangle.json" "$src/scenes/one_triangle.obj" "$dir/"
+fails "is the input mesh of --scene" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" --out "$dir/one_triangle.obj"
+cmp "$dir/one_triangle.obj" "$src/scenes/one_triangle.obj"
+fails "is the input --scene" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" --out "$dir/one_triangle.json"
+fails "--report and --out name the same file" "$render" --scene "$scene" "${r8[@]}" --out "$dir/a.png" --report "$dir/a.png"
+fails "not a regular file (character device)" "$render" --scene /dev/zero "${r8[@]}" --out "$dir/a.png"
+fails "--width: 'abc' is not a whole number" "$render" --scene "$scene" "${r8[@]}" --width abc --out "$dir/a.png"
+fails "resolution 16384x16384 needs about 8448 MiB" "$render" --scene "$scene" --backend reference --width 16384 \
+  --height 16384 --out "$dir/a.png"
+fails "no built RTL configuration has 7 blocks and 32 words" "$render" --scene "$scene" --backend rtl --blocks 7 \
+  --words 32 --width 8 --height 8 --out "$dir/a.png"
+fails "6 words per block are too few" "$render" --scene "$scene" --backend rtl --blocks 7 --words 6 --width 8 \
+  --height 8 --out "$dir/a.png"
+fails "2 words per block are too few" "$render" --scene "$scene" --backend cmodel --blocks 1 --words 2 --width 8 \
+  --height 8 --out "$dir/a.png"
+fails "--trace /dev/full: not a regular file" "$sim" --config tiny --ops 10 --trace /dev/full
+"$render" --scene "$scene" "${r8[@]}" --out "$dir/ok.png" --report "$dir/ok.json"
+test -s "$dir/ok.png" && test -s "$dir/ok.json" && test -z "$(ls "$dir" | grep -F .tmp-)"
+
 echo "tools CLI: OK"

@@ -55,8 +55,16 @@ struct Hit {
   bool hit() const { return tri >= 0; }
 };
 
-// Closest point of triangle `t` to point `q` (Voronoi-region walk over vertices, edges, face).
+// Closest point of triangle `t` to point `q` (Voronoi-region walk over vertices, edges,
+// face), without overflow for any input within the limits.
 glm::dvec3 closest_point(const Triangle& t, const glm::dvec3& q);
+// The walk itself, from vertex a: edges ab, ac and the point aq. Which region holds the
+// closest point, and its ratios along the edge (u) or over the face (u on ab, v on ac).
+struct ClosestRegion {
+  enum Kind { kA, kB, kC, kAB, kAC, kBC, kFace } kind = kA;
+  double u = 0, v = 0;
+};
+ClosestRegion closest_region(glm::dvec3 ab, glm::dvec3 ac, glm::dvec3 aq);
 
 // Smallest and largest distance from q to any point of any triangle (0 if q touches one).
 struct DistanceRange {

@@ -35,8 +35,9 @@ double number(const std::string& file, unsigned line, const std::string& field, 
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != text.size() || !(v >= 0)) {
-    bad(file, line, "field '" + field + "' is '" + text + "', not a non-negative number");
+  // "inf" parses, and would reach the report as inf or -nan: finite numbers only.
+  if (used == 0 || used != text.size() || !(v >= 0) || !std::isfinite(v)) {
+    bad(file, line, "field '" + field + "' is '" + text + "', not a finite non-negative number");
   }
   return v;
 }

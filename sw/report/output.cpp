@@ -1,14 +1,18 @@
 #include "sw/report/output.h"
 
+#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "sw/util/files.h"
+#include "sw/util/output_file.h"
+#include "sw/util/process.h"
+
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -22,16 +26,6 @@ std::string fmt(double v, int prec) {
   return buf;
 }
 
-namespace {
-
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  f << text;
-  if (!f.flush()) throw std::runtime_error(path + ": write failed");
-}
-
-}  // namespace
 
 std::string today() {
   char date[32];
@@ -77,6 +71,7 @@ void prepare_outputs(ReportOutput& o) {
   check_writable("--out", o.out, false);
   std::filesystem::create_directories(o.img_dir);
   check_writable("--img-dir", o.img_dir + "/" + o.data_name, false);
+  check_no_alias({{"--out", o.out}, {"--img-dir", o.img_dir + "/" + o.data_name}}, {});
 }
 
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data) {
@@ -84,12 +79,11 @@ void write_report(const ReportOutput& o, const std::string& markdown, const nloh
   const std::filesystem::path md(o.out);
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
   const std::string data_file = o.img_dir + "/" + o.data_name;
-  write_file(data_file, data.dump(1) + "\n");
-  write_file(o.out, markdown);
+  write_output(data_file, data.dump(1) + "\n");
+  write_output(o.out, markdown);
   if (o.no_plots) return;
-  const std::string cmd =
-      "/usr/bin/python3 " FMPP_SOURCE_DIR "/tools/" + o.plot_script + " '" + data_file + "' '" + o.img_dir + "'";
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("plotting failed: " + cmd);
+  // An argument vector, no shell: the paths are passed as they are, whatever they hold.
+  run_program({"/usr/bin/python3", FMPP_SOURCE_DIR "/tools/" + o.plot_script, data_file, o.img_dir});
 }
 
 }  // namespace fmpp::report

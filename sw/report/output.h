@@ -7,6 +7,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace fmpp::report {
 
@@ -48,7 +49,8 @@ void prepare_outputs(ReportOutput& o);
 
 // Writes `markdown` to o.out and `data` to o.img_dir/o.data_name (creating both
 // directories), then, unless --no-plots, runs
-// python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir>.
+// python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir> (fmpp::run_program,
+// sw/util/process.h: no shell).
 // Throws std::runtime_error naming the file or command that failed.
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data);
 

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "sw/util/output_file.h"
+
 namespace rt {
 
 std::vector<uint8_t> Image::to_rgb8() const {
@@ -23,9 +25,16 @@ std::vector<uint8_t> Image::to_rgb8() const {
 
 void Image::write_png(const std::string& path) const {
   const std::vector<uint8_t> rgb = to_rgb8();
-  if (!stbi_write_png(path.c_str(), w_, h_, 3, rgb.data(), w_ * 3)) {
-    throw std::runtime_error(path + ": cannot write PNG");
+  // Encoded in memory, then written (checked, atomically) by write_output: stb's own
+  // file writer ignores write errors.
+  std::string png;
+  auto append = [](void* ctx, void* data, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, w_, h_, 3, rgb.data(), w_ * 3)) {
+    throw std::runtime_error(path + ": cannot encode PNG");
   }
+  fmpp::write_output(path, png);
 }
 
 ImageDiff compare(const Image& a, const Image& b, int tolerance) {

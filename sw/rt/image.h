@@ -20,7 +20,8 @@ class Image {
   glm::dvec3& operator[](size_t i) { return px_[i]; }
   // 8-bit RGB, row-major from the top: clamp to [0, 1], gamma 1/2.2, round.
   std::vector<uint8_t> to_rgb8() const;
-  // Writes a PNG (stb_image_write). Throws std::runtime_error on failure.
+  // Writes a PNG (stb_image_write), atomically and checked (fmpp::write_output). Throws
+  // std::runtime_error naming the path and the cause on failure.
   void write_png(const std::string& path) const;
 
  private:

@@ -189,8 +189,29 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   plan.why_words = words.why;
   plan.why_blocks = blocks.why;
   plan.config = fmpp::Config{blocks.value, words.value};
+  if (req.words) {
+    // Too few words would fail later inside a kernel ("the FMPP has 2"): said here.
+    PlanRequest auto_words = req;
+    auto_words.words.reset();
+    const Decision<unsigned> need = decide_words(scene, auto_words, depth);
+    if (*req.words < need.value) {
+      throw std::invalid_argument(std::to_string(*req.words) + " words per block are too few: " + need.why);
+    }
+  }
   if (!req.rtl_configs.empty()) {
     const Decision<fmpp::Config> rtl = fit_rtl(req.rtl_configs, blocks.value, words.value, pixels);
+    // Sizes the user gave are kept or refused, never replaced silently.
+    if ((req.blocks && rtl.value.blocks != blocks.value) || (req.words && rtl.value.words != words.value)) {
+      std::string built;
+      for (const std::string& name : req.rtl_configs) {
+        built += (built.empty() ? "" : ", ") + name + " (" + fmpp::named_config(name).str() + ")";
+      }
+      throw std::invalid_argument("no built RTL configuration has " +
+                                  (req.blocks ? std::to_string(blocks.value) + " blocks" : std::string()) +
+                                  (req.blocks && req.words ? " and " : "") +
+                                  (req.words ? std::to_string(words.value) + " words" : std::string()) +
+                                  ": the built ones are " + built + "; use --config NAME, or backend cmodel for any size");
+    }
     plan.config = rtl.value;
     plan.why_blocks += rtl.why;
   }

@@ -1,8 +1,10 @@
 // Whitted ray tracing with batched intersection (see render.h).
 #include "sw/rt/render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "sw/isect/reference.h"
@@ -17,11 +19,27 @@ std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
   return fmpp::isect::nearest_reference(rays, tris_);
 }
 
+FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
+                                 const fmpp::isect::KernelOptions& opt)
+    : dev_(dev), tris_(tris), opt_(opt) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const auto& t : tris) {
+    for (const auto& p : t.p) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  // Half-extents first: the diagonal of a box near the coordinate limit would overflow.
+  margin_ = tris.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo);
+}
+
 std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
   return fmpp::isect::intersect_fmpp(dev_, rays, tris_, opt_, &stats_);
 }
 
 namespace {
+
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -29,70 +47,119 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-std::vector<Ray> primary_rays(const Camera& cam, int width, int height) {
+double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
+  // p = o + t d: each component is off by at most |t d| t_err (the intersector's error
+  // of t) plus the rounding of the multiply and add, a few units of 2^-53 of |o| + |t d|.
+  // As pbrt-v4 does, the bound of the error box projected on the normal, doubled.
+  const double td = std::abs(t) * max_abs(r.d);
+  const double e = td * t_err + 4 * std::ldexp(1.0, -53) * (max_abs(r.o) + td);
+  return 2 * e * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+}
+
+std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last) {
   // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
   // its culling frustum is thin.
   const glm::dvec3 fwd = glm::normalize(cam.look_at - cam.eye);
   const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up));
   const glm::dvec3 upv = glm::cross(right, fwd);
   const double th = std::tan(glm::radians(cam.fov_y_deg) / 2), aspect = double(width) / height;
+  last = std::min(last, static_cast<size_t>(width) * static_cast<size_t>(height));
   std::vector<Ray> rays;
-  rays.reserve(static_cast<size_t>(width) * height);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const double u = (2 * (x + 0.5) / width - 1) * th * aspect, v = (1 - 2 * (y + 0.5) / height) * th;
-      rays.push_back(Ray{cam.eye, fwd + u * right + v * upv});
-    }
+  rays.reserve(last > first ? last - first : 0);
+  for (size_t i = first; i < last; ++i) {
+    const int y = static_cast<int>(i / static_cast<size_t>(width)), x = static_cast<int>(i % static_cast<size_t>(width));
+    const double u = (2 * (x + 0.5) / width - 1) * th * aspect, v = (1 - 2 * (y + 0.5) / height) * th;
+    rays.push_back(Ray{cam.eye, fwd + u * right + v * upv});
   }
   return rays;
 }
 
-Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, RenderStats* stats) {
-  if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384) {
-    throw std::invalid_argument("rt::render: resolution " + std::to_string(opt.width) + "x" +
-                                std::to_string(opt.height) + " outside 1..16384");
+std::vector<Ray> primary_rays(const Camera& cam, int width, int height) {
+  return primary_rays(cam, width, height, 0, static_cast<size_t>(width) * static_cast<size_t>(height));
+}
+
+uint64_t render_memory_estimate(int width, int height) {
+  // Per pixel: the image (3 doubles), its 8-bit copy, and the PNG encoder's filtered
+  // rows and output (about 3 bytes each).
+  return static_cast<uint64_t>(width) * static_cast<uint64_t>(height) * (sizeof(glm::dvec3) + 3 + 3 + 3);
+}
+
+void check_resolution(int width, int height) {
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) {
+    throw std::invalid_argument("resolution " + std::to_string(width) + "x" + std::to_string(height) + " outside 1.." +
+                                std::to_string(kMaxSide));
   }
+  const uint64_t need = render_memory_estimate(width, height);
+  if (need > kMaxRenderBytes) {
+    throw std::invalid_argument("resolution " + std::to_string(width) + "x" + std::to_string(height) + " needs about " +
+                                std::to_string((need + (1u << 20) - 1) >> 20) + " MiB for the image alone, over the limit of " +
+                                std::to_string(kMaxRenderBytes >> 20) + " MiB; render a smaller picture");
+  }
+}
+
+Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, RenderStats* stats) {
+  check_resolution(opt.width, opt.height);
   RenderStats local;
   RenderStats& st = stats ? *stats : local;
   Image img(opt.width, opt.height);
   const int depth = opt.max_depth > 0 ? opt.max_depth : sc.max_depth;
-  const Shader shader(sc);
+  // Secondary rays start off the surface by the bound on the hit point's own error plus
+  // what the intersector needs to tell a new hit from the surface it leaves.
+  const Shader shader(sc, isect.spawn_margin());
 
-  // Primary rays through pixel centres.
-  std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height);
-  std::vector<Path> paths;
-  for (size_t i = 0; i < rays.size(); ++i) paths.push_back(Path{static_cast<uint32_t>(i), glm::dvec3(1), RayKind::kPrimary});
-
+  // Pixels in bands of at most kPrimaryBatch primary rays, each traced to the full
+  // depth before the next: the rays, paths and hits in memory stay bounded whatever the
+  // resolution (only the image grows with it).
+  const size_t pixels = static_cast<size_t>(opt.width) * static_cast<size_t>(opt.height);
   uint64_t traced = 0;
-  for (int level = 0; level < depth && !rays.empty(); ++level) {
-    auto t0 = std::chrono::steady_clock::now();
-    const std::vector<Hit> hits = isect.intersect(rays);
-    st.intersect_seconds += seconds_since(t0);
-    ++st.batches;
-    for (const Path& p : paths) ++st.rays[static_cast<int>(p.kind)];
-    traced += rays.size();
-    if (opt.progress) opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(rays.size()) + " rays");
+  for (size_t first = 0; first < pixels; first += kPrimaryBatch) {
+    const size_t last = std::min(pixels, first + kPrimaryBatch);
+    std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height, first, last);
+    std::vector<Path> paths;
+    for (size_t i = first; i < last; ++i) paths.push_back(Path{static_cast<uint32_t>(i), glm::dvec3(1), RayKind::kPrimary});
 
-    t0 = std::chrono::steady_clock::now();
-    ShadeOutput out;
-    for (size_t i = 0; i < rays.size(); ++i) shader.shade(rays[i], paths[i], hits[i], level + 1 < depth, img, out);
-    st.shade_seconds += seconds_since(t0);
-
-    const std::vector<Ray>& shadow_rays = out.shadow_rays;
-    if (!shadow_rays.empty()) {
-      t0 = std::chrono::steady_clock::now();
-      const std::vector<Hit> sh = isect.intersect(shadow_rays);
+    for (int level = 0; level < depth && !rays.empty(); ++level) {
+      auto t0 = std::chrono::steady_clock::now();
+      const std::vector<Hit> hits = isect.intersect(rays);
       st.intersect_seconds += seconds_since(t0);
       ++st.batches;
-      st.rays[static_cast<int>(RayKind::kShadow)] += shadow_rays.size();
-      traced += shadow_rays.size();
-      if (opt.progress) {
-        opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(shadow_rays.size()) + " shadow rays");
+      for (const Path& p : paths) ++st.rays[static_cast<int>(p.kind)];
+      traced += rays.size();
+      if (opt.progress) opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(rays.size()) + " rays");
+
+      t0 = std::chrono::steady_clock::now();
+      ShadeOutput out;
+      // Shadow rays go out in batches of about kShadowBatch (many lights times many
+      // pixels would otherwise be built at once).
+      auto cast_shadows = [&]() {
+        if (out.shadow_rays.empty()) return;
+        const auto ts = std::chrono::steady_clock::now();
+        const std::vector<Hit> sh = isect.intersect(out.shadow_rays);
+        st.intersect_seconds += seconds_since(ts);
+        ++st.batches;
+        st.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
+        traced += out.shadow_rays.size();
+        if (opt.progress) {
+          opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(out.shadow_rays.size()) +
+                                   " shadow rays");
+        }
+        Shader::add_unshadowed(out.shadows, sh, img);
+        out.shadow_rays.clear();
+        out.shadows.clear();
+      };
+      for (size_t i = 0; i < rays.size(); ++i) {
+        shader.shade(rays[i], paths[i], hits[i], level + 1 < depth, img, out);
+        if (out.shadow_rays.size() >= kShadowBatch) {
+          st.shade_seconds += seconds_since(t0);
+          cast_shadows();
+          t0 = std::chrono::steady_clock::now();
+        }
       }
-      Shader::add_unshadowed(out.shadows, sh, img);
+      st.shade_seconds += seconds_since(t0);
+      cast_shadows();
+      rays.swap(out.next);
+      paths.swap(out.next_paths);
     }
-    rays.swap(out.next);
-    paths.swap(out.next_paths);
   }
   return img;
 }

@@ -31,6 +31,11 @@ class Intersector {
   virtual ~Intersector() = default;
   // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
   virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
+  // Distance a ray spawned at a hit must start off the surface, beyond the hit point's own
+  // error (spawn_offset), so that this intersector does not find the surface again: 0 for
+  // double precision; the FMPP's fixed-point kernels resolve distances relative to the
+  // extent of the triangles they hold.
+  virtual double spawn_margin() const { return 0; }
 };
 
 class ReferenceIntersector : public Intersector {
@@ -45,9 +50,11 @@ class ReferenceIntersector : public Intersector {
 class FmppIntersector : public Intersector {
  public:
   FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
-                  const fmpp::isect::KernelOptions& opt)
-      : dev_(dev), tris_(tris), opt_(opt) {}
+                  const fmpp::isect::KernelOptions& opt);
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
+  // 1e-5 of the diagonal of the triangles' bounding box: the resolution of the
+  // fixed-point kernels, whose scale follows the geometry they hold.
+  double spawn_margin() const override { return margin_; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
 
  private:
@@ -55,6 +62,7 @@ class FmppIntersector : public Intersector {
   const std::vector<fmpp::isect::Triangle>& tris_;
   fmpp::isect::KernelOptions opt_;
   fmpp::isect::KernelStats stats_;
+  double margin_ = 0;
 };
 
 struct RenderOptions {
@@ -72,11 +80,35 @@ struct RenderStats {
   double shade_seconds = 0;
 };
 
+// How far a secondary ray spawned at the point o + t d of ray r starts from the surface
+// (along the unit face normal n): the bound on that point's own error - from the
+// relative error t_err of t and the rounding of o + t d - projected on n and doubled (as
+// pbrt-v4 does). It depends on this hit alone, not on the scene's size; render() adds
+// the intersector's spawn_margin().
+double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, double t_err);
+
 // The camera's primary rays through the pixel centres, row by row from the top (pixel
 // index y * width + x), exactly as render() casts them.
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height);
+// The same rays for pixel indices [first, last) only.
+std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last);
 
-// Renders the scene; the image is linear radiance.
+// Memory bounds of a render: rays travel in bands of at most kPrimaryBatch primary rays
+// (each band traced to the full depth) and shadow rays in batches of at most
+// kShadowBatch, so only the image grows with the resolution. The largest side is
+// kMaxSide, and a resolution whose image (with its copies for output) needs more than
+// kMaxRenderBytes is refused with the estimate.
+inline constexpr size_t kPrimaryBatch = size_t{1} << 18;
+inline constexpr size_t kShadowBatch = size_t{1} << 20;
+inline constexpr int kMaxSide = 16384;
+inline constexpr uint64_t kMaxRenderBytes = uint64_t{4} << 30;
+// Bytes per render of width x height that do not depend on the batches.
+uint64_t render_memory_estimate(int width, int height);
+// Throws std::invalid_argument naming the resolution (and the estimate) if it is refused.
+void check_resolution(int width, int height);
+
+// Renders the scene; the image is linear radiance. Throws std::invalid_argument for a
+// resolution check_resolution refuses.
 Image render(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats);
 
 }  // namespace rt

@@ -1,17 +1,16 @@
-// Scene loading: nlohmann-json for the scene file, tinyobjloader for the meshes, with
+// Scene loading: nlohmann-json for the scene file, assimp for the meshes (mesh.h), with
 // every error naming the file and the line or field (see scene.h).
 #include "sw/rt/scene.h"
 
 #include "sw/isect/io.h"
+#include "sw/rt/mesh.h"
 
 #include <nlohmann/json.hpp>
-#include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -129,102 +128,14 @@ struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
   }
 };
 
-// v / |v|, with the components scaled by the largest first, so that |v| neither
-// overflows (vertices near the input limit) nor underflows (subnormal normals); 0 for 0.
-glm::dvec3 unit(glm::dvec3 v) {
-  const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  if (!(m > 0)) return glm::dvec3(0);
-  v /= m;
-  return v / glm::length(v);
-}
-
-// The numbers of an OBJ's 'v' and 'vn' statements, in file order, as strtod reads them
-// (correctly rounded, subnormals kept; tinyobjloader's own number parser is neither).
-struct ObjNumbers {
-  std::vector<glm::dvec3> v, vn;
-};
-
-// Checks the OBJ line by line before tinyobjloader parses it: tinyobjloader accepts
-// malformed numbers and dangling indices quietly. Vertex positions and normals must be
-// within the input limit (fmpp::isect::kMaxCoordinate); texture coordinates (1 to 3
-// numbers) are checked for syntax only, as the renderer does not use them.
-ObjNumbers validate_obj(const std::string& path) {
-  ObjNumbers out;
-  std::ifstream in;
-  const std::string err = fmpp::isect::open_input(in, path, "mesh");
-  if (!err.empty()) throw SceneError(err);
-  size_t lineno = 0, nv = 0, nvn = 0, nvt = 0;
-  auto fail = [&](const std::string& what) { throw SceneError(path + ":" + std::to_string(lineno) + ": " + what); };
-  const size_t lines = fmpp::isect::for_each_line(in, [&](const std::string& line, size_t n) {
-    lineno = n;
-    std::istringstream ss(line);
-    std::string tag;
-    if (!(ss >> tag)) return;
-    if (tag == "v" || tag == "vn" || tag == "vt") {
-      const int need = tag == "vt" ? 1 : 3;
-      std::string tok;
-      int count = 0;
-      double x = 0;
-      glm::dvec3 p(0);
-      while (ss >> tok) {
-        if (!fmpp::isect::parse_finite(tok, &x)) fail("'" + tok + "' is not a finite number");
-        if (count < 3) p[count] = x;
-        ++count;
-      }
-      if (count < need) {
-        fail(tag + " needs " + (tag == "vt" ? std::string("1 to 3") : std::to_string(need)) + " numbers, found " +
-             std::to_string(count));
-      }
-      if (tag != "vt") {
-        const std::string why = fmpp::isect::check_point(p);
-        if (!why.empty()) fail(std::string(tag == "v" ? "vertex " : "normal ") + why);
-        (tag == "v" ? out.v : out.vn).push_back(p);
-      }
-      (tag == "v" ? nv : tag == "vn" ? nvn : nvt)++;
-    } else if (tag == "f") {
-      std::string tok;
-      int count = 0;
-      while (ss >> tok) {
-        // v, v/vt, v//vn or v/vt/vn; negative indices count from the end.
-        size_t pos = 0;
-        for (int part = 0; part < 3 && pos <= tok.size(); ++part) {
-          const size_t slash = tok.find('/', pos);
-          const std::string s = tok.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
-          if (!s.empty()) {
-            char* end = nullptr;
-            const long idx = std::strtol(s.c_str(), &end, 10);
-            const size_t have = part == 0 ? nv : part == 1 ? nvt : nvn;
-            if (end == s.c_str() || *end != '\0' || idx == 0) fail("bad index '" + s + "' in face");
-            const long abs_idx = idx > 0 ? idx : static_cast<long>(have) + idx + 1;
-            if (abs_idx < 1 || static_cast<size_t>(abs_idx) > have) {
-              fail("face index " + s + " refers to a missing " +
-                   std::string(part == 0 ? "vertex" : part == 1 ? "texture coordinate" : "normal"));
-            }
-          } else if (part == 0) {
-            fail("face corner '" + tok + "' has no vertex");
-          }
-          if (slash == std::string::npos) break;
-          pos = slash + 1;
-        }
-        ++count;
-      }
-      if (count < 3) fail("a face needs at least 3 corners, found " + std::to_string(count));
-    } else if (tag != "o" && tag != "g" && tag != "s" && tag != "usemtl" && tag != "mtllib" && tag != "l" &&
-               tag != "p") {
-      fail("unknown statement '" + tag + "'");
-    }
-  });
-  if (in.bad()) throw SceneError(path + ":" + std::to_string(lines + 1) + ": read error");
-  return out;
-}
-
-void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
+void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
                const std::filesystem::path& dir) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
   reject_unknown(m, {"file", "material", "groups"}, file, where);
   const json& f = require(m, "file", file, where);
   if (!f.is_string()) field_error(file, where + ".file", "expected a string");
   if (f.get<std::string>().empty()) field_error(file, where + ".file", "empty path");
+  if (f.get<std::string>().find('\0') != std::string::npos) field_error(file, where + ".file", "the path holds a NUL byte");
   const std::string path = (dir / f.get<std::string>()).string();
   auto material = [&](const json& name, const std::string& field) {
     if (!name.is_string()) field_error(file, field, "expected a material name");
@@ -238,51 +149,19 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
     if (!m["groups"].is_object()) field_error(file, where + ".groups", "expected an object of group: material");
     for (const auto& [g, name] : m["groups"].items()) group_mat[g] = material(name, where + ".groups." + g);
   }
-  const ObjNumbers num = validate_obj(path);
-  tinyobj::ObjReaderConfig cfg;
-  cfg.triangulate = true;
-  cfg.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, cfg)) throw SceneError(path + ": " + reader.Error());
-  const auto& at = reader.GetAttrib();
-  // Faces come from tinyobjloader (triangulation, groups), numbers from validate_obj.
-  if (at.vertices.size() != 3 * num.v.size() || at.normals.size() != 3 * num.vn.size()) {
-    throw SceneError(path + ": tinyobjloader read " + std::to_string(at.vertices.size() / 3) + " vertices and " +
-                     std::to_string(at.normals.size() / 3) + " normals, the file has " + std::to_string(num.v.size()) +
-                     " and " + std::to_string(num.vn.size()));
-  }
+  const Mesh mesh = load_mesh(path);
+  s.files.push_back(path);
   std::map<std::string, bool> used;
-  for (const auto& shape : reader.GetShapes()) {
+  for (const MeshGroup& g : mesh.groups) {
     int mat = def;
-    const auto it = group_mat.find(shape.name);
+    const auto it = group_mat.find(g.name);
     if (it != group_mat.end()) {
       mat = it->second;
-      used[shape.name] = true;
+      used[g.name] = true;
     }
-    const auto& idx = shape.mesh.indices;
-    for (size_t k = 0; k + 2 < idx.size(); k += 3) {
-      fmpp::isect::Triangle t;
-      std::array<glm::dvec3, 3> nrm;
-      bool has_n = true;
-      for (int c = 0; c < 3; ++c) {
-        const auto& ix = idx[k + c];
-        t.p[c] = num.v[ix.vertex_index];
-        if (ix.normal_index >= 0) {
-          nrm[c] = num.vn[ix.normal_index];
-        } else {
-          has_n = false;
-        }
-      }
-      glm::dvec3 fn = unit(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
-      if (fn == glm::dvec3(0)) fn = glm::dvec3(0, 0, 1);  // degenerate faces are kept; nothing can hit them
-      for (auto& n : nrm) {
-        n = has_n ? unit(n) : fn;
-        if (n == glm::dvec3(0)) n = fn;  // a zero normal in the file
-      }
-      s.triangles.push_back(t);
-      s.material_of.push_back(mat);
-      s.normals.push_back(nrm);
-    }
+    s.triangles.insert(s.triangles.end(), g.triangles.begin(), g.triangles.end());
+    s.normals.insert(s.normals.end(), g.normals.begin(), g.normals.end());
+    s.material_of.insert(s.material_of.end(), g.triangles.size(), mat);
   }
   for (const auto& [g, m2] : group_mat) {
     if (!used.count(g)) field_error(file, where + ".groups." + g, "no group '" + g + "' in " + path);
@@ -292,11 +171,10 @@ void load_mesh(Scene& s, const json& m, size_t index, const std::map<std::string
 }  // namespace
 
 Scene load_scene(const std::string& json_path) {
-  std::ifstream in;
-  const std::string err = fmpp::isect::open_input(in, json_path, "scene");
+  std::string text;
+  std::string err = fmpp::isect::read_input(json_path, "scene", fmpp::isect::kMaxSceneBytes, &text);
+  if (err.empty()) err = fmpp::isect::check_text(json_path, &text);
   if (!err.empty()) throw SceneError(err);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw SceneError(json_path + ": read error");
   json j;
   PositionedDomParser dom(j);
   try {
@@ -316,6 +194,7 @@ Scene load_scene(const std::string& json_path) {
   reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
   Scene s;
   s.path = json_path;
+  s.files.push_back(json_path);
   if (j.contains("description")) {
     if (!j["description"].is_string()) field_error(f, "description", "expected a string");
     s.description = j["description"];
@@ -376,7 +255,7 @@ Scene load_scene(const std::string& json_path) {
   const json& meshes = require(j, "meshes", f, "");
   if (!meshes.is_array() || meshes.empty()) field_error(f, "meshes", "expected a non-empty array");
   const std::filesystem::path dir = std::filesystem::path(json_path).parent_path();
-  for (size_t k = 0; k < meshes.size(); ++k) load_mesh(s, meshes[k], k, mats, f, dir);
+  for (size_t k = 0; k < meshes.size(); ++k) add_mesh(s, meshes[k], k, mats, f, dir);
   if (s.triangles.empty()) field_error(f, "meshes", "the meshes hold no triangles");
   return s;
 }

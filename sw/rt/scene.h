@@ -1,5 +1,6 @@
 // Scenes for the ray tracer: a small JSON file (camera, point lights, materials,
-// background) naming OBJ meshes, whose groups get materials. Loading checks every field
+// background) naming mesh files (OBJ, PLY, OFF, STL, glTF: mesh.h), whose groups get
+// materials. Loading checks every field
 // and reports errors with the file and the line (JSON syntax, OBJ) or the field.
 #pragma once
 
@@ -43,6 +44,7 @@ struct Light {
 
 struct Scene {
   std::string path;
+  std::vector<std::string> files;  // the JSON file and every mesh file read
   std::string description;
   Camera camera;
   glm::dvec3 background{0, 0, 0};

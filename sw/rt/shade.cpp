@@ -1,6 +1,11 @@
 // Shading one hit (see shade.h).
 #include "sw/rt/shade.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "sw/rt/render.h"
+
 namespace rt {
 
 using fmpp::isect::Hit;
@@ -18,21 +23,25 @@ glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
   return glm::dvec3(1 - b1 - b2, b1, b2);
 }
 
-// Offsets for secondary rays: a tiny fraction of the scene's size.
-double offset_for(const Scene& sc) {
-  glm::dvec3 lo(1e300), hi(-1e300);
-  for (const auto& t : sc.triangles) {
-    for (const auto& p : t.p) {
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-  }
-  return 1e-5 * glm::length(hi - lo);
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+// v / |v|, or `fallback` for a zero vector; a vector whose squared length overflows
+// (edges near the input limit) or underflows is scaled by its largest component first.
+glm::dvec3 unit_or(glm::dvec3 v, const glm::dvec3& fallback) {
+  const double len = glm::length(v);
+  if (len > 0 && std::isfinite(len) && len > 1e-150) return glm::normalize(v);
+  const double m = max_abs(v);
+  if (!(m > 0) || !std::isfinite(m)) return fallback;
+  return glm::normalize(v / m);
 }
+
+// Relative error bound of a double-precision t (a ratio of determinants, a few ulps for
+// any hit that is not grazing); 2^-40 leaves a wide margin.
+constexpr double kDoubleTError = 0x1p-40;
 
 }  // namespace
 
-Shader::Shader(const Scene& scene) : scene_(scene), eps_(offset_for(scene)) {
+Shader::Shader(const Scene& scene, double spawn_margin) : scene_(scene), spawn_margin_(spawn_margin) {
   surfaces_.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces_.emplace_back(m);
 }
@@ -45,7 +54,7 @@ SurfacePoint Shader::surface_point(const Ray& r, const Hit& h) const {
   const auto& vn = scene_.normals[h.tri];
   glm::dvec3 n = b.x * vn[0] + b.y * vn[1] + b.z * vn[2];
   glm::dvec3 nf = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-  nf = glm::length(nf) > 0 ? glm::normalize(nf) : glm::dvec3(0, 0, 1);
+  nf = unit_or(nf, glm::dvec3(0, 0, 1));
   n = glm::length(n) > 0 ? glm::normalize(n) : nf;
   s.dir = glm::normalize(r.d);
   s.entering = glm::dot(s.dir, nf) < 0;
@@ -76,10 +85,11 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
     out.shadows.push_back(Shadow{path.pixel, c, h.tri});
   }
   if (!spawn) return;
+  const double off = spawn_offset(r, h.t, s.nf, kDoubleTError) + spawn_margin_;
   for (const auto& part : m.parts()) {
     Spawn sp;
     if (!part->spawn(path.weight, s, &sp)) continue;
-    Ray nr{sp.through ? s.p - eps_ * s.nf : s.p + eps_ * s.nf, sp.dir};
+    Ray nr{sp.through ? s.p - off * s.nf : s.p + off * s.nf, sp.dir};
     nr.exclude = h.tri;
     out.next.push_back(nr);
     out.next_paths.push_back(Path{path.pixel, sp.weight, sp.kind});

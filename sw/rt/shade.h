@@ -39,8 +39,10 @@ struct ShadeOutput {
 
 class Shader {
  public:
-  // The scene must outlive the shader.
-  explicit Shader(const Scene& scene);
+  // The scene must outlive the shader. Secondary rays start off the surface by the bound
+  // on their hit point's own error (spawn_offset in render.h) plus `spawn_margin`, what
+  // the intersector needs to tell a new hit from the surface it leaves.
+  Shader(const Scene& scene, double spawn_margin);
 
   // Shades ray r of `path`, whose nearest hit is h: a miss adds the background to the
   // pixel; a hit adds the ambient light, appends one shadow query per point light in
@@ -57,7 +59,7 @@ class Shader {
 
   const Scene& scene_;
   std::vector<Surface> surfaces_;  // one per scene material
-  double eps_;                     // offset of secondary rays from the surface
+  double spawn_margin_;
 };
 
 }  // namespace rt

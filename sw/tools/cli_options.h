@@ -38,6 +38,7 @@ inline void add_trace_options(CLI::App& app, BackendOptions& bo) {
 // (make_backend refuses one for cmodel.)
 inline void check_trace_options(const std::string& backend, const BackendOptions& bo) {
   check_trace_window(bo.trace_start, bo.trace_end);
+  check_trace_file(bo.trace_file);
   if (backend == "reference" && !bo.trace_file.empty()) {
     throw std::invalid_argument("backend 'reference' has no waveform: a trace needs rtl, lockstep or systemc");
   }

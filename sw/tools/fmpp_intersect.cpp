@@ -20,6 +20,7 @@
 #include "sw/isect/reference.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
+#include "tb/rtl_bus.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
@@ -44,8 +45,8 @@ int main(int argc, char** argv) {
   app.add_option("--mul", mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
       ->capture_default_str()
       ->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(CLI::Range(2u, 32u));
-  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(CLI::Range(1u, map::kMaxBlocks));
+  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(int_range(2, 32));
+  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
   app.add_option("--words", words,
                  "words per block, even (default: what the mapping and multiply need, 24 when rays take the "
                  "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("--cond-bits", cond_bits,
                  "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
       ->capture_default_str()
-      ->check(CLI::Range(-1, 60));
+      ->check(int_range(-1, 60));
   app.add_option("--origins", origins,
                  "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
                  "general formulation for the rest) | group | general")
@@ -64,13 +65,14 @@ int main(int argc, char** argv) {
   app.add_flag("--watertight", watertight, "exact-integer edge functions for rays sharing an origin (no cracks)");
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
       ->capture_default_str()
-      ->check(CLI::Range(4u, 28u));
+      ->check(int_range(4, 28));
   app.add_option("--out", out_file, "hits file ('-' for stdout)")->capture_default_str();
   app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
   BackendOptions bo;
   add_trace_options(app, bo);
   CLI11_PARSE(app, argc, argv);
 
+  std::string stage = "checking the options";  // for an out-of-memory message
   try {
     check_trace_options(backend, bo);
     if (out_file == "-" && report_file == "-") {
@@ -79,13 +81,18 @@ int main(int argc, char** argv) {
     // Every output is checked before the work, not after it.
     check_writable("--out", out_file);
     if (!report_file.empty()) check_writable("--report", report_file);
+    check_no_alias({{"--out", out_file}, {"--report", report_file}, {"--trace", bo.trace_file}},
+                   {{"--triangles", tri_file}, {"--rays", ray_file}});
+    stage = "reading " + tri_file;
     const std::vector<Triangle> tris = read_triangles(tri_file);
+    stage = "reading " + ray_file;
     const std::vector<Ray> rays = read_rays(ray_file);
     nlohmann::json rep;
     rep["triangles"] = tris.size();
     rep["rays"] = rays.size();
     rep["backend"] = backend;
     const auto t0 = std::chrono::steady_clock::now();
+    stage = "intersecting " + std::to_string(rays.size()) + " rays with " + std::to_string(tris.size()) + " triangles";
     std::vector<Hit> hits;
     if (backend == "reference") {
       hits = nearest_reference(rays, tris);
@@ -102,6 +109,14 @@ int main(int argc, char** argv) {
       const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? kGeneralWords : 0u);
       Config cfg{blocks, words ? words : need};
       if (!config.empty()) cfg = named_config(config);
+      if (config.empty() && !words && backend != "cmodel") {
+        // The RTL exists in its built sizes only: the default words are the fewest of a
+        // built configuration with these blocks that holds what the kernel needs.
+        for (const std::string& name : tb::rtl_configs()) {
+          const Config c = named_config(name);
+          if (c.blocks == cfg.blocks && c.words >= need && (cfg.words == need || c.words < cfg.words)) cfg = c;
+        }
+      }
       if (general && cfg.words < kGeneralWords) {
         const std::string given = config.empty() ? "--words " + std::to_string(cfg.words)
                                                  : "--config " + config + " (" + std::to_string(cfg.words) + " words)";
@@ -135,6 +150,9 @@ int main(int argc, char** argv) {
     write_hits(out_file, hits);
     if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     return 0;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "fmpp-intersect: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-intersect: %s\n", e.what());
     return 1;

@@ -60,25 +60,25 @@ int main(int argc, char** argv) {
                  "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
       ->capture_default_str()
       ->check(CLI::IsMember(tool_backends()));
-  app.add_option("--width", width, "image width")->capture_default_str()->check(CLI::Range(1, 16384));
-  app.add_option("--height", height, "image height")->capture_default_str()->check(CLI::Range(1, 16384));
+  app.add_option("--width", width, "image width")->capture_default_str()->check(int_range(1, 16384));
+  app.add_option("--height", height, "image height")->capture_default_str()->check(int_range(1, 16384));
   app.add_option("--mapping", mapping, "ray | object (secondary rays always ray-parallel)")
       ->capture_default_str()
       ->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
   app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
-      ->check(CLI::Range(1u, map::kMaxBlocks));
+      ->check(int_range(1, map::kMaxBlocks));
   app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
       ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
-  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(CLI::Range(4u, 32u));
+  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(int_range(4, 32));
   double target = 0.002;
   app.add_option("--error-target", target,
                  "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's "
                  "pixels allowed off the reference")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
-  app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(CLI::Range(1, 16));
+  app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
   app.add_option("--out", out, "output PNG")->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
@@ -92,13 +92,21 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
 
+  std::string stage = "checking the options";  // for an out-of-memory message
   try {
     check_trace_options(backend, bo);
+    rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
     check_writable("--out", out, false);
     if (!report_file.empty()) check_writable("--report", report_file);
+    stage = "loading " + scene_file;
     const rt::Scene scene = rt::load_scene(scene_file);
+    {
+      std::vector<NamedPath> inputs;
+      for (const auto& f : scene.files) inputs.push_back({f == scene_file ? "--scene" : "mesh of --scene", f});
+      check_no_alias({{"--out", out}, {"--report", report_file}, {"--trace", bo.trace_file}}, inputs);
+    }
     nlohmann::json rep;
     rep["scene"] = scene_file;
     rep["triangles"] = scene.triangles.size();
@@ -111,6 +119,7 @@ int main(int argc, char** argv) {
     ro.max_depth = depth;
     ro.progress = [&](uint64_t, const std::string& what) { progress.batch(what); };
     rt::RenderStats rs;
+    stage = "rendering " + std::to_string(width) + "x" + std::to_string(height);
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
@@ -165,6 +174,7 @@ int main(int argc, char** argv) {
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;
     for (int k = 0; k < rt::kNumRayKinds; ++k) rep["rays"][rt::to_string(static_cast<rt::RayKind>(k))] = rs.rays[k];
+    stage = "writing " + out;
     img->write_png(out);
     if (compare) {
       rt::ReferenceIntersector ref(scene.triangles);
@@ -178,6 +188,9 @@ int main(int argc, char** argv) {
     if (!quiet) std::fprintf(stderr, "wrote %s (%dx%d, %s, %.1f s)\n", out.c_str(), width, height, backend.c_str(),
                              rep["wall_seconds"].get<double>());
     return 0;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "fmpp-render: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fmpp-render: %s\n", e.what());
     return 1;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,19 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return "";
       },
       desc.str());
+}
+
+// A whole-number option in [lo, hi]: "abc" is "not a whole number", not "not in range"
+// (CLI::Range alone says the latter for both).
+inline CLI::Validator int_range(long long lo, long long hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& s) -> std::string {
+        long long v = 0;
+        if (!CLI::detail::lexical_cast(s, v)) return "'" + s + "' is not a whole number";
+        if (v < lo || v > hi) return "value " + s + " not in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+        return "";
+      },
+      "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
 // An unsigned or "no sign" option: CLI11 reads "-1" into a uint64_t as 2^64 - 1 (strtoull
@@ -72,6 +86,17 @@ inline void check_trace_window(uint64_t start, uint64_t end) {
     throw std::invalid_argument("trace window: first cycle " + std::to_string(start) + " is after the last cycle " +
                                 std::to_string(end));
   }
+}
+
+// A waveform goes to a regular file: the FST writer does not report write errors, so a
+// device (/dev/full, /dev/null) or a pipe would lose it without a word. Refused before
+// any work, naming the option.
+inline void check_trace_file(const std::string& path, const char* option = "--trace") {
+  if (path.empty()) return;
+  std::error_code ec;
+  const auto st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return;
+  throw std::invalid_argument(std::string(option) + " " + path + ": not a regular file; a waveform needs a file name");
 }
 
 }  // namespace fmpp

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sw/util/output_file.h"
+
 namespace fmpp {
 
 // Checks before any work that `path` (the value of `option`) can be written: not a
@@ -35,17 +37,8 @@ inline void check_writable(const std::string& option, const std::string& path, b
   if (!existed) std::filesystem::remove(path, ec);
 }
 
-// Writes `text` to `path`, or to stdout for "-".
-inline void write_text(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text << std::flush;
-    if (!std::cout) throw std::runtime_error("stdout: write failed");
-    return;
-  }
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error(path + ": cannot write");
-  f << text;
-  if (!f.flush()) throw std::runtime_error(path + ": write failed");
-}
+// Writes `text` to `path`, or to stdout for "-": checked, and atomic for a file
+// (write_output, sw/util/output_file.h).
+inline void write_text(const std::string& path, const std::string& text) { write_output(path, text); }
 
 }  // namespace fmpp

@@ -1,0 +1,110 @@
+// Forked, time- and memory-limited execution of a parser (see isolate.h).
+#include "sw/rt/isolate.h"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define FMPP_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FMPP_UNDER_ASAN 1
+#endif
+#endif
+
+namespace rt {
+namespace {
+
+bool write_all(int fd, const char* p, size_t n) {
+  while (n > 0) {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return false;
+    p += k;
+    n -= static_cast<size_t>(k);
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string run_isolated(const std::function<std::string()>& work, const std::string& label, double seconds,
+                         unsigned long long max_bytes) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw IsolationError(label + ": cannot create a pipe (" + std::strerror(errno) + ")");
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw IsolationError(label + ": cannot start the reader process (" + std::strerror(errno) + ")");
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+#ifndef FMPP_UNDER_ASAN
+    // ASan reserves terabytes of address space up front: no limit under it.
+    const rlimit lim{max_bytes, max_bytes};
+    ::setrlimit(RLIMIT_AS, &lim);
+#else
+    (void)max_bytes;
+#endif
+    std::string out;
+    try {
+      out = "R" + work();
+    } catch (const std::bad_alloc&) {
+      out = "Eran out of memory (over " + std::to_string(max_bytes >> 20) + " MiB)";
+    } catch (const std::exception& e) {
+      out = std::string("E") + e.what();
+    } catch (...) {
+      out = "Ean unknown exception";
+    }
+    _exit(write_all(fds[1], out.data(), out.size()) ? 0 : 3);
+  }
+  ::close(fds[1]);
+  std::string got;
+  char buf[65536];
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  bool timed_out = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r == 0) continue;
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got.append(buf, static_cast<size_t>(n));
+  }
+  ::close(fds[0]);
+  if (timed_out) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out) throw IsolationError(label + ": gave no result within " + std::to_string(static_cast<int>(seconds)) + " s");
+  if (WIFSIGNALED(status)) {
+    throw IsolationError(label + ": the reader crashed (signal " + std::to_string(WTERMSIG(status)) + ")");
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || got.empty()) {
+    throw IsolationError(label + ": the reader failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
+  }
+  if (got[0] == 'E') {
+    if (got.size() > 1 && got[1] == '!') throw IsolationError(got.substr(2));
+    throw IsolationError(label + ": " + got.substr(1));
+  }
+  return got.substr(1);
+}
+
+}  // namespace rt

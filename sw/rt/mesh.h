@@ -1,0 +1,48 @@
+// Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb), all read by
+// one library (assimp), with every index and coordinate it returns checked here before
+// use. Only the file itself is opened (and, for .gltf, buffer files in its directory):
+// OBJ material libraries are not followed, as the scene gives the materials.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sw/isect/geometry.h"
+
+namespace rt {
+
+// The triangles of one named part of a mesh (an OBJ object or group; a glTF node), in
+// file order. normals[i] holds the file's unit vertex normals of triangle i, or its face
+// normal at all three corners where the file gives none (a zero or missing normal).
+struct MeshGroup {
+  std::string name;
+  std::vector<fmpp::isect::Triangle> triangles;
+  std::vector<std::array<glm::dvec3, 3>> normals;
+};
+
+struct Mesh {
+  std::vector<MeshGroup> groups;
+  size_t triangles = 0;
+  size_t skipped_primitives = 0;  // points and lines, which hold no triangles
+};
+
+// The file extensions load_mesh reads, lower case with the dot: ".obj", ".ply", ...
+const std::vector<std::string>& mesh_extensions();
+
+// Reads a mesh file. Throws SceneError (scene.h) naming `path` and the cause: not a
+// regular file or larger than fmpp::isect::kMaxMeshBytes, an unknown extension, a file
+// the library cannot parse, an index out of range, a coordinate that is not finite or
+// outside the input limit (fmpp::isect::check_point; the library reads
+// single precision, so a coordinate beyond 3.4e38 is not finite), or no triangles. The message quotes nothing
+// from the file's contents.
+// The library runs in a child process limited to kMeshReaderBytes of address space
+// (without AddressSanitizer) and set_mesh_time_limit seconds (60 unless set): a file it
+// loops, crashes or runs out of memory on is a SceneError too.
+Mesh load_mesh(const std::string& path);
+inline constexpr unsigned long long kMeshReaderBytes = 8ull << 30;
+void set_mesh_time_limit(double seconds);
+
+}  // namespace rt
