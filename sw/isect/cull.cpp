@@ -3,54 +3,147 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace fmpp::isect {
 
-std::vector<Sphere> bounding_spheres(const std::vector<Triangle>& tris) {
-  std::vector<Sphere> out;
-  out.reserve(tris.size());
-  for (const Triangle& t : tris) {
-    const glm::dvec3 c = (t.p[0] + t.p[1] + t.p[2]) / 3.0;
-    double r = 0;
-    for (const glm::dvec3& p : t.p) r = std::max(r, glm::length(p - c));
-    out.push_back(Sphere{c, r});
+std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin,
+                                    size_t end, size_t size, double margin) {
+  if (size == 0) throw std::invalid_argument("fmpp::isect::make_packets: packet size 0");
+  std::vector<RayPacket> out;
+  for (size_t b = begin; b < end; b += size) {
+    RayPacket p;
+    p.t1 = 0;
+    for (size_t k = b; k < std::min(end, b + size); ++k) {
+      const Ray& r = rays[order[k]];
+      const double len = glm::length(r.d);
+      p.o.grow(r.o);
+      p.d.grow(r.d / len);
+      p.t1 = std::max(p.t1, r.tmax * len * (1 + margin));  // inf stays inf
+    }
+    p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
+    p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+    out.push_back(p);
   }
   return out;
 }
 
-Cone pass_cone(const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t begin, size_t end) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  Cone c;
-  glm::dvec3 lo(kInf), hi(-kInf), sum(0);
-  for (size_t k = begin; k < end; ++k) {
-    const Ray& r = rays[idx[k]];
-    lo = glm::min(lo, r.o);
-    hi = glm::max(hi, r.o);
-    sum += glm::normalize(r.d);
+bool may_enter(const RayPacket& p, const Box& b) {
+  double lo = p.t0, hi = p.t1;
+  for (int a = 0; a < 3; ++a) {
+    // The packet's points at t span [o.lo + t d.lo, o.hi + t d.hi] on this axis (t >= 0).
+    const double below = b.hi[a] - p.o.lo[a];  // need t d.lo <= below
+    if (p.d.lo[a] > 0) {
+      hi = std::min(hi, below / p.d.lo[a]);
+    } else if (p.d.lo[a] < 0) {
+      lo = std::max(lo, below / p.d.lo[a]);
+    } else if (below < 0) {
+      return false;
+    }
+    const double above = b.lo[a] - p.o.hi[a];  // need t d.hi >= above
+    if (p.d.hi[a] > 0) {
+      lo = std::max(lo, above / p.d.hi[a]);
+    } else if (p.d.hi[a] < 0) {
+      hi = std::min(hi, above / p.d.hi[a]);
+    } else if (above > 0) {
+      return false;
+    }
   }
-  if (glm::length(sum) < 1e-9) return c;  // directions spread over every side
-  c.all = false;
-  c.apex = 0.5 * (lo + hi);
-  c.apex_r = 0.5 * glm::length(hi - lo);
-  c.axis = glm::normalize(sum);
-  double reach = 0;
-  for (size_t k = begin; k < end; ++k) {
-    const Ray& r = rays[idx[k]];
-    c.half_angle = std::max(c.half_angle, std::acos(std::clamp(glm::dot(glm::normalize(r.d), c.axis), -1.0, 1.0)));
-    reach = std::max(reach, glm::length(r.o - c.apex) + r.tmax * glm::length(r.d));
-  }
-  c.reach = reach;
-  return c;
+  // The quotients are rounded: a relative slack of 1e-9 keeps a grazing packet in.
+  return lo <= hi + 1e-9 * std::abs(hi);
 }
 
-bool may_hit(const Cone& c, const Sphere& s, double margin) {
-  if (c.all) return true;
-  const glm::dvec3 d = s.c - c.apex;
-  const double dist = glm::length(d), rr = s.r + c.apex_r;
-  if (dist <= rr) return true;
-  if (dist - rr > c.reach) return false;
-  const double phi = std::acos(std::clamp(glm::dot(d, c.axis) / dist, -1.0, 1.0));
-  return phi <= c.half_angle + std::asin(std::min(1.0, rr / dist)) + margin;
+Box padded_box(const Triangle& t, double pad) {
+  Box b;
+  for (const glm::dvec3& p : t.p) b.grow(p);
+  b.lo -= glm::dvec3(pad);
+  b.hi += glm::dvec3(pad);
+  return b;
+}
+
+double extent(const Triangle& t) {
+  Box b;
+  for (const glm::dvec3& p : t.p) b.grow(p);
+  const glm::dvec3 s = b.hi - b.lo;
+  return std::max({s.x, s.y, s.z});
+}
+
+Bvh::Bvh(const std::vector<Box>& boxes) {
+  std::vector<uint32_t> ids;
+  std::vector<glm::dvec3> centre(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    if (boxes[i].empty()) continue;
+    ids.push_back(static_cast<uint32_t>(i));
+    centre[i] = 0.5 * boxes[i].lo + 0.5 * boxes[i].hi;
+  }
+  if (ids.empty()) return;
+  nodes_.reserve(2 * ids.size() / kLeafItems + 2);
+  nodes_.emplace_back();
+  build(0, ids, 0, ids.size(), boxes, centre);
+}
+
+// Fills node `self` with the subtree of ids[begin, end); an inner node's children are
+// appended as a pair. Every split halves the items, so the depth stays below 40.
+void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
+                const std::vector<glm::dvec3>& centre) {
+  Box box, cb;
+  for (size_t i = begin; i < end; ++i) {
+    box.grow(boxes[ids[i]]);
+    cb.grow(centre[ids[i]]);
+  }
+  nodes_[self].box = box;
+  if (end - begin <= kLeafItems) {
+    nodes_[self].first = static_cast<uint32_t>(items_.size());
+    nodes_[self].count = static_cast<uint32_t>(end - begin);
+    items_.insert(items_.end(), ids.begin() + static_cast<std::ptrdiff_t>(begin),
+                  ids.begin() + static_cast<std::ptrdiff_t>(end));
+    return;
+  }
+  const glm::dvec3 span = cb.hi - cb.lo;
+  const int axis = span.x >= span.y && span.x >= span.z ? 0 : span.y >= span.z ? 1 : 2;
+  const size_t mid = begin + (end - begin) / 2;
+  std::nth_element(ids.begin() + static_cast<std::ptrdiff_t>(begin), ids.begin() + static_cast<std::ptrdiff_t>(mid),
+                   ids.begin() + static_cast<std::ptrdiff_t>(end), [&](uint32_t a, uint32_t b) {
+                     return centre[a][axis] < centre[b][axis] || (centre[a][axis] == centre[b][axis] && a < b);
+                   });
+  const uint32_t left = static_cast<uint32_t>(nodes_.size());
+  nodes_[self].first = left;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  build(left, ids, begin, mid, boxes, centre);
+  build(left + 1, ids, mid, end, boxes, centre);
+}
+
+void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {
+  if (nodes_.empty() || packets.empty()) return;
+  // Depth-first; each entry carries the packets that entered its parent.
+  struct Entry {
+    uint32_t node;
+    std::vector<uint32_t> live;
+  };
+  std::vector<Entry> stack;
+  std::vector<uint32_t> all(packets.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<uint32_t>(i);
+  stack.push_back({0, std::move(all)});
+  uint64_t n_tests = 0;
+  while (!stack.empty()) {
+    Entry e = std::move(stack.back());
+    stack.pop_back();
+    const Node& n = nodes_[e.node];
+    std::vector<uint32_t> live;
+    for (uint32_t p : e.live) {
+      ++n_tests;
+      if (may_enter(packets[p], n.box)) live.push_back(p);
+    }
+    if (live.empty()) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) reach[items_[i]] = 1;
+    } else {
+      stack.push_back({n.first + 1, live});
+      stack.push_back({n.first, std::move(live)});
+    }
+  }
+  if (tests) *tests += n_tests;
 }
 
 }  // namespace fmpp::isect

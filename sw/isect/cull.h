@@ -1,12 +1,22 @@
-// Culling for the ray-parallel mapping: per pass, the triangles no ray of the pass can
-// reach are not broadcast (docs/intersection.md, "Culling"). Conservative: a triangle
-// is dropped only if its bounding sphere lies outside the pass's cone by more than a
-// margin far above the fixed-point error, so culling never changes a result.
+// Culling for the ray-parallel mapping (docs/intersection.md, "Culling"): per pass, only
+// the triangles that some ray of the pass may hit are broadcast. The host keeps a
+// bounding volume hierarchy over the triangles of a form; a pass's rays are cut into
+// packets of consecutive rays (the pass order is coherent, order.h), each bounded by a
+// box of origins, a box of unit directions and an interval of distances; a node is
+// entered only if some packet may reach its box, and the triangles of the leaves
+// reached are broadcast.
+//
+// Conservative by construction: every triangle's box is padded by a bound on how far
+// outside the triangle the form's fixed point can report a hit (per triangle, from its
+// condition), the direction boxes by policy::cull_margin, and the distance interval by
+// the same margin, so a triangle the FMPP would report for some ray is never culled,
+// and the broadcasts that remain keep their order: results equal those without culling.
 #pragma once
 
 #include <glm/glm.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -14,29 +24,92 @@
 
 namespace fmpp::isect {
 
-struct Sphere {
-  glm::dvec3 c;
-  double r;
+struct Box {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec3 hi{-std::numeric_limits<double>::infinity()};
+  void grow(const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  void grow(const Box& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
+  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
 };
 
-// Centroid-centred bounding sphere of every triangle.
-std::vector<Sphere> bounding_spheres(const std::vector<Triangle>& tris);
-
-// The region the rays of a pass can reach: a cone of their directions, with its apex
-// fattened to a ball holding all their origins, cut at the farthest tmax.
-struct Cone {
-  bool all = true;  // no useful bound: everything may be hit
-  glm::dvec3 apex{0};
-  double apex_r = 0;
-  glm::dvec3 axis{0};
-  double half_angle = 0;
-  double reach = std::numeric_limits<double>::infinity();
+// Rays bounded together: o + t d with o in `o`, d a unit vector in `d`, t in [t0, t1].
+struct RayPacket {
+  Box o, d;
+  double t0 = 0;
+  double t1 = std::numeric_limits<double>::infinity();
 };
 
-// The cone of rays[idx[begin..end)].
-Cone pass_cone(const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t begin, size_t end);
+// The packets of rays[order[begin..end)], `size` consecutive rays each. Directions are
+// normalized (t in units of length); each direction box is widened by `margin` radians
+// (clamped to [-1, 1]) and each t1 by the factor 1 + margin; t0 is 0 (no hit is culled
+// for lying just before a ray's tmin).
+std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin,
+                                    size_t end, size_t size, double margin);
 
-// False only if no point of the sphere is within the cone plus `margin` radians.
-bool may_hit(const Cone& c, const Sphere& s, double margin);
+// False only if no point o + t d of the packet (o, d in their boxes, t in [t0, t1])
+// lies in the box. Interval arithmetic per axis, so a packet may pass that no single
+// ray of it would: conservative.
+bool may_enter(const RayPacket& p, const Box& b);
+
+// A bounding volume hierarchy over items (each an index with a box), median split on
+// the longest axis of the centroids, up to kLeafItems items per leaf.
+class Bvh {
+ public:
+  static constexpr unsigned kLeafItems = 4;
+  struct Node {
+    Box box;
+    uint32_t first = 0;  // leaf: items_[first, first + count); inner: children first, first + 1
+    uint32_t count = 0;  // 0 for an inner node
+  };
+
+  Bvh() = default;
+  // boxes[i] is item i's box (an empty box: the item is left out).
+  explicit Bvh(const std::vector<Box>& boxes);
+
+  // Sets reach[i] for every item of every leaf that some packet may enter (reach must
+  // have one entry per item); adds the node-packet tests made to *tests.
+  void reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const;
+  // Calls f(item) for every item of every leaf the packet may enter.
+  template <class F>
+  void visit(const RayPacket& p, F&& f) const;
+
+  const std::vector<Node>& nodes() const { return nodes_; }
+  size_t items() const { return items_.size(); }
+
+ private:
+  void build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
+             const std::vector<glm::dvec3>& centre);
+  std::vector<Node> nodes_;
+  std::vector<uint32_t> items_;
+};
+
+template <class F>
+void Bvh::visit(const RayPacket& p, F&& f) const {
+  if (nodes_.empty()) return;
+  uint32_t stack[128];
+  unsigned top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (!may_enter(p, n.box)) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) f(items_[i]);
+    } else {
+      stack[top++] = n.first;
+      stack[top++] = n.first + 1;
+    }
+  }
+}
+
+// The box of triangle t padded by `pad` on every side.
+Box padded_box(const Triangle& t, double pad);
+// The largest side of the triangle's bounding box.
+double extent(const Triangle& t);
 
 }  // namespace fmpp::isect

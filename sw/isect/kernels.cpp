@@ -53,6 +53,11 @@ void KernelStats::add(const KernelStats& o) {
   host_triangles += o.host_triangles;
   host_tests += o.host_tests;
   culled += o.culled;
+  box_tests += o.box_tests;
+  oracle_any += o.oracle_any;
+  oracle_nearest += o.oracle_nearest;
+  oracle_any_steps += o.oracle_any_steps;
+  oracle_nearest_steps += o.oracle_nearest_steps;
   snapped_degenerate += o.snapped_degenerate;
 }
 
@@ -60,6 +65,7 @@ void KernelOptions::validate(const Config& cfg) const {
   if (n < 2 || n > 32) throw std::invalid_argument("multiplier bits n = " + std::to_string(n) + " outside [2, 32]");
   if (vbits < 2 || vbits > 28) throw std::invalid_argument("vbits = " + std::to_string(vbits) + " outside [2, 28]");
   if (mbits < 2 || mbits > 28) throw std::invalid_argument("mbits = " + std::to_string(mbits) + " outside [2, 28]");
+  if (cull_packet < 1) throw std::invalid_argument("cull_packet = 0: a culling packet needs at least one ray");
   if (cond_bits > 60) throw std::invalid_argument("cond_bits = " + std::to_string(cond_bits) + " above 60");
   if (cfg.words < words_needed(*this)) {
     throw std::invalid_argument(std::string(to_string(mapping)) + "-parallel " + to_string(mul) + " needs " +
@@ -136,7 +142,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
       run_object_parallel(dev, rays, idx, tris, origin, opt, out, &st);
     } else {
       const std::unique_ptr<RayForm> form = form_for(opt, true).make(FormInputs{opt, tris, rays, idx, origin, &st});
-      run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st);
+      run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);
     }
   }
   if (!general.empty()) {
@@ -146,7 +152,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
     }
     const std::unique_ptr<RayForm> form =
         form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st});
-    run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st);
+    run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr);
   }
   for (size_t i = 0; i < out.size(); ++i) out[i].t = std::ldexp(out[i].t, t_exp[i]);
   st.cycles += dev.cycles() - c0;

@@ -56,9 +56,18 @@ struct KernelOptions {
   unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
   Origins origins = Origins::kAuto;
   // Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach
-  // (outside the cone of its directions, fattened by the spread of its origins, or
-  // beyond every ray's tmax). Exact culling can only drop triangles the rays miss.
+  // (cull.h: a hierarchy over the triangles against packets of cull_packet consecutive
+  // rays, padded by the fixed point's error). Culling can only drop triangles for which
+  // the FMPP would report no hit, so results are the same with and without it.
   bool cull = true;
+  unsigned cull_packet = 1;
+  // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
+  // square image tiles for primary rays, octant and origin for the others) rather than
+  // in the caller's order. Results come back in the caller's order either way.
+  bool coherent = true;
+  // Count, per pass, the broadcasts the any-hit and nearest-hit oracles would make
+  // (oracle.h; KernelStats::oracle_*): host work with the exact reference, for reports.
+  bool oracle = false;
   // Watertight test for rays sharing an origin (ray-parallel): vertices snapped to an
   // integer grid, edge functions (P_j x P_k) . V with exact integer constants, so an
   // edge shared by two triangles gets complementary signs and no ray slips through.
@@ -91,9 +100,20 @@ struct KernelStats {
   uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
+  uint64_t box_tests = 0;        // culling: node-packet box tests on the host
+  // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass
+  // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
+  uint64_t oracle_any = 0, oracle_nearest = 0;
+  uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0;
   uint64_t snapped_degenerate = 0;  // watertight: triangles the grid made degenerate (tested on the host)
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
+  }
+  // The clocks the oracle's broadcasts would take in the same passes: load and read back
+  // as measured, broadcasts at the measured clocks per instruction.
+  double oracle_cycles(uint64_t steps) const {
+    const double per_step = broadcast_steps ? static_cast<double>(compute_cycles) / static_cast<double>(broadcast_steps) : 1;
+    return static_cast<double>(cycles - compute_cycles) + per_step * static_cast<double>(steps);
   }
   double test_steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(test_steps) / static_cast<double>(broadcasts) : 0;

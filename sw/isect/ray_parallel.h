@@ -46,9 +46,11 @@ class RayForm {
   virtual double t_of(uint32_t best, const Ray& r) const = 0;
 };
 
-// Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]].
+// Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]]. `origin` is
+// the rays' shared origin for a shared-origin form, nullptr for the arbitrary-origin
+// form (culling pads each triangle by the error bound of its form).
 void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
                       const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
-                      std::vector<Hit>& out, KernelStats* st);
+                      std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin);
 
 }  // namespace fmpp::isect

@@ -1,6 +1,8 @@
 // KernelStats as JSON (see stats_json.h).
 #include "sw/isect/stats_json.h"
 
+#include <cmath>
+
 namespace fmpp::isect {
 
 nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
@@ -12,6 +14,7 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"passes", st.passes},
           {"broadcasts", st.broadcasts},
           {"culled_broadcasts", st.culled},
+          {"box_tests", st.box_tests},
           {"steps_per_broadcast", st.steps_per_broadcast()},
           {"origin_groups", st.groups},
           {"general_rays", st.general_rays},
@@ -23,6 +26,16 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"snapped_degenerate", st.snapped_degenerate},
           {"clock_mhz", clock_mhz},
           {"simulated_seconds", static_cast<double>(st.cycles) / (clock_mhz * 1e6)}};
+}
+
+nlohmann::json oracle_json(const KernelStats& st) {
+  return {{"any_hit_broadcasts", st.oracle_any},
+          {"nearest_hit_broadcasts", st.oracle_nearest},
+          {"any_hit_cycles", static_cast<uint64_t>(std::llround(st.oracle_cycles(st.oracle_any_steps)))},
+          {"nearest_hit_cycles", static_cast<uint64_t>(std::llround(st.oracle_cycles(st.oracle_nearest_steps)))},
+          {"cycles_over_any_hit", st.oracle_any_steps ? static_cast<double>(st.cycles) / st.oracle_cycles(st.oracle_any_steps) : 0.0},
+          {"cycles_over_nearest_hit",
+           st.oracle_nearest_steps ? static_cast<double>(st.cycles) / st.oracle_cycles(st.oracle_nearest_steps) : 0.0}};
 }
 
 }  // namespace fmpp::isect

@@ -9,5 +9,8 @@ namespace fmpp::isect {
 
 // Every counter of `st`, plus the simulated time at `clock_mhz`.
 nlohmann::json stats_json(const KernelStats& st, double clock_mhz = 50);
+// The oracles' counts of `st` (KernelOptions::oracle): broadcasts, their clocks in the
+// same passes (KernelStats::oracle_cycles) and the measured clocks over them.
+nlohmann::json oracle_json(const KernelStats& st);
 
 }  // namespace fmpp::isect

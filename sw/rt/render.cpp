@@ -34,7 +34,20 @@ FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isec
 }
 
 std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
-  return fmpp::isect::intersect_fmpp(dev_, rays, tris_, opt_, &stats_);
+  fmpp::isect::KernelStats st;
+  std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, rays, tris_, opt_, &st);
+  stats_.add(st);
+  by_kind_[static_cast<int>(kind_)].add(st);
+  return hits;
+}
+
+const char* to_string(BatchKind k) {
+  switch (k) {
+    case BatchKind::kPrimary: return "primary";
+    case BatchKind::kShadow: return "shadow";
+    case BatchKind::kSecondary: return "secondary";
+  }
+  return "?";
 }
 
 namespace {
@@ -120,6 +133,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
 
     for (int level = 0; level < depth && !rays.empty(); ++level) {
       auto t0 = std::chrono::steady_clock::now();
+      isect.set_batch_kind(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary);
       const std::vector<Hit> hits = isect.intersect(rays);
       st.intersect_seconds += seconds_since(t0);
       ++st.batches;
@@ -134,6 +148,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
       auto cast_shadows = [&]() {
         if (out.shadow_rays.empty()) return;
         const auto ts = std::chrono::steady_clock::now();
+        isect.set_batch_kind(BatchKind::kShadow);
         const std::vector<Hit> sh = isect.intersect(out.shadow_rays);
         st.intersect_seconds += seconds_since(ts);
         ++st.batches;

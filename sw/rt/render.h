@@ -26,9 +26,17 @@
 
 namespace rt {
 
+// What a batch of rays is, for the statistics by kind: primary rays, shadow rays, and
+// secondary rays (reflection and refraction travel together).
+enum class BatchKind { kPrimary = 0, kShadow = 1, kSecondary = 2 };
+inline constexpr int kNumBatchKinds = 3;
+const char* to_string(BatchKind k);
+
 class Intersector {
  public:
   virtual ~Intersector() = default;
+  // The kind of the batches that follow (render() says it before each batch).
+  virtual void set_batch_kind(BatchKind) {}
   // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
   virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
   // Distance a ray spawned at a hit must start off the surface, beyond the hit point's own
@@ -55,13 +63,17 @@ class FmppIntersector : public Intersector {
   // 1e-5 of the diagonal of the triangles' bounding box: the resolution of the
   // fixed-point kernels, whose scale follows the geometry they hold.
   double spawn_margin() const override { return margin_; }
+  void set_batch_kind(BatchKind k) override { kind_ = k; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
+  const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 
  private:
   fmpp::Device& dev_;
   const std::vector<fmpp::isect::Triangle>& tris_;
   fmpp::isect::KernelOptions opt_;
   fmpp::isect::KernelStats stats_;
+  fmpp::isect::KernelStats by_kind_[kNumBatchKinds];
+  BatchKind kind_ = BatchKind::kPrimary;
   double margin_ = 0;
 };
 

@@ -86,6 +86,15 @@ int main(int argc, char** argv) {
       ->check(finite_range(1.0, 1e5));
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
+  bool oracle = false;
+  std::string pass_order = "coherent";
+  unsigned cull_packet = 1;
+  app.add_flag("--oracle", oracle,
+               "also count, per pass, the triangles some ray hits and the nearest hits (the bound of culling; slow)");
+  app.add_option("--pass-order", pass_order, "coherent (image tiles, octant and origin) | batch (the rays' own order)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"coherent", "batch"}));
+  app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
   app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
   BackendOptions bo;
   add_trace_options(app, bo);
@@ -161,6 +170,9 @@ int main(int argc, char** argv) {
       ko.mul = isect::parse_mul_mode(mul);
       ko.n = bits;
       ko.cull = !no_cull;
+      ko.cull_packet = cull_packet;
+      ko.coherent = pass_order == "coherent";
+      ko.oracle = oracle;
       ko.watertight = watertight;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       rt::FmppIntersector fi(dev, scene.triangles, ko);
@@ -168,8 +180,16 @@ int main(int argc, char** argv) {
       be->finish();
       const isect::KernelStats& st = fi.stats();
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
-                     {"bits", bits}, {"cull", !no_cull}, {"watertight", watertight}};
+                     {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"pass_order", pass_order},
+                     {"watertight", watertight}};
       rep.update(isect::stats_json(st, clock_mhz));
+      if (oracle) rep["oracle"] = isect::oracle_json(st);
+      for (int k = 0; k < rt::kNumBatchKinds; ++k) {
+        const auto kind = static_cast<rt::BatchKind>(k);
+        nlohmann::json j = isect::stats_json(fi.stats(kind), clock_mhz);
+        if (oracle) j["oracle"] = isect::oracle_json(fi.stats(kind));
+        rep["by_kind"][rt::to_string(kind)] = j;
+      }
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;

@@ -1,0 +1,29 @@
+// The bound culling is measured against (docs/raytracer.md, "Culling against the
+// oracle"): per pass, the triangles that at least one ray of the pass hits with t in
+// its interval (tmin, tmax), not counting its excluded triangle (the any-hit oracle),
+// and the triangles that are some ray's nearest hit (the nearest-hit oracle). Computed
+// on the host with the exact reference (reference.h), through a hierarchy over the
+// triangles; it only counts, it changes no result.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "sw/isect/cull.h"
+#include "sw/isect/geometry.h"
+
+namespace fmpp::isect {
+
+class Oracle {
+ public:
+  explicit Oracle(const std::vector<Triangle>& tris);
+  // Sets any[tri] and nearest[tri] (one entry per triangle) for rays[order[begin, end)].
+  void mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
+            std::vector<char>& any, std::vector<char>& nearest) const;
+
+ private:
+  const std::vector<Triangle>& tris_;
+  Bvh bvh_;
+};
+
+}  // namespace fmpp::isect
