@@ -118,7 +118,7 @@ std::vector<Triangle> test_scene() {
 }
 
 std::vector<Hit> run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, bool cull, bool coherent,
-                     KernelStats* st, bool oracle = false, unsigned n = 24) {
+                     KernelStats* st, bool oracle = false, unsigned n = 24, bool probe = true) {
   auto be = make_backend("cmodel", Config{64, 32});
   Device dev(be->bus());
   KernelOptions o;
@@ -126,6 +126,7 @@ std::vector<Hit> run(const std::vector<Ray>& rays, const std::vector<Triangle>& 
   o.coherent = coherent;
   o.oracle = oracle;
   o.n = n;
+  o.cull_probe = probe;
   return intersect_fmpp(dev, rays, tris, o, st);
 }
 
@@ -177,12 +178,15 @@ TEST(Culling, ChangesNoResult) {
   // n = 12 makes the fixed point's errors large enough to report near misses as hits.
   for (unsigned n : {12u, 24u}) {
     SCOPED_TRACE("n = " + std::to_string(n));
-    KernelStats off, on, batch;
+    KernelStats off, on, batch, boxes;
     const std::vector<Hit> a = run(rays, tris, false, true, &off, false, n);
     const std::vector<Hit> b = run(rays, tris, true, true, &on, false, n);
     const std::vector<Hit> c = run(rays, tris, false, false, &batch, false, n);
+    const std::vector<Hit> d = run(rays, tris, true, true, &boxes, false, n, false);
     expect_same(a, b, rays);
     expect_same(a, c, rays);
+    expect_same(a, d, rays);
+
     // At n = 12 the error bound pads every box over most of the scene.
     if (n == 24) {
       EXPECT_GT(on.culled, off.broadcasts / 2) << "most broadcasts are culled";
@@ -190,6 +194,35 @@ TEST(Culling, ChangesNoResult) {
     EXPECT_EQ(off.culled, 0u);
     EXPECT_GT(on.box_tests, 0u);
   }
+}
+
+// Rays of their own origins along a row of five spheres: the front-to-back probe runs
+// (its final broadcasts differ from the box culling's) and changes no result.
+TEST(Culling, ProbeChangesNoResult) {
+  std::vector<Triangle> tris;
+  for (int s = 0; s < 5; ++s) {
+    SphereMeshOptions so;
+    so.centre = glm::dvec3(3.0 * s, 0, 0);
+    so.seed = 40 + static_cast<uint64_t>(s);
+    const std::vector<Triangle> one = closed_sphere(so);
+    tris.insert(tris.end(), one.begin(), one.end());
+  }
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Ray> rays;
+  for (int k = 0; k < 256; ++k) {
+    Ray r{{16 + u(rng), 0.8 * u(rng), 0.8 * u(rng)}, {-1, 0.05 * u(rng), 0.05 * u(rng)}};
+    r.tmin = 1e-4;  // the arbitrary-origin form
+    rays.push_back(r);
+  }
+  KernelStats off, probe, boxes;
+  const std::vector<Hit> a = run(rays, tris, false, true, &off);
+  const std::vector<Hit> b = run(rays, tris, true, true, &probe);
+  const std::vector<Hit> c = run(rays, tris, true, true, &boxes, false, 24, false);
+  expect_same(a, b, rays);
+  expect_same(a, c, rays);
+  EXPECT_NE(probe.broadcasts, boxes.broadcasts) << "the probe ran";
+  EXPECT_LT(probe.broadcasts, off.broadcasts / 2);
 }
 
 TEST(Oracle, CountsWhatTheRaysHit) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace fmpp::isect {
@@ -28,7 +29,10 @@ std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vec
   return out;
 }
 
-bool may_enter(const RayPacket& p, const Box& b) {
+bool may_enter(const RayPacket& p, const Box& b) { return entry_distance(p, b) < std::numeric_limits<double>::infinity(); }
+
+double entry_distance(const RayPacket& p, const Box& b) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   double lo = p.t0, hi = p.t1;
   for (int a = 0; a < 3; ++a) {
     // The packet's points at t span [o.lo + t d.lo, o.hi + t d.hi] on this axis (t >= 0).
@@ -38,7 +42,7 @@ bool may_enter(const RayPacket& p, const Box& b) {
     } else if (p.d.lo[a] < 0) {
       lo = std::max(lo, below / p.d.lo[a]);
     } else if (below < 0) {
-      return false;
+      return kInf;
     }
     const double above = b.lo[a] - p.o.hi[a];  // need t d.hi >= above
     if (p.d.hi[a] > 0) {
@@ -46,11 +50,11 @@ bool may_enter(const RayPacket& p, const Box& b) {
     } else if (p.d.hi[a] < 0) {
       hi = std::min(hi, above / p.d.hi[a]);
     } else if (above > 0) {
-      return false;
+      return kInf;
     }
   }
   // The quotients are rounded: a relative slack of 1e-9 keeps a grazing packet in.
-  return lo <= hi + 1e-9 * std::abs(hi);
+  return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
 }
 
 Box padded_box(const Triangle& t, double pad) {

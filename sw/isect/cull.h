@@ -15,9 +15,11 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "sw/isect/geometry.h"
@@ -56,6 +58,9 @@ std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vec
 // lies in the box. Interval arithmetic per axis, so a packet may pass that no single
 // ray of it would: conservative.
 bool may_enter(const RayPacket& p, const Box& b);
+// The smallest t in [t0, t1] at which a point of the packet may lie in the box (the same
+// interval arithmetic), or +infinity where may_enter is false.
+double entry_distance(const RayPacket& p, const Box& b);
 
 // A bounding volume hierarchy over items (each an index with a box), median split on
 // the longest axis of the centroids, up to kLeafItems items per leaf.
@@ -78,6 +83,10 @@ class Bvh {
   // Calls f(item) for every item of every leaf the packet may enter.
   template <class F>
   void visit(const RayPacket& p, F&& f) const;
+  // Visits the leaves the packet may enter, the nearer child first, calling
+  // leaf(items, count, entry distance) until it returns true.
+  template <class F>
+  void visit_near_first(const RayPacket& p, F&& leaf) const;
 
   const std::vector<Node>& nodes() const { return nodes_; }
   size_t items() const { return items_.size(); }
@@ -103,6 +112,35 @@ void Bvh::visit(const RayPacket& p, F&& f) const {
     } else {
       stack[top++] = n.first;
       stack[top++] = n.first + 1;
+    }
+  }
+}
+
+template <class F>
+void Bvh::visit_near_first(const RayPacket& p, F&& leaf) const {
+  if (nodes_.empty()) return;
+  // A min-heap on entry distance: leaves come strictly front to back.
+  std::vector<std::pair<double, uint32_t>> heap;
+  const auto later = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) {
+    return a.first > b.first || (a.first == b.first && a.second > b.second);
+  };
+  const double root = entry_distance(p, nodes_[0].box);
+  if (!(root < std::numeric_limits<double>::infinity())) return;
+  heap.emplace_back(root, 0);
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [entry, id] = heap.back();
+    heap.pop_back();
+    const Node& n = nodes_[id];
+    if (n.count > 0) {
+      if (leaf(&items_[n.first], n.count, entry)) return;
+      continue;
+    }
+    for (uint32_t c = n.first; c < n.first + 2; ++c) {
+      const double e = entry_distance(p, nodes_[c].box);
+      if (!(e < std::numeric_limits<double>::infinity())) continue;
+      heap.emplace_back(e, c);
+      std::push_heap(heap.begin(), heap.end(), later);
     }
   }
 }

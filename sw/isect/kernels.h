@@ -61,6 +61,10 @@ struct KernelOptions {
   // the FMPP would report no hit, so results are the same with and without it.
   bool cull = true;
   unsigned cull_packet = 1;
+  // Culling, front to back: each pass first broadcasts the nearest leaves of every ray
+  // (a probe), reads the distances found, and then broadcasts, from a fresh start, only
+  // the triangles that may lie as near as those (ray_parallel.cpp).
+  bool cull_probe = true;
   // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
   // square image tiles for primary rays, octant and origin for the others) rather than
   // in the caller's order. Results come back in the caller's order either way.

@@ -21,24 +21,31 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
   for (size_t base = 0; base < items; base += blocks) {
     const unsigned count = static_cast<unsigned>(std::min<size_t>(blocks, items - base));
     ++st->passes;
-    const std::vector<size_t> order = plan.select(base, count);
+    std::vector<size_t> order = plan.select(base, count);
 
     uint64_t c0 = dev.cycles();
     plan.load(dev, base, count);
     st->load_cycles += dev.cycles() - c0;
 
-    for (size_t j = 0; j < order.size(); ++j) {
-      size_t test_steps = 0;
-      const std::vector<uint64_t>& code = plan.code(order[j], static_cast<uint32_t>(j + 1), &test_steps);
+    for (;;) {
+      for (size_t j = 0; j < order.size(); ++j) {
+        size_t test_steps = 0;
+        const std::vector<uint64_t>& code = plan.code(order[j], static_cast<uint32_t>(j + 1), &test_steps);
+        c0 = dev.cycles();
+        push_counted(dev, code, st);
+        st->compute_cycles += dev.cycles() - c0;
+        st->broadcast_steps += code.size();
+        st->test_steps += test_steps;
+        ++st->broadcasts;
+        c0 = dev.cycles();
+        plan.after_broadcast(dev, order[j]);
+        st->readback_cycles += dev.cycles() - c0;
+      }
       c0 = dev.cycles();
-      push_counted(dev, code, st);
-      st->compute_cycles += dev.cycles() - c0;
-      st->broadcast_steps += code.size();
-      st->test_steps += test_steps;
-      ++st->broadcasts;
-      c0 = dev.cycles();
-      plan.after_broadcast(dev, order[j]);
+      std::vector<size_t> next = plan.refine(dev, base, count, order);
       st->readback_cycles += dev.cycles() - c0;
+      if (next.empty()) break;
+      order = std::move(next);
     }
 
     c0 = dev.cycles();

@@ -33,6 +33,13 @@ class PassPlan {
   virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) = 0;
   // After each broadcast (object-parallel: the responders name the nearest triangle).
   virtual void after_broadcast(Device& /*dev*/, size_t /*k*/) {}
+  // After the broadcasts `done` of a pass: may read the blocks, prepare them again and
+  // return further broadcasts (numbered from 1 again); the last list is the one read back.
+  // Empty: the pass is complete.
+  virtual std::vector<size_t> refine(Device& /*dev*/, size_t /*base*/, unsigned /*count*/,
+                                     const std::vector<size_t>& /*done*/) {
+    return {};
+  }
   // After the pass's broadcasts: results and overflow flags.
   virtual void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) = 0;
   // Host work of the pass (overflowed items, triangles the FMPP does not take).

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "sw/isect/cull.h"
+#include "sw/isect/cull_bounds.h"
 #include "sw/isect/layout.h"
 #include "sw/isect/oracle.h"
 #include "sw/isect/order.h"
@@ -14,73 +17,9 @@
 namespace fmpp::isect {
 namespace {
 
-// The arbitrary-origin form's edge-test condition of triangle t (as form_general.cpp
-// computes it): (e_max / e_min) reach / h_min relative to the centre c of the scene's box,
-// reach the farthest of its vertices and of the batch's origins (o_reach) from c.
-double general_condition(const Triangle& t, const glm::dvec3& c, double o_reach) {
-  const glm::dvec3 p1 = t.p[0] - c, p2 = t.p[1] - c, p3 = t.p[2] - c;
-  const glm::dvec3 nrm = glm::cross(p2, p3) + glm::cross(p3, p1) + glm::cross(p1, p2);
-  const double e[3] = {glm::length(p3 - p2), glm::length(p1 - p3), glm::length(p2 - p1)};
-  const double emax = std::max({e[0], e[1], e[2]}), emin = std::min({e[0], e[1], e[2]});
-  const double reach = std::max({glm::length(p1), glm::length(p2), glm::length(p3), o_reach});
-  return emax * emax * reach / (emin * glm::length(nrm));
-}
-
-// Per broadcast of `form`, the triangle's box padded by how far from the triangle (and,
-// along a shared-origin ray, how far beyond its distance) the form's fixed point may
-// report a hit (docs/intersection.md, "Culling"). *use_tmax: whether the rays' tmax may
-// cut the reach (only where the form's distance error is bounded here).
-std::vector<Box> cull_boxes(const std::vector<Triangle>& tris, const std::vector<Ray>& rays,
-                            const std::vector<size_t>& idx, const RayForm& form, const KernelOptions& opt,
-                            const glm::dvec3* origin, bool* use_tmax) {
-  constexpr double kMaxPad = 1e200;  // above any coordinate, below overflow of the box arithmetic
-  std::vector<Box> boxes;
-  boxes.reserve(form.broadcasts.size());
-  *use_tmax = origin != nullptr && !opt.watertight;
-  const double unit = std::ldexp(1.0, -static_cast<int>(policy::operand_bits(opt)));
-  double dmin = 0, grid = 0, o_reach = 0;
-  glm::dvec3 centre(0);
-  if (origin) {
-    dmin = policy::nearest_for_exponent(distance_range(tris, *origin));
-    if (opt.watertight) grid = policy::watertight_grid_step(tris, *origin, opt.n);
-  } else {
-    Box all;
-    for (const Triangle& t : tris) {
-      for (const glm::dvec3& p : t.p) all.grow(p);
-    }
-    centre = 0.5 * (all.lo + all.hi);
-    for (size_t i : idx) o_reach = std::max(o_reach, glm::length(rays[i].o - centre));
-  }
-  for (const Broadcast& b : form.broadcasts) {
-    const Triangle& t = tris[static_cast<size_t>(b.tri)];
-    const double ext = extent(t);
-    double pad = 0, far = 0;
-    if (origin) {
-      for (const glm::dvec3& p : t.p) far = std::max(far, glm::length(p - *origin));
-    }
-    if (origin && opt.watertight) {
-      // The edge functions are exact on the grid: the snapped triangle is within a grid
-      // step of the true one.
-      pad = 2 * grid;
-    } else if (origin) {
-      // P^-1 form: the relative error of T is below 3 cond 2^-operand_bits (the
-      // mantissas' and the direction's rounding, magnified by the condition), which moves
-      // the edges by that share of the triangle and the distance by that share of itself;
-      // the compared sum's own rounding adds 2 units of S_c, S_c ~ 2^kSumBits dmin / d.
-      const double delta = 8 * policy::condition(t, *origin) * unit;
-      pad = 2 * ext * delta + far * (delta + 4 * far / (std::ldexp(1.0, policy::kSumBits) * dmin));
-    } else {
-      // Arbitrary-origin form: one rounding step of its 18 coefficients moves each edge
-      // value by 2^-(n-1) |V| e_max reach, against |V| e_i h / 3 for a ray through the
-      // triangle: the edges move by at most 27 cond 2^-(n-1) of the triangle.
-      const double delta = 32 * general_condition(t, centre, o_reach) * std::ldexp(1.0, 1 - static_cast<int>(opt.n));
-      pad = 2 * ext * delta;
-    }
-    pad += 1e-9 * (ext + far);  // the box test's own rounding
-    boxes.push_back(padded_box(t, std::isfinite(pad) ? std::min(pad, kMaxPad) : kMaxPad));
-  }
-  return boxes;
-}
+// Leaves of each ray's front the probe broadcasts (spheres_10k at 128 x 128, secondary
+// rays: 2 leaves 1.58 M clocks, 3 leaves 1.53 M, 5 leaves 2.12 M).
+constexpr int kProbeLeaves = 3;
 
 class RayParallelPlan : public PassPlan {
  public:
@@ -88,36 +27,111 @@ class RayParallelPlan : public PassPlan {
                   RayForm& form, const KernelOptions& opt, std::vector<Hit>& out, KernelStats* st,
                   const glm::dvec3* origin)
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
-    if (opt_.cull) bvh_ = Bvh(cull_boxes(tris, rays, idx, form, opt, origin, &use_tmax_));
+    if (opt_.cull) {
+      bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
+      bvh_ = Bvh(bounds_.boxes);
+      // The probe only guesses (the final broadcasts decide), so it walks the triangles'
+      // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
+      std::vector<Box> tight;
+      for (const Broadcast& b : form_.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
+      probe_bvh_ = Bvh(tight);
+    }
     if (opt_.oracle) oracle_ = std::make_unique<Oracle>(tris);
   }
 
   size_t items() const override { return idx_.size(); }
 
+  // The triangles some packet of the pass may reach (all without culling), then either
+  // all of them or, with the probe, the nearest leaves of each ray first.
   std::vector<size_t> select(size_t base, unsigned count) override {
     const size_t nb = form_.broadcasts.size();
-    std::vector<char> reach(nb, 1);
+    reach_.assign(nb, 1);
+    phase_ = Phase::kAll;
     if (opt_.cull) {
-      std::vector<RayPacket> packets =
-          make_packets(rays_, idx_, base, base + count, opt_.cull_packet, policy::cull_margin(opt_.n));
-      if (!use_tmax_) {
-        for (RayPacket& p : packets) p.t1 = std::numeric_limits<double>::infinity();
-      }
-      std::fill(reach.begin(), reach.end(), 0);
-      bvh_.reached(packets, reach, &st_->box_tests);
+      std::fill(reach_.begin(), reach_.end(), 0);
+      bvh_.reached(packets(base, count, opt_.cull_packet), reach_, &st_->box_tests);
     }
     if (oracle_) count_oracle(base, count);
-    // In the broadcasts' own order, so that ties are decided as without culling.
-    std::vector<size_t> order;
+    // Numbers in the broadcasts' own order, so that ties are decided as without culling;
+    // the same numbers serve the probe and the final broadcasts (exclusion tests).
+    std::vector<size_t> all;
     number_of_.assign(nb, 0);
     for (size_t k = 0; k < nb; ++k) {
-      if (reach[k]) {
-        order.push_back(k);
-        number_of_[k] = static_cast<uint32_t>(order.size());
-      } else {
-        ++st_->culled;
+      if (reach_[k]) {
+        all.push_back(k);
+        number_of_[k] = static_cast<uint32_t>(all.size());
       }
     }
+    // The probe pays for rays with their own origins (measured, docs/perf.md): their
+    // broadcasts cost 2.7 times the shared-origin ones, and their rays share no front.
+    if (!opt_.cull || !opt_.cull_probe || bounds_.distance != CullBounds::Distance::kGeneral) {
+      st_->culled += nb - all.size();
+      return all;
+    }
+    std::vector<char> probe(nb, 0);
+    for (const RayPacket& p : packets(base, count, 1)) {
+      int leaves = 0;
+      probe_bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
+        if (!(entry > 0)) return false;  // a leaf around the origin (the surface left)
+        for (uint32_t i = 0; i < n; ++i) probe[items[i]] = reach_[items[i]];
+        return ++leaves == kProbeLeaves;
+      });
+    }
+    std::vector<size_t> order;
+    for (size_t k = 0; k < nb; ++k) {
+      if (probe[k]) order.push_back(k);
+    }
+    if (order.empty() || 2 * order.size() >= all.size()) {  // a probe that cannot pay
+      st_->culled += nb - all.size();
+      return all;
+    }
+    phase_ = Phase::kProbe;
+    return order;
+  }
+
+  // After the probe: each ray's nearest distance so far; the blocks start afresh and get
+  // the triangles that may lie, for some ray, at most as far as that ray's distance.
+  std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done) override {
+    if (phase_ != Phase::kProbe) return {};
+    phase_ = Phase::kFinal;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<double> best(count, kInf);
+    std::vector<size_t> winner(count, SIZE_MAX);
+    read_best(dev, count, form_.best_words(), done.size(), [&](unsigned b, uint32_t v, size_t pos) {
+      const Ray& r = rays_[idx_[base + b]];
+      best[b] = form_.t_of(v, r) * glm::length(r.d);
+      winner[b] = done[pos];
+    });
+    Program init;
+    init.mask(0);
+    form_.init(init);
+    init.mask(layout::kDataMask);
+    push_counted(dev, init.code(), st_);
+
+    const size_t nb = form_.broadcasts.size();
+    std::vector<char> keep(nb, 0);
+    const std::vector<RayPacket> one = packets(base, count, 1);
+    for (unsigned b = 0; b < count; ++b) {
+      const Ray& r = rays_[idx_[base + b]];
+      // One step of the arbitrary-origin form's quotient (the P^-1 form's rounding of its
+      // sums is in its relative bound).
+      const double len = glm::length(r.d);
+      const double quantum =
+          bounds_.distance == CullBounds::Distance::kGeneral ? std::abs(form_.t_of(1, r) - form_.t_of(0, r)) * len : 0;
+      const glm::dvec3 u = r.d / len;
+      if (winner[b] != SIZE_MAX) keep[winner[b]] = 1;
+      bvh_.visit(one[b], [&](uint32_t k) {
+        if (keep[k] || !reach_[k]) return;
+        ++st_->box_tests;
+        const double entry = entry_distance(one[b], bounds_.boxes[k]);
+        keep[k] = entry <= bounds_.reach_for(k, u, best[b], quantum);
+      });
+    }
+    std::vector<size_t> order;
+    for (size_t k = 0; k < nb; ++k) {
+      if (keep[k]) order.push_back(k);
+    }
+    st_->culled += nb - order.size();
     return order;
   }
 
@@ -133,8 +147,9 @@ class RayParallelPlan : public PassPlan {
   }
 
   const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) override {
+    (void)number;  // the pass's own numbering (select), the same in the probe and after it
     *test_steps = form_.broadcasts[k].test_steps;
-    return form_.code(k, number);
+    return form_.code(k, number_of_[k]);
   }
 
   void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
@@ -188,8 +203,19 @@ class RayParallelPlan : public PassPlan {
   const KernelOptions& opt_;
   std::vector<Hit>& out_;
   KernelStats* st_;
-  Bvh bvh_;
-  bool use_tmax_ = false;
+  std::vector<RayPacket> packets(size_t base, unsigned count, size_t size) const {
+    std::vector<RayPacket> p = make_packets(rays_, idx_, base, base + count, size, policy::cull_margin(opt_.n));
+    if (!bounds_.use_tmax) {
+      for (RayPacket& q : p) q.t1 = std::numeric_limits<double>::infinity();
+    }
+    return p;
+  }
+
+  enum class Phase { kAll, kProbe, kFinal };
+  CullBounds bounds_;
+  Bvh bvh_, probe_bvh_;
+  Phase phase_ = Phase::kAll;
+  std::vector<char> reach_;  // of each broadcast: some packet of the pass may reach it
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
   std::vector<bool> ovf_;

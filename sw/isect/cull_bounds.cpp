@@ -1,0 +1,109 @@
+// Error bounds for culling (see cull_bounds.h).
+#include "sw/isect/cull_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sw/isect/policy.h"
+
+namespace fmpp::isect {
+namespace {
+
+// The arbitrary-origin form's edge-test condition of triangle t (as form_general.cpp
+// computes it): (e_max / e_min) reach / h_min relative to the centre c of the scene's box,
+// reach the farthest of its vertices and of the batch's origins (o_reach) from c.
+double general_condition(const Triangle& t, const glm::dvec3& c, double o_reach) {
+  const glm::dvec3 p1 = t.p[0] - c, p2 = t.p[1] - c, p3 = t.p[2] - c;
+  const glm::dvec3 nrm = glm::cross(p2, p3) + glm::cross(p3, p1) + glm::cross(p1, p2);
+  const double e[3] = {glm::length(p3 - p2), glm::length(p1 - p3), glm::length(p2 - p1)};
+  const double emax = std::max({e[0], e[1], e[2]}), emin = std::min({e[0], e[1], e[2]});
+  const double reach = std::max({glm::length(p1), glm::length(p2), glm::length(p3), o_reach});
+  return emax * emax * reach / (emin * glm::length(nrm));
+}
+
+}  // namespace
+
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
+                       const RayForm& form, const KernelOptions& opt, const glm::dvec3* origin) {
+  constexpr double kMaxPad = 1e200;  // above any coordinate, below overflow of the box arithmetic
+  CullBounds cb;
+  cb.use_tmax = origin != nullptr && !opt.watertight;
+  cb.distance = !origin ? CullBounds::Distance::kGeneral
+                        : opt.watertight ? CullBounds::Distance::kNone : CullBounds::Distance::kRelative;
+  cb.step = std::ldexp(1.0, 1 - static_cast<int>(opt.n));
+  const double unit = std::ldexp(1.0, -static_cast<int>(policy::operand_bits(opt)));
+  double dmin = 1, grid = 0, o_reach = 0;
+  glm::dvec3 centre(0);
+  if (origin) {
+    dmin = policy::nearest_for_exponent(distance_range(tris, *origin));
+    cb.sum_floor = std::ldexp(1.0, policy::kSumBits) * dmin;
+    if (opt.watertight) grid = policy::watertight_grid_step(tris, *origin, opt.n);
+  } else {
+    Box all;
+    for (const Triangle& t : tris) {
+      for (const glm::dvec3& p : t.p) all.grow(p);
+    }
+    centre = 0.5 * (all.lo + all.hi);
+    for (size_t i : idx) o_reach = std::max(o_reach, glm::length(rays[i].o - centre));
+    cb.reach = o_reach;
+    for (const glm::dvec3& p : {all.lo, all.hi}) cb.reach = std::max(cb.reach, glm::length(p - centre));
+  }
+  for (const Broadcast& b : form.broadcasts) {
+    const Triangle& t = tris[static_cast<size_t>(b.tri)];
+    const double ext = extent(t);
+    double pad = 0, far = 0, rel = 0;
+    if (origin) {
+      for (const glm::dvec3& p : t.p) far = std::max(far, glm::length(p - *origin));
+    }
+    if (origin && opt.watertight) {
+      // The edge functions are exact on the grid: the snapped triangle is within a grid
+      // step of the true one.
+      pad = 2 * grid;
+    } else if (origin) {
+      // P^-1 form: the relative error of T is below 3 cond 2^-operand_bits (the
+      // mantissas' and the direction's rounding, magnified by the condition), which moves
+      // the edges by that share of the triangle and the distance by that share of itself;
+      // the compared sum's own rounding adds 2 units of S_c, S_c ~ 2^kSumBits dmin / d.
+      const double delta = 16 * policy::condition(t, *origin) * unit;
+      rel = delta;
+      pad = 2 * ext * delta + far * (delta + 4 * far / cb.sum_floor);
+    } else {
+      // Arbitrary-origin form: one rounding step of its 18 coefficients moves each edge
+      // value by 2^-(n-1) |V| e_max reach, against |V| e_i h / 3 for a ray through the
+      // triangle: the edges move by at most 27 cond 2^-(n-1) of the triangle.
+      const double delta = 32 * general_condition(t, centre, o_reach) * std::ldexp(1.0, 1 - static_cast<int>(opt.n));
+      pad = 2 * ext * delta;
+    }
+    pad += 1e-9 * (ext + far);  // the box test's own rounding
+    cb.boxes.push_back(padded_box(t, std::isfinite(pad) ? std::min(pad, kMaxPad) : kMaxPad));
+    cb.rel.push_back(rel);
+    const glm::dvec3 nrm = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+    cb.normal.push_back(glm::length(nrm) > 0 ? glm::normalize(nrm) : glm::dvec3(0));
+  }
+  return cb;
+}
+
+double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!(t_best < kInf)) return kInf;
+  switch (distance) {
+    case Distance::kRelative:
+      // A triangle reported at least as near as t_best lies, in truth, within its own
+      // relative error of it (twice the bound), plus the rounding of the compared sum.
+      return t_best * (1 + 2 * rel[k] + 8 * t_best / sum_floor) + quantum;
+    case Distance::kGeneral: {
+      // t = det / nv, each rounded to about 2^-(n-1) of |n| reach and |n| |V|: the error
+      // of t (length units) is below 2^-(n-1) (2 reach + t) / cos(angle to the normal);
+      // four times that, plus two quotient steps.
+      const double c = std::abs(glm::dot(normal[k], u));
+      if (!(c > 0)) return kInf;
+      return t_best + 2 * quantum + 8 * step * (2 * reach + 3 * t_best) / c;
+    }
+    case Distance::kNone: break;
+  }
+  return kInf;
+}
+
+
+}  // namespace fmpp::isect

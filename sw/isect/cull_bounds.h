@@ -1,0 +1,44 @@
+// How far the fixed point of each ray-parallel form can move a hit, as culling needs it
+// (docs/intersection.md, "Culling"): per broadcast triangle, its box padded by the
+// distance from the triangle at which the FMPP may still report a hit, and a bound on
+// how much nearer a reported distance can be than the true one. Culling drops a triangle
+// for a ray only outside these bounds, so the FMPP's answers do not change.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "sw/isect/cull.h"
+#include "sw/isect/geometry.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/ray_parallel.h"
+
+namespace fmpp::isect {
+
+struct CullBounds {
+  // How a reported distance relates to the true one: within a relative error per
+  // triangle (the P^-1 form), within an absolute error set by the angle of incidence (the
+  // arbitrary-origin form), or not bounded here (the watertight form: no distance cut).
+  enum class Distance { kRelative, kGeneral, kNone };
+  std::vector<Box> boxes;          // per broadcast: the triangle's padded box
+  std::vector<double> rel;         // kRelative: relative distance error bound, per broadcast
+  std::vector<glm::dvec3> normal;  // unit normal, per broadcast (kGeneral)
+  bool use_tmax = false;           // the rays' tmax may cut their reach
+  Distance distance = Distance::kNone;
+  double reach = 0;      // kGeneral: farthest vertex or origin from the scene's centre
+  double step = 0;       // kGeneral: 2^-(n-1)
+  double sum_floor = 1;  // kRelative: 2^kSumBits times the nearest distance of the scale
+
+  // The farthest distance (length units, along unit direction u) at which broadcast k can
+  // lie in truth if the FMPP reports it at least as near as t_best, the distance it
+  // reported for another triangle (+infinity: no bound). quantum: one step of the
+  // reported distance.
+  double reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const;
+};
+
+// The bounds of form's broadcasts for rays[idx[..]]; origin as for run_ray_parallel.
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
+                       const RayForm& form, const KernelOptions& opt, const glm::dvec3* origin);
+
+}  // namespace fmpp::isect
