@@ -6,11 +6,11 @@
 // entered only if some packet may reach its box, and the triangles of the leaves
 // reached are broadcast.
 //
-// Conservative by construction: every triangle's box is padded by a bound on how far
-// outside the triangle the form's fixed point can report a hit (per triangle, from its
-// condition), the direction boxes by policy::cull_margin, and the distance interval by
-// the same margin, so a triangle the FMPP would report for some ray is never culled,
-// and the broadcasts that remain keep their order: results equal those without culling.
+// Conservative by construction (cull_bounds.h): every triangle's box is padded by a
+// bound on how far outside the triangle the form's fixed point can report a hit (per
+// triangle, from its condition), the direction boxes by the rounding of the rays' own
+// data, and the broadcasts that remain keep their order: results equal those without
+// culling, ties included.
 #pragma once
 
 #include <glm/glm.hpp>

@@ -32,6 +32,9 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
   cb.distance = !origin ? CullBounds::Distance::kGeneral
                         : opt.watertight ? CullBounds::Distance::kNone : CullBounds::Distance::kRelative;
   cb.step = std::ldexp(1.0, 1 - static_cast<int>(opt.n));
+  // Directions are rounded to vbits (shared origin) or kGeneralRayBits (own origins)
+  // relative to their largest component: 2^-20 is far above either.
+  cb.angle = std::ldexp(1.0, -20);
   const double unit = std::ldexp(1.0, -static_cast<int>(policy::operand_bits(opt)));
   double dmin = 1, grid = 0, o_reach = 0;
   glm::dvec3 centre(0);

@@ -29,6 +29,9 @@ struct CullBounds {
   double reach = 0;      // kGeneral: farthest vertex or origin from the scene's centre
   double step = 0;       // kGeneral: 2^-(n-1)
   double sum_floor = 1;  // kRelative: 2^kSumBits times the nearest distance of the scale
+  // Radians by which every ray direction is widened (and factor 1 + angle on tmax): the
+  // rounding of the rays' own data, which the triangles' pads do not cover.
+  double angle = 0;
 
   // The farthest distance (length units, along unit direction u) at which broadcast k can
   // lie in truth if the FMPP reports it at least as near as t_best, the distance it

@@ -204,7 +204,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<Hit>& out_;
   KernelStats* st_;
   std::vector<RayPacket> packets(size_t base, unsigned count, size_t size) const {
-    std::vector<RayPacket> p = make_packets(rays_, idx_, base, base + count, size, policy::cull_margin(opt_.n));
+    std::vector<RayPacket> p = make_packets(rays_, idx_, base, base + count, size, bounds_.angle);
     if (!bounds_.use_tmax) {
       for (RayPacket& q : p) q.t1 = std::numeric_limits<double>::infinity();
     }
