@@ -72,7 +72,7 @@ double extent(const Triangle& t) {
   return std::max({s.x, s.y, s.z});
 }
 
-Bvh::Bvh(const std::vector<Box>& boxes) {
+Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack) {
   std::vector<uint32_t> ids;
   std::vector<glm::dvec3> centre(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) {
@@ -83,19 +83,22 @@ Bvh::Bvh(const std::vector<Box>& boxes) {
   if (ids.empty()) return;
   nodes_.reserve(2 * ids.size() / kLeafItems + 2);
   nodes_.emplace_back();
-  build(0, ids, 0, ids.size(), boxes, centre);
+  build(0, ids, 0, ids.size(), boxes, centre, slack);
 }
 
 // Fills node `self` with the subtree of ids[begin, end); an inner node's children are
 // appended as a pair. Every split halves the items, so the depth stays below 40.
 void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
-                const std::vector<glm::dvec3>& centre) {
+                const std::vector<glm::dvec3>& centre, const std::vector<double>& slack) {
   Box box, cb;
+  double most = 0;
   for (size_t i = begin; i < end; ++i) {
     box.grow(boxes[ids[i]]);
     cb.grow(centre[ids[i]]);
+    if (!slack.empty()) most = std::max(most, slack[ids[i]]);
   }
   nodes_[self].box = box;
+  nodes_[self].slack = most;
   if (end - begin <= kLeafItems) {
     nodes_[self].first = static_cast<uint32_t>(items_.size());
     nodes_[self].count = static_cast<uint32_t>(end - begin);
@@ -114,8 +117,8 @@ void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t 
   nodes_[self].first = left;
   nodes_.emplace_back();
   nodes_.emplace_back();
-  build(left, ids, begin, mid, boxes, centre);
-  build(left + 1, ids, mid, end, boxes, centre);
+  build(left, ids, begin, mid, boxes, centre, slack);
+  build(left + 1, ids, mid, end, boxes, centre, slack);
 }
 
 void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {
@@ -137,7 +140,7 @@ void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reac
     std::vector<uint32_t> live;
     for (uint32_t p : e.live) {
       ++n_tests;
-      if (may_enter(packets[p], n.box)) live.push_back(p);
+      if (enters(packets[p], n)) live.push_back(p);
     }
     if (live.empty()) continue;
     if (n.count > 0) {

@@ -71,11 +71,14 @@ class Bvh {
     Box box;
     uint32_t first = 0;  // leaf: items_[first, first + count); inner: children first, first + 1
     uint32_t count = 0;  // 0 for an inner node
+    double slack = 0;    // the largest slack of its items
   };
 
   Bvh() = default;
-  // boxes[i] is item i's box (an empty box: the item is left out).
-  explicit Bvh(const std::vector<Box>& boxes);
+  // boxes[i] is item i's box (an empty box: the item is left out); slack[i] (empty: all
+  // 0) stretches the packets' reach t1 to t1 (1 + slack[i]) for that item: the relative
+  // error of the distance the FMPP reports for it.
+  explicit Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack = {});
 
   // Sets reach[i] for every item of every leaf that some packet may enter (reach must
   // have one entry per item); adds the node-packet tests made to *tests.
@@ -93,7 +96,14 @@ class Bvh {
 
  private:
   void build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
-             const std::vector<glm::dvec3>& centre);
+             const std::vector<glm::dvec3>& centre, const std::vector<double>& slack);
+  // Whether packet p may enter node n, its reach stretched by the node's slack.
+  static bool enters(const RayPacket& p, const Node& n) {
+    if (n.slack == 0) return may_enter(p, n.box);
+    RayPacket q = p;
+    q.t1 *= 1 + n.slack;
+    return may_enter(q, n.box);
+  }
   std::vector<Node> nodes_;
   std::vector<uint32_t> items_;
 };
@@ -106,7 +116,7 @@ void Bvh::visit(const RayPacket& p, F&& f) const {
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (!may_enter(p, n.box)) continue;
+    if (!enters(p, n)) continue;
     if (n.count > 0) {
       for (uint32_t i = n.first; i < n.first + n.count; ++i) f(items_[i]);
     } else {

@@ -68,9 +68,12 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
       // mantissas' and the direction's rounding, magnified by the condition), which moves
       // the edges by that share of the triangle and the distance by that share of itself;
       // the compared sum's own rounding adds 2 units of S_c, S_c ~ 2^kSumBits dmin / d.
+      // The distance error is not a pad: the ray crosses the triangle's plane where it
+      // does, and only the cut at tmax must allow for it (CullBounds::rel, the hierarchy's
+      // slack).
       const double delta = 16 * policy::condition(t, *origin) * unit;
-      rel = delta;
-      pad = 2 * ext * delta + far * (delta + 4 * far / cb.sum_floor);
+      rel = 2 * delta + 4 * far / cb.sum_floor;
+      pad = 2 * ext * delta;
     } else {
       // Arbitrary-origin form: one rounding step of its 18 coefficients moves each edge
       // value by 2^-(n-1) |V| e_max reach, against |V| e_i h / 3 for a ray through the
@@ -94,7 +97,7 @@ double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, doubl
     case Distance::kRelative:
       // A triangle reported at least as near as t_best lies, in truth, within its own
       // relative error of it (twice the bound), plus the rounding of the compared sum.
-      return t_best * (1 + 2 * rel[k] + 8 * t_best / sum_floor) + quantum;
+      return t_best * (1 + 2 * rel[k] + 8 * t_best / sum_floor) + quantum;  // rel: as for tmax
     case Distance::kGeneral: {
       // t = det / nv, each rounded to about 2^-(n-1) of |n| reach and |n| |V|: the error
       // of t (length units) is below 2^-(n-1) (2 reach + t) / cos(angle to the normal);

@@ -29,7 +29,7 @@ class RayParallelPlan : public PassPlan {
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
     if (opt_.cull) {
       bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
-      bvh_ = Bvh(bounds_.boxes);
+      bvh_ = Bvh(bounds_.boxes, bounds_.rel);
       // The probe only guesses (the final broadcasts decide), so it walks the triangles'
       // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
       std::vector<Box> tight;
