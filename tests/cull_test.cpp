@@ -196,8 +196,9 @@ TEST(Culling, ChangesNoResult) {
   }
 }
 
-// Rays of their own origins along a row of five spheres: the front-to-back probe runs
-// (its final broadcasts differ from the box culling's) and changes no result.
+// Rays along a row of five spheres, of their own origins and sharing one: the
+// front-to-back probe runs for both (its final broadcasts differ from the box culling's)
+// and changes no result.
 TEST(Culling, ProbeChangesNoResult) {
   std::vector<Triangle> tris;
   for (int s = 0; s < 5; ++s) {
@@ -215,14 +216,23 @@ TEST(Culling, ProbeChangesNoResult) {
     r.tmin = 1e-4;  // the arbitrary-origin form
     rays.push_back(r);
   }
-  KernelStats off, probe, boxes;
-  const std::vector<Hit> a = run(rays, tris, false, true, &off);
-  const std::vector<Hit> b = run(rays, tris, true, true, &probe);
-  const std::vector<Hit> c = run(rays, tris, true, true, &boxes, false, 24, false);
-  expect_same(a, b, rays);
-  expect_same(a, c, rays);
-  EXPECT_NE(probe.broadcasts, boxes.broadcasts) << "the probe ran";
-  EXPECT_LT(probe.broadcasts, off.broadcasts / 2);
+  // And rays sharing an origin (the P^-1 form), some cut short like shadow rays.
+  std::vector<Ray> shared;
+  for (int k = 0; k < 256; ++k) {
+    Ray r{{16, 0, 0}, {-1, 0.05 * u(rng), 0.05 * u(rng)}};
+    if (k % 2) r.tmax = 13 + 4 * u(rng);
+    shared.push_back(r);
+  }
+  for (const std::vector<Ray>* set : {&rays, &shared}) {
+    KernelStats off, probe, boxes;
+    const std::vector<Hit> a = run(*set, tris, false, true, &off);
+    const std::vector<Hit> b = run(*set, tris, true, true, &probe);
+    const std::vector<Hit> c = run(*set, tris, true, true, &boxes, false, 24, false);
+    expect_same(a, b, *set);
+    expect_same(a, c, *set);
+    EXPECT_NE(probe.broadcasts, boxes.broadcasts) << "the probe ran";
+    EXPECT_LT(probe.broadcasts, off.broadcasts / 2);
+  }
 }
 
 TEST(Oracle, CountsWhatTheRaysHit) {

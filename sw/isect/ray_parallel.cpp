@@ -17,9 +17,15 @@
 namespace fmpp::isect {
 namespace {
 
-// Leaves of each ray's front the probe broadcasts (spheres_10k at 128 x 128, secondary
-// rays: 2 leaves 1.58 M clocks, 3 leaves 1.53 M, 5 leaves 2.12 M).
-constexpr int kProbeLeaves = 3;
+// The front-to-back probe: how many leaves of each ray's front it broadcasts, and the
+// share of the pass's triangles below which it runs (it pays only when the triangles
+// behind the rays' first hits are many). Measured at 128 x 128, 4096 blocks: for rays of
+// their own origins on spheres_10k, 2 leaves gave 1.58 M clocks, 3 leaves 1.53 M, 5
+// leaves 2.12 M (no probe 2.44 M); for shared-origin rays one leaf, and only where it is
+// under a quarter of the pass's triangles (on spheres_10k the probes are 35 to 45 % and
+// cost 2 %; on armadillo the large passes' are 13 to 18 % and save 40 %).
+constexpr int kProbeLeavesOwn = 3, kProbeLeavesShared = 1;
+constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
 
 class RayParallelPlan : public PassPlan {
  public:
@@ -62,26 +68,26 @@ class RayParallelPlan : public PassPlan {
         number_of_[k] = static_cast<uint32_t>(all.size());
       }
     }
-    // The probe pays for rays with their own origins (measured, docs/perf.md): their
-    // broadcasts cost 2.7 times the shared-origin ones, and their rays share no front.
-    if (!opt_.cull || !opt_.cull_probe || bounds_.distance != CullBounds::Distance::kGeneral) {
+    // The probe (not for the watertight form, whose distance error is not bounded here).
+    if (!opt_.cull || !opt_.cull_probe || bounds_.distance == CullBounds::Distance::kNone) {
       st_->culled += nb - all.size();
       return all;
     }
+    const bool general = bounds_.distance == CullBounds::Distance::kGeneral;
     std::vector<char> probe(nb, 0);
     for (const RayPacket& p : packets(base, count, 1)) {
       int leaves = 0;
       probe_bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
         if (!(entry > 0)) return false;  // a leaf around the origin (the surface left)
         for (uint32_t i = 0; i < n; ++i) probe[items[i]] = reach_[items[i]];
-        return ++leaves == kProbeLeaves;
+        return ++leaves == (general ? kProbeLeavesOwn : kProbeLeavesShared);
       });
     }
     std::vector<size_t> order;
     for (size_t k = 0; k < nb; ++k) {
       if (probe[k]) order.push_back(k);
     }
-    if (order.empty() || 2 * order.size() >= all.size()) {  // a probe that cannot pay
+    if (order.empty() || order.size() * (general ? kProbeShareOwn : kProbeShareShared) >= all.size()) {
       st_->culled += nb - all.size();
       return all;
     }
@@ -123,7 +129,9 @@ class RayParallelPlan : public PassPlan {
       bvh_.visit(one[b], [&](uint32_t k) {
         if (keep[k] || !reach_[k]) return;
         ++st_->box_tests;
-        const double entry = entry_distance(one[b], bounds_.boxes[k]);
+        RayPacket q = one[b];
+        q.t1 *= 1 + bounds_.rel[k];  // the tmax cut allows for the distance's error
+        const double entry = entry_distance(q, bounds_.boxes[k]);
         keep[k] = entry <= bounds_.reach_for(k, u, best[b], quantum);
       });
     }
