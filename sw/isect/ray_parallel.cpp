@@ -23,7 +23,7 @@ namespace {
 // their own origins on spheres_10k, 2 leaves gave 1.58 M clocks, 3 leaves 1.53 M, 5
 // leaves 2.12 M (no probe 2.44 M); for shared-origin rays one leaf, and only where it is
 // under a quarter of the pass's triangles (on spheres_10k the probes are 35 to 45 % and
-// cost 2 %; on armadillo the large passes' are 13 to 18 % and save 40 %).
+// cost 2 %; on armadillo the large passes' are 13 to 18 %, and the primary clocks halve).
 constexpr int kProbeLeavesOwn = 3, kProbeLeavesShared = 1;
 constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
 
