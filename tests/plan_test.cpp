@@ -26,10 +26,10 @@ TEST(Plan, WordsFollowTheMaterials) {
   EXPECT_EQ(glassy.config.words, 24u);
   EXPECT_NE(glassy.why_words.find("mirrors or glass"), std::string::npos);
   const Plan plain = make_plan(scene("one_triangle"), r);
-  EXPECT_EQ(plain.config.words, 12u);
+  EXPECT_EQ(plain.config.words, 14u);
   EXPECT_EQ(plain.config.blocks, 32u * 32u);
   r.max_depth = 1;  // no secondary rays at depth 1
-  EXPECT_EQ(make_plan(scene("cornell"), r).config.words, 12u);
+  EXPECT_EQ(make_plan(scene("cornell"), r).config.words, 14u);
 }
 
 TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
@@ -55,12 +55,14 @@ TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
   EXPECT_GE(make_plan(s, r).options.n, loose.options.n);
 }
 
-// A quad (two triangles sharing a diagonal) lit from the side: every primary ray is
-// right at n = 8, but a shadow ray cast to a point on the diagonal ends on the
-// neighbouring triangle's edge, and at low n its rounded t falls short of the point: a
-// dark line across the quad. The sampled frame sees it; the plan moves up until the
-// frame is clean, and the full render then matches the reference.
-TEST(Plan, TheSampledFrameCatchesWhatPrimaryRaysMiss) {
+// A quad (two triangles sharing a diagonal) lit from the side: a shadow ray cast to a
+// point on the diagonal ends on the neighbouring triangle's edge. Before the kernels
+// certified their results, its rounded t fell short of the point at low n: a dark line
+// across the quad that primary rays did not show, and the plan had to move up until
+// its sampled frame was clean. Now such a ray is flagged (its edge value is within the
+// bound of 0) and redone exactly on the host: n = 8 already gives the reference's
+// frame, and the full render at the chosen n matches the reference.
+TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
   const std::string dir = ::testing::TempDir();
   {
     std::ofstream obj(dir + "/plan_quad.obj");
@@ -76,13 +78,12 @@ TEST(Plan, TheSampledFrameCatchesWhatPrimaryRaysMiss) {
   PlanRequest r;
   r.width = r.height = 32;
   const Plan p = make_plan(s, r);
-  ASSERT_GE(p.candidates.size(), 2u);
+  ASSERT_GE(p.candidates.size(), 1u);
   EXPECT_EQ(p.candidates.front().n, 8u);
-  EXPECT_LE(p.candidates.front().wrong_rate, r.target_wrong_rate) << "primary rays alone would accept n = 8";
-  EXPECT_GT(p.candidates.front().pixel_rate, r.target_wrong_rate) << "the frame must show the shadow line";
-  EXPECT_LE(p.candidates.back().pixel_rate, r.target_wrong_rate);
-  EXPECT_GT(p.options.n, 8u);
-  EXPECT_NE(p.why_bits.find("frame"), std::string::npos) << p.why_bits;
+  EXPECT_LE(p.candidates.front().wrong_rate, r.target_wrong_rate);
+  EXPECT_GE(p.candidates.front().pixel_rate, 0) << "the frame is rendered";
+  EXPECT_LE(p.candidates.front().pixel_rate, r.target_wrong_rate) << "no shadow line at n = 8";
+  EXPECT_EQ(p.options.n, 8u);
 
   fmpp::ModelBus bus(p.config);
   fmpp::Device dev(bus);

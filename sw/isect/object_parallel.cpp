@@ -101,6 +101,8 @@ class ObjectParallelPlan : public PassPlan {
     const double s_to_inv_t = std::ldexp(1.0, static_cast<int>(opt_.n)) / yscale_;  // times the ray's scale
     for (size_t r = 0; r < idx_.size(); ++r) {
       const size_t i = idx_[r];
+      ++st_->form_rays[kStatObject];
+      ++st_->uncertified_rays;
       Hit h = best_[r];
       if (best_s_[r] < 0) {  // a tainted winner: redo the whole ray on the host
         ++st_->overflow_rays;
