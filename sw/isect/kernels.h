@@ -72,7 +72,7 @@ struct KernelOptions {
   int cond_bits = -1;
   // Certified forms: the relative accuracy a returned t must have (its certified bound);
   // a hit whose bound is looser gets its t computed exactly on the host. 0: the default
-  // policy::t_accuracy(n) = 2^-clamp(n - 10, 1, 20).
+  // policy::t_accuracy = 2^-12.
   double t_accuracy = 0;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;

@@ -68,7 +68,7 @@ int direction_exponent(const glm::dvec3& d) { return -std::ilogb(max_component(d
 
 double t_accuracy(const KernelOptions& o) {
   if (o.t_accuracy > 0) return o.t_accuracy;
-  return std::ldexp(1.0, -std::clamp(static_cast<int>(o.n) - 10, 1, 20));
+  return std::ldexp(1.0, -kTAccuracyBits);
 }
 
 double cull_margin(unsigned n) { return 1e-3 + std::ldexp(1.0, 12 - static_cast<int>(n)); }

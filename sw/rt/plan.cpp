@@ -26,6 +26,17 @@ struct Decision {
   std::string why;
 };
 
+// Rays the host redid to certify them (uncertain decisions, t beyond its accuracy), per
+// ray the kernels answered.
+double flagged_share(const fmpp::isect::KernelStats& st) {
+  uint64_t rays = 0, redone = 0;
+  for (int f = 0; f < fmpp::isect::KernelStats::kForms; ++f) {
+    rays += st.form_rays[f];
+    redone += st.flagged_rays[f] + st.t_bound_rays[f];
+  }
+  return rays ? static_cast<double>(redone) / static_cast<double>(rays) : 0;
+}
+
 std::string pct(double v) {
   std::ostringstream o;
   o.precision(3);
@@ -155,19 +166,22 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       const ImageDiff d = compare(render(scene, fi, frame, nullptr), *ref_frame);
       c.pixel_rate = static_cast<double>(d.pixels_over) / (static_cast<double>(frame.width) * frame.height);
       c.sample_cycles += fi.stats().cycles;
+      c.flagged_share = flagged_share(fi.stats());
     }
     plan.candidates.push_back(c);
-    if (primary_ok && c.pixel_rate <= req.target_wrong_rate) {
+    if (primary_ok && c.pixel_rate <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
       std::ostringstream why;
       why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
           << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and in a "
           << frame.width << " x " << frame.height << " frame " << pct(c.pixel_rate)
-          << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate);
+          << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate) << ", "
+          << pct(c.flagged_share) << " of its rays redone on the host <= " << pct(req.max_flagged_share);
       if (plan.candidates.size() > 1) {
         const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
         why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned";
         if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the frame's pixels off";
+        if (p.flagged_share >= 0) why << ", " << pct(p.flagged_share) << " of its rays redone";
         why << ")";
       }
       return {n, why.str()};

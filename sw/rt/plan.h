@@ -33,6 +33,7 @@ struct PlanRequest {
   int max_depth = -1;                 // -1: the scene's
   double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the sampled frame
   double max_host_share = 0.01;       // triangles the host may take over
+  double max_flagged_share = 0.01;    // rays of the sampled frame the host may redo (uncertain, or t too loose)
   int sample_rays = 1024;             // primary rays measured per candidate
   // The machine is the RTL, built only in these configurations (names of
   // rtl/fmpp_map.json): the plan chooses among them. Empty: any size (the golden model).
@@ -47,6 +48,7 @@ struct PlanCandidate {
   double wrong_rate;      // sampled, with cond_bits = 60 (the machine's own answers)
   double host_share;      // triangles over the conditioning limit of this n
   double pixel_rate = -1;  // sampled frame: pixels off by more than 8 levels; -1 if not rendered
+  double flagged_share = -1;  // sampled frame: rays redone on the host (certification); -1 if not rendered
   uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 

@@ -42,8 +42,8 @@ FORMS = {
 # Documented relative t bounds (docs/precision.md), by form, as a function of n; None
 # where the docs give no rigorous bound yet.
 def certified_t(n):
-    """policy::t_accuracy: the default relative accuracy a certified t is held to."""
-    return 2.0 ** -max(1, min(n - 10, 20))
+    """policy::t_accuracy: the default relative accuracy a certified t is held to, any n."""
+    return 2.0 ** -12
 
 
 BOUNDS = {
