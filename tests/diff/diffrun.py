@@ -68,7 +68,10 @@ def run(cmd, report=None):
 def certify_counts(rep):
     """Flagged (redone) rays and t redos of one fmpp-intersect report."""
     c = {"flagged": 0, "t_redone": 0}
-    for form in rep.get("certify", {}).values():
+    if "certify" not in rep or "flagged_rays" not in rep or "uncertified_rays" not in rep:
+        sys.stderr.write("diffrun: the report of fmpp-intersect lacks the certification counters\n")
+        sys.exit(2)
+    for form in rep["certify"].values():
         c["flagged"] += form["flagged_rays"]
         c["t_redone"] += form["t_bound_rays"]
     return c
