@@ -4,6 +4,8 @@
 
 #include "sw/rt/plan.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include "fmpp/model_bus.h"
@@ -42,14 +44,16 @@ TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
   const PlanCandidate& chosen = loose.candidates.back();
   EXPECT_EQ(chosen.n, loose.options.n);
   EXPECT_LE(chosen.wrong_rate, r.target_wrong_rate);
-  EXPECT_GE(chosen.pixel_rate, 0) << "the chosen n's frame was rendered";
-  EXPECT_LE(chosen.pixel_rate, r.target_wrong_rate);
+  EXPECT_GE(chosen.pixel_rate, 0) << "the chosen n's frame sample was rendered";
+  EXPECT_EQ(chosen.pixels_sampled, 3000u);
+  EXPECT_LE(chosen.pixel_rate, chosen.pixel_bound);
+  EXPECT_LE(chosen.pixel_bound, r.target_wrong_rate);
   EXPECT_GE(chosen.flagged_share, 0);
   EXPECT_LE(chosen.flagged_share, r.max_flagged_share);
   for (size_t i = 0; i + 1 < loose.candidates.size(); ++i) {
     const PlanCandidate& c = loose.candidates[i];
     EXPECT_TRUE(c.wrong_rate > r.target_wrong_rate || c.host_share > r.max_host_share ||
-                c.pixel_rate > r.target_wrong_rate || c.flagged_share > r.max_flagged_share)
+                c.pixel_bound > r.target_wrong_rate || c.flagged_share > r.max_flagged_share)
         << "n=" << c.n << " also met it";
   }
   r.target_wrong_rate = 0;
@@ -99,6 +103,35 @@ TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
   o.width = o.height = 32;
   const ImageDiff d = compare(render(s, fi, o, nullptr), render(s, ri, o, nullptr));
   EXPECT_LE(static_cast<double>(d.pixels_over), r.target_wrong_rate * 32 * 32);
+}
+
+TEST(Plan, UpperConfidenceBoundIsClopperPearson) {
+  // No hit in n draws: 1 - (1 - c)^(1/n) exactly ("the rule of three" for c = 0.95).
+  EXPECT_NEAR(upper_confidence_bound(0, 3000, 0.95), 1 - std::pow(0.05, 1.0 / 3000), 1e-9);
+  // Published values: 1 in 10 at 95 %: 0.3942; 5 in 100: 0.1023 (one-sided).
+  EXPECT_NEAR(upper_confidence_bound(1, 10, 0.95), 0.3942, 5e-4);
+  EXPECT_NEAR(upper_confidence_bound(5, 100, 0.95), 0.1023, 5e-4);
+  EXPECT_EQ(upper_confidence_bound(7, 7, 0.95), 1);
+  EXPECT_GT(upper_confidence_bound(3, 1000, 0.99), upper_confidence_bound(3, 1000, 0.95));
+  EXPECT_THROW(upper_confidence_bound(2, 1, 0.95), std::invalid_argument);
+  EXPECT_THROW(upper_confidence_bound(0, 0, 0.95), std::invalid_argument);
+}
+
+TEST(Plan, SampledPixelsAreTracedAsInTheWholeFrame) {
+  const Scene s = scene("cornell");
+  ReferenceIntersector ri(s.triangles);
+  RenderOptions all;
+  all.width = all.height = 24;
+  Image whole = render(s, ri, all, nullptr);
+  RenderOptions some = all;
+  some.pixels = {0, 5, 100, 301, 575};
+  Image part = render(s, ri, some, nullptr);
+  for (uint32_t i = 0; i < 24u * 24u; ++i) {
+    const bool in = std::find(some.pixels.begin(), some.pixels.end(), i) != some.pixels.end();
+    EXPECT_EQ(part[i], in ? whole[i] : glm::dvec3(0)) << "pixel " << i;
+  }
+  some.pixels = {576};
+  EXPECT_THROW(render(s, ri, some, nullptr), std::invalid_argument);
 }
 
 TEST(Plan, MoreRaysThanTheMapHoldsArePasses) {

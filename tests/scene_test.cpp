@@ -2,6 +2,7 @@
 // file and the line or the field, and never crash.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "sw/rt/scene.h"
@@ -42,7 +43,7 @@ std::string scene_json(const std::string& body) {
 }
 
 TEST(Scene, ShippedScenesLoad) {
-  for (const char* name : {"cornell", "spheres_1k", "spheres_10k", "one_triangle"}) {
+  for (const char* name : {"cornell", "spheres_1k", "spheres_10k", "one_triangle", "armadillo", "scans"}) {
     const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/" + name + ".json");
     EXPECT_FALSE(s.triangles.empty()) << name;
     EXPECT_EQ(s.triangles.size(), s.material_of.size());
@@ -56,6 +57,15 @@ TEST(Scene, ShippedScenesLoad) {
   }
   EXPECT_EQ(mirror, 2);
   EXPECT_GT(glass, 100);
+  // The scanned meshes: every triangle of the two OFF files, placed on the stage.
+  const Scene scans = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/scans.json");
+  EXPECT_EQ(scans.triangles.size(), 532u + 52000u + 75408u);
+  double lowest = 1e9;
+  for (size_t i = 532; i < scans.triangles.size(); ++i) {
+    for (const auto& p : scans.triangles[i].p) lowest = std::min(lowest, p.y);
+  }
+  EXPECT_GT(lowest, 0);  // standing on the floor, not through it
+  EXPECT_LT(lowest, 0.01);
 }
 
 TEST(Scene, ErrorsNameFileAndLineOrField) {
@@ -188,6 +198,41 @@ TEST(Scene, ObjKeepsDoublePrecisionAndSubnormals) {
   write("novt.json", scene_json(R"({"file": "novt.obj", "material": "m"})"));
   EXPECT_EQ(error_of("novt.json"),
             dir() + "/novt.obj: cannot read mesh: not a valid obj file (OBJ: Invalid number of components)");
+}
+
+TEST(Scene, MeshTransformPlacesVerticesAndNormals) {
+  write("ok.obj", kObj);
+  // Scale 2, a quarter turn about y (x -> -z, z -> x), then a shift.
+  write("moved.json", scene_json(
+      R"({"file": "ok.obj", "material": "m", "transform": {"scale": 2, "rotate_y_deg": 90, "translate": [10, 20, 30]}})"));
+  const Scene s = load_scene(dir() + "/moved.json");
+  ASSERT_EQ(s.triangles.size(), 1u);
+  const auto& p = s.triangles[0].p;
+  // (0, 0, -3) -> (0, 0, -6) -> (-6, 0, 0) -> (4, 20, 30); (1, 0, -3) -> (2, 0, -6) -> (-6, 0, -2) -> (4, 20, 28).
+  EXPECT_NEAR(p[0].x, 4, 1e-12);
+  EXPECT_NEAR(p[0].y, 20, 1e-12);
+  EXPECT_NEAR(p[0].z, 30, 1e-12);
+  EXPECT_NEAR(p[1].z, 28, 1e-12);
+  EXPECT_NEAR(p[2].y, 22, 1e-12);
+  // The face normal (0, 0, 1) turns to (1, 0, 0).
+  EXPECT_NEAR(s.normals[0][0].x, 1, 1e-12);
+  EXPECT_NEAR(s.normals[0][0].z, 0, 1e-12);
+  // Without a transform the coordinates are the file's, bit for bit.
+  write("plain.json", scene_json(R"({"file": "ok.obj", "material": "m", "transform": {}})"));
+  EXPECT_EQ(load_scene(dir() + "/plain.json").triangles[0].p[0], glm::dvec3(0, 0, -3));
+
+  auto expect = [&](const std::string& transform, const std::string& want) {
+    write("t.json", scene_json(R"({"file": "ok.obj", "material": "m", "transform": )" + transform + "}"));
+    EXPECT_EQ(error_of("t.json"), dir() + "/t.json: " + want) << transform;
+  };
+  expect(R"({"scale": 0})", "field 'meshes[0].transform.scale': value 0 outside [1e-06, 1e+06]");
+  expect(R"({"shear": 1})", "field 'meshes[0].transform.shear': unknown field");
+  expect(R"({"translate": [1, 2]})", "field 'meshes[0].transform.translate': expected an array of 3 numbers");
+  expect(R"([1, 2, 3])", "field 'meshes[0].transform': expected an object");
+  write("far.obj", "v 0 0 -9e99\nv 1 0 -9e99\nv 0 1 -9e99\nf 1 2 3\n");
+  write("far.json", scene_json(R"({"file": "far.obj", "material": "m", "transform": {"scale": 1000}})"));
+  EXPECT_EQ(error_of("far.json"),
+            dir() + "/far.json: field 'meshes[0].transform': moves a vertex beyond the input limit of 1e100");
 }
 
 }  // namespace

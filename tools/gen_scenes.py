@@ -6,6 +6,8 @@
   spheres_1k.obj   4 x 4 tessellated spheres on a floor, about 1,000 triangles
   spheres_10k.obj  8 x 5 tessellated spheres on a floor, about 10,000 triangles
   one_triangle.obj a single triangle
+  stage.obj        a floor, a mirror wall behind and a glass sphere: the stage of the scanned
+                   meshes (armadillo.off and bunny.off, copied from Debian's libcgal-demo data)
 
 Usage: gen_scenes.py [OUT_DIR]   (default: the scenes/ directory beside this script's parent)
 """
@@ -129,6 +131,17 @@ def one_triangle(out):
     return o.write(out)
 
 
+def stage(out):
+    o = Obj("a stage for scanned meshes: floor at y = 0, a mirror wall at z = -1.6, a glass sphere")
+    o.group("floor")
+    o.quad((-3.5, 0, 2.5), (3.5, 0, 2.5), (3.5, 0, -1.6), (-3.5, 0, -1.6))
+    o.group("mirror")
+    o.quad((-3.5, 0, -1.6), (3.5, 0, -1.6), (3.5, 2.6, -1.6), (-3.5, 2.6, -1.6))
+    o.group("glass_sphere")
+    o.sphere((0.0, 0.45, 0.9), 0.45, 12, 24)
+    return o.write(out)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
     os.makedirs(out, exist_ok=True)
@@ -137,6 +150,7 @@ def main():
         "spheres_1k.obj": spheres(os.path.join(out, "spheres_1k.obj"), 4, 4, 5, 8, "4 x 4 spheres on a floor"),
         "spheres_10k.obj": spheres(os.path.join(out, "spheres_10k.obj"), 8, 5, 9, 16, "8 x 5 spheres on a floor"),
         "one_triangle.obj": one_triangle(os.path.join(out, "one_triangle.obj")),
+        "stage.obj": stage(os.path.join(out, "stage.obj")),
     }
     for name, n in counts.items():
         print(f"{name}: {n} triangles")

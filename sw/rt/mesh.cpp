@@ -2,7 +2,6 @@
 #include "sw/rt/mesh.h"
 
 #include <assimp/IOStream.hpp>
-#include <assimp/fast_atof.h>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -20,6 +19,7 @@
 
 #include "sw/isect/io.h"
 #include "sw/rt/isolate.h"
+#include "sw/rt/obj_text.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
@@ -64,87 +64,6 @@ std::string lower_extension(const std::string& path) {
 }
 
 fs::path normal_path(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal(); }
-
-// OBJ text as assimp should see it: one line end ("\n"), comments removed (so that a
-// '#' ends a face's statement as it ends a vertex's), no byte-order mark. The same text
-// is all the parser sees, so no check and parser can disagree on where a statement is.
-std::string normalize_obj(const std::string& path, std::string text) {
-  const std::string err = fmpp::isect::check_text(path, &text);
-  if (!err.empty()) throw SceneError(err);
-  std::string out;
-  out.reserve(text.size() + 1);
-  fmpp::isect::for_each_line(text, [&](const std::string& line, size_t) {
-    out += line;
-    out += '\n';
-  });
-  return out;
-}
-
-// The library reads coordinates in single precision; OBJ files hold decimal text that
-// the ray tracer reads in double (the scenes' renders depend on it, and the input limit
-// 1e100 is beyond float). This table maps each 'v' and 'vn' statement's numbers as the
-// library converts them (its own fast_atoreal_move<float>) to the same numbers read by
-// strtod. It only refines values: every index and every triangle comes from the
-// library, and a float triple missing from the table, or reached from two different
-// double triples, keeps the library's value (no crash and no mix-up can follow from a
-// disagreement about the text).
-class DoubleValues {
-  // What the library's number reader throws here (its own exception type is not exported).
-  struct NotANumber {
-    template <class... Args>
-    explicit NotANumber(Args&&...) {}
-  };
-
- public:
-  explicit DoubleValues(const std::string& obj_text) {
-    fmpp::isect::for_each_line(obj_text, [&](const std::string& line, size_t) {
-      std::istringstream ss(line);
-      std::string tag, tok[3];
-      if (!(ss >> tag) || (tag != "v" && tag != "vn") || !(ss >> tok[0] >> tok[1] >> tok[2])) return;
-      float f[3];
-      glm::dvec3 d;
-      for (int k = 0; k < 3; ++k) {
-        try {
-          Assimp::fast_atoreal_move<float, NotANumber>(tok[k].c_str(), f[k]);
-        } catch (...) {
-          return;
-        }
-        if (!fmpp::isect::parse_finite(tok[k], &d[k])) return;
-      }
-      const auto [it, fresh] = table_.emplace(key(f[0], f[1], f[2]), Entry{d, false});
-      if (!fresh && it->second.value != d) it->second.ambiguous = true;
-    });
-  }
-  // The double triple behind the library's (x, y, z), or the float values themselves.
-  glm::dvec3 operator()(float x, float y, float z) const {
-    const auto it = table_.find(key(x, y, z));
-    if (it == table_.end() || it->second.ambiguous) return glm::dvec3(x, y, z);
-    return it->second.value;
-  }
-
- private:
-  struct Entry {
-    glm::dvec3 value;
-    bool ambiguous;
-  };
-  struct Key {
-    uint32_t b[3];
-    bool operator==(const Key& o) const { return b[0] == o.b[0] && b[1] == o.b[1] && b[2] == o.b[2]; }
-  };
-  struct Hash {
-    size_t operator()(const Key& k) const {
-      return (uint64_t{k.b[0]} * 0x9E3779B97F4A7C15ull) ^ (uint64_t{k.b[1]} * 0xC2B2AE3D27D4EB4Full) ^ k.b[2];
-    }
-  };
-  static Key key(float x, float y, float z) {
-    Key k;
-    std::memcpy(&k.b[0], &x, 4);
-    std::memcpy(&k.b[1], &y, 4);
-    std::memcpy(&k.b[2], &z, 4);
-    return k;
-  }
-  std::unordered_map<Key, Entry, Hash> table_;
-};
 
 // The only files assimp may open: the mesh itself (from memory, already read within the
 // limits), and for .gltf its buffers in the same directory (regular files, size-limited).

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
+#include <random>
+#include <stdexcept>
 #include <sstream>
 
 #include "fmpp/model_bus.h"
@@ -104,6 +107,20 @@ Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned b
                        std::to_string((pixels + largest.blocks - 1) / largest.blocks) + " passes"};
 }
 
+// `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed, sorted.
+std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
+  std::mt19937_64 rng(0x5eed);
+  std::vector<uint32_t> all(pixels);
+  std::iota(all.begin(), all.end(), 0u);
+  for (size_t k = 0; k < count; ++k) {  // a partial Fisher-Yates shuffle
+    std::uniform_int_distribution<size_t> pick(k, pixels - 1);
+    std::swap(all[k], all[pick(rng)]);
+  }
+  all.resize(count);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
 // Precision: the smallest candidate n whose sampled primary rays and sampled frame
 // meet the target (see plan.h). Fills plan.candidates.
 Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan) {
@@ -118,17 +135,18 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   std::vector<double> cond;
   for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
   const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
-  // The sampled frame: the same camera at about sample_rays pixels, rendered whole
-  // (shadow, reflection and refraction rays too) and compared with the reference render
-  // of the same size.
-  const int shrink = std::max(
-      1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(pixels) / std::max(1, req.sample_rays)))));
+  // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
+  // plan is deterministic), in frame order, rendered whole (shadow, reflection and
+  // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
   RenderOptions frame;
-  frame.width = (req.width + shrink - 1) / shrink;
-  frame.height = (req.height + shrink - 1) / shrink;
+  frame.width = req.width;
+  frame.height = req.height;
   frame.max_depth = depth;
+  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
+  if (want < pixels) frame.pixels = sample_pixels(pixels, want);
+  const size_t sampled = frame.pixels.empty() ? pixels : frame.pixels.size();
   std::optional<Image> ref_frame;
-  const fmpp::Config frame_cfg{static_cast<unsigned>(std::min(frame.width * frame.height, 4096)), 32};
+  const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(sampled, 4096)), 32};
   auto options = [&](unsigned n) {
     fmpp::isect::KernelOptions o = req.base;
     o.n = n;
@@ -163,24 +181,33 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(n));
+      // Pixels outside the sample are black in both renders: they count as equal.
       const ImageDiff d = compare(render(scene, fi, frame, nullptr), *ref_frame);
-      c.pixel_rate = static_cast<double>(d.pixels_over) / (static_cast<double>(frame.width) * frame.height);
+      c.pixels_sampled = sampled;
+      c.pixel_rate = static_cast<double>(d.pixels_over) / static_cast<double>(sampled);
+      c.pixel_bound = sampled == pixels ? c.pixel_rate : upper_confidence_bound(d.pixels_over, sampled, req.confidence);
       c.sample_cycles += fi.stats().cycles;
       c.flagged_share = flagged_share(fi.stats());
     }
     plan.candidates.push_back(c);
-    if (primary_ok && c.pixel_rate <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
+    if (primary_ok && c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
       std::ostringstream why;
       why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
-          << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and in a "
-          << frame.width << " x " << frame.height << " frame " << pct(c.pixel_rate)
-          << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate) << ", "
-          << pct(c.flagged_share) << " of its rays redone on the host <= " << pct(req.max_flagged_share);
+          << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and ";
+      if (sampled == pixels) {
+        why << "in the whole " << frame.width << " x " << frame.height << " frame " << pct(c.pixel_rate);
+      } else {
+        why << "on " << sampled << " pixels drawn from the " << frame.width << " x " << frame.height << " frame "
+            << pct(c.pixel_rate) << " (" << pct(req.confidence) << " upper bound for the frame " << pct(c.pixel_bound)
+            << ")";
+      }
+      why << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate) << ", "
+          << pct(c.flagged_share) << " of the sample's rays redone on the host <= " << pct(req.max_flagged_share);
       if (plan.candidates.size() > 1) {
         const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
         why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned";
-        if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the frame's pixels off";
+        if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the sampled pixels off";
         if (p.flagged_share >= 0) why << ", " << pct(p.flagged_share) << " of its rays redone";
         why << ")";
       }
@@ -191,6 +218,31 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
 }
 
 }  // namespace
+
+double upper_confidence_bound(size_t hits, size_t trials, double confidence) {
+  if (trials == 0 || hits > trials || !(confidence > 0 && confidence < 1)) {
+    throw std::invalid_argument("upper_confidence_bound: needs 0 <= hits <= trials, trials >= 1, confidence in (0, 1)");
+  }
+  if (hits == trials) return 1;
+  // P(X <= hits) for X ~ Binomial(trials, p), summed in log space.
+  const double nn = static_cast<double>(trials);
+  auto cdf = [&](double p) {
+    double sum = 0;
+    for (size_t i = 0; i <= hits; ++i) {
+      const double k = static_cast<double>(i);
+      sum += std::exp(std::lgamma(nn + 1) - std::lgamma(k + 1) - std::lgamma(nn - k + 1) + k * std::log(p) +
+                      (nn - k) * std::log1p(-p));
+    }
+    return sum;
+  };
+  // The cdf falls as p grows: bisect for cdf(p) = 1 - confidence.
+  double lo = static_cast<double>(hits) / nn, hi = 1;
+  for (int it = 0; it < 200 && hi - lo > 1e-12; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (cdf(mid) > 1 - confidence ? lo : hi) = mid;
+  }
+  return hi;
+}
 
 Plan make_plan(const Scene& scene, const PlanRequest& req) {
   Plan plan;

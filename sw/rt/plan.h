@@ -2,14 +2,21 @@
 // needs for a stated error target, chosen automatically and explained.
 //
 //   - Precision n (multiplier bits): the smallest candidate whose wrong-triangle rate,
-//     measured on a sample of primary rays on the golden model against the double
+//     measured on a sample of primary rays on the golden model against the exact
 //     reference, is within the target, with few triangles too ill-conditioned for the
-//     format (they would go to the host), and then whose render of a small frame (the
-//     same camera at about sample_rays pixels, every ray type) has no more of its pixels
-//     off the reference render by more than 8 levels than the target: the primary rays
-//     alone do not see a shadow ray ending on a neighbouring triangle's edge. The
-//     sample costs a fraction of the frame.
-//   - Words per block: what the kernels need: 12 for rays that share an origin, 24 when
+//     format (they would go to the host), and then whose render of sample_pixels pixels
+//     drawn at random from the full frame (every ray type, traced exactly as in the
+//     frame) shows the target is kept: the one-sided upper confidence bound (Clopper-
+//     Pearson, at `confidence`) on the share of the frame's pixels off the reference
+//     render by more than 8 levels is at most the target. The primary rays alone do not
+//     see a shadow ray ending on a neighbouring triangle's edge; a small frame of its own
+//     (an earlier design) does not see errors that only the full resolution has. A frame
+//     of at most sample_pixels pixels is rendered whole, and its measured share decides.
+//     The same render must have at most max_flagged_share of its rays redone on the host
+//     to certify them (uncertain decisions, t beyond the requested accuracy:
+//     docs/intersection.md, "Certified results"): certification must not become "do it
+//     all on the host".
+//   - Words per block: what the kernels need: 14 for rays that share an origin, 24 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
 //   - Blocks: one pass of primary rays if possible (fewer blocks cost extra passes: every
@@ -31,10 +38,12 @@ namespace rt {
 struct PlanRequest {
   int width = 128, height = 128;
   int max_depth = -1;                 // -1: the scene's
-  double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the sampled frame
+  double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the frame
   double max_host_share = 0.01;       // triangles the host may take over
   double max_flagged_share = 0.01;    // rays of the sampled frame the host may redo (uncertain, or t too loose)
   int sample_rays = 1024;             // primary rays measured per candidate
+  int sample_pixels = 3000;           // pixels of the frame rendered per candidate (>= 1)
+  double confidence = 0.95;           // of the upper bound on the frame's share of pixels off
   // The machine is the RTL, built only in these configurations (names of
   // rtl/fmpp_map.json): the plan chooses among them. Empty: any size (the golden model).
   std::vector<std::string> rtl_configs;
@@ -47,8 +56,10 @@ struct PlanCandidate {
   unsigned n;
   double wrong_rate;      // sampled, with cond_bits = 60 (the machine's own answers)
   double host_share;      // triangles over the conditioning limit of this n
-  double pixel_rate = -1;  // sampled frame: pixels off by more than 8 levels; -1 if not rendered
-  double flagged_share = -1;  // sampled frame: rays redone on the host (certification); -1 if not rendered
+  double pixel_rate = -1;   // sampled pixels off by more than 8 levels; -1 if not rendered
+  double pixel_bound = -1;  // upper confidence bound on the full frame's share; -1 if not rendered
+  size_t pixels_sampled = 0;
+  double flagged_share = -1;  // frame sample: rays redone on the host (certification); -1 if not rendered
   uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 
@@ -60,5 +71,10 @@ struct Plan {
 };
 
 Plan make_plan(const Scene& scene, const PlanRequest& req);
+
+// The one-sided upper confidence bound (Clopper-Pearson) on a binomial share, after
+// `hits` of `trials` draws: the p at which `hits` or fewer have probability 1 - confidence.
+// 0 <= hits <= trials, trials >= 1, confidence in (0, 1).
+double upper_confidence_bound(size_t hits, size_t trials, double confidence);
 
 }  // namespace rt

@@ -56,21 +56,38 @@ double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
   return 2 * e * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
 }
 
+namespace {
+
+// The ray through the centre of pixel i = y * width + x.
+class PixelRays {
+ public:
+  PixelRays(const Camera& cam, int width, int height)
+      : eye_(cam.eye), width_(width), height_(height), fwd_(glm::normalize(cam.look_at - cam.eye)),
+        right_(glm::normalize(glm::cross(fwd_, cam.up))), up_(glm::cross(right_, fwd_)),
+        th_(std::tan(glm::radians(cam.fov_y_deg) / 2)), aspect_(double(width) / height) {}
+  Ray operator()(size_t i) const {
+    const int y = static_cast<int>(i / static_cast<size_t>(width_)), x = static_cast<int>(i % static_cast<size_t>(width_));
+    const double u = (2 * (x + 0.5) / width_ - 1) * th_ * aspect_, v = (1 - 2 * (y + 0.5) / height_) * th_;
+    return Ray{eye_, fwd_ + u * right_ + v * up_};
+  }
+
+ private:
+  glm::dvec3 eye_;
+  int width_, height_;
+  glm::dvec3 fwd_, right_, up_;
+  double th_, aspect_;
+};
+
+}  // namespace
+
 std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last) {
   // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
   // its culling frustum is thin.
-  const glm::dvec3 fwd = glm::normalize(cam.look_at - cam.eye);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up));
-  const glm::dvec3 upv = glm::cross(right, fwd);
-  const double th = std::tan(glm::radians(cam.fov_y_deg) / 2), aspect = double(width) / height;
+  const PixelRays at(cam, width, height);
   last = std::min(last, static_cast<size_t>(width) * static_cast<size_t>(height));
   std::vector<Ray> rays;
   rays.reserve(last > first ? last - first : 0);
-  for (size_t i = first; i < last; ++i) {
-    const int y = static_cast<int>(i / static_cast<size_t>(width)), x = static_cast<int>(i % static_cast<size_t>(width));
-    const double u = (2 * (x + 0.5) / width - 1) * th * aspect, v = (1 - 2 * (y + 0.5) / height) * th;
-    rays.push_back(Ray{cam.eye, fwd + u * right + v * upv});
-  }
+  for (size_t i = first; i < last; ++i) rays.push_back(at(i));
   return rays;
 }
 
@@ -110,13 +127,25 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   // Pixels in bands of at most kPrimaryBatch primary rays, each traced to the full
   // depth before the next: the rays, paths and hits in memory stay bounded whatever the
   // resolution (only the image grows with it).
-  const size_t pixels = static_cast<size_t>(opt.width) * static_cast<size_t>(opt.height);
+  const size_t frame = static_cast<size_t>(opt.width) * static_cast<size_t>(opt.height);
+  for (uint32_t i : opt.pixels) {
+    if (i >= frame) {
+      throw std::invalid_argument("pixel " + std::to_string(i) + " outside the " + std::to_string(opt.width) + "x" +
+                                  std::to_string(opt.height) + " frame");
+    }
+  }
+  const size_t pixels = opt.pixels.empty() ? frame : opt.pixels.size();
+  const PixelRays at(sc.camera, opt.width, opt.height);
   uint64_t traced = 0;
   for (size_t first = 0; first < pixels; first += kPrimaryBatch) {
     const size_t last = std::min(pixels, first + kPrimaryBatch);
-    std::vector<Ray> rays = primary_rays(sc.camera, opt.width, opt.height, first, last);
+    std::vector<Ray> rays;
     std::vector<Path> paths;
-    for (size_t i = first; i < last; ++i) paths.push_back(Path{static_cast<uint32_t>(i), glm::dvec3(1), RayKind::kPrimary});
+    for (size_t k = first; k < last; ++k) {
+      const uint32_t i = opt.pixels.empty() ? static_cast<uint32_t>(k) : opt.pixels[k];
+      rays.push_back(at(i));
+      paths.push_back(Path{i, glm::dvec3(1), RayKind::kPrimary});
+    }
 
     for (int level = 0; level < depth && !rays.empty(); ++level) {
       auto t0 = std::chrono::steady_clock::now();

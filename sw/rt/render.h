@@ -69,6 +69,9 @@ struct RenderOptions {
   int width = 64;
   int height = 64;
   int max_depth = -1;  // -1: the scene's
+  // Empty: every pixel. Otherwise only these pixel indices (y * width + x, each in the
+  // frame), traced exactly as in the whole frame; the other pixels stay black.
+  std::vector<uint32_t> pixels;
   // Called after each batch of rays: (rays traced so far, a description of the batch).
   std::function<void(uint64_t, const std::string&)> progress;
 };

@@ -128,10 +128,45 @@ struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
   }
 };
 
+// A mesh's placement in the scene: p -> R_y(rotate_y_deg) (scale p) + translate, with the
+// normals rotated alike. The identity leaves every coordinate bit for bit as read.
+struct Placement {
+  double scale = 1;
+  double rotate_y_deg = 0;
+  glm::dvec3 translate{0};
+  bool identity() const { return scale == 1 && rotate_y_deg == 0 && translate == glm::dvec3(0); }
+};
+
+Placement placement(const json& t, const std::string& file, const std::string& where) {
+  reject_unknown(t, {"scale", "rotate_y_deg", "translate"}, file, where);
+  Placement pl;
+  if (t.contains("scale")) pl.scale = number(t["scale"], file, where + ".scale", 1e-6, 1e6);
+  if (t.contains("rotate_y_deg")) pl.rotate_y_deg = number(t["rotate_y_deg"], file, where + ".rotate_y_deg", -360, 360);
+  if (t.contains("translate")) pl.translate = vec3(t["translate"], file, where + ".translate");
+  return pl;
+}
+
+void place(const Placement& pl, MeshGroup& g, const std::string& file, const std::string& where) {
+  if (pl.identity()) return;
+  const double a = glm::radians(pl.rotate_y_deg), c = std::cos(a), sn = std::sin(a);
+  auto rot = [&](const glm::dvec3& v) { return glm::dvec3(c * v.x + sn * v.z, v.y, -sn * v.x + c * v.z); };
+  for (auto& t : g.triangles) {
+    for (auto& p : t.p) {
+      p = rot(pl.scale * p) + pl.translate;
+      if (!(std::abs(p.x) <= fmpp::isect::kMaxCoordinate && std::abs(p.y) <= fmpp::isect::kMaxCoordinate && std::abs(p.z) <= fmpp::isect::kMaxCoordinate)) {
+        field_error(file, where, "moves a vertex beyond the input limit of 1e100");
+      }
+    }
+  }
+  for (auto& n : g.normals) {
+    for (auto& v : n) v = rot(v);
+  }
+}
+
 void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
                const std::filesystem::path& dir) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
-  reject_unknown(m, {"file", "material", "groups"}, file, where);
+  reject_unknown(m, {"file", "material", "groups", "transform"}, file, where);
   const json& f = require(m, "file", file, where);
   if (!f.is_string()) field_error(file, where + ".file", "expected a string");
   if (f.get<std::string>().empty()) field_error(file, where + ".file", "empty path");
@@ -149,10 +184,12 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
     if (!m["groups"].is_object()) field_error(file, where + ".groups", "expected an object of group: material");
     for (const auto& [g, name] : m["groups"].items()) group_mat[g] = material(name, where + ".groups." + g);
   }
-  const Mesh mesh = load_mesh(path);
+  const Placement pl = m.contains("transform") ? placement(m["transform"], file, where + ".transform") : Placement{};
+  Mesh mesh = load_mesh(path);
   s.files.push_back(path);
   std::map<std::string, bool> used;
-  for (const MeshGroup& g : mesh.groups) {
+  for (MeshGroup& g : mesh.groups) {
+    place(pl, g, file, where + ".transform");
     int mat = def;
     const auto it = group_mat.find(g.name);
     if (it != group_mat.end()) {

@@ -74,10 +74,15 @@ int main(int argc, char** argv) {
   app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(int_range(4, 32));
   double target = 0.002;
   app.add_option("--error-target", target,
-                 "precision plan: wrong-triangle rate allowed per primary ray, and share of a sampled frame's "
-                 "pixels allowed off the reference")
+                 "precision plan: wrong-triangle rate allowed per primary ray, and share of the frame's "
+                 "pixels allowed off the reference (a 95 % upper bound from sampled pixels)")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
+  int sample_pixels = 3000;
+  app.add_option("--plan-pixels", sample_pixels,
+                 "precision plan: pixels of the frame drawn at random and rendered per candidate n")
+      ->capture_default_str()
+      ->check(int_range(1, 1 << 24));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
   app.add_option("--out", out, "output PNG")->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
@@ -138,6 +143,7 @@ int main(int argc, char** argv) {
       pr.height = height;
       pr.max_depth = depth;
       pr.target_wrong_rate = target;
+      pr.sample_pixels = sample_pixels;
       if (backend != "cmodel") pr.rtl_configs = tb::rtl_configs();
       pr.base.mapping = isect::parse_mapping(mapping);
       pr.base.mul = isect::parse_mul_mode(mul);
@@ -159,7 +165,8 @@ int main(int argc, char** argv) {
       for (const auto& c : plan.candidates) {
         rep["plan"]["candidates"].push_back(
             {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate},
-             {"flagged_share", c.flagged_share}, {"sample_cycles", c.sample_cycles}});
+             {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
+             {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       auto be = make_backend(backend, cfg, bo);
