@@ -36,9 +36,13 @@ module fmpp_instr_check #(
 
   always_comb begin
     logic known;
+    int unsigned row;
     known    = 32'(op) < fmpp_pkg::NumOpcodes;
-    reserved = known ? fmpp_pkg::OpReserved[32'(op)*64 +: 64] : '1;
-    legal_o  = known && ((seg_set & fmpp_pkg::RsvSegOps[32'(op)*fmpp_pkg::NumRsvSegs +: fmpp_pkg::NumRsvSegs]) == '0);
+    // The tables' row: an unknown opcode reads row 0 (and is illegal anyway), so no
+    // part-select ever reaches past a table (the simulator would read beyond it).
+    row      = known ? 32'(op) : 0;
+    reserved = known ? fmpp_pkg::OpReserved[row*64 +: 64] : '1;
+    legal_o  = known && ((seg_set & fmpp_pkg::RsvSegOps[row*fmpp_pkg::NumRsvSegs +: fmpp_pkg::NumRsvSegs]) == '0);
     // Used word fields (their bits are not reserved) must address a word of the block.
     if (!reserved[fmpp_pkg::F_D_LSB] && 32'(d) >= NumWords) legal_o = 1'b0;
     if (!reserved[fmpp_pkg::F_A_LSB] && 32'(a) >= NumWords) legal_o = 1'b0;
