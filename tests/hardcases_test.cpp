@@ -597,7 +597,6 @@ TEST_P(HardCases, TinyAndHugeTriangles) {
   for (const Form& form : {kRayForm, kObjectForm, kWatertightForm}) {
     const Result r = run(rays, tris, form);
     expect_reference(r.hits, ref, rays, tris, tolerance(form, 24, tris, dvec3(0)), form.name);
-    const bool paper_ray = form.mapping == Mapping::kRay && !form.watertight;
     EXPECT_EQ(r.st.host_triangles, form.watertight ? 3u : 2u) << form.name;
     EXPECT_EQ(r.st.overflow_rays, 0u) << form.name;
   }
