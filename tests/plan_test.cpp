@@ -101,8 +101,21 @@ TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
   ReferenceIntersector ri(s.triangles);
   RenderOptions o;
   o.width = o.height = 32;
-  const ImageDiff d = compare(render(s, fi, o, nullptr), render(s, ri, o, nullptr));
+  RenderStats rs;
+  const ImageDiff d = compare(render(s, fi, o, &rs), render(s, ri, o, nullptr));
   EXPECT_LE(static_cast<double>(d.pixels_over), r.target_wrong_rate * 32 * 32);
+  // The per-kind counts of the render add up to the kernels' own counters, and the
+  // shadow rays through the diagonal are among the flagged ones.
+  uint64_t flagged = 0, t_host = 0;
+  for (int k = 0; k < kNumRayKinds; ++k) {
+    flagged += rs.flagged[k];
+    t_host += rs.t_from_host[k];
+  }
+  uint64_t t_bound = 0;
+  for (int f = 0; f < fmpp::isect::KernelStats::kForms; ++f) t_bound += fi.stats().t_bound_rays[f];
+  EXPECT_EQ(flagged, fi.stats().flagged_total());
+  EXPECT_EQ(t_host, t_bound);
+  EXPECT_GT(rs.flagged[static_cast<int>(RayKind::kShadow)], 0u);
 }
 
 TEST(Plan, UpperConfidenceBoundIsClopperPearson) {

@@ -108,6 +108,7 @@ class ObjectParallelPlan : public PassPlan {
         ++st_->overflow_rays;
         h = Hit{};
         merge_host(rays_[i], tris_, all_triangles(tris_), &h, st_);
+        h.redo = HostRedo::kOverflow;
       } else {
         if (h.hit()) h.t = 1.0 / (best_s_[r] * s_to_inv_t * ray_scale(rays_[i].d));
         merge_host(rays_[i], tris_, host_, &h, st_);

@@ -84,9 +84,11 @@ class RayParallelPlan : public PassPlan {
         if (all_.empty()) all_ = all_triangles(tris_);
         out_[i] = Hit{};
         merge_host(r, tris_, all_, &out_[i], st_);
+        out_[i].redo = HostRedo::kOverflow;
       } else if (unc_[b]) {
         ++st_->flagged_rays[f];
         out_[i] = nearest_reference_among(r, tris_, candidates_);
+        out_[i].redo = HostRedo::kFlagged;
         st_->host_tests += candidates_.size();
         st_->certify_tests[f] += candidates_.size();
       } else {
@@ -97,6 +99,7 @@ class RayParallelPlan : public PassPlan {
           out_[i].t = intersect_reference(r, tris_[out_[i].tri]);
         }
         merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
+        if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;
       }
     }
   }

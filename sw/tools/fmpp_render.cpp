@@ -189,7 +189,14 @@ int main(int argc, char** argv) {
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;
-    for (int k = 0; k < rt::kNumRayKinds; ++k) rep["rays"][rt::to_string(static_cast<rt::RayKind>(k))] = rs.rays[k];
+    for (int k = 0; k < rt::kNumRayKinds; ++k) {
+      const char* kind = rt::to_string(static_cast<rt::RayKind>(k));
+      rep["rays"][kind] = rs.rays[k];
+      if (backend != "reference") {
+        rep["rays_redone"][kind] = {
+            {"flagged", rs.flagged[k]}, {"t_from_host", rs.t_from_host[k]}, {"overflow", rs.overflow[k]}};
+      }
+    }
     stage = "writing " + out;
     img->write_png(out);
     if (compare) {
