@@ -118,6 +118,58 @@ TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
   EXPECT_GT(rs.flagged[static_cast<int>(RayKind::kShadow)], 0u);
 }
 
+// A mirror on the floor reflecting a checkered wall: every primary ray is right (large
+// triangles seen from the eye, the certified form), but the reflection
+// rays take the arbitrary-origin form, whose answers are not certified; at n = 12 they
+// land on the wrong checker squares (0.3 % of the pixels). Only the frame sees it, and
+// the plan moves up.
+TEST(Plan, TheFrameSampleCatchesWhatPrimaryRaysMiss) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream obj(dir + "/plan_mirror.obj");
+    obj << "o floor\nv -4 -1 0\nv 4 -1 0\nv 4 -1 -8\nv -4 -1 -8\nf 1 2 3 4\n";
+    int v = 5;
+    for (int i = 0; i < 16; ++i) {
+      for (int j = 0; j < 8; ++j) {
+        const double x0 = -4 + 0.5 * i, y0 = -1 + 0.5 * j;
+        obj << "o " << ((i + j) % 2 ? "dark" : "light") << i << "_" << j << "\n";
+        obj << "v " << x0 << " " << y0 << " -8\nv " << x0 + 0.5 << " " << y0 << " -8\nv " << x0 + 0.5 << " "
+            << y0 + 0.5 << " -8\nv " << x0 << " " << y0 + 0.5 << " -8\n";
+        obj << "f " << v << " " << v + 1 << " " << v + 2 << " " << v + 3 << "\n";
+        v += 4;
+      }
+    }
+    std::ofstream json(dir + "/plan_mirror.json");
+    json << R"({"camera": {"eye": [0, 0.5, 2], "look_at": [0, -1, -4], "up": [0, 1, 0], "fov_y_deg": 50},
+               "background": [0.1, 0.1, 0.15], "ambient": [0.3, 0.3, 0.3], "max_depth": 2,
+               "lights": [{"position": [0, 3, 2], "color": [1, 1, 1]}],
+               "materials": {"mirror": {"diffuse": [0, 0, 0], "reflectivity": 1},
+                             "light": {"diffuse": [0.9, 0.9, 0.9]}, "dark": {"diffuse": [0.05, 0.05, 0.05]}},
+               "meshes": [{"file": "plan_mirror.obj", "material": "light", "groups": {"floor": "mirror")";
+    for (int i = 0; i < 16; ++i) {
+      for (int j = 0; j < 8; ++j) {
+        if ((i + j) % 2) json << ", \"dark" << i << "_" << j << "\": \"dark\"";
+      }
+    }
+    json << "}}]}";
+  }
+  const Scene s = load_scene(dir + "/plan_mirror.json");
+  PlanRequest r;
+  r.width = r.height = 48;
+  r.max_flagged_share = 1;
+  const Plan p = make_plan(s, r);
+  ASSERT_GE(p.candidates.size(), 2u);
+  // The first n whose primary rays pass (n = 8 and 10 leave most triangles too
+  // ill-conditioned from the eye) renders the frame, which shows the reflection off.
+  const auto first = std::find_if(p.candidates.begin(), p.candidates.end(),
+                                  [](const PlanCandidate& c) { return c.pixel_rate >= 0; });
+  ASSERT_NE(first, p.candidates.end());
+  EXPECT_LE(first->wrong_rate, r.target_wrong_rate) << "primary rays alone would accept n = " << first->n;
+  EXPECT_GT(first->pixel_bound, r.target_wrong_rate) << "the frame must show the misplaced reflection";
+  EXPECT_GT(p.options.n, first->n);
+  EXPECT_LE(p.candidates.back().pixel_bound, r.target_wrong_rate);
+}
+
 TEST(Plan, UpperConfidenceBoundIsClopperPearson) {
   // No hit in n draws: 1 - (1 - c)^(1/n) exactly ("the rule of three" for c = 0.95).
   EXPECT_NEAR(upper_confidence_bound(0, 3000, 0.95), 1 - std::pow(0.05, 1.0 / 3000), 1e-9);
