@@ -67,6 +67,7 @@ class GeneralForm : public RayForm {
   }
 
   double t_of(uint32_t best, const Ray&) const override { return (best + 0.5) * u_; }
+  FormStat stat() const override { return kStatGeneral; }
 
  private:
   // The batch's scales: direction sv, moment sl, origin so (each the largest of its kind

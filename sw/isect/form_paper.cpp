@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sw/isect/certify.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/forms.h"
 #include "sw/isect/policy.h"
@@ -85,24 +86,48 @@ class PaperForm : public SharedOriginForm {
 
     const double cond_limit = policy::paper_cond_limit(opt_);
     for (size_t k = 0; k < in.tris.size(); ++k) {
-      double m[3][3];
+      // P^-1 with a rigorous bound on its error (certify.h); the host takes a triangle
+      // that is singular, too ill-conditioned for the format, or whose bounds would
+      // leave its decisions uncertain for nearly every ray.
+      double m[3][3], dm[3][3];
       int64_t x[9];
-      if (!paper_inverse(in.tris[k], in.origin, cond_limit, m)) {
+      if (!certify::certified_inverse(in.tris[k], in.origin, m, dm) ||
+          !(policy::condition(in.tris[k], in.origin) <= cond_limit)) {
         host.push_back(static_cast<int>(k));
         continue;
       }
       const int e = mantissas(&m[0][0], 9, opt_.n - 1, x);
+      const certify::PaperBounds pb = certify::paper_bounds(x, m, dm, e, opt_.n, opt_.vbits, e - E);
+      if (pb.k > kMaxNearBits || !(pb.sum <= certify::kMaxSumBound)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
       Broadcast b;
-      b.program = program(x, e - E, &b.test_steps);
+      b.program = program(x, e - E, pb, &b.test_steps);
       b.tri = static_cast<int>(k);
+      b.sum_bound = pb.sum;
       broadcasts.push_back(std::move(b));
     }
   }
 
+  FormStat stat() const override { return kStatPaper; }
+  bool certified() const override { return true; }
+  double t_rel_bound(uint32_t best, size_t k) const override {
+    return certify::t_relative_bound(static_cast<double>(best), broadcasts[k].sum_bound);
+  }
+  void init(Program& p) const override {
+    SharedOriginForm::init(p);
+    p << writes(layout::ray::kBB, 0, layout::kSel) << flagop(layout::kUnc, 0, 0, lut::kZero);
+  }
+
  private:
+  // A row bound of 2^kMaxNearBits or more (a quarter of T's 2^28 range) would leave
+  // nearly every ray of the triangle uncertain: the host takes it instead.
+  static constexpr int kMaxNearBits = 26;
+
   // One triangle broadcast: T = X V, inside test, S = T_1 + T_2 + T_3 shifted by 2^shift
   // to the common exponent, then keep_nearest.
-  Program program(const int64_t x[9], int shift, size_t* test_steps) const {
+  Program program(const int64_t x[9], int shift, const certify::PaperBounds& pb, size_t* test_steps) const {
     using namespace layout::ray;
     using layout::kHit;
     using layout::kSel;
@@ -114,22 +139,20 @@ class PaperForm : public SharedOriginForm {
       rows[i].r = kT + i;
       for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, x[3 * i + j], kX + 3 * i + j});
     }
+    // This broadcast's bound on S_c, for the comparisons (kBN).
+    p.mask(0);
+    p << writes(kBN, pb.sum_word, kSel);
     if (opt_.mul == MulMode::kGeneric) {
-      p.mask(0);
       for (unsigned k = 0; k < 9; ++k) p << writes(kX + k, static_cast<uint32_t>(x[k]), kSel);
       dot_rows(p, rows, opt_.n, kSel, layout::kTmp);
     } else {
-      p.mask(layout::kDataMask);
       dot_rows_const(p, rows, opt_.n, kSel);
     }
-    nonneg(p, kHit, kSel, kT + 0);
-    nonneg(p, kHit, kHit, kT + 1);
-    nonneg(p, kHit, kHit, kT + 2);
-    *test_steps = p.size();
+    *test_steps = certify::inside_certain(p, kT, pb.k);
     p << add(kS, kT + 0, kT + 1, kHit) << add(kS, kS, kT + 2, kHit);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
     for (int s = 0; s > shift; --s) p << rshift(kS, kS, kHit);
-    keep_nearest(p);
+    certify::keep_nearest_certain(p);
     return p;
   }
 };

@@ -50,6 +50,8 @@ class WatertightForm : public SharedOriginForm {
     t_scale_ = std::ldexp(1.0, Ew + 1) / sp;
   }
 
+  FormStat stat() const override { return kStatWatertight; }
+
  private:
   // A triangle on the grid: its edge constants, oriented so that det > 0, and the row
   // of S, w = (sum c_i) / det.

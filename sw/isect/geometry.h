@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -49,9 +50,15 @@ std::string check_direction(const glm::dvec3& d);
 // the triangle or ray by index: "fmpp::isect: ray 3 direction is zero".
 void validate_input(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
+// How the host took part in an FMPP answer (docs/intersection.md, "Certified results"):
+// the ray was flagged uncertain and redone exactly, its hit's t came from the host (its
+// certified bound was looser than requested), or its block overflowed and it was redone.
+enum class HostRedo : uint8_t { kNone, kFlagged, kTFromHost, kOverflow };
+
 struct Hit {
   int tri = -1;  // index of the nearest triangle, -1 for a miss
   double t = std::numeric_limits<double>::infinity();
+  HostRedo redo = HostRedo::kNone;  // set by intersect_fmpp, for the per-ray-kind counts
   bool hit() const { return tri >= 0; }
 };
 

@@ -59,6 +59,18 @@ void KernelStats::add(const KernelStats& o) {
   oracle_any_steps += o.oracle_any_steps;
   oracle_nearest_steps += o.oracle_nearest_steps;
   snapped_degenerate += o.snapped_degenerate;
+  for (int f = 0; f < kForms; ++f) {
+    form_rays[f] += o.form_rays[f];
+    flagged_rays[f] += o.flagged_rays[f];
+    t_bound_rays[f] += o.t_bound_rays[f];
+    certify_tests[f] += o.certify_tests[f];
+  }
+  uncertified_rays += o.uncertified_rays;
+}
+
+const char* form_stat_name(int f) {
+  static const char* const names[KernelStats::kForms] = {"paper", "watertight", "arbitrary-origin", "paper-object"};
+  return f >= 0 && f < KernelStats::kForms ? names[f] : "?";
 }
 
 void KernelOptions::validate(const Config& cfg) const {
@@ -66,6 +78,9 @@ void KernelOptions::validate(const Config& cfg) const {
   if (vbits < 2 || vbits > 28) throw std::invalid_argument("vbits = " + std::to_string(vbits) + " outside [2, 28]");
   if (mbits < 2 || mbits > 28) throw std::invalid_argument("mbits = " + std::to_string(mbits) + " outside [2, 28]");
   if (cull_packet < 1) throw std::invalid_argument("cull_packet = 0: a culling packet needs at least one ray");
+  if (!(t_accuracy >= 0 && t_accuracy < 1)) {
+    throw std::invalid_argument("t accuracy " + std::to_string(t_accuracy) + " outside [0, 1)");
+  }
   if (cond_bits > 60) throw std::invalid_argument("cond_bits = " + std::to_string(cond_bits) + " above 60");
   if (cfg.words < words_needed(*this)) {
     throw std::invalid_argument(std::string(to_string(mapping)) + "-parallel " + to_string(mul) + " needs " +

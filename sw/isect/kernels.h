@@ -83,6 +83,10 @@ struct KernelOptions {
   // min(n, mbits) - 3 (object-parallel). The arbitrary-origin kernel compares its own
   // edge-test condition (docs/intersection.md) with 2^cond_bits, by default 2^(n - 4).
   int cond_bits = -1;
+  // Certified forms: the relative accuracy a returned t must have (its certified bound);
+  // a hit whose bound is looser gets its t computed exactly on the host. 0: the default
+  // policy::t_accuracy = 2^-12.
+  double t_accuracy = 0;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
 };
@@ -110,6 +114,15 @@ struct KernelStats {
   uint64_t oracle_any = 0, oracle_nearest = 0;
   uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0;
   uint64_t snapped_degenerate = 0;  // watertight: triangles the grid made degenerate (tested on the host)
+  // Certification (docs/intersection.md, "Certified results"), per form: index
+  // FormStat (paper ray-parallel, watertight, arbitrary-origin, paper object-parallel).
+  static constexpr int kForms = 4;
+  uint64_t form_rays[kForms] = {};       // rays each form answered
+  uint64_t flagged_rays[kForms] = {};    // rays the kernel marked uncertain: redone exactly on the host
+  uint64_t t_bound_rays[kForms] = {};    // certified hits whose t bound exceeded t_accuracy: t computed exactly
+  uint64_t certify_tests[kForms] = {};   // host ray-triangle tests of those redos (also in host_tests)
+  uint64_t uncertified_rays = 0;         // rays answered by a form that does not certify its results
+  uint64_t flagged_total() const { return flagged_rays[0] + flagged_rays[1] + flagged_rays[2] + flagged_rays[3]; }
   double steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }
@@ -124,6 +137,10 @@ struct KernelStats {
   }
   void add(const KernelStats& o);
 };
+
+// Which form a ray went through, for the per-form counters of KernelStats.
+enum FormStat { kStatPaper = 0, kStatWatertight = 1, kStatGeneral = 2, kStatObject = 3 };
+const char* form_stat_name(int f);
 
 // Words each mapping needs per block.
 unsigned words_needed(const KernelOptions& opt);

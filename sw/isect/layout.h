@@ -15,7 +15,12 @@ inline constexpr unsigned kWin = 2;     // the hit is nearer than the block's be
 inline constexpr unsigned kTmp = 3;     // scratch (multiply digits, sign tests)
 inline constexpr unsigned kLoaded = 4;  // object-parallel: the block holds a triangle
 inline constexpr unsigned kNeg = 4;     // arbitrary-origin: det < 0 (never loaded at the same time)
-static_assert(kLoaded < map::kFlagV && kNeg < map::kFlagV, "kernel flags stay clear of the overflow flag");
+// Certified forms: some decision of this ray (inside, t > 0, nearer than the best) was
+// not certain within its error bound; sticky over a pass, the host redoes the ray
+// exactly (certify.h). Flag 4 is the certainty tests' scratch in the shared-origin forms.
+inline constexpr unsigned kUnc = 5;
+static_assert(kLoaded < map::kFlagV && kNeg < map::kFlagV && kUnc < map::kFlagC,
+              "kernel flags stay clear of the carry and overflow flags");
 
 // The one mask every ray-parallel broadcast runs under (set by the pass's init).
 inline constexpr uint32_t kDataMask = 0x7FFFFFFFu;
@@ -25,9 +30,11 @@ inline constexpr uint32_t kSignBit = 0x80000000u;
 // Ray-parallel, rays sharing an origin (the paper's form and the watertight form):
 // the ray's direction, T_1..3, the compared sum S, the best S and its broadcast number,
 // scratch, the broadcast counter (the best's number is copied from it, so no WRITES per
-// broadcast), the constant 1, and (generic multiply only) the 9 multiplier words.
+// broadcast), the constant 1, the error bound of the best's S and of this broadcast's S
+// (certified paper form), and (generic multiply only) the 9 multiplier words.
 namespace ray {
-inline constexpr unsigned kV = 0, kT = 3, kS = 6, kBest = 7, kIdx = 8, kD = 9, kCnt = 10, kOne = 11, kX = 12;
+inline constexpr unsigned kV = 0, kT = 3, kS = 6, kBest = 7, kIdx = 8, kD = 9, kCnt = 10, kOne = 11, kBB = 12,
+                          kBN = 13, kX = 14;
 inline constexpr unsigned kWordsConst = kX, kWordsGeneric = kX + 9;
 }  // namespace ray
 

@@ -101,11 +101,14 @@ class ObjectParallelPlan : public PassPlan {
     const double s_to_inv_t = std::ldexp(1.0, static_cast<int>(opt_.n)) / yscale_;  // times the ray's scale
     for (size_t r = 0; r < idx_.size(); ++r) {
       const size_t i = idx_[r];
+      ++st_->form_rays[kStatObject];
+      ++st_->uncertified_rays;
       Hit h = best_[r];
       if (best_s_[r] < 0) {  // a tainted winner: redo the whole ray on the host
         ++st_->overflow_rays;
         h = Hit{};
         merge_host(rays_[i], tris_, all_triangles(tris_), &h, st_);
+        h.redo = HostRedo::kOverflow;
       } else {
         if (h.hit()) h.t = 1.0 / (best_s_[r] * s_to_inv_t * ray_scale(rays_[i].d));
         merge_host(rays_[i], tris_, host_, &h, st_);

@@ -57,17 +57,20 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
 }
 
 void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
-                KernelStats* st) {
-  for (int k : host) {
-    if (k == r.exclude) continue;
-    const double t = intersect_reference(r, tris[k]);
-    ++st->host_tests;
-    if (t <= r.tmin) continue;
-    if (t < hit->t || (t == hit->t && k < hit->tri)) {
-      hit->t = t;
-      hit->tri = k;
-    }
+                KernelStats* st, bool certain_current) {
+  if (host.empty()) return;
+  if (certain_current || hit->tri < 0) {
+    // Exact comparisons (no rounded t): a certified current hit is evaluated again with
+    // them, so its t comes back exact too.
+    st->host_tests += host.size() + (hit->tri >= 0 ? 1 : 0);
+    *hit = nearest_reference_among(r, tris, host, hit->tri);
+    return;
   }
+  // An uncertified current hit (a form that answers for other geometry, such as the
+  // watertight grid) is kept as it is, and compared by its t.
+  st->host_tests += host.size();
+  const Hit h = nearest_reference_among(r, tris, host);
+  if (h.hit() && (h.t < hit->t || (h.t == hit->t && h.tri < hit->tri))) *hit = h;
 }
 
 std::vector<int> all_triangles(const std::vector<Triangle>& tris) {

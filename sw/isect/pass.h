@@ -54,9 +54,11 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
 void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* st);
 
 // Merges the host's results for triangles `host` into *hit (nearest wins, an exact tie
-// goes to the lower index), counting the host's tests.
+// goes to the lower index), counting the host's tests. certain_current: *hit is known to
+// be a hit of its triangle (a certified form, or none); it is evaluated again with the
+// exact comparisons and its t comes back exact. Otherwise it is compared by its t.
 void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,
-                KernelStats* st);
+                KernelStats* st, bool certain_current = false);
 
 // Every triangle index of `tris` (a ray the FMPP could not answer is redone against all).
 std::vector<int> all_triangles(const std::vector<Triangle>& tris);

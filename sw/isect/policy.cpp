@@ -66,6 +66,11 @@ unsigned object_search_bits(const KernelOptions& o) { return o.mbits + 1; }
 
 int direction_exponent(const glm::dvec3& d) { return -std::ilogb(max_component(d)); }
 
+double t_accuracy(const KernelOptions& o) {
+  if (o.t_accuracy > 0) return o.t_accuracy;
+  return std::ldexp(1.0, -kTAccuracyBits);
+}
+
 double cull_margin(unsigned n) { return 1e-3 + std::ldexp(1.0, 12 - static_cast<int>(n)); }
 
 }  // namespace fmpp::isect::policy

@@ -78,6 +78,11 @@ inline constexpr double kGeneralReachMargin = 1.25;
 // [1, 2), before the kernels (exact; t is scaled back).
 int direction_exponent(const glm::dvec3& d);
 
+// The relative accuracy of a certified t: opt.t_accuracy, or 2^-kTAccuracyBits, whatever
+// n (the precision plan then chooses the n at which few hits need the host for their t).
+inline constexpr int kTAccuracyBits = 12;
+double t_accuracy(const KernelOptions& o);
+
 // Culling: the angular margin (radians) added to every pass's cone, far above the
 // fixed-point error so that no hit the FMPP would report is culled.
 double cull_margin(unsigned n);

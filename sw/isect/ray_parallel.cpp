@@ -13,6 +13,7 @@
 #include "sw/isect/oracle.h"
 #include "sw/isect/order.h"
 #include "sw/isect/policy.h"
+#include "sw/isect/reference.h"
 
 namespace fmpp::isect {
 namespace {
@@ -162,26 +163,55 @@ class RayParallelPlan : public PassPlan {
 
   void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
     for (unsigned b = 0; b < count; ++b) out_[idx_[base + b]] = Hit{};
+    t_loose_.assign(count, false);
     ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
       const Ray& r = rays_[idx_[base + b]];
       Hit& h = out_[idx_[base + b]];
       h.tri = form_.broadcasts[order[pos]].tri;
       h.t = form_.t_of(best, r);
+      t_loose_[b] = form_.certified() && !(form_.t_rel_bound(best, order[pos]) <= t_acc_);
     });
+    unc_.assign(count, false);
+    if (form_.certified()) {
+      const std::vector<bool> u = dev.read_flag_all(layout::kUnc);
+      for (unsigned b = 0; b < count; ++b) unc_[b] = u[b];
+      // A flagged ray is redone against what the pass tested: its broadcasts and the host's.
+      candidates_ = form_.host;
+      for (size_t k : order) candidates_.push_back(form_.broadcasts[k].tri);
+    }
   }
 
-  // Overflowed rays are redone against every triangle; the others get the host's share.
+  // Overflowed rays are redone against every triangle, uncertain ones against the pass's
+  // triangles, loose t exactly; the others get the host's share.
   void host(size_t base, unsigned count) override {
+    const int f = form_.stat();
     for (unsigned b = 0; b < count; ++b) {
       const size_t i = idx_[base + b];
-      if (!ovf_[b]) {
-        merge_host(rays_[i], tris_, form_.host, &out_[i], st_);
-        continue;
+      const Ray& r = rays_[i];
+      st_->form_rays[f] += 1;
+      if (!form_.certified()) ++st_->uncertified_rays;
+      if (ovf_[b]) {
+        ++st_->overflow_rays;
+        if (all_.empty()) all_ = all_triangles(tris_);
+        out_[i] = Hit{};
+        merge_host(r, tris_, all_, &out_[i], st_);
+        out_[i].redo = HostRedo::kOverflow;
+      } else if (unc_[b]) {
+        ++st_->flagged_rays[f];
+        out_[i] = nearest_reference_among(r, tris_, candidates_);
+        out_[i].redo = HostRedo::kFlagged;
+        st_->host_tests += candidates_.size();
+        st_->certify_tests[f] += candidates_.size();
+      } else {
+        if (t_loose_[b]) {  // the triangle is certain, its t not precise enough
+          ++st_->t_bound_rays[f];
+          ++st_->certify_tests[f];
+          ++st_->host_tests;
+          out_[i].t = intersect_reference(r, tris_[out_[i].tri]);
+        }
+        merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
+        if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;
       }
-      ++st_->overflow_rays;
-      if (all_.empty()) all_ = all_triangles(tris_);
-      out_[i] = Hit{};
-      merge_host(rays_[i], tris_, all_, &out_[i], st_);
     }
   }
 
@@ -226,8 +256,9 @@ class RayParallelPlan : public PassPlan {
   std::vector<char> reach_;  // of each broadcast: some packet of the pass may reach it
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
-  std::vector<bool> ovf_;
-  std::vector<int> all_;
+  std::vector<bool> ovf_, unc_, t_loose_;
+  std::vector<int> all_, candidates_;
+  const double t_acc_ = policy::t_accuracy(opt_);
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct Broadcast {
   Program program;
   size_t test_steps = 0;  // instructions up to the inside test
   int tri = -1;           // the triangle
+  double sum_bound = 0;   // certified forms: the bound on the compared value of its hits
 };
 
 // An intersection form of the ray-parallel mapping, prepared for one batch of rays.
@@ -44,6 +46,13 @@ class RayForm {
   virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program.code(); }
   // The distance of a block's best.
   virtual double t_of(uint32_t best, const Ray& r) const = 0;
+  // Which form this is (KernelStats' per-form counters).
+  virtual FormStat stat() const = 0;
+  // Certified forms set flag layout::kUnc in a block whose decisions were not certain
+  // (the host then redoes the ray exactly), and bound the relative error of every t.
+  virtual bool certified() const { return false; }
+  // The certified relative bound on t_of(best) for a best set by broadcast k.
+  virtual double t_rel_bound(uint32_t /*best*/, size_t /*k*/) const { return std::numeric_limits<double>::infinity(); }
 };
 
 // Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]]. `origin` is

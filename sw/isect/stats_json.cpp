@@ -6,6 +6,14 @@
 namespace fmpp::isect {
 
 nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
+  nlohmann::json forms = nlohmann::json::object();
+  for (int f = 0; f < KernelStats::kForms; ++f) {
+    if (!st.form_rays[f]) continue;
+    forms[form_stat_name(f)] = {{"rays", st.form_rays[f]},
+                                {"flagged_rays", st.flagged_rays[f]},
+                                {"t_bound_rays", st.t_bound_rays[f]},
+                                {"certify_host_tests", st.certify_tests[f]}};
+  }
   return {{"cycles", st.cycles},
           {"load_cycles", st.load_cycles},
           {"compute_cycles", st.compute_cycles},
@@ -24,6 +32,9 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"host_triangles", st.host_triangles},
           {"host_tests", st.host_tests},
           {"snapped_degenerate", st.snapped_degenerate},
+          {"flagged_rays", st.flagged_total()},
+          {"uncertified_rays", st.uncertified_rays},
+          {"certify", forms},
           {"clock_mhz", clock_mhz},
           {"simulated_seconds", static_cast<double>(st.cycles) / (clock_mhz * 1e6)}};
 }

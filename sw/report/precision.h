@@ -69,6 +69,11 @@ struct Row {
   Errors fallback;
   uint64_t host_triangles = 0, host_tests = 0, overflow_rays = 0, snapped = 0;
   uint64_t render_cycles = 0, render_host_tests = 0;
+  // Certification (docs/intersection.md, "Certified results"), primary frame with the
+  // fallback: rays flagged uncertain and redone on the host, hits whose t came from the
+  // host, out of the rays of certified forms; and over the whole render.
+  uint64_t flagged = 0, t_redone = 0, certified_rays = 0;
+  uint64_t render_redone = 0, render_rays = 0, render_certified = 0;
   double psnr = 0;
   uint64_t pixels_off = 0;  // pixels more than 8 levels off the reference render
 };
@@ -113,7 +118,8 @@ struct Choice {
   const Row* raw = nullptr;    // const form: raw error (wrong + hit/miss) <= 0.1 %
   const Row* host = nullptr;   // const form: host triangles <= 1 %
   const Row* image = nullptr;  // const form: render PSNR >= 40 dB
-  const Row* all = nullptr;    // const form: all three
+  const Row* redone = nullptr;  // const form: rays of the render redone on the host (certification) <= 1 %
+  const Row* all = nullptr;    // const form: all four
   const Row* wt = nullptr;     // watertight form: raw error <= 0.1 %
 };
 std::vector<Choice> choose_n(const SceneResults& r);

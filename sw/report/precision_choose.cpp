@@ -32,6 +32,11 @@ json to_json(const Row& r) {
           {"snapped", r.snapped},
           {"render_cycles", r.render_cycles},
           {"render_host_tests", r.render_host_tests},
+          {"flagged", r.flagged},
+          {"t_redone", r.t_redone},
+          {"certified_rays", r.certified_rays},
+          {"render_redone", r.render_redone},
+          {"render_rays", r.render_rays},
           {"psnr", std::isfinite(r.psnr) ? json(r.psnr) : json(nullptr)},
           {"pixels_off", r.pixels_off}};
 }
@@ -61,9 +66,13 @@ std::vector<Choice> choose_n(const SceneResults& res) {
     c.raw = first(t, "const", [](const Row& r) { return r.raw.wrong + r.raw.hitmiss <= 1e-3; });
     c.host = first(t, "const", [&](const Row& r) { return static_cast<double>(r.host_triangles) <= 0.01 * ntris; });
     c.image = first(t, "const", [](const Row& r) { return !(r.psnr < 40); });
+    auto redone_ok = [](const Row& r) {
+      return static_cast<double>(r.render_redone) <= 0.01 * static_cast<double>(r.render_rays);
+    };
+    c.redone = first(t, "const", redone_ok);
     c.all = first(t, "const", [&](const Row& r) {
       return r.raw.wrong + r.raw.hitmiss <= 1e-3 && static_cast<double>(r.host_triangles) <= 0.01 * ntris &&
-             !(r.psnr < 40);
+             !(r.psnr < 40) && redone_ok(r);
     });
     c.wt = first(t, "watertight", [](const Row& r) { return r.raw.wrong + r.raw.hitmiss <= 1e-3; });
     out.push_back(c);
@@ -87,7 +96,8 @@ json report_data(const Setup& s, const SceneResults& res, const Leaks& leaks, co
   data["leaks"] = jl;
   json choose = json::object();
   for (const Choice& c : choices) {
-    choose[c.scene] = {{"raw", n_of(c.raw)}, {"host", n_of(c.host)}, {"image", n_of(c.image)}, {"all", n_of(c.all)},
+    choose[c.scene] = {{"raw", n_of(c.raw)}, {"host", n_of(c.host)}, {"image", n_of(c.image)},
+                       {"redone", n_of(c.redone)}, {"all", n_of(c.all)},
                        {"watertight", n_of(c.wt)}};
   }
   data["choose"] = choose;

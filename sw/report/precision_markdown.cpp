@@ -43,48 +43,43 @@ std::string db(double v) { return std::isfinite(v) ? fmt(v, 1) : "identical"; }
 // How to read the tables (written for the full run's numbers).
 const char* kReading = R"(**What the numbers mean for choosing n** (read from the tables above):
 
-- **The paper's form needs n = 20 for the machine alone, n = 24 for images.** At
-  n = 20 the raw machine gets every primary ray of every scene right and the fallback
-  sends at most 21 triangles to the host; the full renders reach 35.2 (spheres_10k) to
-  73 dB. At n = 24, the default, every render is within one level of the reference on
-  at most a few pixels (77 to 83 dB, or identical). Below 16 the raw error grows about
-  4x per 2 bits (spheres_10k: 0.6 % of the rays wrong at n = 16, 3.5 % at 12, 17 % at
-  10), as the error analysis predicts (cond 2^-n).
-- **The fallback keeps results right, but below n = 16 it is the host doing the work.**
-  Its condition limit (2^(n-3): 32 at n = 8, 128 at 10) is below the condition number
-  of ordinary triangles seen from the eye (tens to hundreds), so at n = 8 all but two
-  triangles of each sphere scene are host triangles: their primary rays come out right, for 10.5
-  million host tests per frame on spheres_10k, as many as the brute-force reference
-  does, and the secondary rays' arbitrary-origin kernel (limit 2^(n-4)) sends most
-  triangles to the host too; the sphere images come out at 31 to 33 dB (4 pixels more
-  than 8 levels off). The Cornell box keeps 6 of its triangles on the FMPP, whose
-  cracks at n = 8 cost 5 % of the primary rays (17 dB).
-  At n = 10 and 12 the fallback takes most or half of the triangles and still leaves
-  errors (spheres_1k: 5 % of the rays at n = 10). From n = 16 the cost of correctness is
-  small (at most 4 % of the triangles), from 24 nil.
-- **Clocks grow linearly with n.** The constant (CSD) multiply costs about 6n + 16
-  steps per broadcast (64 at n = 8, 159 at 24, 209 at 32) and the generic one 22n + 31,
-  3.2 to 3.6 times more on the larger scenes, for bit-identical results (checked on
-  every ray and image here). From n = 16 to 24 a broadcast costs 43 % more, from 24 to
-  32 another 30 %. Whole renders gain less from the constant multiply (1.8 to 2.3
-  times from n = 16 on the three larger scenes, near 1 below, where the host does most
-  of the work) because loads, readback and the arbitrary-origin kernel of the secondary
-  rays weigh the same in both. Use the constant multiply at every n.
-- **n = 32 buys depth, not hits.** The ray components have 28 bits, so past 28 the
-  triangle test hardly improves (no primary ray changes between n = 24 and 32 here),
-  while the depth error falls about 3 times (median 1.3e-6 to 4.1e-7 on spheres_10k).
+- **Certified, the paper's form gets every primary ray right at every n.** The raw
+  machine's wrong and hit/miss columns are 0 on every scene from n = 8 to 32: a
+  decision within the kernel's error bound is flagged and redone exactly on the host,
+  and every other one is right by the bound ([intersection.md](intersection.md#certified-results-certifyh)).
+  What n buys now is work kept off the host, and clocks.
+- **Below n = 20 the host does much of the work.** At n = 8 to 16 the bounds are wide:
+  1.5 % (cornell, n = 16) to 34 % (cornell, n = 10) of the primary rays are flagged,
+  and most hits miss the requested t accuracy 2^-12 and take their t from the host (92
+  % of cornell's at n = 16); the condition limit still sends ordinary triangles to the
+  host (all but two of each sphere scene's at n = 8). At n = 20 no primary ray is
+  flagged on cornell (0.5 % on spheres_10k), but 6.7 % to 33 % of the hits still take
+  their t from the host. At n = 24 the render's redone share (primary, shadow and
+  secondary rays) is 0.13 % (cornell), 0.38 % (spheres_1k) and 1.95 % (spheres_10k); at
+  32 it is 0. The precision plan (`fmpp-render`) requires at most 1 % of its sampled
+  frame's rays redone, so it picks n = 24 for cornell and spheres_1k and 28 for
+  spheres_10k at 128 x 128 (`fmpp-render --backend cmodel --width 128 --height 128
+  --compare-reference --report r.json`, 2026-11-23: 0.20 %, 0.49 % and 0.05 % of their
+  rays redone, 0, 1 and 0 pixels more than 8 levels off).
+- **Clocks grow linearly with n.** The constant (CSD) multiply with the certainty tests
+  costs about 6n + 40 steps per broadcast (82.5 at n = 8, 184 at 24, 232 at 32 on
+  cornell; the tests add 25 per broadcast) and the generic one 22n + 55, 3.2 to 3.6
+  times more on the larger scenes, for bit-identical results (checked on every ray and
+  image here). Use the constant multiply at every n.
+- **Depth within its bound.** Every certified t is within 2^-12 of the exact one; where
+  a triangle goes to the host, every ray's hit is compared, and its t evaluated, exactly
+  (the depth columns read 0 up to n = 20). At n = 24 the largest depth error is 3.5e-5
+  on cornell, at 32 6.6e-6.
 - **The watertight form never leaks, but its grid is coarse.** On the closed sphere it
-  lets no ray through at any n (0 of 23,456), where the paper's form loses 18 to 24 %
-  of the rays aimed exactly at edges for n = 8..28 (the sign of a rounded T decides
-  them; 5 % at 32) and, of rays in all directions, 1.7 % at n = 8, falling about 4x per
-  2 bits to none of 20,000 from n = 16. But it snaps vertices to a grid of (n-3)/2 bits
+  lets no ray through at any n (0 of 23,456); the certified paper form does not either
+  (before certification it lost 18 to 24 % of the rays aimed exactly at edges: the sign
+  of a rounded T decided them; now they are flagged and redone). But it snaps vertices to a grid of (n-3)/2 bits
   of the scene's extent, moving them by up to 2^-(n-1)/2 of it: on the sphere scenes it
-  needs n = 32 to get as few rays wrong as the paper's form at n = 16 to 20, and even
+  needs n = 32 to get as few rays wrong as the paper's form did at n = 16 to 20, and even
   there its sphere images are 45 to 68 dB (its depth comes from one n-bit row). Its clocks per
   broadcast are close to the paper's form's at equal n (fewer at small n, up to 22 %
-  more at 24-32). So: the paper's form at n = 24 for the most accurate image per clock;
-  the watertight form at n = 32 where a closed surface must never leak (shadow rays
-  toward closed objects, inside tests).)";
+  more at 24-32), and it does not certify its results yet. So: the certified paper form
+  at n = 24, which also never leaks.)";
 
 const char* kHardCases = R"(## Hard cases
 
@@ -98,17 +93,17 @@ depth bound (below).
 
 | case | behaviour asserted | bound, where the exact behaviour cannot hold |
 | --- | --- | --- |
-| rays exactly through the shared vertex and the shared edges of a closed fan of 7 triangles | reference and watertight: every ray hits (no crack), and reports one triangle, one of those sharing the edge or vertex (either is right: the ray meets both at one point); paper forms: any hit is such a triangle, at the right depth | the paper's form decides an exact edge by the sign of a rounded T, so it may crack there (counted, not bounded); rays 8 cond 2^-min(n,28) of the triangle's height inside a triangle hit exactly that triangle, as the reference does |
+| rays exactly through the shared vertex and the shared edges of a closed fan of 7 triangles | reference and watertight: every ray hits (no crack), and reports one triangle, one of those sharing the edge or vertex (either is right: the ray meets both at one point); paper forms: any hit is such a triangle, at the right depth | the paper's form decides an exact edge by the sign of a rounded T, so it may crack there (counted, not bounded; the certified ray-parallel form flags such a ray and redoes it exactly); rays 8 cond 2^-min(n,28) of the triangle's height inside a triangle hit exactly that triangle, as the reference does |
 | closed perturbed sphere (288 triangles) around the eye, rays aimed exactly at its edges and vertices | every ray hits in the reference; the watertight form never leaks (n = 12, 16, 24) | the paper's form leaks on exact edges at a rate that does not fall with n (table above): asserted below 35 %; rays a margin (as above) inside every triangle never leak and hit that triangle, in both mappings |
 | the same sphere, 12,000 uniformly random directions | the watertight form never leaks | the paper's form leaks only within the crack width of an edge (about cond 2^-n of a triangle's height): asserted at most 16 x 2^-n (measured 4.3-5.5 x 2^-n for n = 8..12, none from 16) |
 | eye exactly in a triangle's plane, inside a triangle, and 1e-12, 1e-6, 1e-3 off the plane, with a wall behind | every form equals the reference (n = 16, 24), never a garbage hit; the singular triangle (det = 0) is a host triangle even with cond_bits = 60; nearly singular ones are counted host triangles | - |
 | degenerate triangles: collinear vertices (exact integers and dyadic), a repeated vertex, three equal vertices; rays aimed exactly at them | never hit: the rays hit the wall behind, in the reference and both paper forms (default and cond_bits = 60); the four are host triangles | watertight: its grid moves collinear vertices off their line, making a sliver at most one grid step wide, which rays through the old segment may hit (that sliver keeps a closed mesh closed once snapped); a repeated vertex or a point is never hit, and rays 3 grid steps beside a collinear triangle never hit it |
 | needles and a sliver of aspect ratio 1e4 (cond 2e4 to 2e5) before a wall; rays inside them and one width outside | paper forms equal the reference at n = 16 (all three are host triangles: cond > 2^13) and n = 24 (on the FMPP); host_triangles counts exactly the triangles above 2^(min(n,28)-3) in both mappings | watertight: the needles snap to nothing (host triangles); the sliver snaps to a triangle a grid step away, which the rays miss: the form equals the reference on its snapped mesh |
-| a tiny triangle (1e-6) at distance 1, a tiny one 1e-7 in front of the eye, a huge one (1e6 wide) at 1e5 behind a wall | every form equals the reference; ray-parallel redoes the rays of the near one after an overflow (overflow_rays > 0) and tests the far one on the host; object-parallel tests both tiny ones on the host (the near one's column sums are above its cap), the watertight form both and the wall (the huge triangle sets a grid step of ~1400); host_triangles exact | depth: the compared sum keeps at least 9 bits (ray-parallel) or 10 bits (object-parallel) for the farthest hit, so a scene spanning 1e-7 to 1e6 has depth errors up to ~2^-9 there |
+| a tiny triangle (1e-6) at distance 1, a tiny one 1e-7 in front of the eye, a huge one (1e6 wide) at 1e5 behind a wall | every form equals the reference; ray-parallel tests both the near one (the bound of its compared sum, scaled by the shift to the common exponent, is beyond what a comparison can certify) and the far one on the host; object-parallel tests both tiny ones on the host (the near one's column sums are above its cap), the watertight form both and the wall (the huge triangle sets a grid step of ~1400); host_triangles exact | depth: the compared sum keeps at least 9 bits (ray-parallel) or 10 bits (object-parallel) for the farthest hit, so a scene spanning 1e-7 to 1e6 has depth errors up to ~2^-9 there |
 | ray directions of lengths 5 to 1e5 in one call | every form equals the reference; t is in units of each ray's own direction | - |
 | triangles behind the eye and straddling its plane, rays forward and backward | hits only in front, equal to the reference, every form | - |
 | one triangle listed six times with its vertices in every order | a tie: the first copy (lowest index) wins, in the reference and every form (watertight: on its snapped mesh) | - |
-| coplanar overlapping triangles (plane z = 4) | reference, object-parallel and watertight: exact tie, lowest index | ray-parallel sums three separately rounded rows per triangle, so two different triangles of one plane differ in the last unit of S: it reports one of them, at the right depth |
+| coplanar overlapping triangles (plane z = 4) | reference, object-parallel and watertight: exact tie, lowest index; ray-parallel (certified): the tie is within the bounds, so the ray is flagged and redone exactly: lowest index | - |
 | z-fighting: parallel overlapping planes 1e-2, 1e-3, 1e-9 apart, the farther one first | where the gap exceeds twice the form's depth bound, the nearer triangle, as the reference | below that, either of the two, at the right depth |
 | interpenetrating triangles crossing along a line | rays away from the crossing: the nearer one, as the reference | on the crossing line, either |
 | a floor of 128 triangles 1 below the eye, rays down to 1e-3 elevation (hits ~1900 away), above the horizon, beyond the floor | paper forms equal the reference at n = 16 (many far tiles are host triangles) and n = 24 | watertight: the grid step (~2) exceeds the eye's height, so its floor moves: it equals the reference on its snapped floor |
@@ -179,6 +174,14 @@ void what_is_measured(std::ostream& md) {
   different triangles; **hit/miss** = one hits and the other does not (both in % of the
   rays); **depth** = |t - t_ref| / t_ref over the rays hitting the same triangle (median
   and maximum).
+- **Certification** (the paper's form, ray-parallel; [intersection.md](intersection.md#certified-results-certifyh)
+  derives its error bounds): **flagged** = primary rays whose decision was not certain
+  within the bounds, redone exactly on the host; **t host** = certified hits whose t
+  bound exceeded the requested accuracy (2^-12), their t computed on the host; both in %
+  of the rays the certified form answered ("-": none, the watertight form does not
+  certify). **render redone** = the same two together over every ray of the render
+  (shadow and secondary rays too; the arbitrary-origin kernel's rays count as answered
+  but not certified).
 - **PSNR**: of the 8-bit image of the full render against the reference render (all
   channels; "identical" when every pixel is equal); **px > 8** = pixels more than 8
   levels off in some channel.
@@ -186,17 +189,25 @@ void what_is_measured(std::ostream& md) {
 )";
 }
 
+// a / b in %, "-" when b = 0 (no ray took a certified form).
+std::string share(uint64_t a, uint64_t b) {
+  return b ? pct(static_cast<double>(a) / static_cast<double>(b)) : std::string("-");
+}
+
 void scene_table(std::ostream& md, const SceneTable& t) {
   md << "## " << t.name << " (" << t.triangles << " triangles)\n\n";
   md << "| n | form | steps/bcast | raw: frame clocks | wrong % | hit/miss % | depth median | depth max | "
-        "fallback: frame clocks | host tris | host tests | wrong % | hit/miss % | render clocks | PSNR dB | px > 8 |\n";
-  md << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+        "fallback: frame clocks | host tris | host tests | wrong % | hit/miss % | flagged % | t host % | render clocks | "
+        "render redone % | PSNR dB | px > 8 |\n";
+  md << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const Row& r : t.rows) {
     md << "| " << r.n << " | " << r.form << " | " << fmt(r.steps, 1) << " | " << big(r.raw_cycles) << " | "
        << pct(r.raw.wrong) << " | " << pct(r.raw.hitmiss) << " | " << sci(r.raw.depth_median) << " | "
        << sci(r.raw.depth_max) << " | " << big(r.cycles) << " | " << r.host_triangles << " | " << big(r.host_tests)
-       << " | " << pct(r.fallback.wrong) << " | " << pct(r.fallback.hitmiss) << " | " << big(r.render_cycles) << " | "
-       << db(r.psnr) << " | " << r.pixels_off << " |\n";
+       << " | " << pct(r.fallback.wrong) << " | " << pct(r.fallback.hitmiss) << " | " << share(r.flagged, r.certified_rays)
+       << " | " << share(r.t_redone, r.certified_rays) << " | " << big(r.render_cycles) << " | "
+       << (r.render_certified ? share(r.render_redone, r.render_rays) : std::string("-")) << " | " << db(r.psnr)
+       << " | " << r.pixels_off << " |\n";
   }
   md << "\n";
 }
@@ -227,14 +238,16 @@ void choosing_n(std::ostream& md, const std::vector<Choice>& choices) {
   md << "## Choosing n\n\n";
   md << "Smallest n (of those measured) at which, per scene: the raw machine gets at most 0.1 % of the primary "
         "rays wrong (wrong + hit/miss); the fallback sends at most 1 % of the triangles to the host; the full "
-        "render reaches 40 dB PSNR; all three, with the const form's steps per broadcast there; and the "
+        "render reaches 40 dB PSNR; the host redoes at most 1 % of the render's rays to certify them (flagged, or "
+        "t beyond 2^-12); all four, with the const form's steps per broadcast there; and the "
         "watertight form's raw error is at most 0.1 %.\n\n";
-  md << "| scene | raw error <= 0.1 % | host triangles <= 1 % | render PSNR >= 40 dB | all three | steps/bcast there "
-        "| watertight raw error <= 0.1 % | its steps/bcast |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  md << "| scene | raw error <= 0.1 % | host triangles <= 1 % | render PSNR >= 40 dB | redone <= 1 % | all four | "
+        "steps/bcast there | watertight raw error <= 0.1 % | its steps/bcast |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   auto steps_of = [](const Row* r) { return r ? fmt(r->steps, 1) : std::string("-"); };
   for (const Choice& c : choices) {
     md << "| " << c.scene << " | " << n_of(c.raw) << " | " << n_of(c.host) << " | " << n_of(c.image) << " | "
-       << n_of(c.all) << " | " << steps_of(c.all) << " | " << n_of(c.wt) << " | " << steps_of(c.wt) << " |\n";
+       << n_of(c.redone) << " | " << n_of(c.all) << " | " << steps_of(c.all) << " | " << n_of(c.wt) << " | " << steps_of(c.wt) << " |\n";
   }
   md << "\n";
 }

@@ -150,9 +150,19 @@ SceneTable measure_scene(const Options& o, const Setup& setup, const char* name,
       r.host_tests = fb.st.host_tests;
       r.overflow_rays = fb.st.overflow_rays;
       r.snapped = fb.st.snapped_degenerate;
+      for (int k = 0; k < KernelStats::kForms; ++k) {
+        r.flagged += fb.st.flagged_rays[k];
+        r.t_redone += fb.st.t_bound_rays[k];
+      }
+      r.certified_rays = fb.st.form_rays[kStatPaper];
       const RenderRun rr = run_render(machine, scene, size, kernel_options(f, n, -1));
       r.render_cycles = rr.st.cycles;
       r.render_host_tests = rr.st.host_tests;
+      for (int k = 0; k < KernelStats::kForms; ++k) {
+        r.render_redone += rr.st.flagged_rays[k] + rr.st.t_bound_rays[k];
+        r.render_rays += rr.st.form_rays[k];
+      }
+      r.render_certified = rr.st.form_rays[kStatPaper];
       r.psnr = psnr(rr.image, ref_image);
       r.pixels_off = rt::compare(rr.image, ref_image).pixels_over;
       // Generic and const must agree bit for bit (docs/intersection.md).

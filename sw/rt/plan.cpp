@@ -29,6 +29,17 @@ struct Decision {
   std::string why;
 };
 
+// Rays the host redid to certify them (uncertain decisions, t beyond its accuracy), per
+// ray the kernels answered.
+double flagged_share(const fmpp::isect::KernelStats& st) {
+  uint64_t rays = 0, redone = 0;
+  for (int f = 0; f < fmpp::isect::KernelStats::kForms; ++f) {
+    rays += st.form_rays[f];
+    redone += st.flagged_rays[f] + st.t_bound_rays[f];
+  }
+  return rays ? static_cast<double>(redone) / static_cast<double>(rays) : 0;
+}
+
 std::string pct(double v) {
   std::ostringstream o;
   o.precision(3);
@@ -176,9 +187,10 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       c.pixel_rate = static_cast<double>(d.pixels_over) / static_cast<double>(sampled);
       c.pixel_bound = sampled == pixels ? c.pixel_rate : upper_confidence_bound(d.pixels_over, sampled, req.confidence);
       c.sample_cycles += fi.stats().cycles;
+      c.flagged_share = flagged_share(fi.stats());
     }
     plan.candidates.push_back(c);
-    if (primary_ok && c.pixel_bound <= req.target_wrong_rate) {
+    if (primary_ok && c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
       std::ostringstream why;
       why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
@@ -190,11 +202,13 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
             << pct(c.pixel_rate) << " (" << pct(req.confidence) << " upper bound for the frame " << pct(c.pixel_bound)
             << ")";
       }
-      why << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate);
+      why << " of pixels off the reference by more than 8 levels <= " << pct(req.target_wrong_rate) << ", "
+          << pct(c.flagged_share) << " of the sample's rays redone on the host <= " << pct(req.max_flagged_share);
       if (plan.candidates.size() > 1) {
         const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
         why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned";
         if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the sampled pixels off";
+        if (p.flagged_share >= 0) why << ", " << pct(p.flagged_share) << " of its rays redone";
         why << ")";
       }
       return {n, why.str()};

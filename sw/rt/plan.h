@@ -12,7 +12,11 @@
 //     see a shadow ray ending on a neighbouring triangle's edge; a small frame of its own
 //     (an earlier design) does not see errors that only the full resolution has. A frame
 //     of at most sample_pixels pixels is rendered whole, and its measured share decides.
-//   - Words per block: what the kernels need: 12 for rays that share an origin, 24 when
+//     The same render must have at most max_flagged_share of its rays redone on the host
+//     to certify them (uncertain decisions, t beyond the requested accuracy:
+//     docs/intersection.md, "Certified results"): certification must not become "do it
+//     all on the host".
+//   - Words per block: what the kernels need: 14 for rays that share an origin, 24 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
 //   - Blocks: one pass of primary rays if possible (fewer blocks cost extra passes: every
@@ -36,6 +40,7 @@ struct PlanRequest {
   int max_depth = -1;                 // -1: the scene's
   double target_wrong_rate = 0.002;   // wrong triangle per primary ray, and pixels off in the frame
   double max_host_share = 0.01;       // triangles the host may take over
+  double max_flagged_share = 0.01;    // rays of the sampled frame the host may redo (uncertain, or t too loose)
   int sample_rays = 1024;             // primary rays measured per candidate
   int sample_pixels = 3000;           // pixels of the frame rendered per candidate (>= 1)
   double confidence = 0.95;           // of the upper bound on the frame's share of pixels off
@@ -54,6 +59,7 @@ struct PlanCandidate {
   double pixel_rate = -1;   // sampled pixels off by more than 8 levels; -1 if not rendered
   double pixel_bound = -1;  // upper confidence bound on the full frame's share; -1 if not rendered
   size_t pixels_sampled = 0;
+  double flagged_share = -1;  // frame sample: rays redone on the host (certification); -1 if not rendered
   uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 

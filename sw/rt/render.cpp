@@ -54,6 +54,12 @@ namespace {
 
 double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
+void count_redo(const Hit& h, int kind, RenderStats& st) {
+  if (h.redo == fmpp::isect::HostRedo::kFlagged) ++st.flagged[kind];
+  if (h.redo == fmpp::isect::HostRedo::kTFromHost) ++st.t_from_host[kind];
+  if (h.redo == fmpp::isect::HostRedo::kOverflow) ++st.overflow[kind];
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -166,7 +172,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
       const std::vector<Hit> hits = isect.intersect(rays);
       st.intersect_seconds += seconds_since(t0);
       ++st.batches;
-      for (const Path& p : paths) ++st.rays[static_cast<int>(p.kind)];
+      for (size_t i = 0; i < paths.size(); ++i) {
+        ++st.rays[static_cast<int>(paths[i].kind)];
+        count_redo(hits[i], static_cast<int>(paths[i].kind), st);
+      }
       traced += rays.size();
       if (opt.progress) opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(rays.size()) + " rays");
 
@@ -182,6 +191,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         st.intersect_seconds += seconds_since(ts);
         ++st.batches;
         st.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
+        for (const Hit& h : sh) count_redo(h, static_cast<int>(RayKind::kShadow), st);
         traced += out.shadow_rays.size();
         if (opt.progress) {
           opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(out.shadow_rays.size()) +

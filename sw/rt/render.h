@@ -90,6 +90,10 @@ struct RenderOptions {
 
 struct RenderStats {
   uint64_t rays[kNumRayKinds] = {};
+  // Per ray kind, the rays whose FMPP answer the host redid (Hit::redo): flagged
+  // uncertain and redone exactly, t from the host, overflowed (docs/intersection.md,
+  // "Certified results").
+  uint64_t flagged[kNumRayKinds] = {}, t_from_host[kNumRayKinds] = {}, overflow[kNumRayKinds] = {};
   uint64_t batches = 0;
   double intersect_seconds = 0;
   double shade_seconds = 0;

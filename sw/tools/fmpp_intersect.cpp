@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   unsigned bits = 24, blocks = 64, words = 0;
   std::string config, origins = "auto";
   int cond_bits = -1;
+  double t_accuracy = 0;
   unsigned qbits = 20;
   app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
       ->required();
@@ -56,6 +57,11 @@ int main(int argc, char** argv) {
                  "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
       ->capture_default_str()
       ->check(int_range(-1, 60));
+  app.add_option("--t-accuracy", t_accuracy,
+                 "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
+                 "(0: the default, docs/intersection.md)")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 0.5));
   app.add_option("--origins", origins,
                  "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
                  "general formulation for the rest) | group | general")
@@ -102,6 +108,7 @@ int main(int argc, char** argv) {
       opt.mul = parse_mul_mode(mul);
       opt.n = bits;
       opt.cond_bits = cond_bits;
+      opt.t_accuracy = t_accuracy;
       opt.origins = parse_origins(origins);
       opt.qbits = qbits;
       opt.watertight = watertight;

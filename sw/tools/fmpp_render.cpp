@@ -104,6 +104,12 @@ int main(int argc, char** argv) {
   app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
   bool no_probe = false;
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
+  double t_accuracy = 0;
+  app.add_option("--t-accuracy", t_accuracy,
+                 "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
+                 "(0: the default, docs/intersection.md)")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 0.5));
   app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
   BackendOptions bo;
   add_trace_options(app, bo);
@@ -155,6 +161,7 @@ int main(int argc, char** argv) {
       pr.base.mapping = isect::parse_mapping(mapping);
       pr.base.mul = isect::parse_mul_mode(mul);
       pr.base.watertight = watertight;
+      pr.base.t_accuracy = t_accuracy;
       if (app.count("--bits")) pr.bits = bits;
       if (!config.empty()) {
         const Config c = named_config(config);
@@ -171,7 +178,8 @@ int main(int argc, char** argv) {
       for (const auto& c : plan.candidates) {
         rep["plan"]["candidates"].push_back(
             {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate},
-             {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"sample_cycles", c.sample_cycles}});
+             {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
+             {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       auto be = make_backend(backend, cfg, bo);
@@ -186,6 +194,7 @@ int main(int argc, char** argv) {
       ko.oracle = oracle;
       ko.cull_probe = !no_probe;
       ko.watertight = watertight;
+      ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       rt::FmppIntersector fi(dev, scene.triangles, ko);
       img = std::make_unique<rt::Image>(rt::render(scene, fi, ro, &rs));
@@ -205,7 +214,14 @@ int main(int argc, char** argv) {
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;
-    for (int k = 0; k < rt::kNumRayKinds; ++k) rep["rays"][rt::to_string(static_cast<rt::RayKind>(k))] = rs.rays[k];
+    for (int k = 0; k < rt::kNumRayKinds; ++k) {
+      const char* kind = rt::to_string(static_cast<rt::RayKind>(k));
+      rep["rays"][kind] = rs.rays[k];
+      if (backend != "reference") {
+        rep["rays_redone"][kind] = {
+            {"flagged", rs.flagged[k]}, {"t_from_host", rs.t_from_host[k]}, {"overflow", rs.overflow[k]}};
+      }
+    }
     stage = "writing " + out;
     img->write_png(out);
     if (compare) {

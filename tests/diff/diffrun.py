@@ -41,19 +41,40 @@ FORMS = {
 }
 # Documented relative t bounds (docs/precision.md), by form, as a function of n; None
 # where the docs give no rigorous bound yet.
+def certified_t(n):
+    """policy::t_accuracy: the default relative accuracy a certified t is held to, any n."""
+    return 2.0 ** -12
+
+
 BOUNDS = {
+    "paper/ray": certified_t,
     "arbitrary-origin/ray": lambda n: 2.0 ** -(n - 10),
     "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
 }
 KINDS = ("false_hit", "missed", "other_triangle", "tie_order")
 
 
-def run(cmd):
+def run(cmd, report=None):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         sys.stderr.write("diffrun: command failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr))
         sys.exit(2)
+    if report:
+        with open(report) as f:
+            return p.stdout, json.load(f)
     return p.stdout, p.stderr
+
+
+def certify_counts(rep):
+    """Flagged (redone) rays and t redos of one fmpp-intersect report."""
+    c = {"flagged": 0, "t_redone": 0}
+    if "certify" not in rep or "flagged_rays" not in rep or "uncertified_rays" not in rep:
+        sys.stderr.write("diffrun: the report of fmpp-intersect lacks the certification counters\n")
+        sys.exit(2)
+    for form in rep["certify"].values():
+        c["flagged"] += form["flagged_rays"]
+        c["t_redone"] += form["t_bound_rays"]
+    return c
 
 
 def parse_hits(text, hexfloat=False):
@@ -159,14 +180,19 @@ def main():
                 add_counts(ref_counts, counts)
                 ref_rays[fam] = ref_rays.get(fam, 0) + len(rays)
                 ref_hits[fam] = ref_hits.get(fam, 0) + sum(1 for k, _ in exact if k >= 0)
-                for be, form, n in runs:
+                for j, (be, form, n) in enumerate(runs):
                     cmd = [os.path.join(a.build, "fmpp-intersect"), "--triangles", tp, "--rays", rp, "--backend", be]
+                    report = None
                     if be != "reference":
-                        cmd += ["--bits", str(n), "--blocks", "64", "--words", "32"] + FORMS[form]
-                    jobs.append(((be, form, n, fam), pool.submit(run, cmd), exact, tris, rays))
+                        report = os.path.join(tmp, "%s_%d_%d.json" % (fam, i, j))
+                        cmd += ["--bits", str(n), "--blocks", "64", "--words", "32", "--report", report] + FORMS[form]
+                    jobs.append(((be, form, n, fam), pool.submit(run, cmd, report), exact, tris, rays))
         for key, fut, exact, tris, rays in jobs:
             bound = BOUNDS.get(key[1])
-            c = compare_fmpp(parse_hits(fut.result()[0]), exact, tris, rays, bound(key[2]) if bound else None)
+            out, rep = fut.result()
+            c = compare_fmpp(parse_hits(out), exact, tris, rays, bound(key[2]) if bound else None)
+            if isinstance(rep, dict):
+                c.update(certify_counts(rep))
             add_counts(fmpp.setdefault(key, {}), c)
 
     lines = ["Seed %s, %d rays per family (%d instances of %d rays), families: %s." %
@@ -179,8 +205,8 @@ def main():
     if runs:
         short = {f: f.replace("_", " ") for f in families}
         lines.append("| backend | form/mapping | n | " + " | ".join(short[f] for f in families) +
-                     " | all | false hit / missed / other / tie | max rel t err | over bound |")
-        lines.append("|" + " --- |" * (len(families) + 7))
+                     " | all | false hit / missed / other / tie | max rel t err | over bound | flagged | t redone |")
+        lines.append("|" + " --- |" * (len(families) + 9))
         for be, form, n in runs:
             tot = {}
             cells = []
@@ -189,9 +215,10 @@ def main():
                 add_counts(tot, c)
                 cells.append(str(c["disagreements"]))
             ob = str(tot["over_bound"]) if form in BOUNDS else "-"
-            lines.append("| %s | %s | %s | %s | **%d** / %d | %s | %.2g | %s |" % (
+            lines.append("| %s | %s | %s | %s | **%d** / %d | %s | %.2g | %s | %d | %d |" % (
                 be, form, n or "-", " | ".join(cells), tot["disagreements"], tot["rays"],
-                " / ".join(str(tot[k]) for k in KINDS), tot["max_rel_t"], ob))
+                " / ".join(str(tot[k]) for k in KINDS), tot["max_rel_t"], ob, tot.get("flagged", 0),
+                tot.get("t_redone", 0)))
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     for b in ref_bad[:50]:
