@@ -71,6 +71,4 @@ double t_accuracy(const KernelOptions& o) {
   return std::ldexp(1.0, -kTAccuracyBits);
 }
 
-double cull_margin(unsigned n) { return 1e-3 + std::ldexp(1.0, 12 - static_cast<int>(n)); }
-
 }  // namespace fmpp::isect::policy

@@ -83,8 +83,4 @@ int direction_exponent(const glm::dvec3& d);
 inline constexpr int kTAccuracyBits = 12;
 double t_accuracy(const KernelOptions& o);
 
-// Culling: the angular margin (radians) added to every pass's cone, far above the
-// fixed-point error so that no hit the FMPP would report is culled.
-double cull_margin(unsigned n);
-
 }  // namespace fmpp::isect::policy

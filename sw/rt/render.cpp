@@ -52,8 +52,6 @@ const char* to_string(BatchKind k) {
 
 namespace {
 
-double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
-
 void count_redo(const Hit& h, int kind, RenderStats& st) {
   if (h.redo == fmpp::isect::HostRedo::kFlagged) ++st.flagged[kind];
   if (h.redo == fmpp::isect::HostRedo::kTFromHost) ++st.t_from_host[kind];
@@ -63,19 +61,6 @@ void count_redo(const Hit& h, int kind, RenderStats& st) {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
-
-}  // namespace
-
-double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
-  // p = o + t d: each component is off by at most |t d| t_err (the intersector's error
-  // of t) plus the rounding of the multiply and add, a few units of 2^-53 of |o| + |t d|.
-  // As pbrt-v4 does, the bound of the error box projected on the normal, doubled.
-  const double td = std::abs(t) * max_abs(r.d);
-  const double e = td * t_err + 4 * std::ldexp(1.0, -53) * (max_abs(r.o) + td);
-  return 2 * e * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
-}
-
-namespace {
 
 // The ray through the centre of pixel i = y * width + x.
 class PixelRays {

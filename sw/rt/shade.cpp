@@ -41,6 +41,15 @@ constexpr double kDoubleTError = 0x1p-40;
 
 }  // namespace
 
+double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
+  // p = o + t d: each component is off by at most |t d| t_err (the intersector's error
+  // of t) plus the rounding of the multiply and add, a few units of 2^-53 of |o| + |t d|.
+  // As pbrt-v4 does, the bound of the error box projected on the normal, doubled.
+  const double td = std::abs(t) * max_abs(r.d);
+  const double e = td * t_err + 4 * std::ldexp(1.0, -53) * (max_abs(r.o) + td);
+  return 2 * e * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+}
+
 Shader::Shader(const Scene& scene, double spawn_margin) : scene_(scene), spawn_margin_(spawn_margin) {
   surfaces_.reserve(scene.materials.size());
   for (const Material& m : scene.materials) surfaces_.emplace_back(m);
