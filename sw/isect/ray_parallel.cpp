@@ -29,12 +29,14 @@ namespace {
 // cost 2 %; on armadillo the large passes' are 13 to 18 %, and the primary clocks halve).
 constexpr int kProbeLeavesOwn = 3, kProbeLeavesShared = 1;
 constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
-// Culling on the FMPP: one triangle per leaf of the hierarchy, each tested on the FMPP
-// before it is broadcast. Measured at 128 x 128, 4096 blocks, spheres_10k (shared-origin
-// rays; docs/perf.md): leaves of 1, 2, 4 triangles gave 3.83, 3.94, 4.11 M clocks for the
-// frame; testing inner nodes too cost more than it saved (90 % of them had some ray that
-// needed them, after the host's walk).
-constexpr unsigned kWalkLeafItems = 1;
+// Culling: one triangle per leaf of the hierarchy, so that a ray keeps only the triangles
+// whose own (padded) boxes it crosses, and the FMPP tests each one before it is broadcast.
+// Measured at 128 x 128, 4096 blocks, spheres_10k (docs/perf.md): with the FMPP's box
+// tests, leaves of 1, 2, 4 triangles gave 3.83, 3.94, 4.11 M clocks for the frame, and
+// testing inner nodes too cost more than it saved (90 % of them had some ray that needed
+// them, after the host's walk); for rays of their own origins leaves of 1, 2, 4 gave
+// 1.13, 1.33, 1.52 M clocks.
+constexpr unsigned kCullLeafItems = 1;
 
 class RayParallelPlan : public PassPlan {
  public:
@@ -44,7 +46,7 @@ class RayParallelPlan : public PassPlan {
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
     if (opt_.cull) {
       bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
-      bvh_ = Bvh(bounds_.boxes, bounds_.rel);
+      bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
       // The probe only guesses (the final broadcasts decide), so it walks the triangles'
       // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
       std::vector<Box> tight;
@@ -52,7 +54,6 @@ class RayParallelPlan : public PassPlan {
       probe_bvh_ = Bvh(tight);
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
       if (opt_.fmpp_boxes && origin && shared && form_.stat() == kStatPaper) {
-        bvh_ = Bvh(bounds_.boxes, bounds_.rel, kWalkLeafItems);
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         origin_ = *origin;
       }
