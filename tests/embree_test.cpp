@@ -101,6 +101,23 @@ TEST(Embree, SameHitsAsReferenceOnARender) {
   }
 }
 
+// A batch as one coherent stream gives the same hits as one call per ray.
+TEST(Embree, StreamGivesTheSameHits) {
+  const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");
+  EmbreeOptions so;
+  so.stream = true;
+  EmbreeIntersector one(s.triangles, 0), stream(s.triangles, 0, so);
+  const std::vector<Ray> rays = primary_rays(s.camera, 48, 48);
+  const std::vector<Hit> a = one.intersect(rays), b = stream.intersect(rays);
+  int hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_EQ(a[i].tri, b[i].tri) << "ray " << i;
+    EXPECT_EQ(a[i].t, b[i].t) << "ray " << i;
+    hits += a[i].hit();
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 // A budget below a batch's tests checks every stride-th ray only.
 TEST(Embree, CheckBudgetSamplesTheBatch) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");

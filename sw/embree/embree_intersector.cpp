@@ -3,6 +3,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -65,7 +66,7 @@ float float_down(double x) {
 
 EmbreeIntersector::EmbreeIntersector(const std::vector<fmpp::isect::Triangle>& tris, double spawn_margin,
                                      const EmbreeOptions& opt)
-    : spawn_margin_(spawn_margin) {
+    : spawn_margin_(spawn_margin), stream_(opt.stream) {
   if (opt.threads < 1) throw std::invalid_argument("EmbreeIntersector: threads " + std::to_string(opt.threads) + " < 1");
   if (tris.size() >= std::numeric_limits<unsigned>::max()) {
     throw std::invalid_argument("EmbreeIntersector: " + std::to_string(tris.size()) + " triangles, too many for Embree");
@@ -147,8 +148,18 @@ std::vector<Hit> EmbreeIntersector::intersect(const std::vector<Ray>& rays) {
   }
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
+  if (stream_) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   const auto t0 = std::chrono::steady_clock::now();
-  for (RTCRayHit& r : rh) rtcIntersect1(scene_, &ctx, &r);
+  if (stream_) {
+    // rtcIntersect1M takes an unsigned count: a batch beyond it goes in pieces.
+    constexpr size_t kMaxStream = size_t{1} << 30;
+    for (size_t i = 0; i < rh.size(); i += kMaxStream) {
+      rtcIntersect1M(scene_, &ctx, rh.data() + i, static_cast<unsigned>(std::min(kMaxStream, rh.size() - i)),
+                     sizeof(RTCRayHit));
+    }
+  } else {
+    for (RTCRayHit& r : rh) rtcIntersect1(scene_, &ctx, &r);
+  }
   seconds_[static_cast<int>(kind_)] += seconds_since(t0);
   rays_[static_cast<int>(kind_)] += rays.size();
   std::vector<Hit> hits(rays.size());

@@ -31,6 +31,9 @@ struct EmbreeOptions {
   int threads = 1;
   // RTC_SCENE_FLAG_ROBUST: Embree's watertight mode (slower traversal, no cracks).
   bool robust = false;
+  // Each batch as one ray stream (rtcIntersect1M, context flag COHERENT: Embree packs
+  // neighbouring rays into SIMD packets) instead of one rtcIntersect1 call per ray.
+  bool stream = false;
 };
 
 class EmbreeIntersector : public Intersector {
@@ -46,8 +49,9 @@ class EmbreeIntersector : public Intersector {
   EmbreeIntersector& operator=(const EmbreeIntersector&) = delete;
 
   void set_batch_kind(BatchKind k) override { kind_ = k; }
-  // Nearest hit of every ray, one rtcIntersect1 call per ray. Only those calls are
-  // timed (seconds()); converting the rays to float and back is not.
+  // Nearest hit of every ray: one rtcIntersect1 call per ray, or one rtcIntersect1M
+  // call per batch (EmbreeOptions::stream). Only those calls are timed (seconds());
+  // converting the rays to float and back is not.
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
   double spawn_margin() const override { return spawn_margin_; }
 
@@ -64,6 +68,7 @@ class EmbreeIntersector : public Intersector {
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
   double spawn_margin_;
+  bool stream_;
   double build_seconds_ = 0;
   BatchKind kind_ = BatchKind::kPrimary;
   uint64_t rays_[kNumBatchKinds] = {};
