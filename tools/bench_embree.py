@@ -63,6 +63,11 @@ def tables(build, repeat, min_seconds):
     check = ["| scene, frame | rays checked (of all) | same hit | hit at the ray's end vs miss | tie (shared edge) "
              "| hit vs miss | other triangle | largest relative t error |",
              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    cpu_hz = docblock.cpu_mhz() * 1e6
+    clocks = ["| scene, frame | FMPP rays per 1000 clocks | Embree rays per 1000 CPU clocks, per ray (stream) "
+              "| FMPP broadcasts (any-hit oracle) | FMPP clocks / any-hit oracle | load + readback share of the clocks "
+              "| host box tests | host ray-triangle tests |",
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     meta = None
     for scene, side in gallery.FRAMES:
         f = gallery.load(build, scene, side)
@@ -76,6 +81,12 @@ def tables(build, repeat, min_seconds):
             name, docblock.fmt_int(e["rays_total"]), docblock.fmt_int(n), si(e["rays_per_second"]),
             si(es["rays_per_second"]), 1e3 * e["build_seconds"], docblock.fmt_int(cyc), si(fmpp(PAPER_MHZ)),
             si(fmpp(FPGA_MHZ)), si(fmpp(ASIC_MHZ)), max(e["rays_per_second"], es["rays_per_second"]) / fmpp(ASIC_MHZ)))
+        per_cpu_clock = lambda x: "%.2f" % (1e3 * x / cpu_hz) if cpu_hz else "?"  # noqa: E731
+        clocks.append("| %s | %.2f | %s (%s) | %s (%s) | %.2f | %.1f %% | %s | %s |" % (
+            name, 1e3 * n / cyc, per_cpu_clock(e["rays_per_second"]), per_cpu_clock(es["rays_per_second"]),
+            docblock.fmt_int(f["broadcasts"]), docblock.fmt_int(f["oracle"]["any_hit_broadcasts"]),
+            f["oracle"]["cycles_over_any_hit"], 100.0 * (f["load_cycles"] + f["readback_cycles"]) / cyc,
+            docblock.fmt_int(f["box_tests"]), docblock.fmt_int(f["host_tests"])))
         for k in KINDS:
             nk, ck = fmpp_rays(f, k), f["by_kind"][k]["cycles"]
             if nk == 0:
@@ -94,7 +105,9 @@ def tables(build, repeat, min_seconds):
             "(clocks / clock rate). Regenerate with `make bench-embree` (after `make gallery`)." % (
                 docblock.now(), docblock.machine(), meta["cpu"]["model"], docblock.git_commit(ROOT),
                 meta["embree"]["version"], meta["embree"]["threads"], meta["embree"]["call"], repeat, min_seconds))
-    return "\n".join([head, ""] + main + ["", "By batch kind:", ""] + kinds +
+    per_clock = ("Per clock (the CPU's clock as the kernel reports it, %.0f MHz: nominal, a VM does not show the "
+                 "boost clock), and where the FMPP's clocks go (the host's work beside them):" % (cpu_hz / 1e6))
+    return "\n".join([head, ""] + main + ["", "By batch kind:", ""] + kinds + ["", per_clock, ""] + clocks +
                      ["", "Embree's hits against the exact reference on the same renders' rays (every ray where a "
                       "batch costs the reference at most 2e8 ray-triangle tests, else an even sample):", ""] + check)
 

@@ -40,6 +40,18 @@ def cpu_model():
     return platform.processor() or "unknown CPU"
 
 
+def cpu_mhz():
+    """The clock the kernel reports for the first CPU (a VM reports its nominal clock), or 0."""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("cpu MHz"):
+                    return float(line.split(":", 1)[1])
+    except (OSError, ValueError):
+        pass
+    return 0.0
+
+
 def machine():
     """One line naming the machine: CPU, cores, OS."""
     os_name = "unknown OS"
