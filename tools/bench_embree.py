@@ -4,7 +4,7 @@ FMPP's rays per second from its clocks; rewrites the block `embree` of docs/perf
 
     tools/bench_embree.py [--build build] [--repeat 5] [--tables-only]
 
-For each frame of tools/gallery.py's FRAMES: the FMPP's report (BUILD/gallery/, made by
+For each frame of tools/gallery.py's BENCH_FRAMES: the FMPP's report (BUILD/gallery/, made by
 `make gallery` or here if missing) gives the frame's rays and clocks; fmpp-embree-bench
 renders the same frame with Embree (rays per second of the rtcIntersect1 calls, and of
 one rtcIntersect1M stream per batch, in the fastest of --repeat renders or more; BVH
@@ -69,7 +69,7 @@ def tables(build, repeat, min_seconds):
               "| host box tests | host ray-triangle tests |",
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     meta = None
-    for scene, side in gallery.FRAMES:
+    for scene, side in gallery.BENCH_FRAMES:
         f = gallery.load(build, scene, side)
         e = load(bench_path(build, scene, side))
         es = load(bench_path(build, scene, side, True))
@@ -125,7 +125,7 @@ def main():
         sys.exit("--repeat %d: must be at least 1" % a.repeat)
     os.makedirs(os.path.join(build, "bench-embree"), exist_ok=True)
     if not a.tables_only:
-        for scene, side in gallery.FRAMES:
+        for scene, side in gallery.BENCH_FRAMES:
             if not os.path.exists(gallery.report_path(build, scene, side)):
                 gallery.render(build, scene, side)
             cmd = [os.path.join(build, "fmpp-embree-bench"), "--scene", os.path.join(ROOT, "scenes", scene + ".json"),

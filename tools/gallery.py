@@ -20,11 +20,15 @@ import docblock  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# (scene, side): every shipped scene at 128 x 128, the large scene also at 256 x 256.
-FRAMES = [("cornell", 128), ("spheres_1k", 128), ("spheres_10k", 128), ("one_triangle", 128), ("armadillo", 128),
-          ("scans", 128), ("scans", 256)]
+SCENES = ["cornell", "spheres_1k", "spheres_10k", "one_triangle", "armadillo", "scans"]
+# (scene, side): every shipped scene at 128 x 128 (the frames of the culling tables and
+# of the Embree comparison) and at 256 x 256 (the gallery's pictures).
+FRAMES = [(s, 128) for s in SCENES] + [(s, 256) for s in SCENES]
+# The frames tools/bench_embree.py compares: every scene at 128 x 128, the large one also
+# at 256 x 256.
+BENCH_FRAMES = [(s, 128) for s in SCENES] + [("scans", 256)]
 # The frame each scene shows in the gallery.
-PICTURE = {"cornell": 128, "spheres_1k": 128, "spheres_10k": 128, "one_triangle": 128, "armadillo": 128, "scans": 256}
+PICTURE = {s: 256 for s in SCENES}
 # The machine of every frame: the golden model, n = 24, 4096 blocks of 32 words (the
 # frame of issue 13's culling measurements), culled, with the oracles.
 FMPP_ARGS = ["--backend", "cmodel", "--bits", "24", "--blocks", "4096", "--words", "32"]
@@ -34,7 +38,7 @@ CAPTION = {
     "spheres_10k": "40 spheres, mirrors and glass",
     "one_triangle": "one triangle",
     "armadillo": "scanned armadillo on the stage (mirror wall, glass sphere)",
-    "scans": "armadillo and bunny: 127,940 triangles, 256 x 256",
+    "scans": "armadillo and bunny: 127,940 triangles",
 }
 
 
@@ -108,7 +112,7 @@ def readme_block(build):
     for i, row in enumerate((scenes[:3], scenes[3:])):
         if i > 0:
             lines.append("| " + " | ".join("**%s**" % s for s in row) + " |")
-        lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="256" alt="%s">' % (s, CAPTION[s])
+        lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
                                        for s in row) + " |")
         lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |")
     lines += ["", "Each picture's command (golden model; `make gallery` runs them all):", ""]
