@@ -100,11 +100,10 @@ def tables(build, repeat, min_seconds):
             name, docblock.fmt_int(c["checked"]), docblock.fmt_int(e["rays_total"]), docblock.fmt_int(c["same"]),
             docblock.fmt_int(c["at_end"]), docblock.fmt_int(c["tie"]), docblock.fmt_int(c["near_miss"]),
             docblock.fmt_int(c["other"]), c["max_t_error"]))
-    head = ("Measured %s on %s (fmpp-embree-bench: %s), commit %s; Embree %s, %d thread, per ray: %s, stream: "
+    head = ("%s; Embree %s, %d thread, per ray: %s, stream: "
             "rtcIntersect1M, one coherent stream per batch; the fastest of at least %d renders (more until the calls took %g s). FMPP: the golden model's clocks (n = 24, 4096 x 32 blocks, culled), rays per second = the frame's rays / "
             "(clocks / clock rate). Regenerate with `make bench-embree` (after `make gallery`)." % (
-                docblock.now(), docblock.machine(), meta["cpu"]["model"], docblock.git_commit(ROOT),
-                meta["embree"]["version"], meta["embree"]["threads"], meta["embree"]["call"], repeat, min_seconds))
+                docblock.provenance(os.path.join(build, "bench-embree")), meta["embree"]["version"], meta["embree"]["threads"], meta["embree"]["call"], repeat, min_seconds))
     per_clock = ("Per clock (the CPU's clock as the kernel reports it, %.0f MHz: nominal, a VM does not show the "
                  "boost clock), and where the FMPP's clocks go (the host's work beside them):" % (cpu_hz / 1e6))
     return "\n".join([head, ""] + main + ["", "By batch kind:", ""] + kinds + ["", per_clock, ""] + clocks +
@@ -125,6 +124,7 @@ def main():
         sys.exit("--repeat %d: must be at least 1" % a.repeat)
     os.makedirs(os.path.join(build, "bench-embree"), exist_ok=True)
     if not a.tables_only:
+        docblock.save_provenance(os.path.join(build, "bench-embree"), ROOT)
         for scene, side in gallery.BENCH_FRAMES:
             if not os.path.exists(gallery.report_path(build, scene, side)):
                 gallery.render(build, scene, side)

@@ -5,6 +5,7 @@ A block is the text between the lines `<!-- NAME:begin ... -->` and `<!-- NAME:e
 replace_block rewrites only that text, so the prose around it stays the author's.
 """
 import datetime
+import json
 import os
 import platform
 import re
@@ -78,6 +79,23 @@ def git_commit(root):
         return out.stdout.strip() + (" + uncommitted changes" if dirty else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown commit"
+
+
+def save_provenance(directory, root):
+    """Records in directory/provenance.json when, where and on which commit its
+    measurements were made, for tables rewritten later from them."""
+    with open(os.path.join(directory, "provenance.json"), "w", encoding="utf-8") as f:
+        json.dump({"date": now(), "machine": machine(), "commit": git_commit(root)}, f)
+
+
+def provenance(directory):
+    """'Measured DATE on MACHINE, commit C' from directory/provenance.json."""
+    path = os.path.join(directory, "provenance.json")
+    if not os.path.exists(path):
+        sys.exit("%s missing: make the measurements first (without --tables-only)" % path)
+    with open(path, encoding="utf-8") as f:
+        p = json.load(f)
+    return "Measured %s on %s, commit %s" % (p["date"], p["machine"], p["commit"])
 
 
 def run(cmd, log=sys.stderr):

@@ -51,7 +51,7 @@ def png_path(build, scene, side):
 
 
 def command(scene, side, report="r.json", out="out.png"):
-    return ["fmpp-render", "--scene", "scenes/%s.json" % scene] + FMPP_ARGS + [
+    return ["build/fmpp-render", "--scene", "scenes/%s.json" % scene] + FMPP_ARGS + [
         "--width", str(side), "--height", str(side), "--oracle", "--report", report, "--out", out]
 
 
@@ -101,9 +101,11 @@ def by_kind_table(build, scene, side):
     return rows
 
 
+PROVENANCE = {}  # the build directory's gallery folder, set by main()
+
+
 def provenance():
-    return "Measured %s on %s, commit %s; regenerate with `make gallery`." % (
-        docblock.now(), docblock.machine(), docblock.git_commit(ROOT))
+    return docblock.provenance(PROVENANCE["dir"]) + "; regenerate with `make gallery`."
 
 
 def readme_block(build):
@@ -115,7 +117,8 @@ def readme_block(build):
         lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
                                        for s in row) + " |")
         lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |")
-    lines += ["", "Each picture's command (golden model; `make gallery` runs them all):", ""]
+    lines += ["", "Each picture's command (golden model; n = 24 and 4096 blocks of 32 words fixed, as in the culling "
+              "tables, not chosen by the precision plan; `make gallery` runs them all):", ""]
     lines += ["    " + " ".join(command(s, PICTURE[s], "NAME.json", "NAME.png")).replace("NAME", s) for s in scenes]
     lines += ["", "and its clocks against the oracles of culling ([raytracer.md](docs/raytracer.md#culling-against-the-oracle)):",
               ""]
@@ -142,7 +145,9 @@ def main():
         if name not in PICTURE:
             sys.exit("--only %s: not a gallery scene (%s)" % (name, ", ".join(PICTURE)))
     os.makedirs(os.path.join(build, "gallery"), exist_ok=True)
+    PROVENANCE["dir"] = os.path.join(build, "gallery")
     if not a.tables_only:
+        docblock.save_provenance(PROVENANCE["dir"], ROOT)
         for scene, side in FRAMES:
             if a.only and scene not in a.only:
                 continue
