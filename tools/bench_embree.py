@@ -66,7 +66,7 @@ def tables(build, repeat, min_seconds):
     cpu_hz = docblock.cpu_mhz() * 1e6
     clocks = ["| scene, frame | FMPP rays per 1000 clocks | Embree rays per 1000 CPU clocks, per ray (stream) "
               "| FMPP broadcasts (any-hit oracle) | FMPP clocks / any-hit oracle | load + readback share of the clocks "
-              "| host box tests | host ray-triangle tests |",
+              "| box tests: host, FMPP (their share of the clocks) | host ray-triangle tests |",
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     meta = None
     for scene, side in gallery.BENCH_FRAMES:
@@ -82,11 +82,12 @@ def tables(build, repeat, min_seconds):
             si(es["rays_per_second"]), 1e3 * e["build_seconds"], docblock.fmt_int(cyc), si(fmpp(PAPER_MHZ)),
             si(fmpp(FPGA_MHZ)), si(fmpp(ASIC_MHZ)), max(e["rays_per_second"], es["rays_per_second"]) / fmpp(ASIC_MHZ)))
         per_cpu_clock = lambda x: "%.2f" % (1e3 * x / cpu_hz) if cpu_hz else "?"  # noqa: E731
-        clocks.append("| %s | %.2f | %s (%s) | %s (%s) | %.2f | %.1f %% | %s | %s |" % (
+        clocks.append("| %s | %.2f | %s (%s) | %s (%s) | %.2f | %.1f %% | %s, %s (%.1f %%) | %s |" % (
             name, 1e3 * n / cyc, per_cpu_clock(e["rays_per_second"]), per_cpu_clock(es["rays_per_second"]),
             docblock.fmt_int(f["broadcasts"]), docblock.fmt_int(f["oracle"]["any_hit_broadcasts"]),
             f["oracle"]["cycles_over_any_hit"], 100.0 * (f["load_cycles"] + f["readback_cycles"]) / cyc,
-            docblock.fmt_int(f["box_tests"]), docblock.fmt_int(f["host_tests"])))
+            docblock.fmt_int(f["box_tests"]), docblock.fmt_int(f.get("fmpp_box_tests", 0)),
+            100.0 * f.get("box_cycles", 0) / cyc, docblock.fmt_int(f["host_tests"])))
         for k in KINDS:
             nk, ck = fmpp_rays(f, k), f["by_kind"][k]["cycles"]
             if nk == 0:
