@@ -21,7 +21,8 @@ struct Record {
   uint64_t index;
   double t;
   int32_t tri;
-  int32_t redo;
+  int16_t redo;
+  int16_t slot;
 };
 static_assert(std::is_trivially_copyable_v<Record> && sizeof(Record) == 24, "Record travels as bytes");
 
@@ -60,7 +61,7 @@ SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev)
 
 void SharedPasses::end_pass() {
   if (!running_) return;
-  costs_.push_back(PassCost{call_, mine_.back(), dev_.cycles() - pass_c0_});
+  costs_.push_back(PassCost{exchanges_, call_, mine_.back(), dev_.cycles() - pass_c0_});
   running_ = false;
 }
 
@@ -86,7 +87,7 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
 
 void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   const size_t items = plan.items();
-  if (items == 0) return;  // no pass on any rank: nothing was asked, nothing to swap
+  if (items == 0) return;  // no pass on any rank: nothing was asked
   if (!open_) throw std::logic_error("SharedPasses::finish without take");
   end_pass();
   // The passes are all out; this rank's last question gets its -1 (exactly one per job).
@@ -95,17 +96,27 @@ void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   open_ = false;
   ++call_;
   ++calls_;
-
   std::vector<std::pair<size_t, isect::Hit>> res;
   for (uint64_t p : mine_) {
     const size_t base = static_cast<size_t>(p) * blocks;
     plan.results(base, static_cast<unsigned>(std::min<size_t>(blocks, items - base)), &res);
   }
-  std::vector<Record> out(res.size());
-  for (size_t i = 0; i < res.size(); ++i) {
-    out[i] = Record{res[i].first, res[i].second.t, res[i].second.tri, static_cast<int32_t>(res[i].second.redo)};
+  for (const auto& r : res) own_.emplace_back(slot_, r.first);
+}
+
+void SharedPasses::exchange(const std::vector<std::vector<isect::Hit>*>& batches) {
+  if (open_) throw std::logic_error("SharedPasses::exchange inside a pass loop");
+  const uint64_t clocks = dev_.cycles() - last_clocks_;
+  last_clocks_ = dev_.cycles();
+  ++exchanges_;
+  slot_ = 0;
+  std::vector<Record> out;
+  out.reserve(own_.size());
+  for (const auto& [slot, i] : own_) {
+    const isect::Hit& h = batches.at(static_cast<size_t>(slot))->at(i);
+    out.push_back(Record{i, h.t, h.tri, static_cast<int16_t>(h.redo), static_cast<int16_t>(slot)});
   }
-  const uint64_t clocks = dev_.cycles() - c0_;
+  own_.clear();
   if (!s_.active() || s_.size() == 1) {
     sync_clocks_ += clocks;
     return;
@@ -113,7 +124,7 @@ void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
 #ifdef FMPP_HAVE_MPI
   const auto t0 = std::chrono::steady_clock::now();
   const size_t n = static_cast<size_t>(s_.size());
-  // Each rank's record count and clocks of this call, then the records.
+  // Each rank's record count and clocks since the last exchange, then the records.
   const uint64_t head[2] = {out.size(), clocks};
   std::vector<uint64_t> heads(2 * n);
   MPI_Allgather(head, 2, MPI_UINT64_T, heads.data(), 2, MPI_UINT64_T, MPI_COMM_WORLD);
@@ -137,11 +148,10 @@ void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   const size_t own_first = static_cast<size_t>(displs[static_cast<size_t>(s_.rank())]) / sizeof(Record);
   for (size_t i = 0; i < all.size(); ++i) {
     if (i >= own_first && i < own_first + out.size()) continue;
-    isect::Hit h;
+    isect::Hit& h = batches.at(static_cast<size_t>(all[i].slot))->at(static_cast<size_t>(all[i].index));
     h.tri = all[i].tri;
     h.t = all[i].t;
     h.redo = static_cast<isect::HostRedo>(all[i].redo);
-    plan.set_result(static_cast<size_t>(all[i].index), h);
   }
 #endif
 }

@@ -1,10 +1,11 @@
 // The passes of the intersection kernels shared among the FMPPs of a job, one FMPP per
 // rank (docs/multichip.md). Every rank runs the same renderer on the same scene, so it
 // makes the same calls of isect::run_passes with the same passes; within a call each
-// rank takes passes from the WorkQueue whenever its FMPP is free, and after the call
-// the ranks swap the results of their passes, so every rank shades every pixel alike.
-// A pass computes exactly what it computes on one FMPP (its rays, its culling, its
-// host redos), so the image is the same for any number of ranks.
+// rank takes passes from the WorkQueue whenever its FMPP is free and moves on to the
+// next call when none is left. After a batch (or two independent ones) the ranks swap
+// the results of their passes, so every rank shades every pixel alike. A pass computes
+// exactly what it computes on one FMPP (its rays, its culling, its host redos), so the
+// image is the same for any number of ranks.
 #pragma once
 
 #include <cstdint>
@@ -38,18 +39,27 @@ class SharedPasses : public isect::PassShare {
   bool take(uint64_t pass, uint64_t passes) override;
   void finish(isect::PassPlan& plan, unsigned blocks) override;
 
+  // The calls that follow fill batch `slot` of the next exchange (0 or 1).
+  void begin_batch(int slot) { slot_ = slot; }
+  // Collective: every rank sends the hits its passes found in batches[slot] and gets
+  // the others' (batches: the intersector's results, indexed like its rays).
+  void exchange(const std::vector<std::vector<isect::Hit>*>& batches);
+
   // What the system did so far, for the report.
   uint64_t calls() const { return calls_; }
   uint64_t passes_run() const { return passes_run_; }
-  // Sum over calls of the slowest rank's clocks in that call (the ranks meet after each).
+  // Sum over exchanges of the slowest rank's clocks since the last one (the ranks meet
+  // at each).
   uint64_t synchronized_clocks() const { return sync_clocks_; }
+  uint64_t exchanges() const { return exchanges_; }
   // Bytes of results of all ranks' passes swapped after the calls (each result once).
   uint64_t exchanged_bytes() const { return exchanged_bytes_; }
   // Wall seconds this rank waited in the exchanges (its share of the imbalance).
   double wait_seconds() const { return wait_seconds_; }
-  // The clocks of every pass run here: (call, pass, clocks), the scaling model's input.
+  // The clocks of every pass run here: (exchange, call, pass, clocks), the scaling
+  // model's input.
   struct PassCost {
-    uint64_t call, pass, clocks;
+    uint64_t exchange, call, pass, clocks;
   };
   const std::vector<PassCost>& pass_costs() const { return costs_; }
 
@@ -63,6 +73,9 @@ class SharedPasses : public isect::PassShare {
   int64_t next_ = kAsk;     // this rank's next pass of the call, -1 when none is left
   uint64_t call_ = 0, c0_ = 0, passes_ = 0;
   std::vector<uint64_t> mine_;  // this call's passes run here
+  int slot_ = 0;
+  std::vector<std::pair<int, size_t>> own_;  // (slot, ray) answered here since the last exchange
+  uint64_t exchanges_ = 0, last_clocks_ = 0;
   bool running_ = false;        // mine_.back() runs since pass_c0_
   uint64_t pass_c0_ = 0;
   std::vector<PassCost> costs_;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 #include <type_traits>
 
 namespace fmpp::mpi {
@@ -13,13 +14,61 @@ static_assert(std::is_trivially_copyable_v<isect::KernelStats> && sizeof(isect::
               "KernelStats must stay a record of uint64_t counters");
 constexpr size_t kWords = sizeof(isect::KernelStats) / 8;
 
+nlohmann::json pass_lists(const std::vector<std::map<std::pair<uint64_t, uint64_t>, uint64_t>>& by_exchange) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& m : by_exchange) {
+    nlohmann::json l = nlohmann::json::array();
+    for (const auto& kv : m) l.push_back(kv.second);
+    out.push_back(l);
+  }
+  return out;
+}
+
 std::vector<uint64_t> words(const isect::KernelStats& st) {
   std::vector<uint64_t> v(kWords);
   std::memcpy(v.data(), &st, sizeof st);
   return v;
 }
 
+// The FMPP's intersector; after each batch, or pair of independent batches, the ranks
+// swap the results of their passes.
+class SharedIntersector : public rt::Intersector {
+ public:
+  SharedIntersector(rt::FmppIntersector& fi, SharedPasses& share) : fi_(fi), share_(share) {}
+  void set_batch_kind(rt::BatchKind k) override { fi_.set_batch_kind(k); }
+  double spawn_margin() const override { return fi_.spawn_margin(); }
+  std::vector<isect::Hit> intersect(const std::vector<isect::Ray>& rays) override {
+    share_.begin_batch(0);
+    std::vector<isect::Hit> h = fi_.intersect(rays);
+    share_.exchange({&h});
+    return h;
+  }
+  std::pair<std::vector<isect::Hit>, std::vector<isect::Hit>> intersect_two(const std::vector<isect::Ray>& a,
+                                                                            rt::BatchKind ka,
+                                                                            const std::vector<isect::Ray>& b,
+                                                                            rt::BatchKind kb) override {
+    share_.begin_batch(0);
+    fi_.set_batch_kind(ka);
+    std::vector<isect::Hit> ha = fi_.intersect(a);
+    share_.begin_batch(1);
+    fi_.set_batch_kind(kb);
+    std::vector<isect::Hit> hb = fi_.intersect(b);
+    share_.exchange({&ha, &hb});
+    return {std::move(ha), std::move(hb)};
+  }
+
+ private:
+  rt::FmppIntersector& fi_;
+  SharedPasses& share_;
+};
+
 }  // namespace
+
+rt::Intersector& RenderChips::wrap(rt::FmppIntersector& fi) {
+  if (!share_) return fi;
+  wrapped_ = std::make_unique<SharedIntersector>(fi, *share_);
+  return *wrapped_;
+}
 
 void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& cfg, unsigned bits) const {
   uint64_t h = fnv1a(tris.data(), tris.size() * sizeof(isect::Triangle));
@@ -54,20 +103,20 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
                        {"passes", mine.passes},
                        {"broadcasts", mine.broadcasts},
                        {"exchange_wait_seconds", share_->wait_seconds()}};
-  for (const SharedPasses::PassCost& c : share_->pass_costs()) me["pass_clocks"].push_back({c.call, c.pass, c.clocks});
+  for (const SharedPasses::PassCost& c : share_->pass_costs()) {
+    me["pass_clocks"].push_back({c.exchange, c.call, c.pass, c.clocks});
+  }
   const std::vector<std::string> all = s_.gather(me.dump());
   if (!s_.leader()) return nullptr;
   nlohmann::json chips = nlohmann::json::array();
   uint64_t max_clocks = 0, sum_clocks = 0, transfers = 0;
-  // Every pass's clocks, by call and pass (the input of tools/scaling_model.py).
-  std::vector<std::vector<uint64_t>> calls(share_->calls());
+  // Every pass's clocks, by exchange, in the order of calls and passes (the input of
+  // tools/scaling_model.py).
+  std::vector<std::map<std::pair<uint64_t, uint64_t>, uint64_t>> by_exchange(share_->exchanges());
   for (const std::string& j : all) {
     chips.push_back(nlohmann::json::parse(j));
     for (const auto& c : chips.back()["pass_clocks"]) {
-      std::vector<uint64_t>& call = calls.at(c[0].get<size_t>());
-      const size_t pass = c[1].get<size_t>();
-      if (call.size() <= pass) call.resize(pass + 1, 0);
-      call[pass] = c[2].get<uint64_t>();
+      by_exchange.at(c[0].get<size_t>())[{c[1].get<uint64_t>(), c[2].get<uint64_t>()}] = c[3].get<uint64_t>();
     }
     chips.back().erase("pass_clocks");
     const uint64_t c = chips.back()["clocks"].get<uint64_t>();
@@ -93,7 +142,8 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
           {"speedup_clocks", frame ? static_cast<double>(sum_clocks) / static_cast<double>(frame) : 0.0},
           {"load_balance", max_clocks ? static_cast<double>(sum_clocks) / n / static_cast<double>(max_clocks) : 1.0},
           {"sync_efficiency", sync ? static_cast<double>(sum_clocks) / (n * static_cast<double>(sync)) : 1.0},
-          {"pass_clocks", calls}};
+          {"exchanges", share_->exchanges()},
+          {"pass_clocks", pass_lists(by_exchange)}};
 }
 
 }  // namespace fmpp::mpi

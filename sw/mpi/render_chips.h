@@ -3,6 +3,8 @@
 //
 //   agree()   every rank loaded the same triangles and planned the same machine;
 //   attach()  the SharedPasses for KernelOptions::share (nullptr outside a launcher);
+//   wrap()    the intersector the renderer calls: the FMPP's, plus the exchange of
+//             results after each batch (or pair of independent batches);
 //   total()   the system's counters: the sum of every chip's (the figures one FMPP gives);
 //   report()  the "chips" section: per-chip clocks, the system's frame time, the balance.
 #pragma once
@@ -13,6 +15,7 @@
 
 #include "sw/isect/geometry.h"
 #include "sw/isect/kernels.h"
+#include "sw/rt/render.h"
 #include "sw/mpi/pass_share.h"
 #include "sw/mpi/session.h"
 #include "sw/mpi/work_queue.h"
@@ -25,6 +28,8 @@ class RenderChips {
   // Throws std::runtime_error naming the first rank that differs.
   void agree(const std::vector<isect::Triangle>& tris, const Config& cfg, unsigned bits) const;
   isect::PassShare* attach(const Device& dev);
+  // After attach: `fi` with the exchange (fi itself when MPI is not active).
+  rt::Intersector& wrap(rt::FmppIntersector& fi);
   isect::KernelStats total(const isect::KernelStats& mine) const;
   // On rank 0 the section, elsewhere null. mine: this rank's whole-frame counters.
   nlohmann::json report(const isect::KernelStats& mine, double clock_mhz) const;
@@ -33,6 +38,7 @@ class RenderChips {
   const Session& s_;
   std::unique_ptr<WorkQueue> q_;
   std::unique_ptr<SharedPasses> share_;
+  std::unique_ptr<rt::Intersector> wrapped_;
 };
 
 }  // namespace fmpp::mpi

@@ -217,7 +217,7 @@ int main(int argc, char** argv) {
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       ko.share = chips.attach(dev);
       rt::FmppIntersector fi(dev, scene.triangles, ko);
-      img = std::make_unique<rt::Image>(rt::render(scene, fi, ro, &rs));
+      img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
