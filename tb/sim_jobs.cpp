@@ -46,9 +46,8 @@ std::vector<JobOutcome> run_jobs(const mpi::Session& s, const std::vector<SimOpt
   {
     mpi::WorkQueue q(s);
     uint64_t done = 0;
-    for (int64_t j; (j = q.next(0, jobs.size())) >= 0;) {
+    for (int64_t j; fault.maybe(s.rank(), done), (j = q.next(0, jobs.size())) >= 0; ++done) {
       const SimOptions& o = jobs[static_cast<size_t>(j)];
-      fault.maybe(s.rank(), done++);
       try {
         mine.push_back(to_json(static_cast<size_t>(j), s.rank(), run_sim(o)));
       } catch (const std::exception& e) {

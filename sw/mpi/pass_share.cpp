@@ -52,12 +52,12 @@ void Fault::maybe(int my_rank, uint64_t done) const {
   if (my_rank != rank || done != passes) return;
   if (how == "kill") std::raise(SIGKILL);
   if (how == "exit") std::_Exit(3);
-  throw std::runtime_error("FMPP_TEST_FAULT: injected backend error before pass " + std::to_string(done + 1) +
-                           " of this rank");
+  throw std::runtime_error("FMPP_TEST_FAULT: injected backend error after " + std::to_string(done) +
+                           " passes of this rank");
 }
 
 SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev)
-    : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()) {}
+    : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()), last_clocks_(dev.cycles()) {}
 
 void SharedPasses::end_pass() {
   if (!running_) return;
@@ -74,9 +74,11 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
     mine_.clear();
     next_ = kAsk;
   }
-  if (next_ == kAsk) next_ = q_.next(call_, passes_);
+  if (next_ == kAsk) {
+    fault_.maybe(s_.rank(), passes_run_);
+    next_ = q_.next(call_, passes_);
+  }
   if (next_ != static_cast<int64_t>(pass)) return false;
-  fault_.maybe(s_.rank(), passes_run_);
   mine_.push_back(pass);
   ++passes_run_;
   next_ = kAsk;

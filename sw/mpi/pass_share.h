@@ -20,9 +20,10 @@
 namespace fmpp::mpi {
 
 // Test-only fault injection, FMPP_TEST_FAULT=rank:passes:how (how: kill, exit, throw):
-// that rank, when it is about to start its pass number `passes` + 1, kills itself with
-// SIGKILL, exits with status 3 without a word, or throws (as a backend reporting an
-// error would). Parsed from the environment; an ill-formed value is an error.
+// that rank, when it has run `passes` passes (or fmpp-sim runs) and asks the queue for
+// more, kills itself with SIGKILL, exits with status 3 without a word, or throws (as a
+// backend reporting an error would). Every rank asks at least once per pass loop, so
+// `passes` = 0 always fires. Parsed from the environment; an ill-formed value is an error.
 struct Fault {
   int rank = -1;
   uint64_t passes = 0;
@@ -69,13 +70,14 @@ class SharedPasses : public isect::PassShare {
   WorkQueue& q_;
   const Device& dev_;
   Fault fault_;
+  uint64_t last_clocks_;  // the device's clocks at the last exchange
   bool open_ = false;       // inside a call of run_passes
   int64_t next_ = kAsk;     // this rank's next pass of the call, -1 when none is left
   uint64_t call_ = 0, c0_ = 0, passes_ = 0;
   std::vector<uint64_t> mine_;  // this call's passes run here
   int slot_ = 0;
   std::vector<std::pair<int, size_t>> own_;  // (slot, ray) answered here since the last exchange
-  uint64_t exchanges_ = 0, last_clocks_ = 0;
+  uint64_t exchanges_ = 0;
   bool running_ = false;        // mine_.back() runs since pass_c0_
   uint64_t pass_c0_ = 0;
   std::vector<PassCost> costs_;

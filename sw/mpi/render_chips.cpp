@@ -47,12 +47,15 @@ class SharedIntersector : public rt::Intersector {
                                                                             rt::BatchKind ka,
                                                                             const std::vector<isect::Ray>& b,
                                                                             rt::BatchKind kb) override {
-    share_.begin_batch(0);
-    fi_.set_batch_kind(ka);
-    std::vector<isect::Hit> ha = fi_.intersect(a);
+    // b first: the renderer's second batch holds the rays with their own origins,
+    // whose passes cost the most, and the queue hands passes out in order (the longest
+    // first balances best). A pass's results do not depend on the order.
     share_.begin_batch(1);
     fi_.set_batch_kind(kb);
     std::vector<isect::Hit> hb = fi_.intersect(b);
+    share_.begin_batch(0);
+    fi_.set_batch_kind(ka);
+    std::vector<isect::Hit> ha = fi_.intersect(a);
     share_.exchange({&ha, &hb});
     return {std::move(ha), std::move(hb)};
   }

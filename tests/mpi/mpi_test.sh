@@ -66,7 +66,7 @@ sim-mismatch)
 render-fault)
   how=$1
   set +e
-  FMPP_TEST_FAULT="1:1:$how" timeout 120 "${mpirun[@]}" "$bin/fmpp-render" --scene "$src/scenes/cornell.json" \
+  FMPP_TEST_FAULT="1:0:$how" timeout 120 "${mpirun[@]}" "$bin/fmpp-render" --scene "$src/scenes/cornell.json" \
     --backend cmodel --config small --bits 24 --width 24 --height 24 --quiet --out "$dir/f.png" \
     --report "$dir/f.json" > "$dir/out.txt" 2>&1
   status=$?
