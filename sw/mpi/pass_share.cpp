@@ -56,8 +56,9 @@ void Fault::maybe(int my_rank, uint64_t done) const {
                            " passes of this rank");
 }
 
-SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev)
-    : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()), last_clocks_(dev.cycles()) {}
+SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev, bool leader_works)
+    : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()), idle_(s.leader() && !leader_works && s.size() > 1),
+      last_clocks_(dev.cycles()) {}
 
 void SharedPasses::end_pass() {
   if (!running_) return;
@@ -66,6 +67,7 @@ void SharedPasses::end_pass() {
 }
 
 bool SharedPasses::take(uint64_t pass, uint64_t passes) {
+  if (idle_) return false;
   end_pass();
   if (!open_) {
     open_ = true;
@@ -89,7 +91,7 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
 
 void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   const size_t items = plan.items();
-  if (items == 0) return;  // no pass on any rank: nothing was asked
+  if (items == 0 || idle_) return;  // no pass on any rank, or none here: nothing was asked
   if (!open_) throw std::logic_error("SharedPasses::finish without take");
   end_pass();
   // The passes are all out; this rank's last question gets its -1 (exactly one per job).

@@ -35,7 +35,8 @@ struct Fault {
 
 class SharedPasses : public isect::PassShare {
  public:
-  SharedPasses(const Session& s, WorkQueue& q, const Device& dev);
+  // leader_works = false: rank 0 takes no pass (it schedules, shades and writes).
+  SharedPasses(const Session& s, WorkQueue& q, const Device& dev, bool leader_works = true);
 
   bool take(uint64_t pass, uint64_t passes) override;
   void finish(isect::PassPlan& plan, unsigned blocks) override;
@@ -70,6 +71,7 @@ class SharedPasses : public isect::PassShare {
   WorkQueue& q_;
   const Device& dev_;
   Fault fault_;
+  bool idle_;  // this rank takes no pass
   uint64_t last_clocks_;  // the device's clocks at the last exchange
   bool open_ = false;       // inside a call of run_passes
   int64_t next_ = kAsk;     // this rank's next pass of the call, -1 when none is left

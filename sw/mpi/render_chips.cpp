@@ -80,10 +80,10 @@ void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& 
   s_.check_same(fnv1a(machine, sizeof machine), "the FMPP configuration or the multiplier bits");
 }
 
-isect::PassShare* RenderChips::attach(const Device& dev) {
+isect::PassShare* RenderChips::attach(const Device& dev, bool leader_works) {
   if (!s_.active()) return nullptr;
-  q_ = std::make_unique<WorkQueue>(s_);
-  share_ = std::make_unique<SharedPasses>(s_, *q_, dev);
+  q_ = std::make_unique<WorkQueue>(s_, leader_works);
+  share_ = std::make_unique<SharedPasses>(s_, *q_, dev, leader_works);
   return share_.get();
 }
 

@@ -27,7 +27,8 @@ class RenderChips {
   explicit RenderChips(const Session& s) : s_(s) {}
   // Throws std::runtime_error naming the first rank that differs.
   void agree(const std::vector<isect::Triangle>& tris, const Config& cfg, unsigned bits) const;
-  isect::PassShare* attach(const Device& dev);
+  // leader_works = false: rank 0 only schedules (fmpp-render --rank0 schedule).
+  isect::PassShare* attach(const Device& dev, bool leader_works = true);
   // After attach: `fi` with the exchange (fi itself when MPI is not active).
   rt::Intersector& wrap(rt::FmppIntersector& fi);
   isect::KernelStats total(const isect::KernelStats& mine) const;

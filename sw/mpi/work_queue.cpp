@@ -17,7 +17,8 @@ constexpr int kTagAsk = 7101, kTagGive = 7102;
 }  // namespace
 #endif
 
-WorkQueue::WorkQueue(const Session& s) : s_(s) {
+WorkQueue::WorkQueue(const Session& s, bool leader_works)
+    : s_(s), askers_(leader_works || !s.active() || s.size() == 1 ? s.size() : s.size() - 1) {
 #ifdef FMPP_HAVE_MPI
   if (s_.active() && s_.leader() && s_.size() > 1) server_ = std::thread([this] { serve(); });
 #endif
@@ -32,7 +33,7 @@ int64_t WorkQueue::hand_out(uint64_t job, uint64_t items) {
   Job& j = jobs_[job];
   if (j.next < items) return static_cast<int64_t>(j.next++);
   // Every rank gets its -1 once; the last one retires the job.
-  if (++j.done == s_.size()) jobs_.erase(job);
+  if (++j.done == askers_) jobs_.erase(job);
   return -1;
 }
 

@@ -17,8 +17,9 @@ namespace fmpp::mpi {
 
 class WorkQueue {
  public:
-  // Collective: every rank builds its queue at the same point.
-  explicit WorkQueue(const Session& s);
+  // Collective: every rank builds its queue at the same point. leader_works = false:
+  // rank 0 only answers (it never asks), the others share the items.
+  explicit WorkQueue(const Session& s, bool leader_works = true);
   // Stops rank 0's thread. Every rank must have had its -1 of every job first.
   ~WorkQueue();
   WorkQueue(const WorkQueue&) = delete;
@@ -38,6 +39,7 @@ class WorkQueue {
   void serve();                                   // rank 0's thread
 
   const Session& s_;
+  const int askers_;  // ranks that ask until their -1
   std::mutex mutex_;
   std::map<uint64_t, Job> jobs_;
   std::atomic<bool> stop_{false};

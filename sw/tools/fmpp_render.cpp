@@ -126,6 +126,10 @@ int main(int argc, char** argv) {
   BackendOptions bo;
   add_trace_options(app, bo);
   app.add_flag("--quiet", quiet, "no progress output");
+  std::string rank0 = "work";
+  app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"work", "schedule"}));
   CLI11_PARSE(app, argc, argv);
 
   std::string stage = "checking the options";  // for an out-of-memory message
@@ -215,7 +219,7 @@ int main(int argc, char** argv) {
       ko.watertight = watertight;
       ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
-      ko.share = chips.attach(dev);
+      ko.share = chips.attach(dev, rank0 == "work");
       rt::FmppIntersector fi(dev, scene.triangles, ko);
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();

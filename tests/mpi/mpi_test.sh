@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Several FMPPs under Open MPI (docs/multichip.md), against one process.
 # Usage: mpi_test.sh CASE MPIEXEC NP_FLAG BIN_DIR SOURCE_DIR [args]
-#   render BACKEND CONFIG SCENE SIZE  2-rank render = 1-process render (PNG bytes, totals)
+#   render BACKEND CONFIG SCENE SIZE [ARGS]  2-rank render (ARGS added) = 1-process
+#                                     render (PNG bytes, totals)
 #   sim                               2-rank regression = 1-process run of the same seeds
 #   sim-mismatch                      a mismatch in run 2 of 3 is named with rank, seed, index
 #   render-fault HOW                  rank 1 killed / exits / its backend throws: the job
@@ -18,10 +19,11 @@ field() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print(eva
 case $case_ in
 render)
   backend=$1 config=$2 scene=$3 size=$4
+  shift 4
   opts=(--scene "$src/scenes/$scene.json" --backend "$backend" --config "$config" --bits 24
         --width "$size" --height "$size" --quiet)
   "$bin/fmpp-render" "${opts[@]}" --out "$dir/one.png" --report "$dir/one.json"
-  "${mpirun[@]}" "$bin/fmpp-render" "${opts[@]}" --out "$dir/two.png" --report "$dir/two.json"
+  "${mpirun[@]}" "$bin/fmpp-render" "${opts[@]}" "$@" --out "$dir/two.png" --report "$dir/two.json"
   cmp "$dir/one.png" "$dir/two.png"
   # The system's totals are one FMPP's; the chips' clocks add up to them.
   for k in cycles passes broadcasts culled_broadcasts host_tests; do
