@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <thread>
 #include <type_traits>
 
 #ifdef FMPP_HAVE_MPI
@@ -15,6 +16,20 @@
 
 namespace fmpp::mpi {
 namespace {
+
+#ifdef FMPP_HAVE_MPI
+// Waits for `req` without spinning: Open MPI's blocking collectives poll a core at full
+// speed, and a rank waiting for the slowest one would take that core from the FMPPs
+// (two ranks on two cores, or other work on the machine). Sleeps grow from 20 us to 1 ms.
+void wait_quietly(MPI_Request* req) {
+  int done = 0;
+  for (int us = 20;; us = std::min(1000, 2 * us)) {
+    MPI_Test(req, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(us));
+  }
+}
+#endif
 
 // One ray's result on the wire.
 struct Record {
@@ -131,7 +146,9 @@ void SharedPasses::exchange(const std::vector<std::vector<isect::Hit>*>& batches
   // Each rank's record count and clocks since the last exchange, then the records.
   const uint64_t head[2] = {out.size(), clocks};
   std::vector<uint64_t> heads(2 * n);
-  MPI_Allgather(head, 2, MPI_UINT64_T, heads.data(), 2, MPI_UINT64_T, MPI_COMM_WORLD);
+  MPI_Request req;
+  MPI_Iallgather(head, 2, MPI_UINT64_T, heads.data(), 2, MPI_UINT64_T, MPI_COMM_WORLD, &req);
+  wait_quietly(&req);
   std::vector<int> counts(n), displs(n);
   size_t total = 0;
   uint64_t slowest = 0;
@@ -144,8 +161,9 @@ void SharedPasses::exchange(const std::vector<std::vector<isect::Hit>*>& batches
     slowest = std::max(slowest, heads[2 * r + 1]);
   }
   std::vector<Record> all(total / sizeof(Record));
-  MPI_Allgatherv(out.data(), static_cast<int>(out.size() * sizeof(Record)), MPI_BYTE, all.data(), counts.data(),
-                 displs.data(), MPI_BYTE, MPI_COMM_WORLD);
+  MPI_Iallgatherv(out.data(), static_cast<int>(out.size() * sizeof(Record)), MPI_BYTE, all.data(), counts.data(),
+                  displs.data(), MPI_BYTE, MPI_COMM_WORLD, &req);
+  wait_quietly(&req);
   wait_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   sync_clocks_ += slowest;
   exchanged_bytes_ += total;
