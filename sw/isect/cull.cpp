@@ -72,7 +72,8 @@ double extent(const Triangle& t) {
   return std::max({s.x, s.y, s.z});
 }
 
-Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack) {
+Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack, unsigned leaf_items)
+    : leaf_items_(std::max(1u, leaf_items)) {
   std::vector<uint32_t> ids;
   std::vector<glm::dvec3> centre(boxes.size());
   for (size_t i = 0; i < boxes.size(); ++i) {
@@ -81,7 +82,7 @@ Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack) {
     centre[i] = 0.5 * boxes[i].lo + 0.5 * boxes[i].hi;
   }
   if (ids.empty()) return;
-  nodes_.reserve(2 * ids.size() / kLeafItems + 2);
+  nodes_.reserve(2 * ids.size() / leaf_items_ + 2);
   nodes_.emplace_back();
   build(0, ids, 0, ids.size(), boxes, centre, slack);
 }
@@ -99,7 +100,7 @@ void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t 
   }
   nodes_[self].box = box;
   nodes_[self].slack = most;
-  if (end - begin <= kLeafItems) {
+  if (end - begin <= leaf_items_) {
     nodes_[self].first = static_cast<uint32_t>(items_.size());
     nodes_[self].count = static_cast<uint32_t>(end - begin);
     items_.insert(items_.end(), ids.begin() + static_cast<std::ptrdiff_t>(begin),

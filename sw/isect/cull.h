@@ -63,7 +63,8 @@ bool may_enter(const RayPacket& p, const Box& b);
 double entry_distance(const RayPacket& p, const Box& b);
 
 // A bounding volume hierarchy over items (each an index with a box), median split on
-// the longest axis of the centroids, up to kLeafItems items per leaf.
+// the longest axis of the centroids, up to leaf_items items per leaf (kLeafItems unless
+// told).
 class Bvh {
  public:
   static constexpr unsigned kLeafItems = 4;
@@ -78,7 +79,7 @@ class Bvh {
   // boxes[i] is item i's box (an empty box: the item is left out); slack[i] (empty: all
   // 0) stretches the packets' reach t1 to t1 (1 + slack[i]) for that item: the relative
   // error of the distance the FMPP reports for it.
-  explicit Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack = {});
+  explicit Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack = {}, unsigned leaf_items = kLeafItems);
 
   // Sets reach[i] for every item of every leaf that some packet may enter (reach must
   // have one entry per item); adds the node-packet tests made to *tests.
@@ -93,10 +94,8 @@ class Bvh {
 
   const std::vector<Node>& nodes() const { return nodes_; }
   size_t items() const { return items_.size(); }
-
- private:
-  void build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
-             const std::vector<glm::dvec3>& centre, const std::vector<double>& slack);
+  // Item i of the leaves' list (a leaf holds items first .. first + count - 1).
+  uint32_t item(size_t i) const { return items_[i]; }
   // Whether packet p may enter node n, its reach stretched by the node's slack.
   static bool enters(const RayPacket& p, const Node& n) {
     if (n.slack == 0) return may_enter(p, n.box);
@@ -104,8 +103,13 @@ class Bvh {
     q.t1 *= 1 + n.slack;
     return may_enter(q, n.box);
   }
+
+ private:
+  void build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
+             const std::vector<glm::dvec3>& centre, const std::vector<double>& slack);
   std::vector<Node> nodes_;
   std::vector<uint32_t> items_;
+  unsigned leaf_items_ = kLeafItems;
 };
 
 template <class F>

@@ -68,6 +68,7 @@ class SharedOriginForm : public RayForm {
   void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override;
   void init(Program& p) const override;
   double t_of(uint32_t best, const Ray& r) const override;
+  double t_scale() const { return t_scale_; }
 
  protected:
   // The scale of a direction's components: its largest becomes 2^vbits.

@@ -54,6 +54,8 @@ void KernelStats::add(const KernelStats& o) {
   host_tests += o.host_tests;
   culled += o.culled;
   box_tests += o.box_tests;
+  fmpp_box_tests += o.fmpp_box_tests;
+  box_cycles += o.box_cycles;
   oracle_any += o.oracle_any;
   oracle_nearest += o.oracle_nearest;
   oracle_any_steps += o.oracle_any_steps;

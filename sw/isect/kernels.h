@@ -67,6 +67,12 @@ struct KernelOptions {
   // (a probe), reads the distances found, and then broadcasts, from a fresh start, only
   // the triangles that may lie as near as those (ray_parallel.cpp).
   bool cull_probe = true;
+  // Culling on the FMPP (box_test.h): for rays sharing an origin (the paper's form), the
+  // host walks its hierarchy front to back per pass, tests each node against the pass's
+  // packets itself and then on the FMPP (every block its own ray, against its current
+  // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
+  // place of the per-ray walk and the probe for those rays.
+  bool fmpp_boxes = true;
   // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
   // square image tiles for primary rays, octant and origin for the others) rather than
   // in the caller's order. Results come back in the caller's order either way.
@@ -113,6 +119,8 @@ struct KernelStats {
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
+  uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
+  uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
   // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass
   // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
   uint64_t oracle_any = 0, oracle_nearest = 0;
@@ -131,10 +139,10 @@ struct KernelStats {
     return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
   }
   // The clocks the oracle's broadcasts would take in the same passes: load and read back
-  // as measured, broadcasts at the measured clocks per instruction.
+  // as measured, broadcasts at the measured clocks per instruction, no box tests.
   double oracle_cycles(uint64_t steps) const {
     const double per_step = broadcast_steps ? static_cast<double>(compute_cycles) / static_cast<double>(broadcast_steps) : 1;
-    return static_cast<double>(cycles - compute_cycles) + per_step * static_cast<double>(steps);
+    return static_cast<double>(cycles - compute_cycles - box_cycles) + per_step * static_cast<double>(steps);
   }
   double test_steps_per_broadcast() const {
     return broadcasts ? static_cast<double>(test_steps) / static_cast<double>(broadcasts) : 0;

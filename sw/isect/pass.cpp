@@ -29,20 +29,12 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     plan.load(dev, base, count);
     st->load_cycles += dev.cycles() - c0;
 
+    bool sent = plan.walk(dev, base, count, &order);
     for (;;) {
-      for (size_t j = 0; j < order.size(); ++j) {
-        size_t test_steps = 0;
-        const std::vector<uint64_t>& code = plan.code(order[j], static_cast<uint32_t>(j + 1), &test_steps);
-        c0 = dev.cycles();
-        push_counted(dev, code, st);
-        st->compute_cycles += dev.cycles() - c0;
-        st->broadcast_steps += code.size();
-        st->test_steps += test_steps;
-        ++st->broadcasts;
-        c0 = dev.cycles();
-        plan.after_broadcast(dev, order[j]);
-        st->readback_cycles += dev.cycles() - c0;
+      for (size_t j = 0; !sent && j < order.size(); ++j) {
+        send_broadcast(dev, plan, order[j], static_cast<uint32_t>(j + 1), st);
       }
+      sent = false;
       c0 = dev.cycles();
       std::vector<size_t> next = plan.refine(dev, base, count, order);
       st->readback_cycles += dev.cycles() - c0;
@@ -57,6 +49,20 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     if (opt.progress) opt.progress(base / blocks + 1, planned);
   }
   if (opt.share) opt.share->finish(plan, blocks);
+}
+
+void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, KernelStats* st) {
+  size_t test_steps = 0;
+  const std::vector<uint64_t>& code = plan.code(k, number, &test_steps);
+  uint64_t c0 = dev.cycles();
+  push_counted(dev, code, st);
+  st->compute_cycles += dev.cycles() - c0;
+  st->broadcast_steps += code.size();
+  st->test_steps += test_steps;
+  ++st->broadcasts;
+  c0 = dev.cycles();
+  plan.after_broadcast(dev, k);
+  st->readback_cycles += dev.cycles() - c0;
 }
 
 void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vector<int>& host, Hit* hit,

@@ -29,6 +29,12 @@ class PassPlan {
   virtual std::vector<size_t> select(size_t base, unsigned count) = 0;
   // Writes the pass's items into the blocks and runs its initialisation.
   virtual void load(Device& dev, size_t base, unsigned count) = 0;
+  // A plan that decides its broadcasts as it goes (culling on the FMPP) sends them itself
+  // with send_broadcast after load, puts them in *sent in order and returns true; the
+  // loop then goes on with refine. False: the loop sends select()'s list.
+  virtual bool walk(Device& /*dev*/, size_t /*base*/, unsigned /*count*/, std::vector<size_t>* /*sent*/) {
+    return false;
+  }
   // The code of broadcast k, sent as number `number` of the pass; *test_steps gets the
   // instructions up to the inside test (the paper's step count).
   virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) = 0;
@@ -71,6 +77,10 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
 
 // Pushes `code`, counting its instructions.
 void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* st);
+
+// Sends broadcast k of the current pass as number `number` (1, 2, ...), counting its
+// clocks, steps and the broadcast.
+void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, KernelStats* st);
 
 // Merges the host's results for triangles `host` into *hit (nearest wins, an exact tie
 // goes to the lower index), counting the host's tests. certain_current: *hit is known to

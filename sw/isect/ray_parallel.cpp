@@ -7,8 +7,10 @@
 #include <limits>
 #include <memory>
 
+#include "sw/isect/box_test.h"
 #include "sw/isect/cull.h"
 #include "sw/isect/cull_bounds.h"
+#include "sw/isect/forms.h"
 #include "sw/isect/layout.h"
 #include "sw/isect/oracle.h"
 #include "sw/isect/order.h"
@@ -27,6 +29,14 @@ namespace {
 // cost 2 %; on armadillo the large passes' are 13 to 18 %, and the primary clocks halve).
 constexpr int kProbeLeavesOwn = 3, kProbeLeavesShared = 1;
 constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
+// Culling: one triangle per leaf of the hierarchy, so that a ray keeps only the triangles
+// whose own (padded) boxes it crosses, and the FMPP tests each one before it is broadcast.
+// Measured at 128 x 128, 4096 blocks, spheres_10k (docs/perf.md): with the FMPP's box
+// tests, leaves of 1, 2, 4 triangles gave 3.83, 3.94, 4.11 M clocks for the frame, and
+// testing inner nodes too cost more than it saved (90 % of them had some ray that needed
+// them, after the host's walk); for rays of their own origins leaves of 1, 2, 4 gave
+// 1.13, 1.33, 1.52 M clocks.
+constexpr unsigned kCullLeafItems = 1;
 
 class RayParallelPlan : public PassPlan {
  public:
@@ -36,12 +46,17 @@ class RayParallelPlan : public PassPlan {
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
     if (opt_.cull) {
       bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
-      bvh_ = Bvh(bounds_.boxes, bounds_.rel);
+      bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
       // The probe only guesses (the final broadcasts decide), so it walks the triangles'
       // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
       std::vector<Box> tight;
       for (const Broadcast& b : form_.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
       probe_bvh_ = Bvh(tight);
+      const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
+      if (opt_.fmpp_boxes && origin && shared && form_.stat() == kStatPaper) {
+        boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
+        origin_ = *origin;
+      }
     }
     if (opt_.oracle) oracle_ = std::make_unique<Oracle>(tris);
   }
@@ -59,6 +74,19 @@ class RayParallelPlan : public PassPlan {
       bvh_.reached(packets(base, count, opt_.cull_packet), reach_, &st_->box_tests);
     }
     if (oracle_) count_oracle(base, count);
+    if (boxes_) {  // walk() decides the rest on the FMPP, as it goes
+      number_of_.assign(nb, 0);
+      // A node is worth walking into if the host's walk reached some leaf below it.
+      const std::vector<Bvh::Node>& nodes = bvh_.nodes();
+      node_reach_.assign(nodes.size(), 0);
+      for (size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
+        const Bvh::Node& n = nodes[id];
+        char r = n.count > 0 ? 0 : node_reach_[n.first] | node_reach_[n.first + 1];
+        for (uint32_t i = n.first; i < n.first + n.count; ++i) r |= reach_[bvh_.item(i)];
+        node_reach_[id] = r;
+      }
+      return {};
+    }
     // Numbers in the broadcasts' own order, so that ties are decided as without culling;
     // the same numbers serve the probe and the final broadcasts (exclusion tests).
     std::vector<size_t> all;
@@ -109,6 +137,14 @@ class RayParallelPlan : public PassPlan {
       best[b] = form_.t_of(v, r) * glm::length(r.d);
       winner[b] = done[pos];
     });
+    if (form_.certified()) {
+      // A flagged ray's best may be no hit at all: it keeps its whole reach, so that the
+      // host's exact redo sees every triangle it may hit.
+      const std::vector<bool> unc = dev.read_flag_all(layout::kUnc);
+      for (unsigned b = 0; b < count; ++b) {
+        if (unc[b]) best[b] = kInf;
+      }
+    }
     Program init;
     init.mask(0);
     form_.init(init);
@@ -142,6 +178,51 @@ class RayParallelPlan : public PassPlan {
     }
     st_->culled += nb - order.size();
     return order;
+  }
+
+  // Culling on the FMPP (box_test.h): the hierarchy front to back from the shared origin,
+  // through the nodes the host's walk reached; each leaf (one triangle) is tested by every
+  // block against its ray's current best, and broadcast at once if some ray may still
+  // need it, so its hits shorten the rays' reach for the leaves after it.
+  bool walk(Device& dev, size_t base, unsigned count, std::vector<size_t>* sent) override {
+    if (!boxes_) return false;
+    sent->clear();
+    boxes_->clear();
+    for (unsigned b = 0; b < count; ++b) boxes_->add_ray(rays_[idx_[base + b]].d);
+    const std::vector<Bvh::Node>& nodes = bvh_.nodes();
+    const auto later = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) {
+      return a.first > b.first || (a.first == b.first && a.second > b.second);
+    };
+    std::vector<std::pair<double, uint32_t>> heap;
+    if (!nodes.empty()) heap.emplace_back(0.0, 0);
+    std::vector<uint32_t> leaf;
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), later);
+      const uint32_t id = heap.back().second;
+      heap.pop_back();
+      const Bvh::Node& n = nodes[id];
+      if (!node_reach_[id] || (n.count > 0 && !boxes_->any(dev, n.box, st_))) continue;
+      if (n.count == 0) {
+        for (uint32_t c = n.first; c < n.first + 2; ++c) {
+          const Box& b = nodes[c].box;
+          const glm::dvec3 gap = glm::max(glm::max(b.lo - origin_, glm::dvec3(0)), origin_ - b.hi);
+          heap.emplace_back(glm::length(gap), c);
+          std::push_heap(heap.begin(), heap.end(), later);
+        }
+        continue;
+      }
+      leaf.clear();
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) leaf.push_back(bvh_.item(i));
+      std::sort(leaf.begin(), leaf.end());
+      for (uint32_t k : leaf) {
+        if (!reach_[k]) continue;
+        sent->push_back(k);
+        number_of_[k] = static_cast<uint32_t>(sent->size());
+        send_broadcast(dev, *this, k, number_of_[k], st_);
+      }
+    }
+    st_->culled += form_.broadcasts.size() - sent->size();
+    return true;
   }
 
   void load(Device& dev, size_t base, unsigned count) override {
@@ -259,6 +340,9 @@ class RayParallelPlan : public PassPlan {
   enum class Phase { kAll, kProbe, kFinal };
   CullBounds bounds_;
   Bvh bvh_, probe_bvh_;
+  std::unique_ptr<SharedBoxTest> boxes_;  // culling on the FMPP (shared-origin paper form)
+  glm::dvec3 origin_{0};
+  std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it
   Phase phase_ = Phase::kAll;
   std::vector<char> reach_;  // of each broadcast: some packet of the pass may reach it
   std::unique_ptr<Oracle> oracle_;

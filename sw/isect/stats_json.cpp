@@ -23,6 +23,8 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"broadcasts", st.broadcasts},
           {"culled_broadcasts", st.culled},
           {"box_tests", st.box_tests},
+          {"fmpp_box_tests", st.fmpp_box_tests},
+          {"box_cycles", st.box_cycles},
           {"steps_per_broadcast", st.steps_per_broadcast()},
           {"origin_groups", st.groups},
           {"general_rays", st.general_rays},

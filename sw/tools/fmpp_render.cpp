@@ -114,8 +114,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"coherent", "batch"}));
   app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  bool no_probe = false;
+  bool no_probe = false, no_fmpp_boxes = false;
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
+  app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
+               "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
   double t_accuracy = 0;
   app.add_option("--t-accuracy", t_accuracy,
                  "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
@@ -216,6 +218,7 @@ int main(int argc, char** argv) {
       ko.coherent = pass_order == "coherent";
       ko.oracle = oracle;
       ko.cull_probe = !no_probe;
+      ko.fmpp_boxes = !no_fmpp_boxes;
       ko.watertight = watertight;
       ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
@@ -225,7 +228,7 @@ int main(int argc, char** argv) {
       be->finish();
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
-                     {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe},
+                     {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
                      {"pass_order", pass_order}, {"watertight", watertight}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);

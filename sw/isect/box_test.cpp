@@ -1,0 +1,165 @@
+// The FMPP's ray-box test for rays sharing an origin (see box_test.h).
+#include "sw/isect/box_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <vector>
+
+#include "sw/isect/fixed_point.h"
+#include "sw/isect/layout.h"
+
+namespace fmpp::isect {
+namespace {
+
+using namespace ins;
+using namespace layout::ray;
+using layout::kHit;
+using layout::kSel;
+using layout::kTmp;
+using layout::kWin;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Constants stay within +-2^29 and the compared values within +-2^30 (directions
+// 2^vbits <= 2^28, S_c below 2^30, a flagged block's reach -2^30): no difference the
+// test forms can overflow.
+constexpr double kWordLimit = 0x1p29;
+// Scratch words: free between broadcasts (T, S and D are each broadcast's temporaries).
+constexpr unsigned kScratch[] = {kT + 0, kT + 1, kT + 2, kS};
+
+// One compare of a class: V_word >= c (lo), V_word <= c (hi), or the best's reach
+// best - BB <= c (dist; word kD holds best - BB).
+struct Compare {
+  enum Kind { kLo, kHi, kDist } kind;
+  unsigned word;
+  int64_t c;
+};
+
+}  // namespace
+
+SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle)
+    : origin_(origin), vbits_(vbits), unit_(std::ldexp(1.0, static_cast<int>(vbits))), t_scale_(t_scale),
+      angle_(angle) {}
+
+void SharedBoxTest::clear() {
+  classes_ = 0;
+  for (unsigned c = 0; c < 6; ++c) {
+    for (int j = 0; j < 3; ++j) {
+      vmin_[c][j] = std::numeric_limits<int64_t>::max();
+      vmax_[c][j] = std::numeric_limits<int64_t>::min();
+    }
+  }
+}
+
+void SharedBoxTest::add_ray(const glm::dvec3& d) {
+  const double sv = max_component(d) / unit_;
+  int64_t v[3];
+  for (int j = 0; j < 3; ++j) v[j] = static_cast<int64_t>(std::nearbyint(d[j] / sv));  // as load_ray rounds it
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(static_cast<double>(v[i])) < unit_) continue;
+    const unsigned c = static_cast<unsigned>(2 * i + (v[i] < 0 ? 1 : 0));
+    classes_ |= 1u << c;
+    for (int j = 0; j < 3; ++j) {
+      vmin_[c][j] = std::min(vmin_[c][j], v[j]);
+      vmax_[c][j] = std::max(vmax_[c][j], v[j]);
+    }
+  }
+}
+
+SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
+  // The box relative to the origin, widened by the directions' rounding (a point at
+  // distance D moves by at most angle D) and by the rounding of this arithmetic.
+  glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
+  const double far = glm::length(glm::max(glm::abs(lo), glm::abs(hi)));
+  if (!std::isfinite(far)) return Verdict::kSome;  // cannot bound it: every ray may meet it
+  const double widen = (2 * angle_ + 0x1p-40) * far;
+  lo -= widen;
+  hi += widen;
+
+  std::vector<std::vector<Compare>> classes;
+  std::vector<unsigned> class_id;
+  for (unsigned c = 0; c < 6; ++c) {
+    if (!(classes_ >> c & 1)) continue;
+    const int i = static_cast<int>(c / 2);
+    const double s = (c & 1) ? -1.0 : 1.0;
+    // The box's range along the class axis, u = s (p - O)_i; a ray of the class has u > 0.
+    const double u0 = s > 0 ? lo[i] : -hi[i], u1 = s > 0 ? hi[i] : -lo[i];
+    if (!(u1 > 0)) continue;  // behind every ray of the class
+    std::vector<Compare> cmp;
+    bool possible = true;
+    for (int j = 0; j < 3 && possible; ++j) {
+      if (j == i) continue;
+      // Slopes x / u over the part of the box with u > 0, in units of 2^-vbits.
+      const double x0 = lo[j], x1 = hi[j];
+      const double smin = x0 >= 0 ? x0 / u1 : (u0 > 0 ? x0 / u0 : -kInf);
+      const double smax = x1 <= 0 ? x1 / u1 : (u0 > 0 ? x1 / u0 : kInf);
+      const double cmin = std::floor(smin * unit_) - 2, cmax = std::ceil(smax * unit_) + 2;
+      // Decided on the host: no ray of the pass inside, or every one.
+      const double lo_v = static_cast<double>(vmin_[c][j]), hi_v = static_cast<double>(vmax_[c][j]);
+      if (cmin > hi_v || cmax < lo_v) possible = false;
+      if (cmin > lo_v) cmp.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
+      if (cmax < hi_v) cmp.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
+    }
+    if (!possible) continue;
+    if (u0 > 0) {
+      // Any point of the box on the ray has S_c <= 2^vbits / (u0 t_scale).
+      const double thr = std::ceil(unit_ / (u0 * t_scale_) * (1 + 0x1p-40)) + 1;
+      if (thr < kWordLimit) cmp.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+    }
+    if (cmp.empty()) return Verdict::kSome;  // a ray of the pass is of this class and passes
+    classes.push_back(std::move(cmp));
+    class_id.push_back(c);
+  }
+  if (classes.empty()) return Verdict::kNone;
+
+  p.mask(0);
+  p << flagop(kTmp, kSel, kSel, lut::kA) << flagop(kHit, kHit, kHit, lut::kZero);
+  p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
+  // A flagged block's best may not be a hit at all (an uncertain inside test): its
+  // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
+  p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
+  for (size_t n = 0; n < classes.size(); ++n) {
+    const unsigned c = class_id[n];
+    const int64_t key = (c & 1) ? -static_cast<int64_t>(unit_) : static_cast<int64_t>(unit_);
+    p.mask(0);
+    p << ref(RefFn::kThrough, RefPart::kData, kV + c / 2, static_cast<uint32_t>(key), kWin);
+    const std::vector<Compare>& cmp = classes[n];
+    for (size_t b = 0; b < cmp.size(); b += std::size(kScratch)) {
+      const size_t e = std::min(cmp.size(), b + std::size(kScratch));
+      p.mask(0);
+      for (size_t k = b; k < e; ++k) p << writes(kScratch[k - b], static_cast<uint32_t>(cmp[k].c), kSel);
+      for (size_t k = b; k < e; ++k) {
+        const unsigned w = kScratch[k - b];
+        switch (cmp[k].kind) {
+          case Compare::kLo: p << sub(w, cmp[k].word, w, kSel); break;     // V - c >= 0
+          case Compare::kHi:                                                 // c - V >= 0
+          case Compare::kDist: p << sub(w, w, cmp[k].word, kSel); break;  // c - (best - BB) >= 0
+        }
+      }
+      p.mask(layout::kDataMask);
+      for (size_t k = b; k < e; ++k) p << ref(RefFn::kAnd, RefPart::kData, kScratch[k - b], 0, kWin, kWin);
+    }
+    p << flagop(kHit, kHit, kWin, lut::kOr);
+  }
+  p << flagop(kSel, kHit, kTmp, lut::kAnd);
+  p.mask(layout::kDataMask);
+  return Verdict::kTest;
+}
+
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st) const {
+  Program p;
+  p.assume_mask(layout::kDataMask);
+  const Verdict v = append(b, p);
+  if (v != Verdict::kTest) return v == Verdict::kSome;
+  const uint64_t c0 = dev.cycles();
+  dev.push(p.code());
+  const bool hit = dev.responders().any;
+  dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
+  st->instructions += p.size() + 1;
+  ++st->fmpp_box_tests;
+  st->box_cycles += dev.cycles() - c0;
+  return hit;
+}
+
+}  // namespace fmpp::isect
