@@ -121,7 +121,11 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
     for (const auto& c : chips.back()["pass_clocks"]) {
       by_exchange.at(c[0].get<size_t>())[{c[1].get<uint64_t>(), c[2].get<uint64_t>()}] = c[3].get<uint64_t>();
     }
-    chips.back().erase("pass_clocks");
+    // Which passes this chip ran: (exchange, call, pass).
+    nlohmann::json& chip = chips.back();
+    chip["pass_list"] = nlohmann::json::array();
+    for (const auto& c : chip["pass_clocks"]) chip["pass_list"].push_back({c[0], c[1], c[2]});
+    chip.erase("pass_clocks");
     const uint64_t c = chips.back()["clocks"].get<uint64_t>();
     max_clocks = std::max(max_clocks, c);
     sum_clocks += c;
