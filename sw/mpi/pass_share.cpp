@@ -75,9 +75,17 @@ SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev, bo
     : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()), idle_(s.leader() && !leader_works && s.size() > 1),
       last_clocks_(dev.cycles()) {}
 
+int64_t SharedPasses::ask(uint64_t passes) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int64_t n = q_.next(call_, passes);
+  ask_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return n;
+}
+
 void SharedPasses::end_pass() {
   if (!running_) return;
-  costs_.push_back(PassCost{exchanges_, call_, mine_.back(), dev_.cycles() - pass_c0_});
+  costs_.push_back(PassCost{exchanges_, call_, mine_.back(), dev_.cycles() - pass_c0_,
+                            std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_t0_).count()});
   running_ = false;
 }
 
@@ -93,7 +101,7 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
   }
   if (next_ == kAsk) {
     fault_.maybe(s_.rank(), passes_run_);
-    next_ = q_.next(call_, passes_);
+    next_ = ask(passes_);
   }
   if (next_ != static_cast<int64_t>(pass)) return false;
   mine_.push_back(pass);
@@ -101,6 +109,7 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
   next_ = kAsk;
   running_ = true;
   pass_c0_ = dev_.cycles();
+  pass_t0_ = std::chrono::steady_clock::now();
   return true;
 }
 
@@ -110,7 +119,7 @@ void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   if (!open_) throw std::logic_error("SharedPasses::finish without take");
   end_pass();
   // The passes are all out; this rank's last question gets its -1 (exactly one per job).
-  if (next_ == kAsk) next_ = q_.next(call_, passes_);
+  if (next_ == kAsk) next_ = ask(passes_);
   if (next_ != -1) throw std::logic_error("SharedPasses: pass " + std::to_string(next_) + " handed out but not run");
   open_ = false;
   ++call_;

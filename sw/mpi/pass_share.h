@@ -8,6 +8,7 @@
 // image is the same for any number of ranks.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,10 +59,13 @@ class SharedPasses : public isect::PassShare {
   uint64_t exchanged_bytes() const { return exchanged_bytes_; }
   // Wall seconds this rank waited in the exchanges (its share of the imbalance).
   double wait_seconds() const { return wait_seconds_; }
+  // Wall seconds this rank waited for the work queue's answers.
+  double ask_seconds() const { return ask_seconds_; }
   // The clocks of every pass run here: (exchange, call, pass, clocks), the scaling
   // model's input.
   struct PassCost {
     uint64_t exchange, call, pass, clocks;
+    double seconds;  // wall time of the pass here (simulation and the pass's host work)
   };
   const std::vector<PassCost>& pass_costs() const { return costs_; }
 
@@ -82,10 +86,12 @@ class SharedPasses : public isect::PassShare {
   uint64_t exchanges_ = 0;
   bool running_ = false;        // mine_.back() runs since pass_c0_
   uint64_t pass_c0_ = 0;
+  std::chrono::steady_clock::time_point pass_t0_;
   std::vector<PassCost> costs_;
   void end_pass();
   uint64_t calls_ = 0, passes_run_ = 0, sync_clocks_ = 0, exchanged_bytes_ = 0;
-  double wait_seconds_ = 0;
+  double wait_seconds_ = 0, ask_seconds_ = 0;
+  int64_t ask(uint64_t passes);  // the queue's next pass of this call, timed
 };
 
 }  // namespace fmpp::mpi

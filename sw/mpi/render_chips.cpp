@@ -105,9 +105,10 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
                        {"readback_cycles", mine.readback_cycles},
                        {"passes", mine.passes},
                        {"broadcasts", mine.broadcasts},
-                       {"exchange_wait_seconds", share_->wait_seconds()}};
+                       {"exchange_wait_seconds", share_->wait_seconds()},
+                       {"queue_wait_seconds", share_->ask_seconds()}};
   for (const SharedPasses::PassCost& c : share_->pass_costs()) {
-    me["pass_clocks"].push_back({c.exchange, c.call, c.pass, c.clocks});
+    me["pass_clocks"].push_back({c.exchange, c.call, c.pass, c.clocks, c.seconds});
   }
   const std::vector<std::string> all = s_.gather(me.dump());
   if (!s_.leader()) return nullptr;
@@ -121,10 +122,15 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
     for (const auto& c : chips.back()["pass_clocks"]) {
       by_exchange.at(c[0].get<size_t>())[{c[1].get<uint64_t>(), c[2].get<uint64_t>()}] = c[3].get<uint64_t>();
     }
-    // Which passes this chip ran: (exchange, call, pass).
+    // Which passes this chip ran: (exchange, call, pass, wall seconds); its busy seconds.
     nlohmann::json& chip = chips.back();
     chip["pass_list"] = nlohmann::json::array();
-    for (const auto& c : chip["pass_clocks"]) chip["pass_list"].push_back({c[0], c[1], c[2]});
+    double busy = 0;
+    for (const auto& c : chip["pass_clocks"]) {
+      chip["pass_list"].push_back({c[0], c[1], c[2], c[4]});
+      busy += c[4].get<double>();
+    }
+    chip["pass_seconds"] = busy;
     chip.erase("pass_clocks");
     const uint64_t c = chips.back()["clocks"].get<uint64_t>();
     max_clocks = std::max(max_clocks, c);
