@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
       }
       jobs = tb::read_job_list(jobs_file);
     } else {
+      if (seeds > 1 && (!o.trace.empty() || !o.coverage_out.empty())) {
+        throw std::invalid_argument("--seeds " + std::to_string(seeds) +
+                                    ": every run would write the same --trace or --coverage-out file");
+      }
       for (uint64_t k = 0; k < seeds; ++k) {
         jobs.push_back(o);
         jobs.back().seed = o.seed + k;

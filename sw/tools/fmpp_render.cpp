@@ -141,6 +141,9 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--mapping object cannot run on several FMPPs (its passes keep each ray's best "
                                   "across passes); use --mapping ray or one rank");
     }
+    if (session->size() > 1 && !bo.trace_file.empty()) {
+      throw std::invalid_argument("--trace " + bo.trace_file + " on several ranks: every FMPP would write that file");
+    }
     check_trace_options(backend, bo);
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
