@@ -199,13 +199,38 @@ TEST(Plan, SampledPixelsAreTracedAsInTheWholeFrame) {
   EXPECT_THROW(render(s, ri, some, nullptr), std::invalid_argument);
 }
 
-TEST(Plan, MoreRaysThanTheMapHoldsArePasses) {
+// The pass size comes from the cost model: the fewest blocks whose estimated frame is
+// within kPassSizeSlack of the best candidate's; the largest candidate is the memory
+// map's limit, which takes 300 x 300 primary rays in 2 passes.
+TEST(Plan, PassSizeFromTheCostModel) {
   PlanRequest r;
   r.width = r.height = 300;
   r.bits = 24;
   const Plan p = make_plan(scene("one_triangle"), r);
-  EXPECT_EQ(p.config.blocks, fmpp::map::kMaxBlocks);
-  EXPECT_NE(p.why_blocks.find("2 passes"), std::string::npos) << p.why_blocks;
+  ASSERT_FALSE(p.pass_sizes.empty());
+  EXPECT_EQ(p.pass_sizes.front().blocks, 1024u);
+  EXPECT_EQ(p.pass_sizes.back().blocks, fmpp::map::kMaxBlocks);
+  EXPECT_EQ(p.pass_sizes.back().passes, 2u);
+  EXPECT_NE(p.why_blocks.find("65536 blocks, 2 passes"), std::string::npos) << p.why_blocks;
+  double best = p.pass_sizes.front().clocks;
+  for (const PassSizeEstimate& e : p.pass_sizes) best = std::min(best, e.clocks);
+  for (const PassSizeEstimate& e : p.pass_sizes) {
+    if (e.blocks < p.config.blocks) {
+      EXPECT_GT(e.clocks, (1 + kPassSizeSlack) * best) << e.blocks;
+    } else if (e.blocks == p.config.blocks) {
+      EXPECT_LE(e.clocks, (1 + kPassSizeSlack) * best);
+    }
+  }
+  EXPECT_EQ(p.why_order.find("not modelled"), std::string::npos) << p.why_order;
+  // One triangle: every pass broadcasts it once, so the smallest machine is as good.
+  EXPECT_EQ(p.config.blocks, 1024u);
+  // Where every pass needs nearly every triangle (the Cornell box), passes cost: the
+  // model's estimate falls with the blocks, and the choice is not the smallest.
+  r.width = r.height = 96;
+  const Plan c = make_plan(scene("cornell"), r);
+  ASSERT_GE(c.pass_sizes.size(), 3u);
+  EXPECT_GT(c.pass_sizes.front().clocks, 1.2 * c.pass_sizes.back().clocks);
+  EXPECT_GT(c.config.blocks, 1024u);
 }
 
 TEST(Plan, OverridesWin) {

@@ -25,8 +25,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // 2^vbits <= 2^28, S_c below 2^30, a flagged block's reach -2^30): no difference the
 // test forms can overflow.
 constexpr double kWordLimit = 0x1p29;
-// Scratch words: free between broadcasts (T, S and D are each broadcast's temporaries).
-constexpr unsigned kScratch[] = {kT + 0, kT + 1, kT + 2, kS};
+// Scratch words: free between broadcasts (T, S, D and this broadcast's bound BN are each
+// broadcast's own temporaries).
+constexpr unsigned kScratch[] = {kT + 0, kT + 1, kT + 2, kS, kBN};
 
 // One compare of a class: V_word >= c (lo), V_word <= c (hi), or the best's reach
 // best - BB <= c (dist; word kD holds best - BB).
@@ -114,16 +115,29 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
   if (classes.empty()) return Verdict::kNone;
 
   p.mask(0);
-  p << flagop(kTmp, kSel, kSel, lut::kA) << flagop(kHit, kHit, kHit, lut::kZero);
-  p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
-  // A flagged block's best may not be a hit at all (an uncertain inside test): its
-  // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
-  p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
+  p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
+  bool dist = false;
+  for (const std::vector<Compare>& cmp : classes) {
+    for (const Compare& k : cmp) dist = dist || k.kind == Compare::kDist;
+  }
+  if (dist) {
+    p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
+    // A flagged block's best may not be a hit at all (an uncertain inside test): its
+    // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
+    p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
+  }
+  // With one class left, a ray of another class cannot meet the box at all (its class
+  // was ruled out above), so whatever the compares say for it is safe: no class test.
+  const bool one = classes.size() == 1;
   for (size_t n = 0; n < classes.size(); ++n) {
     const unsigned c = class_id[n];
-    const int64_t key = (c & 1) ? -static_cast<int64_t>(unit_) : static_cast<int64_t>(unit_);
-    p.mask(0);
-    p << ref(RefFn::kThrough, RefPart::kData, kV + c / 2, static_cast<uint32_t>(key), kWin);
+    bool first = true;  // kWin not yet written for this class
+    if (!one) {
+      const int64_t key = (c & 1) ? -static_cast<int64_t>(unit_) : static_cast<int64_t>(unit_);
+      p.mask(0);
+      p << ref(RefFn::kThrough, RefPart::kData, kV + c / 2, static_cast<uint32_t>(key), kWin);
+      first = false;
+    }
     const std::vector<Compare>& cmp = classes[n];
     for (size_t b = 0; b < cmp.size(); b += std::size(kScratch)) {
       const size_t e = std::min(cmp.size(), b + std::size(kScratch));
@@ -137,12 +151,15 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
           case Compare::kDist: p << sub(w, w, cmp[k].word, kSel); break;  // c - (best - BB) >= 0
         }
       }
-      p.mask(layout::kDataMask);
-      for (size_t k = b; k < e; ++k) p << ref(RefFn::kAnd, RefPart::kData, kScratch[k - b], 0, kWin, kWin);
+      p.mask(layout::kDataMask);  // a REF against 0 under it tests the sign bit
+      for (size_t k = b; k < e; ++k) {
+        p << ref(first ? RefFn::kThrough : RefFn::kAnd, RefPart::kData, kScratch[k - b], 0, kWin, kWin);
+        first = false;
+      }
     }
-    p << flagop(kHit, kHit, kWin, lut::kOr);
+    if (!one) p << flagop(kHit, n == 0 ? kWin : kHit, kWin, n == 0 ? lut::kA : lut::kOr);
   }
-  p << flagop(kSel, kHit, kTmp, lut::kAnd);
+  p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
   p.mask(layout::kDataMask);
   return Verdict::kTest;
 }

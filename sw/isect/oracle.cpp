@@ -33,4 +33,26 @@ void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order
   }
 }
 
+Hit Oracle::nearest(const Ray& r) const {
+  constexpr double kSlack = 1e-9;
+  const std::vector<Ray> one{r};
+  const std::vector<size_t> idx{0};
+  const RayPacket p = make_packets(one, idx, 0, 1, 1, kSlack)[0];
+  const double len = glm::length(r.d);
+  Hit best;
+  bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
+    // Leaves come in order of entry distance (length units): none beyond the best is nearer.
+    if (best.hit() && entry > best.t * len * (1 + kSlack)) return true;
+    for (uint32_t i = 0; i < n; ++i) {
+      const int tri = static_cast<int>(items[i]);
+      if (tri == r.exclude) continue;
+      const double t = intersect_reference(r, tris_[items[i]]);
+      if (!(t < r.tmax)) continue;
+      if (t < best.t || (t == best.t && tri < best.tri)) best = Hit{tri, t};
+    }
+    return false;
+  });
+  return best;
+}
+
 }  // namespace fmpp::isect

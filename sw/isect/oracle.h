@@ -20,6 +20,9 @@ class Oracle {
   // Sets any[tri] and nearest[tri] (one entry per triangle) for rays[order[begin, end)].
   void mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
             std::vector<char>& any, std::vector<char>& nearest) const;
+  // The exact nearest hit of r (t in its interval, its excluded triangle left out),
+  // walking the hierarchy front to back.
+  Hit nearest(const Ray& r) const;
 
  private:
   const std::vector<Triangle>& tris_;

@@ -47,15 +47,16 @@ class RayParallelPlan : public PassPlan {
     if (opt_.cull) {
       bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
       bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
-      // The probe only guesses (the final broadcasts decide), so it walks the triangles'
-      // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
-      std::vector<Box> tight;
-      for (const Broadcast& b : form_.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
-      probe_bvh_ = Bvh(tight);
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
       if (opt_.fmpp_boxes && origin && shared && form_.stat() == kStatPaper) {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         origin_ = *origin;
+      } else {
+        // The probe only guesses (the final broadcasts decide), so it walks the triangles'
+        // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
+        std::vector<Box> tight;
+        for (const Broadcast& b : form_.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
+        probe_bvh_ = Bvh(tight);
       }
     }
     if (opt_.oracle) oracle_ = std::make_unique<Oracle>(tris);

@@ -107,6 +107,44 @@ Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned b
                        std::to_string((pixels + largest.blocks - 1) / largest.blocks) + " passes"};
 }
 
+// Blocks and pass order from the cost model (pass_cost.h): on the golden model powers of
+// two from 1,024 to one pass; on the RTL its built configurations with the words.
+void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, int depth, Plan* plan) {
+  std::vector<unsigned> sizes;
+  std::vector<std::string> names;
+  if (req.rtl_configs.empty()) {
+    const size_t one_pass = std::min<size_t>(pixels, fmpp::map::kMaxBlocks);
+    for (size_t b = 1024; b < one_pass; b *= 2) sizes.push_back(static_cast<unsigned>(b));
+    sizes.push_back(static_cast<unsigned>(one_pass));
+  } else {
+    std::vector<std::pair<unsigned, std::string>> built;
+    for (const std::string& name : req.rtl_configs) {
+      const fmpp::Config c = fmpp::named_config(name);
+      if (c.words >= plan->config.words) built.emplace_back(c.blocks, name);
+    }
+    std::sort(built.begin(), built.end());
+    for (const auto& [b, name] : built) {
+      if (!sizes.empty() && sizes.back() == b) continue;  // the first name of a size
+      sizes.push_back(b);
+      names.push_back(name);
+    }
+    if (sizes.empty()) return;  // fit_rtl has refused already
+  }
+  const PassCostModel m = model_pass_sizes(scene, req.width, req.height, depth, plan->options, sizes);
+  plan->pass_sizes = m.sizes;
+  plan->options.coherent = m.coherent;
+  plan->why_order = m.why_order;
+  if (names.empty()) {
+    plan->config.blocks = sizes[m.chosen];
+    plan->why_blocks = m.why_blocks;
+  } else {
+    plan->config = fmpp::named_config(names[m.chosen]);
+    plan->why_blocks = m.why_blocks + " the built RTL configuration '" + names[m.chosen] + "' (" +
+                       plan->config.str() + ")";
+  }
+  plan->config.validate();
+}
+
 // `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed, sorted.
 std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
   std::mt19937_64 rng(0x5eed);
@@ -286,6 +324,8 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   const Decision<unsigned> bits = decide_bits(scene, req, depth, plan);
   plan.options.n = bits.value;
   plan.why_bits = bits.why;
+  if (!req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay) decide_pass_size(scene, req, pixels, depth, &plan);
+  if (plan.pass_sizes.empty()) plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
   return plan;
 }
 

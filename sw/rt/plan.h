@@ -19,9 +19,11 @@
 //   - Words per block: what the kernels need: 14 for rays that share an origin, 24 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
-//   - Blocks: one pass of primary rays if possible (fewer blocks cost extra passes: every
-//     triangle is broadcast again per pass); for the RTL, the smallest built
-//     configuration that holds it, else the largest built one.
+//   - Blocks (the pass size) and the pass order, in the ray-parallel mapping: from the
+//     cost model of pass_cost.h, the fewest blocks (for the RTL: among its built
+//     configurations) whose frame clocks are estimated within 10 % of the fewest any
+//     candidate reaches, and the order (image tiles or rows) with the fewer clocks there.
+//     The object-parallel mapping keeps one pass of primary rays where the map allows it.
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
@@ -31,6 +33,7 @@
 
 #include "fmpp/config.h"
 #include "sw/isect/kernels.h"
+#include "sw/rt/pass_cost.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
@@ -67,7 +70,8 @@ struct Plan {
   fmpp::Config config;
   fmpp::isect::KernelOptions options;  // base with n (and cond_bits) set
   std::vector<PlanCandidate> candidates;
-  std::string why_bits, why_words, why_blocks;
+  std::vector<PassSizeEstimate> pass_sizes;  // the cost model's candidates (empty: not run)
+  std::string why_bits, why_words, why_blocks, why_order;
 };
 
 Plan make_plan(const Scene& scene, const PlanRequest& req);

@@ -200,7 +200,12 @@ int main(int argc, char** argv) {
       const Config cfg = plan.config;
       bits = plan.options.n;
       rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
-                     {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target}};
+                     {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
+                     {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order}};
+      for (const auto& e : plan.pass_sizes) {
+        rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},
+                                             {"estimated_broadcasts", e.broadcasts}, {"estimated_cycles", e.clocks}});
+      }
       for (const auto& c : plan.candidates) {
         rep["plan"]["candidates"].push_back(
             {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate},
@@ -218,7 +223,7 @@ int main(int argc, char** argv) {
       ko.n = bits;
       ko.cull = !no_cull;
       ko.cull_packet = cull_packet;
-      ko.coherent = pass_order == "coherent";
+      ko.coherent = app.count("--pass-order") ? pass_order == "coherent" : plan.options.coherent;
       ko.oracle = oracle;
       ko.cull_probe = !no_probe;
       ko.fmpp_boxes = !no_fmpp_boxes;
