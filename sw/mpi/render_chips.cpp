@@ -73,11 +73,23 @@ rt::Intersector& RenderChips::wrap(rt::FmppIntersector& fi) {
   return *wrapped_;
 }
 
-void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& cfg, unsigned bits) const {
+void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& cfg,
+                        const isect::KernelOptions& ko) const {
   uint64_t h = fnv1a(tris.data(), tris.size() * sizeof(isect::Triangle));
   s_.check_same(h, "the scene's triangles");
-  const unsigned machine[3] = {cfg.blocks, cfg.words, bits};
-  s_.check_same(fnv1a(machine, sizeof machine), "the FMPP configuration or the multiplier bits");
+  const unsigned machine[11] = {cfg.blocks,
+                                cfg.words,
+                                ko.n,
+                                static_cast<unsigned>(ko.mapping),
+                                static_cast<unsigned>(ko.mul),
+                                ko.cull,
+                                ko.cull_packet,
+                                ko.coherent,
+                                ko.cull_probe,
+                                ko.watertight,
+                                ko.fmpp_boxes};
+  s_.check_same(fnv1a(&ko.t_accuracy, sizeof ko.t_accuracy, fnv1a(machine, sizeof machine)),
+                "the FMPP configuration or the kernel options (plan)");
 }
 
 isect::PassShare* RenderChips::attach(const Device& dev, bool leader_works) {

@@ -214,7 +214,6 @@ int main(int argc, char** argv) {
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
       mpi::RenderChips chips(*session);
-      chips.agree(scene.triangles, cfg, bits);
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       isect::KernelOptions ko;
@@ -230,6 +229,7 @@ int main(int argc, char** argv) {
       ko.watertight = watertight;
       ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
+      chips.agree(scene.triangles, cfg, ko);
       ko.share = chips.attach(dev, rank0 == "work");
       rt::FmppIntersector fi(dev, scene.triangles, ko);
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
