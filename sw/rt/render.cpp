@@ -30,7 +30,9 @@ std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
 
 FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
                                  const fmpp::isect::KernelOptions& opt)
-    : dev_(dev), tris_(tris), opt_(opt) {
+    : dev_(dev), tris_(tris), opt_(opt), margin_(fmpp_spawn_margin(tris)) {}
+
+double fmpp_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (const auto& t : tris) {
     for (const auto& p : t.p) {
@@ -39,7 +41,7 @@ FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isec
     }
   }
   // Half-extents first: the diagonal of a box near the coordinate limit would overflow.
-  margin_ = tris.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo);
+  return tris.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo);
 }
 
 std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {

@@ -60,6 +60,11 @@ class ReferenceIntersector : public Intersector {
   const std::vector<fmpp::isect::Triangle>& tris_;
 };
 
+// The FMPP intersector's spawn margin for these triangles: 2e-5 of the half-diagonal
+// of their bounding box (0 for none). Other intersectors compared with the FMPP on the
+// same rays (sw/embree/) take the same margin.
+double fmpp_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris);
+
 class FmppIntersector : public Intersector {
  public:
   FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,

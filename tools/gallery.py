@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""make gallery: every shipped scene rendered through the golden model, its clocks
+against the culling oracles, the README's gallery and docs/raytracer.md's table.
+
+    tools/gallery.py [--build build] [--only scans] [--tables-only]
+
+Renders each frame of FRAMES with fmpp-render (golden model, --oracle), keeps the
+reports in BUILD/gallery/, copies one picture per scene to docs/img/gallery/, and
+rewrites the generated blocks `gallery` of README.md and `gallery-oracle` of
+docs/raytracer.md. --tables-only rewrites the blocks from the reports already there.
+"""
+import argparse
+import json
+import os
+import shutil
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import docblock  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+SCENES = ["cornell", "spheres_1k", "spheres_10k", "one_triangle", "armadillo", "scans"]
+# (scene, side): every shipped scene at 128 x 128 (the frames of the culling tables and
+# of the Embree comparison) and at 256 x 256 (the gallery's pictures).
+FRAMES = [(s, 128) for s in SCENES] + [(s, 256) for s in SCENES]
+# The frames tools/bench_embree.py compares: every scene at 128 x 128, the large one also
+# at 256 x 256.
+BENCH_FRAMES = [(s, 128) for s in SCENES] + [("scans", 256)]
+# The frame each scene shows in the gallery.
+PICTURE = {s: 256 for s in SCENES}
+# The machine of every frame: the golden model, n = 24, 4096 blocks of 32 words (the
+# frame of issue 13's culling measurements), culled, with the oracles.
+FMPP_ARGS = ["--backend", "cmodel", "--bits", "24", "--blocks", "4096", "--words", "32"]
+CAPTION = {
+    "cornell": "Cornell box: mirror panel, glass sphere",
+    "spheres_1k": "16 spheres, two mirrors",
+    "spheres_10k": "40 spheres, mirrors and glass",
+    "one_triangle": "one triangle",
+    "armadillo": "scanned armadillo on the stage (mirror wall, glass sphere)",
+    "scans": "armadillo and bunny: 127,940 triangles",
+}
+
+
+def report_path(build, scene, side):
+    return os.path.join(build, "gallery", "%s_%d.json" % (scene, side))
+
+
+def png_path(build, scene, side):
+    return os.path.join(build, "gallery", "%s_%d.png" % (scene, side))
+
+
+def command(scene, side, report="r.json", out="out.png"):
+    return ["build/fmpp-render", "--scene", "scenes/%s.json" % scene] + FMPP_ARGS + [
+        "--width", str(side), "--height", str(side), "--oracle", "--report", report, "--out", out]
+
+
+def render(build, scene, side):
+    cmd = command(scene, side, report_path(build, scene, side), png_path(build, scene, side))
+    cmd[0] = os.path.join(build, "fmpp-render")
+    cmd[2] = os.path.join(ROOT, cmd[2])
+    docblock.run(cmd + ["--quiet"])
+
+
+def load(build, scene, side):
+    path = report_path(build, scene, side)
+    if not os.path.exists(path):
+        sys.exit("%s missing: run tools/gallery.py without --tables-only first" % path)
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def rays(rep):
+    return sum(rep["rays"].values())
+
+
+def figures_table(build, frames):
+    rows = ["| scene | triangles | frame | rays | FMPP clocks | any-hit oracle | culled / any-hit | nearest-hit oracle "
+            "| at 50 MHz | golden-model wall time |",
+            "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for scene, side in frames:
+        r = load(build, scene, side)
+        o = r["oracle"]
+        rows.append("| %s | %s | %d x %d | %s | %s | %s | %.2f | %s | %.1f ms | %.3g s |" % (
+            scene, docblock.fmt_int(r["triangles"]), side, side, docblock.fmt_int(rays(r)), docblock.fmt_int(r["cycles"]),
+            docblock.fmt_int(o["any_hit_cycles"]), o["cycles_over_any_hit"], docblock.fmt_int(o["nearest_hit_cycles"]),
+            1e3 * r["cycles"] / 50e6, r["wall_seconds"]))
+    return rows
+
+
+def by_kind_table(build, scene, side):
+    r = load(build, scene, side)
+    rows = ["| %s %d x %d, batch kind | clocks culled (broadcasts) | any-hit oracle | nearest-hit oracle |" % (
+        scene, side, side), "| --- | ---: | ---: | ---: |"]
+    for kind, k in r["by_kind"].items():
+        o = k["oracle"]
+        rows.append("| %s | %s (%s) | %s (%s) | %s (%s) |" % (
+            kind, docblock.fmt_int(k["cycles"]), docblock.fmt_int(k["broadcasts"]), docblock.fmt_int(o["any_hit_cycles"]),
+            docblock.fmt_int(o["any_hit_broadcasts"]), docblock.fmt_int(o["nearest_hit_cycles"]),
+            docblock.fmt_int(o["nearest_hit_broadcasts"])))
+    return rows
+
+
+PROVENANCE = {}  # the build directory's gallery folder, set by main()
+
+
+def provenance():
+    return docblock.provenance(PROVENANCE["dir"]) + "; regenerate with `make gallery`."
+
+
+def readme_block(build):
+    scenes = list(PICTURE)
+    lines = ["| " + " | ".join(scenes[:3]) + " |", "| --- | --- | --- |"]
+    for i, row in enumerate((scenes[:3], scenes[3:])):
+        if i > 0:
+            lines.append("| " + " | ".join("**%s**" % s for s in row) + " |")
+        lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
+                                       for s in row) + " |")
+        lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |")
+    lines += ["", "Each picture's command (golden model; n = 24 and 4096 blocks of 32 words fixed, as in the culling "
+              "tables, not chosen by the precision plan; `make gallery` runs them all):", ""]
+    lines += ["    " + " ".join(command(s, PICTURE[s], "NAME.json", "NAME.png")).replace("NAME", s) for s in scenes]
+    lines += ["", "and its clocks against the oracles of culling ([raytracer.md](docs/raytracer.md#culling-against-the-oracle)):",
+              ""]
+    lines += figures_table(build, [(s, PICTURE[s]) for s in scenes])
+    lines += ["", provenance()]
+    return "\n".join(lines)
+
+
+def raytracer_block(build):
+    lines = ["`%s` for each frame S, N x N (golden model). %s" % (" ".join(command("S", "N")), provenance()), ""]
+    lines += figures_table(build, FRAMES)
+    lines += [""] + by_kind_table(build, "scans", 256)
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default="build", help="build directory holding fmpp-render")
+    ap.add_argument("--only", action="append", help="render only this scene (repeatable); tables from all reports")
+    ap.add_argument("--tables-only", action="store_true", help="no renders: rewrite the blocks from the reports")
+    a = ap.parse_args()
+    build = os.path.abspath(a.build)
+    for name in a.only or []:
+        if name not in PICTURE:
+            sys.exit("--only %s: not a gallery scene (%s)" % (name, ", ".join(PICTURE)))
+    os.makedirs(os.path.join(build, "gallery"), exist_ok=True)
+    PROVENANCE["dir"] = os.path.join(build, "gallery")
+    if not a.tables_only:
+        docblock.save_provenance(PROVENANCE["dir"], ROOT)
+        for scene, side in FRAMES:
+            if a.only and scene not in a.only:
+                continue
+            render(build, scene, side)
+            if PICTURE[scene] == side:
+                os.makedirs(os.path.join(ROOT, "docs", "img", "gallery"), exist_ok=True)
+                shutil.copyfile(png_path(build, scene, side), os.path.join(ROOT, "docs", "img", "gallery", scene + ".png"))
+    docblock.replace_block(os.path.join(ROOT, "README.md"), "gallery", readme_block(build))
+    docblock.replace_block(os.path.join(ROOT, "docs", "raytracer.md"), "gallery-oracle", raytracer_block(build))
+    print("wrote README.md (gallery) and docs/raytracer.md (gallery-oracle)")
+
+
+if __name__ == "__main__":
+    main()
