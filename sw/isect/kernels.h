@@ -31,6 +31,8 @@
 
 namespace fmpp::isect {
 
+class PassShare;  // pass.h
+
 enum class Mapping { kRay, kObject };
 enum class MulMode { kGeneric, kConst };
 // How rays with different origins are handled in the ray-parallel mapping:
@@ -93,6 +95,8 @@ struct KernelOptions {
   // a hit whose bound is looser gets its t computed exactly on the host. 0: the default
   // policy::t_accuracy = 2^-12.
   double t_accuracy = 0;
+  // Several FMPPs: the passes of each call handed out among them (pass.h; nullptr: all here).
+  PassShare* share = nullptr;
   // Checks every option against the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
 };

@@ -18,7 +18,9 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
   const unsigned blocks = dev.config().blocks;
   const size_t items = plan.items();
   const uint64_t planned = (items + blocks - 1) / blocks;
+  if (opt.share && !plan.shareable()) throw std::invalid_argument("this mapping's passes cannot be shared among FMPPs");
   for (size_t base = 0; base < items; base += blocks) {
+    if (opt.share && !opt.share->take(base / blocks, planned)) continue;  // another FMPP's pass
     const unsigned count = static_cast<unsigned>(std::min<size_t>(blocks, items - base));
     ++st->passes;
     std::vector<size_t> order = plan.select(base, count);
@@ -46,6 +48,7 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     plan.host(base, count);
     if (opt.progress) opt.progress(base / blocks + 1, planned);
   }
+  if (opt.share) opt.share->finish(plan, blocks);
 }
 
 void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, KernelStats* st) {

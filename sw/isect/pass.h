@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "sw/fmpp/device.h"
@@ -50,6 +51,24 @@ class PassPlan {
   virtual void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) = 0;
   // Host work of the pass (overflowed items, triangles the FMPP does not take).
   virtual void host(size_t /*base*/, unsigned /*count*/) {}
+  // Several FMPPs (PassShare): a plan whose passes each decide only their own items'
+  // results, which results(base, count) lists as (ray index, hit) and set_result stores.
+  virtual bool shareable() const { return false; }
+  virtual void results(size_t /*base*/, unsigned /*count*/, std::vector<std::pair<size_t, Hit>>* /*out*/) const {}
+  virtual void set_result(size_t /*index*/, const Hit& /*h*/) {}
+};
+
+// Several FMPPs, one per process (sw/mpi/, docs/multichip.md): every process runs the
+// same host code and the same calls of run_passes; each call's passes are handed out
+// among the devices on demand, and finish() gives every process all the results.
+class PassShare {
+ public:
+  virtual ~PassShare() = default;
+  // Whether pass `pass` (of `passes`, asked in increasing order) is this device's.
+  virtual bool take(uint64_t pass, uint64_t passes) = 0;
+  // After the call's last pass: exchanges the results of the shareable `plan`, whose
+  // passes hold `blocks` items each.
+  virtual void finish(PassPlan& plan, unsigned blocks) = 0;
 };
 
 // Runs every pass of `plan` on `dev`, adding clocks, instructions, broadcasts and passes

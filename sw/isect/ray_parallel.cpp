@@ -263,6 +263,13 @@ class RayParallelPlan : public PassPlan {
     }
   }
 
+  // Each pass decides its own rays' hits alone: the passes can run on several FMPPs.
+  bool shareable() const override { return true; }
+  void results(size_t base, unsigned count, std::vector<std::pair<size_t, Hit>>* out) const override {
+    for (unsigned b = 0; b < count; ++b) out->emplace_back(idx_[base + b], out_[idx_[base + b]]);
+  }
+  void set_result(size_t index, const Hit& h) override { out_[index] = h; }
+
   // Overflowed rays are redone against every triangle, uncertain ones against the pass's
   // triangles, loose t exactly; the others get the host's share.
   void host(size_t base, unsigned count) override {

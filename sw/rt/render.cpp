@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "sw/isect/reference.h"
 #include "sw/rt/shade.h"
@@ -14,6 +15,14 @@ namespace rt {
 
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
+
+std::pair<std::vector<Hit>, std::vector<Hit>> Intersector::intersect_two(const std::vector<Ray>& a, BatchKind ka,
+                                                                         const std::vector<Ray>& b, BatchKind kb) {
+  set_batch_kind(ka);
+  std::vector<Hit> ha = intersect(a);
+  set_batch_kind(kb);
+  return {std::move(ha), intersect(b)};
+}
 
 std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
   return fmpp::isect::nearest_reference(rays, tris_);
@@ -153,10 +162,18 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
       paths.push_back(Path{i, glm::dvec3(1), RayKind::kPrimary});
     }
 
+    std::vector<Hit> ahead;  // this level's hits, found with the last level's last shadows
+    bool have_ahead = false;
     for (int level = 0; level < depth && !rays.empty(); ++level) {
       auto t0 = std::chrono::steady_clock::now();
-      isect.set_batch_kind(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary);
-      const std::vector<Hit> hits = isect.intersect(rays);
+      std::vector<Hit> hits;
+      if (have_ahead) {
+        hits.swap(ahead);
+        have_ahead = false;
+      } else {
+        isect.set_batch_kind(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary);
+        hits = isect.intersect(rays);
+      }
       st.intersect_seconds += seconds_since(t0);
       ++st.batches;
       for (size_t i = 0; i < paths.size(); ++i) {
@@ -170,11 +187,20 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
       ShadeOutput out;
       // Shadow rays go out in batches of about kShadowBatch (many lights times many
       // pixels would otherwise be built at once).
-      auto cast_shadows = [&]() {
+      // with_next: the level's last shadows, with the next level's rays (independent of
+      // them) in the same call; their hits wait in `ahead`. The same calls, in the same
+      // order, as one after the other.
+      auto cast_shadows = [&](bool with_next) {
         if (out.shadow_rays.empty()) return;
         const auto ts = std::chrono::steady_clock::now();
-        isect.set_batch_kind(BatchKind::kShadow);
-        const std::vector<Hit> sh = isect.intersect(out.shadow_rays);
+        std::vector<Hit> sh;
+        if (with_next) {
+          std::tie(sh, ahead) = isect.intersect_two(out.shadow_rays, BatchKind::kShadow, out.next, BatchKind::kSecondary);
+          have_ahead = true;
+        } else {
+          isect.set_batch_kind(BatchKind::kShadow);
+          sh = isect.intersect(out.shadow_rays);
+        }
         st.intersect_seconds += seconds_since(ts);
         ++st.batches;
         st.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
@@ -192,12 +218,12 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         shader.shade(rays[i], paths[i], hits[i], level + 1 < depth, img, out);
         if (out.shadow_rays.size() >= kShadowBatch) {
           st.shade_seconds += seconds_since(t0);
-          cast_shadows();
+          cast_shadows(false);
           t0 = std::chrono::steady_clock::now();
         }
       }
       st.shade_seconds += seconds_since(t0);
-      cast_shadows();
+      cast_shadows(level + 1 < depth && !out.next.empty());
       rays.swap(out.next);
       paths.swap(out.next_paths);
     }

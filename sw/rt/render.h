@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sw/fmpp/device.h"
@@ -39,6 +40,10 @@ class Intersector {
   virtual void set_batch_kind(BatchKind) {}
   // Nearest hit of every ray (see fmpp::isect::Ray for tmin, tmax, exclude).
   virtual std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) = 0;
+  // Two independent batches, a of kind ka then b of kind kb: by default two calls in
+  // that order; several FMPPs (sw/mpi/) share out the passes of both at once.
+  virtual std::pair<std::vector<fmpp::isect::Hit>, std::vector<fmpp::isect::Hit>> intersect_two(
+      const std::vector<fmpp::isect::Ray>& a, BatchKind ka, const std::vector<fmpp::isect::Ray>& b, BatchKind kb);
   // Distance a ray spawned at a hit must start off the surface, beyond the hit point's own
   // error (spawn_offset), so that this intersector does not find the surface again: 0 for
   // double precision; the FMPP's fixed-point kernels resolve distances relative to the

@@ -9,6 +9,9 @@
 // the same by batch kind (primary, shadow, secondary), with --oracle the counts culling
 // is measured against (docs/raytracer.md), and with --compare-reference the pixels that
 // differ from the reference render.
+//
+// Started by mpirun, every rank drives one FMPP and the passes are handed out among them
+// (sw/mpi/, docs/multichip.md); rank 0 writes the picture and the report.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -21,6 +24,7 @@
 #include "sw/tools/cli_options.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/render.h"
+#include "sw/mpi/render_chips.h"
 
 using namespace fmpp;
 
@@ -50,6 +54,14 @@ class Progress {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::unique_ptr<mpi::Session> session;  // MPI only under a launcher (docs/multichip.md)
+  try {
+    session = std::make_unique<mpi::Session>(&argc, &argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fmpp-render: %s\n", e.what());
+    return 1;
+  }
+  const bool leader = session->leader();
   CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
   std::string scene_file = "scenes/cornell.json", backend = "rtl", mapping = "ray", mul = "const", config, out = "render.png",
               report_file;
@@ -116,16 +128,28 @@ int main(int argc, char** argv) {
   BackendOptions bo;
   add_trace_options(app, bo);
   app.add_flag("--quiet", quiet, "no progress output");
+  std::string rank0 = "work";
+  app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"work", "schedule"}));
   CLI11_PARSE(app, argc, argv);
 
   std::string stage = "checking the options";  // for an out-of-memory message
+  quiet = quiet || !leader;
   try {
+    if (session->size() > 1 && mapping == "object") {
+      throw std::invalid_argument("--mapping object cannot run on several FMPPs (its passes keep each ray's best "
+                                  "across passes); use --mapping ray or one rank");
+    }
+    if (session->size() > 1 && !bo.trace_file.empty()) {
+      throw std::invalid_argument("--trace " + bo.trace_file + " on several ranks: every FMPP would write that file");
+    }
     check_trace_options(backend, bo);
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
-    check_writable("--out", out, false);
-    if (!report_file.empty()) check_writable("--report", report_file);
+    if (leader) check_writable("--out", out, false);
+    if (leader && !report_file.empty()) check_writable("--report", report_file);
     stage = "loading " + scene_file;
     const rt::Scene scene = rt::load_scene(scene_file);
     {
@@ -189,6 +213,7 @@ int main(int argc, char** argv) {
              {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
+      mpi::RenderChips chips(*session);
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       isect::KernelOptions ko;
@@ -204,10 +229,12 @@ int main(int argc, char** argv) {
       ko.watertight = watertight;
       ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
+      chips.agree(scene.triangles, cfg, ko);
+      ko.share = chips.attach(dev, rank0 == "work");
       rt::FmppIntersector fi(dev, scene.triangles, ko);
-      img = std::make_unique<rt::Image>(rt::render(scene, fi, ro, &rs));
+      img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
-      const isect::KernelStats& st = fi.stats();
+      const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
                      {"pass_order", pass_order}, {"watertight", watertight}};
@@ -215,10 +242,12 @@ int main(int argc, char** argv) {
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
         const auto kind = static_cast<rt::BatchKind>(k);
-        nlohmann::json j = isect::stats_json(fi.stats(kind), clock_mhz);
-        if (oracle) j["oracle"] = isect::oracle_json(fi.stats(kind));
+        const isect::KernelStats kst = chips.total(fi.stats(kind));
+        nlohmann::json j = isect::stats_json(kst, clock_mhz);
+        if (oracle) j["oracle"] = isect::oracle_json(kst);
         rep["by_kind"][rt::to_string(kind)] = j;
       }
+      if (nlohmann::json c = chips.report(fi.stats(), clock_mhz); !c.is_null()) rep["chips"] = c;
     }
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rep["intersect_seconds"] = rs.intersect_seconds;
@@ -230,6 +259,7 @@ int main(int argc, char** argv) {
             {"flagged", rs.flagged[k]}, {"t_from_host", rs.t_from_host[k]}, {"overflow", rs.overflow[k]}};
       }
     }
+    if (!leader) return 0;  // rank 0 writes
     stage = "writing " + out;
     img->write_png(out);
     if (compare) {
@@ -245,9 +275,12 @@ int main(int argc, char** argv) {
                              rep["wall_seconds"].get<double>());
     return 0;
   } catch (const std::bad_alloc&) {
+    if (session->size() > 1) session->abort("fmpp-render", "out of memory while " + stage, 1);
     std::fprintf(stderr, "fmpp-render: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
     return 1;
   } catch (const std::exception& e) {
+    // On several ranks: the rank and the cause, and every rank ends (no picture is written).
+    if (session->size() > 1) session->abort("fmpp-render", e.what(), 1);
     std::fprintf(stderr, "fmpp-render: %s\n", e.what());
     return 1;
   }
