@@ -89,7 +89,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
     if (!(u1 > 0)) continue;  // behind every ray of the class
     std::vector<Compare> cmp;
     bool possible = true;
-    for (int j = 0; j < 3 && possible; ++j) {
+    for (int j = 0; j < 3; ++j) {
       if (j == i) continue;
       // Slopes x / u over the part of the box with u > 0, in units of 2^-vbits.
       const double x0 = lo[j], x1 = hi[j];
@@ -98,7 +98,11 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
       const double cmin = std::floor(smin * unit_) - 2, cmax = std::ceil(smax * unit_) + 2;
       // Decided on the host: no ray of the pass inside, or every one.
       const double lo_v = static_cast<double>(vmin_[c][j]), hi_v = static_cast<double>(vmax_[c][j]);
-      if (cmin > hi_v || cmax < lo_v) possible = false;
+      if (cmin > hi_v || cmax < lo_v) {
+        possible = false;
+        break;
+      }
+      // Both now lie within the pass's components (|c| < 2^29): exact as integers.
       if (cmin > lo_v) cmp.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
       if (cmax < hi_v) cmp.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
     }
