@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -100,11 +99,7 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
                                const fmpp::isect::KernelOptions& opt,
                                const std::vector<unsigned>& candidates) {
   PassCostModel m;
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const auto& t : scene.triangles) {
-    for (const auto& p : t.p) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  }
-  Recorder rec(scene.triangles, scene.triangles.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo));
+  Recorder rec(scene.triangles, fmpp_spawn_margin(scene.triangles));  // the FMPP render's rays
   RenderOptions ro;
   ro.width = width;
   ro.height = height;
@@ -116,7 +111,7 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
   struct Group {
     const std::vector<Ray>* rays;
     std::vector<size_t> coherent, own;
-    double per_broadcast, per_ray;
+    bool shared;  // rays sharing an origin (else rays of their own origins)
   };
   std::vector<Group> groups;
   std::vector<Ray> shared_sample, general_sample;
@@ -125,8 +120,7 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
     const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, candidates.back());
     auto add = [&](const std::vector<size_t>& idx, bool shared) {
       if (idx.empty()) return;
-      groups.push_back({&rays, fmpp::isect::coherent_order(rays, idx), idx, 0, 0});
-      groups.back().per_broadcast = shared ? 1 : 0;  // which rates apply, set below
+      groups.push_back({&rays, fmpp::isect::coherent_order(rays, idx), idx, shared});
       for (size_t i : idx) (shared ? shared_sample : general_sample).push_back(rays[i]);
     };
     for (const auto& g : routes.groups) add(g.second, true);
@@ -136,11 +130,6 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
   const auto [general_b, general_r] = measure(scene, general_sample, opt);
   m.per_broadcast = shared_b;
   m.per_ray = shared_r;
-  for (Group& g : groups) {
-    const bool shared = g.per_broadcast > 0;
-    g.per_broadcast = shared ? shared_b : general_b;
-    g.per_ray = shared ? shared_r : general_r;
-  }
 
   std::vector<Box> boxes;
   for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
@@ -152,7 +141,8 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
       const uint64_t b =
           broadcasts(*g.rays, coherent ? g.coherent : g.own, blocks, bvh, scene.triangles.size(), opt.cull);
       *bc += b;
-      clocks += static_cast<double>(b) * g.per_broadcast + static_cast<double>(g.own.size()) * g.per_ray;
+      clocks += static_cast<double>(b) * (g.shared ? shared_b : general_b) +
+                static_cast<double>(g.own.size()) * (g.shared ? shared_r : general_r);
     }
     return clocks;
   };
