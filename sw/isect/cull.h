@@ -91,6 +91,11 @@ class Bvh {
   // leaf(items, count, entry distance) until it returns true.
   template <class F>
   void visit_near_first(const RayPacket& p, F&& leaf) const;
+  // The general walk: nodes in increasing key(node) (+infinity: left out), each popped
+  // node kept only if enter(node id) says so (asked in that order, so it may depend on
+  // what the leaves before it did), calling leaf(items, count, key) until it returns true.
+  template <class Key, class Enter, class Leaf>
+  void walk_near_first(Key&& key, Enter&& enter, Leaf&& leaf) const;
 
   const std::vector<Node>& nodes() const { return nodes_; }
   size_t items() const { return items_.size(); }
@@ -132,30 +137,37 @@ void Bvh::visit(const RayPacket& p, F&& f) const {
 
 template <class F>
 void Bvh::visit_near_first(const RayPacket& p, F&& leaf) const {
+  walk_near_first([&](const Node& n) { return entry_distance(p, n.box); }, [](uint32_t) { return true; },
+                  std::forward<F>(leaf));
+}
+
+template <class Key, class Enter, class Leaf>
+void Bvh::walk_near_first(Key&& key, Enter&& enter, Leaf&& leaf) const {
   if (nodes_.empty()) return;
-  // A min-heap on entry distance: leaves come strictly front to back.
+  // A min-heap on the key (ties: the lower node first): leaves come strictly in order.
   std::vector<std::pair<double, uint32_t>> heap;
   const auto later = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) {
     return a.first > b.first || (a.first == b.first && a.second > b.second);
   };
-  const double root = entry_distance(p, nodes_[0].box);
-  if (!(root < std::numeric_limits<double>::infinity())) return;
-  heap.emplace_back(root, 0);
+  const auto push = [&](uint32_t id) {
+    const double k = key(nodes_[id]);
+    if (!(k < std::numeric_limits<double>::infinity())) return;
+    heap.emplace_back(k, id);
+    std::push_heap(heap.begin(), heap.end(), later);
+  };
+  push(0);
   while (!heap.empty()) {
     std::pop_heap(heap.begin(), heap.end(), later);
-    const auto [entry, id] = heap.back();
+    const auto [k, id] = heap.back();
     heap.pop_back();
+    if (!enter(id)) continue;
     const Node& n = nodes_[id];
     if (n.count > 0) {
-      if (leaf(&items_[n.first], n.count, entry)) return;
+      if (leaf(&items_[n.first], n.count, k)) return;
       continue;
     }
-    for (uint32_t c = n.first; c < n.first + 2; ++c) {
-      const double e = entry_distance(p, nodes_[c].box);
-      if (!(e < std::numeric_limits<double>::infinity())) continue;
-      heap.emplace_back(e, c);
-      std::push_heap(heap.begin(), heap.end(), later);
-    }
+    push(n.first);
+    push(n.first + 1);
   }
 }
 

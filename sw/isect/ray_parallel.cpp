@@ -190,30 +190,17 @@ class RayParallelPlan : public PassPlan {
     sent->clear();
     boxes_->clear();
     for (unsigned b = 0; b < count; ++b) boxes_->add_ray(rays_[idx_[base + b]].d);
-    const std::vector<Bvh::Node>& nodes = bvh_.nodes();
-    const auto later = [](const std::pair<double, uint32_t>& a, const std::pair<double, uint32_t>& b) {
-      return a.first > b.first || (a.first == b.first && a.second > b.second);
+    // Front to back from the shared origin: a node's key is its box's distance from it.
+    const auto gap = [&](const Bvh::Node& n) {
+      return glm::length(glm::max(glm::max(n.box.lo - origin_, glm::dvec3(0)), origin_ - n.box.hi));
     };
-    std::vector<std::pair<double, uint32_t>> heap;
-    if (!nodes.empty()) heap.emplace_back(0.0, 0);
+    const std::vector<Bvh::Node>& nodes = bvh_.nodes();
+    const auto enter = [&](uint32_t id) {
+      return node_reach_[id] && (nodes[id].count == 0 || boxes_->any(dev, nodes[id].box, st_));
+    };
     std::vector<uint32_t> leaf;
-    while (!heap.empty()) {
-      std::pop_heap(heap.begin(), heap.end(), later);
-      const uint32_t id = heap.back().second;
-      heap.pop_back();
-      const Bvh::Node& n = nodes[id];
-      if (!node_reach_[id] || (n.count > 0 && !boxes_->any(dev, n.box, st_))) continue;
-      if (n.count == 0) {
-        for (uint32_t c = n.first; c < n.first + 2; ++c) {
-          const Box& b = nodes[c].box;
-          const glm::dvec3 gap = glm::max(glm::max(b.lo - origin_, glm::dvec3(0)), origin_ - b.hi);
-          heap.emplace_back(glm::length(gap), c);
-          std::push_heap(heap.begin(), heap.end(), later);
-        }
-        continue;
-      }
-      leaf.clear();
-      for (uint32_t i = n.first; i < n.first + n.count; ++i) leaf.push_back(bvh_.item(i));
+    bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
+      leaf.assign(items, items + n);
       std::sort(leaf.begin(), leaf.end());
       for (uint32_t k : leaf) {
         if (!reach_[k]) continue;
@@ -221,7 +208,8 @@ class RayParallelPlan : public PassPlan {
         number_of_[k] = static_cast<uint32_t>(sent->size());
         send_broadcast(dev, *this, k, number_of_[k], st_);
       }
-    }
+      return false;
+    });
     st_->culled += form_.broadcasts.size() - sent->size();
     return true;
   }
