@@ -40,7 +40,7 @@ struct Compare {
 }  // namespace
 
 SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle)
-    : origin_(origin), vbits_(vbits), unit_(std::ldexp(1.0, static_cast<int>(vbits))), t_scale_(t_scale),
+    : origin_(origin), unit_(std::ldexp(1.0, static_cast<int>(vbits))), t_scale_(t_scale),
       angle_(angle) {}
 
 void SharedBoxTest::clear() {
@@ -56,7 +56,9 @@ void SharedBoxTest::clear() {
 void SharedBoxTest::add_ray(const glm::dvec3& d) {
   const double sv = max_component(d) / unit_;
   int64_t v[3];
-  for (int j = 0; j < 3; ++j) v[j] = static_cast<int64_t>(std::nearbyint(d[j] / sv));  // as load_ray rounds it
+  for (int j = 0; j < 3; ++j) {  // as load_ray quantizes it
+    v[j] = quantize(d[j], sv, static_cast<int64_t>(unit_), "ray component");
+  }
   for (int i = 0; i < 3; ++i) {
     if (std::abs(static_cast<double>(v[i])) < unit_) continue;
     const unsigned c = static_cast<unsigned>(2 * i + (v[i] < 0 ? 1 : 0));

@@ -57,7 +57,6 @@ class SharedBoxTest {
 
  private:
   glm::dvec3 origin_;
-  unsigned vbits_;
   double unit_;     // 2^vbits
   double t_scale_;  // 1/t = S_c t_scale sv
   double angle_;
