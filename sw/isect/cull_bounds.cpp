@@ -36,12 +36,11 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
   // relative to their largest component: 2^-20 is far above either.
   cb.angle = std::ldexp(1.0, -20);
   const double unit = std::ldexp(1.0, -static_cast<int>(policy::operand_bits(opt)));
-  double dmin = 1, grid = 0, o_reach = 0;
+  double dmin = 1, o_reach = 0;
   glm::dvec3 centre(0);
   if (origin) {
     dmin = policy::nearest_for_exponent(distance_range(tris, *origin));
     cb.sum_floor = std::ldexp(1.0, policy::kSumBits) * dmin;
-    if (opt.watertight) grid = policy::watertight_grid_step(tris, *origin, opt.n);
   } else {
     Box all;
     for (const Triangle& t : tris) {
@@ -60,9 +59,10 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
       for (const glm::dvec3& p : t.p) far = std::max(far, glm::length(p - *origin));
     }
     if (origin && opt.watertight) {
-      // The edge functions are exact on the grid: the snapped triangle is within a grid
-      // step of the true one.
-      pad = 2 * grid;
+      // Certified on the scene's own vertices: a ray the FMPP could report and that does
+      // not meet the triangle is flagged and redone exactly against the pass's triangles,
+      // so the triangle's own box is enough.
+      pad = 0;
     } else if (origin) {
       // P^-1 form: the relative error of T is below 3 cond 2^-operand_bits (the
       // mantissas' and the direction's rounding, magnified by the condition), which moves

@@ -1,13 +1,20 @@
-// The watertight form, for rays sharing an origin O (docs/intersection.md, "The watertight
-// form"): the vertices relative to O snap to an integer grid of (n - 3) / 2 bits
-// (policy::watertight_grid_bits), and each edge function A_i = c_i . V, with the exact
-// integer constant c_i = P_j x P_k, is evaluated as floor(c_i . V / 2^n), whose sign is
-// exact. c_i is negated for triangles seen clockwise, so an edge shared by two
-// triangles gets complementary constants and no ray slips between them. The compared
-// sum S comes from a fourth row, (sum c_i) / det, with one exponent for all triangles.
-// Triangles the grid makes degenerate are tested on the host.
+// The watertight form, for rays sharing an origin O (docs/intersection.md, "The
+// watertight form"): edge functions on the scene's own coordinates. Per triangle the
+// host computes the edge constants c_i = (P_j - O) x (P_k - O) in double from the
+// unsnapped vertices, with a rigorous bound on their error (certify_watertight.h),
+// oriented by the sign of det; each block computes A_i = c_i . V in fixed point, and the
+// compared sum S = 1/t from a fourth row w = N / det. Every decision (inside, t > 0, the
+// nearest with ties to the lowest index) is taken only where it is certain within the
+// bounds; an uncertain one flags the ray (layout::kUnc), and the host redoes it with the
+// exact reference. Certain decisions are exact and the exact reference is watertight, so
+// the form is watertight without moving any vertex: a ray through a shared edge has an
+// edge value of exactly 0 there, is flagged, and gets the exact answer.
 #include <cmath>
+#include <stdexcept>
 
+#include "sw/isect/certify.h"
+#include "sw/isect/certify_watertight.h"
+#include "sw/isect/fixed_point.h"
 #include "sw/isect/forms.h"
 #include "sw/isect/policy.h"
 
@@ -19,95 +26,94 @@ using namespace ins;
 class WatertightForm : public SharedOriginForm {
  public:
   explicit WatertightForm(const FormInputs& in) : SharedOriginForm(in.opt) {
-    const double sp = policy::watertight_grid_step(in.tris, in.origin, opt_.n);
-    std::vector<Snapped> ws;
-    double wmax = 0;
-    for (size_t k = 0; k < in.tris.size(); ++k) {
-      Snapped w;
-      if (!snap(in.tris[k], in.origin, sp, &w)) {
-        // Smaller than the grid (or seen edge-on from the origin once snapped): the grid
-        // cannot represent it, but the reference may still hit it (a tiny triangle near
-        // the eye covers many rays). The host tests the exact triangle; that only adds
-        // hits, so no ray can leak through where the snapped mesh was closed.
-        ++in.st->snapped_degenerate;
-        host.push_back(static_cast<int>(k));
+    // The common exponent E of the compared sums, as in the paper's form: the nearest
+    // possible hit (distance dmin) gives S_c below 2^kSumBits.
+    double vq_len = 0;  // largest |V_q|
+    for (size_t i : in.idx) {
+      const glm::dvec3& d = in.rays[i].d;
+      vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
+    }
+    const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
+    const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
+    if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
+    const int E = static_cast<int>(e_real) - 1;
+    t_scale_ = std::ldexp(1.0, E + 1);
+
+    // A triangle too ill-conditioned for n bits (the paper form's measure: its edge values
+    // for the rays through it are a share of about 1 / cond of the constants) would leave
+    // most of its rays uncertain: the host takes it, as it takes one whose orientation is
+    // not certain (the origin in or near its plane) or whose bounds are too wide.
+    const double cond_limit = policy::paper_cond_limit(opt_);
+    for (size_t t = 0; t < in.tris.size(); ++t) {
+      certify::EdgeConstants ec;
+      Broadcast b;
+      if (!certify::certified_edges(in.tris[t], in.origin, &ec) ||
+          !(policy::condition(in.tris[t], in.origin) <= cond_limit) || !prepare(ec, E, &b)) {
+        host.push_back(static_cast<int>(t));
         continue;
       }
-      w.index = static_cast<int>(k);
-      for (int j = 0; j < 3; ++j) wmax = std::max(wmax, std::abs(w.w[j]));
-      ws.push_back(w);
-    }
-    const int Ew = wmax > 0 ? static_cast<int>(std::floor(std::log2(wmax))) + 1 : 0;
-    const double wscale = std::ldexp(1.0, static_cast<int>(opt_.n) - 1 - Ew);
-    for (const Snapped& w : ws) {
-      Broadcast b;
-      b.program = program(w, wscale, &b.test_steps);
-      b.tri = w.index;
+      b.tri = static_cast<int>(t);
       broadcasts.push_back(std::move(b));
     }
-    // S_c = floor(sum w_q V_q / 2^n) = (w . V) / (2^(Ew+1) sv) in grid units; the grid
-    // shrinks distances by sp, so 1/t = S_c 2^(Ew+1) sv / sp (sv: the ray's scale).
-    t_scale_ = std::ldexp(1.0, Ew + 1) / sp;
   }
 
   FormStat stat() const override { return kStatWatertight; }
+  bool certified() const override { return true; }
+  double t_rel_bound(uint32_t best, size_t k) const override {
+    return certify::t_relative_bound(static_cast<double>(best), broadcasts[k].sum_bound);
+  }
+  void init(Program& p) const override {
+    SharedOriginForm::init(p);
+    p << writes(layout::ray::kBB, 0, layout::kSel) << flagop(layout::kUnc, 0, 0, lut::kZero);
+  }
 
  private:
-  // A triangle on the grid: its edge constants, oriented so that det > 0, and the row
-  // of S, w = (sum c_i) / det.
-  struct Snapped {
-    int index = -1;
-    int64_t c[3][3];
-    double w[3];
-  };
+  // As in the paper's form: a near test of 2^kMaxNearBits or more would leave nearly
+  // every ray of the triangle uncertain.
+  static constexpr int kMaxNearBits = 26;
 
-  // False if the grid makes the triangle degenerate (det = 0).
-  static bool snap(const Triangle& t, const glm::dvec3& o, double sp, Snapped* w) {
-    int64_t q[3][3];
-    for (int v = 0; v < 3; ++v) {
-      for (int j = 0; j < 3; ++j) q[v][j] = std::llround((t.p[v][j] - o[j]) / sp);
+  // Quantizes one triangle's constants and builds its broadcast; false if its bounds
+  // are too wide to certify anything (the host takes it).
+  bool prepare(const certify::EdgeConstants& ec, int E, Broadcast* b) const {
+    const unsigned n = opt_.n;
+    int64_t x[3][3], y[3];
+    int e[3];
+    for (int i = 0; i < 3; ++i) e[i] = mantissas(ec.c[i], 3, n - 1, x[i]);
+    // The compared row: its own exponent if its values need it (then shifted left to E),
+    // else directly at E (its small values then take fewer digits, and no shift).
+    int f = mantissas(ec.w, 3, n - 1, y);
+    if (f < E) {
+      f = E;
+      for (int j = 0; j < 3; ++j) y[j] = std::llround(std::ldexp(ec.w[j], static_cast<int>(n) - 1 - f));
     }
-    for (int i = 0; i < 3; ++i) {
-      const int64_t* a = q[(i + 1) % 3];
-      const int64_t* c = q[(i + 2) % 3];
-      w->c[i][0] = a[1] * c[2] - a[2] * c[1];
-      w->c[i][1] = a[2] * c[0] - a[0] * c[2];
-      w->c[i][2] = a[0] * c[1] - a[1] * c[0];
-    }
-    const __int128 det = static_cast<__int128>(q[0][0]) * w->c[0][0] + static_cast<__int128>(q[0][1]) * w->c[0][1] +
-                         static_cast<__int128>(q[0][2]) * w->c[0][2];
-    if (det == 0) return false;
-    const int sign = det > 0 ? 1 : -1;
-    for (auto& row : w->c) {
-      for (auto& v : row) v *= sign;
-    }
-    for (int j = 0; j < 3; ++j) {
-      w->w[j] = static_cast<double>(w->c[0][j] + w->c[1][j] + w->c[2][j]) / (static_cast<double>(det) * sign);
-    }
+    const certify::WatertightBounds wb = certify::watertight_bounds(ec, e, f, n, opt_.vbits, f - E);
+    if (wb.k > kMaxNearBits || !(wb.sum <= certify::kMaxSumBound)) return false;
+    b->program = program(x, y, f - E, wb, &b->test_steps);
+    b->sum_bound = wb.sum;
     return true;
   }
 
-  Program program(const Snapped& w, double wscale, size_t* test_steps) const {
+  // One broadcast: A_0..A_2 and S' in one fused constant multiply, the certain inside
+  // test, S' shifted left to the common exponent, the certain keep-nearest.
+  Program program(const int64_t x[3][3], const int64_t y[3], int shift, const certify::WatertightBounds& wb,
+                  size_t* test_steps) const {
     using namespace layout::ray;
     using layout::kHit;
     using layout::kSel;
     Program p;
-    p.assume_mask(layout::kDataMask);
+    p.assume_mask(layout::kDataMask);  // set by the pass's init, and kept by every broadcast
     p << add(kCnt, kCnt, kOne, kSel);
+    p.mask(0);
+    p << writes(kBN, wb.sum_word, kSel);  // this broadcast's bound on S_c, for the comparisons
     std::vector<Row> rows(4);
     for (unsigned i = 0; i < 4; ++i) {
       rows[i].r = i < 3 ? kT + i : kS;
-      for (unsigned j = 0; j < 3; ++j) {
-        const int64_t c = i < 3 ? w.c[i][j] : std::llround(w.w[j] * wscale);
-        rows[i].terms.push_back(Term{kV + j, c, 0});
-      }
+      for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, i < 3 ? x[i][j] : y[j], 0});
     }
     dot_rows_const(p, rows, opt_.n, kSel);
-    nonneg(p, kHit, kSel, kT + 0);
-    nonneg(p, kHit, kHit, kT + 1);
-    nonneg(p, kHit, kHit, kT + 2);
-    *test_steps = p.size();
-    keep_nearest(p);
+    *test_steps = certify::inside_certain(p, kT, wb.k);
+    for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
+    certify::keep_nearest_certain(p);
     return p;
   }
 };

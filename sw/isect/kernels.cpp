@@ -60,7 +60,6 @@ void KernelStats::add(const KernelStats& o) {
   oracle_nearest += o.oracle_nearest;
   oracle_any_steps += o.oracle_any_steps;
   oracle_nearest_steps += o.oracle_nearest_steps;
-  snapped_degenerate += o.snapped_degenerate;
   for (int f = 0; f < kForms; ++f) {
     form_rays[f] += o.form_rays[f];
     flagged_rays[f] += o.flagged_rays[f];

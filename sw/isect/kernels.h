@@ -80,9 +80,10 @@ struct KernelOptions {
   // Count, per pass, the broadcasts the any-hit and nearest-hit oracles would make
   // (oracle.h; KernelStats::oracle_*): host work with the exact reference, for reports.
   bool oracle = false;
-  // Watertight test for rays sharing an origin (ray-parallel): vertices snapped to an
-  // integer grid, edge functions (P_j x P_k) . V with exact integer constants, so an
-  // edge shared by two triangles gets complementary signs and no ray slips through.
+  // Watertight test for rays sharing an origin (ray-parallel): edge functions
+  // ((P_j - O) x (P_k - O)) . V on the scene's own vertices, certified: a ray whose
+  // decision is not certain (a ray through a shared edge included) is redone exactly,
+  // so no ray slips between two triangles and no vertex moves.
   bool watertight = false;
   // Called after each pass with (passes done, passes planned in this call).
   std::function<void(uint64_t, uint64_t)> progress;
@@ -125,7 +126,6 @@ struct KernelStats {
   // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
   uint64_t oracle_any = 0, oracle_nearest = 0;
   uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0;
-  uint64_t snapped_degenerate = 0;  // watertight: triangles the grid made degenerate (tested on the host)
   // Certification (docs/intersection.md, "Certified results"), per form: index
   // FormStat (paper ray-parallel, watertight, arbitrary-origin, paper object-parallel).
   static constexpr int kForms = 4;

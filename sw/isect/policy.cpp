@@ -43,17 +43,6 @@ double condition(const Triangle& t, const glm::dvec3& o) {
   return std::isfinite(c) ? c : std::numeric_limits<double>::infinity();
 }
 
-int watertight_grid_bits(unsigned n) { return (static_cast<int>(n) - 3) / 2; }
-
-double watertight_grid_step(const std::vector<Triangle>& tris, const glm::dvec3& o, unsigned n) {
-  double pmax = 0;
-  for (const Triangle& t : tris) {
-    for (const glm::dvec3& p : t.p) pmax = std::max({pmax, std::abs(p.x - o.x), std::abs(p.y - o.y), std::abs(p.z - o.z)});
-  }
-  if (!(pmax > 0)) pmax = 1;
-  return pmax / std::ldexp(1.0, watertight_grid_bits(n));
-}
-
 double nearest_for_exponent(const DistanceRange& dr) {
   return std::max(dr.min, dr.max * std::ldexp(1.0, -kDistanceFloorBits));
 }

@@ -1,6 +1,6 @@
 // The numerical policy of the intersection kernels, in one place: which triangles are
-// too ill-conditioned for the fixed-point format (and go to the host), the watertight
-// grid, the object-parallel sum cap, the common exponent of the compared sums, the
+// too ill-conditioned for the fixed-point format (and go to the host), the
+// object-parallel sum cap, the common exponent of the compared sums, the
 // direction scaling and the cull margin (docs/intersection.md, docs/precision.md).
 //
 // The kernels, the precision plan, the reports and the hard-case tests' tolerances all
@@ -44,13 +44,6 @@ double general_cond_limit(const KernelOptions& o);
 double condition(const Triangle& t, const glm::dvec3& o);
 // The same for P and its inverse M already at hand.
 double condition(const glm::dmat3& P, const glm::dmat3& M);
-
-// Watertight form: vertices relative to the origin snap to a grid of
-// watertight_grid_bits(n) = (n - 3) / 2 bits, so that the edge constants P_j x P_k fit
-// n bits. The grid step is the largest |coordinate - origin| over 2^bits (2^-bits when
-// every vertex sits on the origin).
-int watertight_grid_bits(unsigned n);
-double watertight_grid_step(const std::vector<Triangle>& tris, const glm::dvec3& o, unsigned n);
 
 // Ray-parallel P^-1 form: the compared sums S_c share one exponent, chosen so that the
 // nearest possible hit gives S_c below 2^kSumBits. The nearest distance is taken as at

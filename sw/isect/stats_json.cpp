@@ -33,7 +33,6 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"overflow_count", st.overflow_rays + st.overflow_triangles},
           {"host_triangles", st.host_triangles},
           {"host_tests", st.host_tests},
-          {"snapped_degenerate", st.snapped_degenerate},
           {"flagged_rays", st.flagged_total()},
           {"uncertified_rays", st.uncertified_rays},
           {"certify", forms},

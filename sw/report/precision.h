@@ -67,7 +67,7 @@ struct Row {
   Errors raw;
   uint64_t cycles = 0;  // primary frame, default fallback
   Errors fallback;
-  uint64_t host_triangles = 0, host_tests = 0, overflow_rays = 0, snapped = 0;
+  uint64_t host_triangles = 0, host_tests = 0, overflow_rays = 0;
   uint64_t render_cycles = 0, render_host_tests = 0;
   // Certification (docs/intersection.md, "Certified results"), primary frame with the
   // fallback: rays flagged uncertain and redone on the host, hits whose t came from the

@@ -29,7 +29,6 @@ json to_json(const Row& r) {
           {"host_triangles", r.host_triangles},
           {"host_tests", r.host_tests},
           {"overflow_rays", r.overflow_rays},
-          {"snapped", r.snapped},
           {"render_cycles", r.render_cycles},
           {"render_host_tests", r.render_host_tests},
           {"flagged", r.flagged},

@@ -149,7 +149,6 @@ SceneTable measure_scene(const Options& o, const Setup& setup, const char* name,
       r.host_triangles = fb.st.host_triangles;
       r.host_tests = fb.st.host_tests;
       r.overflow_rays = fb.st.overflow_rays;
-      r.snapped = fb.st.snapped_degenerate;
       for (int k = 0; k < KernelStats::kForms; ++k) {
         r.flagged += fb.st.flagged_rays[k];
         r.t_redone += fb.st.t_bound_rays[k];
