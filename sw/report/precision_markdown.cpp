@@ -93,22 +93,22 @@ depth bound (below).
 
 | case | behaviour asserted | bound, where the exact behaviour cannot hold |
 | --- | --- | --- |
-| rays exactly through the shared vertex and the shared edges of a closed fan of 7 triangles | reference and watertight: every ray hits (no crack), and reports one triangle, one of those sharing the edge or vertex (either is right: the ray meets both at one point); paper forms: any hit is such a triangle, at the right depth | the paper's form decides an exact edge by the sign of a rounded T, so it may crack there (counted, not bounded; the certified ray-parallel form flags such a ray and redoes it exactly); rays 8 cond 2^-min(n,28) of the triangle's height inside a triangle hit exactly that triangle, as the reference does |
-| closed perturbed sphere (288 triangles) around the eye, rays aimed exactly at its edges and vertices | every ray hits in the reference; the watertight form never leaks (n = 12, 16, 24) | the paper's form leaks on exact edges at a rate that does not fall with n (table above): asserted below 35 %; rays a margin (as above) inside every triangle never leak and hit that triangle, in both mappings |
+| rays exactly through the shared vertex and the shared edges of a closed fan of 7 triangles | reference and watertight (n = 16, 24, 32): every ray hits (no crack), and reports the lowest-index triangle sharing the edge or vertex (the ray meets them at one point); rays 2^-40 of a height inside a triangle hit it; paper forms: any hit is such a triangle, at the right depth | the paper's form decides an exact edge by the sign of a rounded T, so it may crack there (counted, not bounded; the certified ray-parallel form flags such a ray and redoes it exactly); rays 8 cond 2^-min(n,28) of the triangle's height inside a triangle hit exactly that triangle, as the reference does |
+| closed perturbed sphere (288 triangles) around the eye, rays aimed exactly at its edges and vertices | every ray hits in the reference; the watertight form never leaks and equals the reference on every ray (n = 16, 24, 32) | the paper's form leaks on exact edges at a rate that does not fall with n (table above): asserted below 35 %; rays a margin (as above) inside every triangle never leak and hit that triangle, in both mappings |
 | the same sphere, 12,000 uniformly random directions | the watertight form never leaks | the paper's form leaks only within the crack width of an edge (about cond 2^-n of a triangle's height): asserted at most 16 x 2^-n (measured 4.3-5.5 x 2^-n for n = 8..12, none from 16) |
 | eye exactly in a triangle's plane, inside a triangle, and 1e-12, 1e-6, 1e-3 off the plane, with a wall behind | every form equals the reference (n = 16, 24), never a garbage hit; the singular triangle (det = 0) is a host triangle even with cond_bits = 60; nearly singular ones are counted host triangles | - |
-| degenerate triangles: collinear vertices (exact integers and dyadic), a repeated vertex, three equal vertices; rays aimed exactly at them | never hit: the rays hit the wall behind, in the reference and both paper forms (default and cond_bits = 60); the four are host triangles | watertight: its grid moves collinear vertices off their line, making a sliver at most one grid step wide, which rays through the old segment may hit (that sliver keeps a closed mesh closed once snapped); a repeated vertex or a point is never hit, and rays 3 grid steps beside a collinear triangle never hit it |
-| needles and a sliver of aspect ratio 1e4 (cond 2e4 to 2e5) before a wall; rays inside them and one width outside | paper forms equal the reference at n = 16 (all three are host triangles: cond > 2^13) and n = 24 (on the FMPP); host_triangles counts exactly the triangles above 2^(min(n,28)-3) in both mappings | watertight: the needles snap to nothing (host triangles); the sliver snaps to a triangle a grid step away, which the rays miss: the form equals the reference on its snapped mesh |
-| a tiny triangle (1e-6) at distance 1, a tiny one 1e-7 in front of the eye, a huge one (1e6 wide) at 1e5 behind a wall | every form equals the reference; ray-parallel tests both the near one (the bound of its compared sum, scaled by the shift to the common exponent, is beyond what a comparison can certify) and the far one on the host; object-parallel tests both tiny ones on the host (the near one's column sums are above its cap), the watertight form both and the wall (the huge triangle sets a grid step of ~1400); host_triangles exact | depth: the compared sum keeps at least 9 bits (ray-parallel) or 10 bits (object-parallel) for the farthest hit, so a scene spanning 1e-7 to 1e6 has depth errors up to ~2^-9 there |
+| degenerate triangles: collinear vertices (exact integers and dyadic), a repeated vertex, three equal vertices; rays aimed exactly at them | never hit: the rays hit the wall behind, in the reference, both paper forms (default and cond_bits = 60) and the watertight form (n = 16, 24); the four are host triangles | - |
+| needles and a sliver of aspect ratio 1e4 (cond 2e4 to 2e5) before a wall; rays inside them and one width outside | paper forms and the watertight form equal the reference at n = 16 (all three are host triangles: cond > 2^13) and n = 24 (on the FMPP); host_triangles counts exactly the triangles above 2^(min(n,28)-3) in both mappings and the watertight form | - |
+| a tiny triangle (1e-6) at distance 1, a tiny one 1e-7 in front of the eye, a huge one (1e6 wide) at 1e5 behind a wall | every form equals the reference; ray-parallel tests both the near one (the bound of its compared sum, scaled by the shift to the common exponent, is beyond what a comparison can certify) and the far one on the host; object-parallel tests both tiny ones on the host (the near one's column sums are above its cap), the watertight form as ray-parallel; host_triangles exact | depth: the compared sum keeps at least 9 bits (ray-parallel) or 10 bits (object-parallel) for the farthest hit, so a scene spanning 1e-7 to 1e6 has depth errors up to ~2^-9 there |
 | ray directions of lengths 5 to 1e5 in one call | every form equals the reference; t is in units of each ray's own direction | - |
 | triangles behind the eye and straddling its plane, rays forward and backward | hits only in front, equal to the reference, every form | - |
-| one triangle listed six times with its vertices in every order | a tie: the first copy (lowest index) wins, in the reference and every form (watertight: on its snapped mesh) | - |
+| one triangle listed six times with its vertices in every order | a tie: the first copy (lowest index) wins, in the reference and every form | - |
 | coplanar overlapping triangles (plane z = 4) | reference, object-parallel and watertight: exact tie, lowest index; ray-parallel (certified): the tie is within the bounds, so the ray is flagged and redone exactly: lowest index | - |
 | z-fighting: parallel overlapping planes 1e-2, 1e-3, 1e-9 apart, the farther one first | where the gap exceeds twice the form's depth bound, the nearer triangle, as the reference | below that, either of the two, at the right depth |
 | interpenetrating triangles crossing along a line | rays away from the crossing: the nearer one, as the reference | on the crossing line, either |
-| a floor of 128 triangles 1 below the eye, rays down to 1e-3 elevation (hits ~1900 away), above the horizon, beyond the floor | paper forms equal the reference at n = 16 (many far tiles are host triangles) and n = 24 | watertight: the grid step (~2) exceeds the eye's height, so its floor moves: it equals the reference on its snapped floor |
+| a floor of 128 triangles 1 below the eye, rays down to 1e-3 elevation (hits ~1900 away), above the horizon, beyond the floor | paper forms and the watertight form equal the reference at n = 16 (many far tiles are host triangles) and n = 24 | - |
 | directions with zero components (along the axes, in the axis planes) in a box around the eye | every form equals the reference | - |
-| a scene and eye translated by (1e5, -1e5, 1e5), also rays with their own origins, tmin and an excluded triangle | primary rays equal the reference in the paper forms, the watertight form on its snapped mesh; arbitrary-origin rays equal it within that kernel's bound 2^-(n-10) | - |
+| a scene and eye translated by (1e5, -1e5, 1e5), also rays with their own origins, tmin and an excluded triangle | primary rays equal the reference in the paper forms and the watertight form; arbitrary-origin rays equal it within that kernel's bound 2^-(n-10) | - |
 | tiny triangles (0.02 across) 70 from the scene's centre, rays with their own origins aimed inside them (arbitrary-origin kernel) | n = 16: the 16 tiny triangles are host triangles (edge-test condition above 2^(n-4)) and every ray equals the reference; with cond_bits = 60 some rays are wrong; n = 24: on the FMPP, every ray equals the reference | - |
 | rays that miss everything, an empty scene, an empty batch | all misses, no host work, no overflow | - |
 
@@ -118,17 +118,16 @@ allowed), plus the resolution of the compared sum: ray-parallel brings S to one
 exponent chosen so that the nearest possible hit (at dmin, the nearest triangle but at
 least 2^-20 of the farthest vertex) is ~2^29, so a hit at d keeps S_c >= 2^28 dmin / d
 (8 / S_c allowed); object-parallel keeps S_c >= 2^(mbits-2) / (s_max d) (same
-allowance). The watertight form intersects the snapped mesh (surfaces up to sqrt(3)/2
-grid steps away: 2 steps / |cos| along a ray allowed) and takes S from one n-bit row
-(2^-(n-12) relative allowed).
+allowance). The watertight form is certified: its t is within the requested accuracy
+(2^-12 relative) or the host's exact one.
 
 **Bugs these cases found** (each fixed with its test, see the git log): the reference
 broke ties between copies of a triangle by rounding (vertex order) and hit degenerate
 triangles through their segment; the kernels quantized all ray directions of a call
 with one scale (a short ray lost its bits), let object-parallel keep triangles up to
 cond 2^25 at any n, let one near-plane triangle take every bit of the object-parallel
-S from all others, dropped triangles the watertight grid flattened (the reference
-still hits them), and derived scales from an empty scene (undefined behaviour).
+S from all others, dropped triangles the watertight form's former vertex grid flattened
+(the reference still hits them), and derived scales from an empty scene (undefined behaviour).
 )";
 
 void intro(std::ostream& md, const Options& o, const Setup& s, const std::string& date, double seconds,
@@ -153,13 +152,14 @@ void what_is_measured(std::ostream& md) {
   md << R"(## What is measured
 
 - **n**: the multiplier width (`KernelOptions::n`): the mantissas of P^-1 in the paper's
-  form, the edge constants (from a grid of (n - 3) / 2 bits) in the watertight form. The
+  form, the edge constants and the compared row (w = N / det) in the watertight form. The
   other operand (ray components) has vbits = 28 bits, so beyond n = 28 the triangle
   test gains little.
 - **Forms**: `generic` and `const` are the paper's form with the generic shift-and-add
   multiply and the constant-specialised (CSD) one: bit-identical results by
   construction (checked here on every image and every primary ray), different cycles.
-  `watertight` is the exact-integer edge-function form (always constant multiplies).
+  `watertight` is the certified edge-function form on the scene's own vertices (always
+  constant multiplies).
 - **steps/bcast**: instructions (= clocks) per triangle broadcast, primary rays.
 - **frame clocks**: FMPP clocks for all primary rays of the image (load, broadcasts,
   readback), counted by the golden model; **render clocks**: for the whole Whitted
@@ -167,19 +167,18 @@ void what_is_measured(std::ostream& md) {
   and glass use the arbitrary-origin kernel).
 - **Raw machine** (`cond_bits = 60`): every triangle on the FMPP, so the error is the
   fixed-point format's. **Fallback** (the default): ill-conditioned triangles (cond >
-  2^(min(n,28)-3)) and, in the watertight form, triangles the grid flattens are
-  intersected on the host (**host tris**, **host tests** = ray-triangle tests the host
+  2^(min(n,28)-3)) and, in the watertight form, triangles whose orientation is not
+  certain are intersected on the host (**host tris**, **host tests** = ray-triangle tests the host
   did instead), and overflowed rays are redone there: the cost of correctness.
 - Per primary ray, against the double-precision reference: **wrong** = both hit,
   different triangles; **hit/miss** = one hits and the other does not (both in % of the
   rays); **depth** = |t - t_ref| / t_ref over the rays hitting the same triangle (median
   and maximum).
-- **Certification** (the paper's form, ray-parallel; [intersection.md](intersection.md#certified-results-certifyh)
-  derives its error bounds): **flagged** = primary rays whose decision was not certain
+- **Certification** (the paper's form, ray-parallel, and the watertight form;
+  [intersection.md](intersection.md#certified-results-certifyh) derives their error bounds): **flagged** = primary rays whose decision was not certain
   within the bounds, redone exactly on the host; **t host** = certified hits whose t
   bound exceeded the requested accuracy (2^-12), their t computed on the host; both in %
-  of the rays the certified form answered ("-": none, the watertight form does not
-  certify). **render redone** = the same two together over every ray of the render
+  of the rays the certified forms answered ("-": none). **render redone** = the same two together over every ray of the render
   (shadow and secondary rays too; the arbitrary-origin kernel's rays count as answered
   but not certified).
 - **PSNR**: of the 8-bit image of the full render against the reference render (all
@@ -219,7 +218,7 @@ void leak_table(std::ostream& md, const Leaks& leaks) {
      << leaks.edge_rays << " vertex and edge points (`edge_and_vertex_rays`), **uniform rays** are "
      << leaks.uniform_rays
      << " random directions. Every ray must hit; a miss is a leak. `paper, raw` is the const form with "
-        "cond_bits = 60, `paper, fallback` the default, `watertight` the exact-integer form. "
+        "cond_bits = 60, `paper, fallback` the default, `watertight` the certified edge-function form. "
         "(`tests/hardcases_test.cpp` asserts the bounds.)\n\n";
   md << "| n | form | steps/bcast | edge rays leaking | % | uniform rays leaking | % | host tris |\n"
         "| --- | --- | --- | --- | --- | --- | --- | --- |\n";

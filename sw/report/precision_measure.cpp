@@ -153,7 +153,7 @@ SceneTable measure_scene(const Options& o, const Setup& setup, const char* name,
         r.flagged += fb.st.flagged_rays[k];
         r.t_redone += fb.st.t_bound_rays[k];
       }
-      r.certified_rays = fb.st.form_rays[kStatPaper];
+      r.certified_rays = fb.st.form_rays[kStatPaper] + fb.st.form_rays[kStatWatertight];  // the certified forms
       const RenderRun rr = run_render(machine, scene, size, kernel_options(f, n, -1));
       r.render_cycles = rr.st.cycles;
       r.render_host_tests = rr.st.host_tests;
@@ -161,7 +161,7 @@ SceneTable measure_scene(const Options& o, const Setup& setup, const char* name,
         r.render_redone += rr.st.flagged_rays[k] + rr.st.t_bound_rays[k];
         r.render_rays += rr.st.form_rays[k];
       }
-      r.render_certified = rr.st.form_rays[kStatPaper];
+      r.render_certified = rr.st.form_rays[kStatPaper] + rr.st.form_rays[kStatWatertight];
       r.psnr = psnr(rr.image, ref_image);
       r.pixels_off = rt::compare(rr.image, ref_image).pixels_over;
       // Generic and const must agree bit for bit (docs/intersection.md).

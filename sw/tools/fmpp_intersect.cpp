@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "group", "general"}));
   bool watertight = false;
-  app.add_flag("--watertight", watertight, "exact-integer edge functions for rays sharing an origin (no cracks)");
+  app.add_flag("--watertight", watertight, "certified edge functions for rays sharing an origin (no cracks, no vertex moved)");
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
       ->capture_default_str()
       ->check(int_range(4, 28));

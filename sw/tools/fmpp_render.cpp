@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
                  "(0: the default, docs/intersection.md)")
       ->capture_default_str()
       ->check(finite_range(0.0, 0.5));
-  app.add_flag("--watertight", watertight, "exact-integer edge functions for primary and shadow rays (no cracks)");
+  app.add_flag("--watertight", watertight, "certified edge functions for primary and shadow rays (no cracks, no vertex moved)");
   BackendOptions bo;
   add_trace_options(app, bo);
   app.add_flag("--quiet", quiet, "no progress output");
