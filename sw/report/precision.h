@@ -120,7 +120,7 @@ struct Choice {
   const Row* image = nullptr;  // const form: render PSNR >= 40 dB
   const Row* redone = nullptr;  // const form: rays of the render redone on the host (certification) <= 1 %
   const Row* all = nullptr;    // const form: all four
-  const Row* wt = nullptr;     // watertight form: raw error <= 0.1 %
+  const Row* wt = nullptr;     // watertight form: all four
 };
 std::vector<Choice> choose_n(const SceneResults& r);
 

@@ -69,11 +69,12 @@ std::vector<Choice> choose_n(const SceneResults& res) {
       return static_cast<double>(r.render_redone) <= 0.01 * static_cast<double>(r.render_rays);
     };
     c.redone = first(t, "const", redone_ok);
-    c.all = first(t, "const", [&](const Row& r) {
+    auto all_ok = [&](const Row& r) {
       return r.raw.wrong + r.raw.hitmiss <= 1e-3 && static_cast<double>(r.host_triangles) <= 0.01 * ntris &&
              !(r.psnr < 40) && redone_ok(r);
-    });
-    c.wt = first(t, "watertight", [](const Row& r) { return r.raw.wrong + r.raw.hitmiss <= 1e-3; });
+    };
+    c.all = first(t, "const", all_ok);
+    c.wt = first(t, "watertight", all_ok);
     out.push_back(c);
   }
   return out;
