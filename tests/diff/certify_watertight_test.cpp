@@ -127,7 +127,8 @@ TEST(CertifyWatertight, RowAndSumBoundsHoldAgainstExactArithmetic) {
         const certify::WatertightBounds wb = certify::watertight_bounds(ec, e, f, n, vbits, f - E);
         for (int r = 0; r < 8; ++r) {
           // Directions towards the triangle (near its edges) and random ones.
-          dvec3 d = r < 4 ? (t.p[r % 3] + (0.5 + 0.5 * u(g)) * (t.p[(r + 1) % 3] - t.p[r % 3])) : dvec3(u(g), u(g), u(g));
+          dvec3 d = r < 4 ? (t.p[r % 3] + (0.5 + 0.5 * u(g)) * (t.p[(r + 1) % 3] - t.p[r % 3]))
+                          : dvec3(u(g), u(g), u(g));
           d = std::ldexp(1.0, policy::direction_exponent(d)) * d;
           const double sv = max_component(d) / std::ldexp(1.0, static_cast<int>(vbits));
           const int64_t lim = int64_t{1} << vbits;
