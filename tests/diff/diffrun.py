@@ -48,6 +48,7 @@ def certified_t(n):
 
 BOUNDS = {
     "paper/ray": certified_t,
+    "paper/object": certified_t,
     "arbitrary-origin/ray": lambda n: 2.0 ** -(n - 10),
     "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
 }
