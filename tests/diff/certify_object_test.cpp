@@ -114,8 +114,12 @@ TEST(CertifyObjectBounds, RowAndSumBoundsHoldAgainstExactArithmetic) {
         EXPECT_LE(err, q(b.sum)) << "n " << n;
         worst_sum = std::max(worst_sum, err.get_d() / b.sum);
         // The words a block holds (the plan gives wider bounds' triangles to the host).
-        if (b.row <= certify::kMaxObjectBound) EXPECT_LE(b.row, static_cast<double>(b.row_word));
-        if (b.sum <= certify::kMaxObjectBound) EXPECT_LE(b.sum, static_cast<double>(b.sum_word));
+        if (b.row <= certify::kMaxObjectBound) {
+          EXPECT_LE(b.row, static_cast<double>(b.row_word));
+        }
+        if (b.sum <= certify::kMaxObjectBound) {
+          EXPECT_LE(b.sum, static_cast<double>(b.sum_word));
+        }
         ++checked;
       }
     }
@@ -215,6 +219,12 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
     EXPECT_GE(r.st.flagged_rays[kStatObject], 3u) << "n " << n;
     EXPECT_EQ(r.hits[3].redo, HostRedo::kFlagged);
   }
+  // The RTL, in lockstep with the golden model, takes the same clocks for the questions
+  // to the responders and gives the same answers.
+  const Outcome m = run(rays, tris, 24), l = run(rays, tris, 24, MulMode::kConst, 64, "lockstep");
+  EXPECT_EQ(m.st.cycles, l.st.cycles);
+  EXPECT_EQ(m.st.instructions, l.st.instructions);
+  for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(m.hits[i].tri, l.hits[i].tri);
 }
 
 // Random rays on a random scene: every answer is exact, few are flagged, and the RTL
