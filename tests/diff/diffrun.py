@@ -48,6 +48,7 @@ def certified_t(n):
 
 BOUNDS = {
     "paper/ray": certified_t,
+    "paper/object": certified_t,
     "arbitrary-origin/ray": certified_t,
     "default/ray": certified_t,
     "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
