@@ -858,11 +858,12 @@ TEST_P(HardCases, TinyTrianglesSeenFromTheirOwnOrigins) {
       EXPECT_NEAR(fallback.hits[i].t, ref[i].t, 1e-12 * ref[i].t) << "ray " << i;
     }
   }
+  // The raw machine (every triangle on the FMPP) is certified: its bounds at n = 16 leave
+  // many of these rays uncertain, and the host's exact redo gets them right.
   const Result raw = run(rays, tris, kRawRayForm, 16);
   EXPECT_EQ(raw.st.host_triangles, 0u);
-  size_t wrong = 0;
-  for (size_t i = 0; i < rays.size(); ++i) wrong += raw.hits[i].tri != ref[i].tri;
-  EXPECT_GT(wrong, 0u) << "the raw machine should get some of these rays wrong at n = 16";
+  EXPECT_GT(raw.st.flagged_rays[kStatGeneral], 0u) << "n = 16 is too narrow for these triangles";
+  for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(raw.hits[i].tri, ref[i].tri) << "raw, ray " << i;
   // At n = 24 the triangles are within the limit and stay on the FMPP.
   const Result wide = run(rays, tris, kRayForm, 24);
   EXPECT_EQ(wide.st.host_triangles, 0u);

@@ -7,6 +7,11 @@ precision_scenes.png: per scene and form, the raw machine's primary-ray error ra
 against the clocks of a frame of primary rays, and the PSNR of the full render against
 its clocks; one curve per scene and form, one point per multiplier width n.
 precision_leaks.png: leak rate on the closed sphere and steps per broadcast against n.
+precision_pareto.png: per scene, the clocks of the full render against the share of its
+rays the host redoes to certify them (flagged, or t from the host): every point gives
+the same certified answers (the exact triangle, t within the requested accuracy), so the
+trade-off is FMPP clocks against host work; one curve per form, one point per n, and the
+Pareto front over all forms.
 """
 import math
 import sys
@@ -17,6 +22,7 @@ FORMS = {
     "generic": dict(linestyle="--", marker="o", mfc="none"),
     "const": dict(linestyle="-", marker="s"),
     "watertight": dict(linestyle=":", marker="^"),
+    "object": dict(linestyle="-.", marker="D", mfc="none"),
 }
 COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple"]
 
@@ -103,8 +109,51 @@ def fig_leaks(data, out):
     save(fig, out)
 
 
+def fig_pareto(data, out):
+    scenes = sorted(data["scenes"].items())
+    cols = 2
+    rows_n = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows_n, cols, figsize=(12, 4.8 * rows_n), squeeze=False)
+    for ax, (scene, rows) in zip([a for r in axes for a in r], scenes):
+        pts_all = []
+        floor = None
+        for r in rows:
+            if r["render_rays"]:
+                f = 0.3 * 100.0 / r["render_rays"]
+                floor = f if floor is None else min(floor, f)
+        for (form, style), color in zip(FORMS.items(), COLORS):
+            pts = [r for r in rows if r["form"] == form and r["render_certified"]]
+            if not pts:
+                continue
+            x = [r["render_cycles"] for r in pts]
+            y = [max(100.0 * r["render_redone"] / r["render_rays"], floor) for r in pts]
+            ax.loglog(x, y, color=color, label=form, **style)
+            for r, xx, yy in zip(pts, x, y):
+                ax.annotate(str(r["n"]), (xx, yy), textcoords="offset points", xytext=(3, 3), fontsize=7, color=color)
+            pts_all += list(zip(x, y))
+        # The Pareto front: no other point has both fewer clocks and a smaller host share.
+        front = sorted(p for p in pts_all if not any(q[0] <= p[0] and q[1] <= p[1] and q != p for q in pts_all))
+        if front:
+            ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", linewidth=2, alpha=0.35,
+                    label="Pareto front")
+        ax.axhline(floor, color="gray", linewidth=0.8)
+        ax.text(ax.get_xlim()[0], floor, " no ray redone", va="bottom", fontsize=8, color="gray")
+        ax.axhline(1.0, color="tab:red", linewidth=0.8, linestyle="--")
+        ax.set_title(f"{scene}")
+        ax.set_xlabel("FMPP clocks for the whole render")
+        ax.set_ylabel("rays redone on the host to certify them (%)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7.5)
+    for ax in [a for r in axes for a in r][len(scenes):]:
+        ax.axis("off")
+    fig.suptitle(f"Certified results: FMPP clocks against the host's share, {data['size']} x {data['size']} pixels "
+                 f"(labels: n; dashed red: 1 %)")
+    save(fig, out)
+
+
 def main():
-    return run(__doc__, {"precision_scenes.png": fig_scenes, "precision_leaks.png": fig_leaks})
+    return run(__doc__, {"precision_scenes.png": fig_scenes, "precision_leaks.png": fig_leaks,
+                         "precision_pareto.png": fig_pareto})
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "sw/isect/certify.h"
+#include "sw/isect/certify_object.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/forms.h"
 #include "sw/isect/policy.h"
@@ -35,6 +36,7 @@ Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, cons
   using layout::kHit;
   using layout::kLoaded;
   using layout::kTmp;
+  using layout::kWin;
   Program p;
   std::vector<Row> rows(4);
   for (unsigned i = 0; i < 4; ++i) {
@@ -55,11 +57,18 @@ Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, cons
   nonneg(p, kHit, kHit, kT + 1);
   nonneg(p, kHit, kHit, kT + 2);
   *test_steps = p.size();
+  // Certainty (certify_object.h): kWin <- the block may hit, kUnc <- it may and does not
+  // certainly hit, against the block's row bound kBT.
+  certify::object_inside_certain(p, kT, kBT, kD, kLoaded);
   nonneg(p, kHit, kHit, kS);
   p.mask(0);
   p << ref(RefFn::kAnd, RefPart::kData, kS, 0, kTmp, kHit);  // S = 0: not in front of the origin
   p << flagop(kHit, kHit, kTmp, lut::kAndNotB);
-  max_search(p, kHit, kTmp, kS, sbits);
+  // The search word kD: S_c for the nominal hits, 0 for the other blocks that may hit, so
+  // that a ray some block may hit but none nominally does shows as a winner with 0.
+  p << writes(kD, 0, kLoaded) << func(FuncFn::kOr, kD, kS, kS, kHit);
+  p << flagop(kHit, kWin, kWin, lut::kA);
+  max_search(p, kHit, kTmp, kD, sbits);
   p << flagop(layout::kSel, kHit, kHit, lut::kA);
   return p;
 }

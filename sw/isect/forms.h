@@ -47,8 +47,10 @@ std::unique_ptr<RayForm> make_general_form(const FormInputs& in);
 // singular or its condition number exceeds cond_limit (the host takes it).
 bool paper_inverse(const Triangle& t, const glm::dvec3& o, double cond_limit, double m[3][3]);
 // The object-parallel ray broadcast: T = X v and S = Y v in every loaded block, the
-// inside test, then the maximum search over `sbits` bits of S; SEL ends as the blocks
-// holding the nearest hit. *test_steps gets the instructions up to the inside test.
+// inside test and its certainty (certify_object.h), then the maximum search over `sbits`
+// bits of the search word (S of a nominal hit, else 0) among the blocks that may hit;
+// SEL ends as the blocks holding the nearest hit (or, with none, every block that may
+// hit). *test_steps gets the instructions up to the inside test.
 Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, const KernelOptions& opt,
                              size_t* test_steps);
 

@@ -158,7 +158,7 @@ const char* form_stat_name(int f);
 unsigned words_needed(const KernelOptions& opt);
 
 // Words per block the arbitrary-origin kernel needs (rays with their own origins).
-inline constexpr unsigned kGeneralWords = 24;  // = layout::general::kWords (asserted in form_general.cpp)
+inline constexpr unsigned kGeneralWords = 26;  // = layout::general::kWords (asserted in form_general.cpp)
 
 // Which kernel takes each ray: groups of rays sharing an origin (the paper's inverse
 // matrices, by origin), and the rest (the arbitrary-origin kernel, ray-parallel):

@@ -39,20 +39,24 @@ inline constexpr unsigned kWordsConst = kX, kWordsGeneric = kX + 9;
 }  // namespace ray
 
 // Object-parallel (one triangle per block): the 9 mantissas of P^-1, the 3 of its column
-// sums, T_1..3, S, and (generic multiply only) the broadcast ray's 3 components.
+// sums, T_1..3, S, the block's bounds on T' and on S_c (certify_object.h), the search
+// word (S_c of a nominal hit, else 0; scratch before), and (generic multiply only) the
+// broadcast ray's 3 components.
 namespace object {
-inline constexpr unsigned kX = 0, kY = 9, kT = 12, kS = 15, kV = 16;
+inline constexpr unsigned kX = 0, kY = 9, kT = 12, kS = 15, kBT = 16, kBS = 17, kD = 18, kV = 19;
 inline constexpr unsigned kWordsConst = kV, kWordsGeneric = kV + 3;
 }  // namespace object
 
 // Ray-parallel, every ray with its own origin (the arbitrary-origin form): direction V,
 // moment L = O x V, origin O, edge values A_1..3, det, n . V, scratch, quotient, best
 // quotient and broadcast number, counter, constants 1, 0 and 2^kBits, the ray's
-// smallest quotient, and the broadcast number of its excluded triangle.
+// smallest quotient, the broadcast number of its excluded triangle, and the best's
+// shifted det and n . V (the host bounds the best's t from them: certify_general.h).
 namespace general {
 inline constexpr unsigned kV = 0, kL = 3, kO = 6, kA = 9, kDet = 12, kNv = 13, kTmp = 14, kQ = 15, kBest = 16,
-                          kIdx = 17, kCnt = 18, kOne = 19, kZero = 20, kUnit = 21, kQmin = 22, kExcl = 23;
-inline constexpr unsigned kWords = kExcl + 1;
+                          kIdx = 17, kCnt = 18, kOne = 19, kZero = 20, kUnit = 21, kQmin = 22, kExcl = 23,
+                          kBestDet = 24, kBestNv = 25;
+inline constexpr unsigned kWords = kBestNv + 1;
 }  // namespace general
 
 }  // namespace fmpp::isect::layout

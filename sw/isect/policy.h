@@ -66,6 +66,14 @@ unsigned object_search_bits(const KernelOptions& o);
 // kGeneralReachMargin.
 inline constexpr int kGeneralRayBits = 25;
 inline constexpr double kGeneralReachMargin = 1.25;
+// Its certified hits (certify_general.h): a hit counts as certain only if det and n . V
+// exceed 2^(kGeneralCertBits + 1) times their error bounds, so that its quotient is within
+// about 2^-kGeneralCertBits of t / u; two hits (or a hit and tmin) closer than
+// 2^-(kGeneralCertBits - 1) of their sum, plus 4 quotient steps, are uncertain.
+inline constexpr int kGeneralCertBits = 8;
+// Beyond these bits of the thresholds no hit of a triangle could be certain: the host
+// takes it (the shifted det and n . V stay below 2^28 and 2^27).
+inline constexpr int kGeneralMaxDetBits = 27, kGeneralMaxNvBits = 26;
 
 // Every ray's direction is scaled by 2^direction_exponent(d), a largest component in
 // [1, 2), before the kernels (exact; t is scaled back).

@@ -130,12 +130,17 @@ class RayParallelPlan : public PassPlan {
   std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done) override {
     if (phase_ != Phase::kProbe) return {};
     phase_ = Phase::kFinal;
+    const bool general = bounds_.distance == CullBounds::Distance::kGeneral;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     std::vector<double> best(count, kInf);
     std::vector<size_t> winner(count, SIZE_MAX);
     read_best(dev, count, form_.best_words(), done.size(), [&](unsigned b, uint32_t v, size_t pos) {
       const Ray& r = rays_[idx_[base + b]];
       best[b] = form_.t_of(v, r) * glm::length(r.d);
+      // A certified arbitrary-origin best is within its bound of the exact distance: the
+      // reach is taken from the farthest the exact distance can be (the P^-1 form's
+      // reach_for allows for its relative bound itself).
+      if (general && form_.certified()) best[b] *= 1 + form_.t_rel_bound_at(dev, b, v, done[pos]);
       winner[b] = done[pos];
     });
     if (form_.certified()) {
@@ -239,7 +244,7 @@ class RayParallelPlan : public PassPlan {
       Hit& h = out_[idx_[base + b]];
       h.tri = form_.broadcasts[order[pos]].tri;
       h.t = form_.t_of(best, r);
-      t_loose_[b] = form_.certified() && !(form_.t_rel_bound(best, order[pos]) <= t_acc_);
+      t_loose_[b] = form_.certified() && !(form_.t_rel_bound_at(dev, b, best, order[pos]) <= t_acc_);
     });
     unc_.assign(count, false);
     if (form_.certified()) {

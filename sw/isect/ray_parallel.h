@@ -53,6 +53,11 @@ class RayForm {
   virtual bool certified() const { return false; }
   // The certified relative bound on t_of(best) for a best set by broadcast k.
   virtual double t_rel_bound(uint32_t /*best*/, size_t /*k*/) const { return std::numeric_limits<double>::infinity(); }
+  // The same for block b's best, where the bound needs more of the block than its best
+  // (the arbitrary-origin form reads the best's det and n . V): reads them from dev.
+  virtual double t_rel_bound_at(Device& /*dev*/, unsigned /*b*/, uint32_t best, size_t k) const {
+    return t_rel_bound(best, k);
+  }
 };
 
 // Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]]. `origin` is

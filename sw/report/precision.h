@@ -73,7 +73,8 @@ struct Row {
   // fallback: rays flagged uncertain and redone on the host, hits whose t came from the
   // host, out of the rays of certified forms; and over the whole render.
   uint64_t flagged = 0, t_redone = 0, certified_rays = 0;
-  uint64_t render_redone = 0, render_rays = 0, render_certified = 0;
+  uint64_t render_flagged = 0, render_t_host = 0, render_rays = 0, render_certified = 0;
+  uint64_t render_redone() const { return render_flagged + render_t_host; }
   double psnr = 0;
   uint64_t pixels_off = 0;  // pixels more than 8 levels off the reference render
 };

@@ -34,7 +34,10 @@ json to_json(const Row& r) {
           {"flagged", r.flagged},
           {"t_redone", r.t_redone},
           {"certified_rays", r.certified_rays},
-          {"render_redone", r.render_redone},
+          {"render_redone", r.render_redone()},
+          {"render_flagged", r.render_flagged},
+          {"render_t_host", r.render_t_host},
+          {"render_certified", r.render_certified},
           {"render_rays", r.render_rays},
           {"psnr", std::isfinite(r.psnr) ? json(r.psnr) : json(nullptr)},
           {"pixels_off", r.pixels_off}};
@@ -66,7 +69,7 @@ std::vector<Choice> choose_n(const SceneResults& res) {
     c.host = first(t, "const", [&](const Row& r) { return static_cast<double>(r.host_triangles) <= 0.01 * ntris; });
     c.image = first(t, "const", [](const Row& r) { return !(r.psnr < 40); });
     auto redone_ok = [](const Row& r) {
-      return static_cast<double>(r.render_redone) <= 0.01 * static_cast<double>(r.render_rays);
+      return static_cast<double>(r.render_redone()) <= 0.01 * static_cast<double>(r.render_rays);
     };
     c.redone = first(t, "const", redone_ok);
     auto all_ok = [&](const Row& r) {

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(int_range(2, 32));
   app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
   app.add_option("--words", words,
-                 "words per block, even (default: what the mapping and multiply need, 24 when rays take the "
+                 "words per block, even (default: what the mapping and multiply need, 26 when rays take the "
                  "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
       ->check(even_words());
   app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");

@@ -49,7 +49,9 @@ def certified_t(n):
 BOUNDS = {
     "paper/ray": certified_t,
     "watertight/ray": certified_t,  # certified too (docs/intersection.md, "The watertight form")
-    "arbitrary-origin/ray": lambda n: 2.0 ** -(n - 10),
+    "paper/object": certified_t,
+    "arbitrary-origin/ray": certified_t,
+    "default/ray": certified_t,
     "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
 }
 KINDS = ("false_hit", "missed", "other_triangle", "tie_order")
