@@ -75,16 +75,18 @@ const char* kReading = R"(**What the numbers mean for choosing n** (read from th
   ([intersection.md](intersection.md#the-watertight-form-form_watertightcpp-certify_watertightcpp)),
   so its wrong and hit/miss columns are 0 on every scene at every n, and it lets no ray
   through the closed sphere (0 of 23,456 at every n; before, its vertex grid of
-  (n - 3)/2 bits got up to 2.25 % of the primary rays wrong at n = 24). It costs 20 to
-  25 % more steps per broadcast than the paper's form at equal n (225.6 against 183.6
+  (n - 3)/2 bits got up to 2.25 % of the primary rays wrong at n = 24). It costs about
+  22 % more steps per broadcast than the paper's form at equal n (225.6 against 183.6
   at n = 24 on cornell: a fourth n-bit row for S), and its renders more clocks still
-  (754k against 589k at n = 24 on cornell: the FMPP's own box test and the probe serve
-  only the paper's form). Its t is tighter (each edge row has its own exponent, S its
-  own row): at n = 20 it redoes 0.13 %, 0.06 % and 0.30 % of the render's rays on
-  cornell, spheres_1k and spheres_10k, where the paper's form redoes 8.2 %, 33 % and
-  47 %, so it meets all four criteria from n = 20 (16 on one_triangle). So: the
-  certified paper form at n = 24 for the fewest clocks, the watertight form at n = 20
-  where it is asked for.)";
+  (809k against 644k at n = 24 on cornell, 1.7M against 0.88M on spheres_10k: the
+  FMPP's own box test and the probe serve only the paper's form). Its t is tighter
+  (each edge row has its own exponent, S its own row): at n = 24 the host flags or
+  gives the t of 0.07 %, 0 % and 0.06 % of its render's rays on cornell, spheres_1k and
+  spheres_10k, against 0.20 %, 0.38 % and 2.0 % with the paper's form, so it meets all
+  four criteria at n = 24, 20 and 24 (16 on one_triangle) where the paper's form needs
+  24, 24 and 32 (20). In clocks the paper's form still wins (spheres_10k: 1.02M at
+  n = 32 against 1.7M at n = 24). So: the paper's form for the fewest clocks, the
+  watertight form where fewer host redos matter more than clocks.)";
 
 const char* kHardCases = R"(## Hard cases
 
