@@ -41,52 +41,57 @@ std::string big(uint64_t v) {
 std::string db(double v) { return std::isfinite(v) ? fmt(v, 1) : "identical"; }
 
 // How to read the tables (written for the full run's numbers).
-const char* kReading = R"(**What the numbers mean for choosing n** (read from the tables above):
+const char* kReading = R"(**What the numbers mean for choosing n** (read from the tables above; the figures below
+are those of the run of 2026-11-24, and a regeneration that changes them says so in the
+tables first):
 
-- **Certified, the paper's form gets every primary ray right at every n.** The raw
-  machine's wrong and hit/miss columns are 0 on every scene from n = 8 to 32: a
-  decision within the kernel's error bound is flagged and redone exactly on the host,
-  and every other one is right by the bound ([intersection.md](intersection.md#certified-results-certifyh)).
-  What n buys now is work kept off the host, and clocks.
-- **Below n = 20 the host does much of the work.** At n = 8 to 16 the bounds are wide:
-  1.3 % (cornell, n = 16) to 34 % (cornell, n = 10) of the primary rays are flagged,
-  and most hits miss the requested t accuracy 2^-12 and take their t from the host (92
-  % of cornell's at n = 16); the condition limit still sends ordinary triangles to the
-  host (all but two of each sphere scene's at n = 8). At n = 20 no primary ray is
-  flagged on cornell (0.3 % on spheres_10k), but 6.7 % to 33 % of the hits still take
-  their t from the host. At n = 24 the render's redone share (primary, shadow and
-  secondary rays) is 0.13 % (cornell), 0.38 % (spheres_1k) and 1.95 % (spheres_10k); at
-  32 it is 0. The precision plan (`fmpp-render`) requires at most 1 % of its sampled
-  frame's rays redone, so it picks n = 24 for cornell and spheres_1k and 28 for
-  spheres_10k at 128 x 128 (`fmpp-render --backend cmodel --width 128 --height 128
-  --compare-reference --report r.json`, 2026-11-23: 0.20 %, 0.49 % and 0.05 % of their
-  rays redone, 0, 1 and 0 pixels more than 8 levels off).
+- **Every form and mapping is certified, so every answer is right at every n.** The
+  wrong and hit/miss columns are 0 for every scene, form and n from 8 to 32: the paper's
+  form (both multiplies), the watertight form, the object-parallel mapping, and in the
+  renders the arbitrary-origin form of the reflection and refraction rays. A decision
+  that is not certain within the form's bound is flagged and redone exactly on the host,
+  and a t whose bound exceeds 2^-12 is computed there
+  ([intersection.md](intersection.md#certified-results-certifyh) derives each form's
+  bounds). The renders are identical to the reference's, or at 78-83 dB where a t
+  within its 2^-12 moves a shading value by a level (50 dB once: one pixel of
+  spheres_10k, object-parallel at n = 32, where such a t tips a shadow ray at an edge).
+  What n buys is work kept off the host, and clocks.
+- **The host's share falls steeply with n.** With the constant multiply the render's
+  flagged share is 11.6 % (cornell), 4.8 % (spheres_1k) and 14.3 % (spheres_10k) at
+  n = 16, 0.20 %, 0.25 % and 1.8 % at n = 20 and 0.07 %, 0 % and 0.12 % at n = 24;
+  the t from the host follows (64 %, 53 %, 43 % at n = 16; 0.13 %, 0.38 %, 1.9 % at
+  n = 24). Below n = 16 the condition limit sends most triangles to the host anyway.
+  The "redone <= 1 %" column is where the host's share (flagged and t) falls under 1 %:
+  n = 24 for cornell and spheres_1k, 32 for spheres_10k at these 32 x 32 pixels.
 - **Clocks grow linearly with n.** The constant (CSD) multiply with the certainty tests
-  costs about 6n + 40 steps per broadcast (82.5 at n = 8, 184 at 24, 232 at 32 on
-  cornell; the tests add 25 per broadcast) and the generic one 22n + 55, 3.2 to 3.6
-  times more on the larger scenes, for bit-identical results (checked on every ray and
-  image here). Use the constant multiply at every n.
-- **Depth within its bound.** Every certified t is within 2^-12 of the exact one; where
-  a triangle goes to the host, every ray's hit is compared, and its t evaluated, exactly
-  (the depth columns read 0 up to n = 20). At n = 24 the largest depth error is 3.5e-5
-  on cornell, at 32 6.6e-6.
-- **The watertight form is certified too, and moves nothing.** It evaluates the edge
-  functions on the scene's own vertices and flags what its bounds leave uncertain
-  ([intersection.md](intersection.md#the-watertight-form-form_watertightcpp-certify_watertightcpp)),
-  so its wrong and hit/miss columns are 0 on every scene at every n, and it lets no ray
-  through the closed sphere (0 of 23,456 at every n; before, its vertex grid of
-  (n - 3)/2 bits got up to 2.25 % of the primary rays wrong at n = 24). It costs about
-  22 % more steps per broadcast than the paper's form at equal n (225.6 against 183.6
-  at n = 24 on cornell: a fourth n-bit row for S), and its renders more clocks still
-  (809k against 644k at n = 24 on cornell, 1.7M against 0.88M on spheres_10k: the
-  FMPP's own box test and the probe serve only the paper's form). Its t is tighter
-  (each edge row has its own exponent, S its own row): at n = 24 the host flags or
-  gives the t of 0.07 %, 0 % and 0.06 % of its render's rays on cornell, spheres_1k and
-  spheres_10k, against 0.20 %, 0.38 % and 2.0 % with the paper's form, so it meets all
-  four criteria at n = 24, 20 and 24 (16 on one_triangle) where the paper's form needs
-  24, 24 and 32 (20). In clocks the paper's form still wins (spheres_10k: 1.02M at
-  n = 32 against 1.7M at n = 24). So: the paper's form for the fewest clocks, the
-  watertight form where fewer host redos matter more than clocks.)";
+  costs about 6n + 40 steps per broadcast (82.5 at n = 8, 184 at 24, 231 at 32 on
+  cornell) and the generic one 22n + 55, 3.2 to 3.6 times more, for bit-identical
+  results (checked on every ray and image here). Use the constant multiply at every n.
+- **The watertight form** evaluates the edge functions on the scene's own vertices
+  ([intersection.md](intersection.md#the-watertight-form-form_watertightcpp-certify_watertightcpp)):
+  nothing moves, it lets no ray through the closed sphere at any n, and its t is tighter
+  (its render's t from the host: 0 % on cornell and spheres_1k at n = 24, against 0.13 %
+  and 0.38 % with the paper's form). It costs about 22 % more steps per broadcast (225.6
+  against 183.6 at n = 24 on cornell) and more render clocks (809k against 644k on
+  cornell at n = 24; 1.70M against 0.88M on spheres_10k, where the FMPP's box test and
+  the probe serve only the paper's form), so it meets the host criterion at a lower n
+  (24, 20 and 24) for more clocks.
+- **The object-parallel mapping** certifies the same answers with per-block bounds and
+  flags fewer primary rays at low n (0.29 % on cornell at n = 16, against 1.3 %), but a
+  frame of 1,024 primary rays, each a broadcast, costs 4.5 to 65 times the
+  ray-parallel clocks (306k against 49k on cornell at n = 24): it pays only for far
+  fewer rays per frame than triangles.
+- **The Pareto plot** below puts each scene's render clocks against the host's share:
+  every point gives the same certified answers, so its front is the choice. It runs
+  from n = 8 (few FMPP clocks, most of the work on the host) to the constant-multiply
+  paper form at n = 24 and 32 (at most 2 % on the host); the watertight form is on it
+  at n = 8-16 of one_triangle (n = 16: nothing on the host at 5.3k clocks).
+- **The precision plan** (`fmpp-render`) picks, per frame, the smallest n whose sampled
+  primary rays and frame meet the error target (0.2 %) with at most 1 % of the sample's
+  rays redone. At 128 x 128 on the golden model it picks n = 20 for one_triangle, 24 for
+  cornell and spheres_1k and 28 for spheres_10k and the two scanned scenes; the measured
+  full frames (next section) are within the target.
+)";
 
 const char* kHardCases = R"(## Hard cases
 
@@ -193,6 +198,16 @@ void what_is_measured(std::ostream& md) {
 - **PSNR**: of the 8-bit image of the full render against the reference render (all
   channels; "identical" when every pixel is equal); **px > 8** = pixels more than 8
   levels off in some channel.
+
+**The error bounds** behind the flagged and t-host columns are derived, per form, in
+[intersection.md](intersection.md#certified-results-certifyh): the paper's form
+(P^-1 rows and the compared sum from the host's rounding, the mantissas, the quantized
+direction and the floors), the object-parallel mapping (the same, per block, held in
+words), the watertight form (edge functions on the scene's own vertices) and the
+arbitrary-origin form (edge rows, det and the quotient). Each bound is checked against
+exact rational arithmetic by the certify tests. The randomized differential tests of
+every form against exact arithmetic, and full renders of every scene at the plan's n
+against the exact reference, are in [certification.md](certification.md).
 
 )";
 }
