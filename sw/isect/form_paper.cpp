@@ -78,20 +78,7 @@ namespace {
 class PaperForm : public SharedOriginForm {
  public:
   explicit PaperForm(const FormInputs& in) : SharedOriginForm(in.opt) {
-    // Every ray's V_q has the same largest component 2^vbits; its length varies with
-    // the direction's shape.
-    double vq_len = 0;  // largest |V_q|
-    for (size_t i : in.idx) {
-      const glm::dvec3& d = in.rays[i].d;
-      vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
-    }
-    // Common exponent E for the compared sums: S = 1/lambda <= |V_q| / dmin (lambda in
-    // units of V_q), and S_c = S / 2^(E+1) must stay below 2^kSumBits.
-    const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
-    const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
-    if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
-    const int E = static_cast<int>(e_real) - 1;
-    t_scale_ = std::ldexp(1.0, E + 1);
+    const int E = sum_exponent(in);
 
     const double cond_limit = policy::paper_cond_limit(opt_);
     for (size_t k = 0; k < in.tris.size(); ++k) {

@@ -26,18 +26,8 @@ using namespace ins;
 class WatertightForm : public SharedOriginForm {
  public:
   explicit WatertightForm(const FormInputs& in) : SharedOriginForm(in.opt) {
-    // The common exponent E of the compared sums, as in the paper's form: the nearest
-    // possible hit (distance dmin) gives S_c below 2^kSumBits.
-    double vq_len = 0;  // largest |V_q|
-    for (size_t i : in.idx) {
-      const glm::dvec3& d = in.rays[i].d;
-      vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
-    }
-    const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
-    const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
-    if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
-    const int E = static_cast<int>(e_real) - 1;
-    t_scale_ = std::ldexp(1.0, E + 1);
+    // The common exponent E of the compared sums, as in the paper's form.
+    const int E = sum_exponent(in);
 
     // A triangle too ill-conditioned for n bits (the paper form's measure: its edge values
     // for the rays through it are a share of about 1 / cond of the constants) would leave

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sw/isect/fixed_point.h"
+#include "sw/isect/policy.h"
 
 namespace fmpp::isect {
 
@@ -44,6 +45,22 @@ void SharedOriginForm::load_ray(Device& dev, unsigned b, const Ray& r, const std
 void SharedOriginForm::init(Program& p) const {
   p << writes(kBest, 0, layout::kSel) << writes(kIdx, 0, layout::kSel) << writes(kCnt, 0, layout::kSel)
     << writes(kOne, 1, layout::kSel);
+}
+
+int SharedOriginForm::sum_exponent(const FormInputs& in) {
+  // Every ray's V_q has the same largest component 2^vbits; its length varies with the
+  // direction's shape. S = 1/lambda <= |V_q| / dmin (lambda in units of V_q).
+  double vq_len = 0;  // largest |V_q|
+  for (size_t i : in.idx) {
+    const glm::dvec3& d = in.rays[i].d;
+    vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
+  }
+  const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
+  const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
+  if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
+  const int E = static_cast<int>(e_real) - 1;
+  t_scale_ = std::ldexp(1.0, E + 1);
+  return E;
 }
 
 double SharedOriginForm::t_of(uint32_t best, const Ray& r) const {

@@ -75,6 +75,10 @@ class SharedOriginForm : public RayForm {
  protected:
   // The scale of a direction's components: its largest becomes 2^vbits.
   double ray_scale(const glm::dvec3& d) const;
+  // The common exponent E of the compared sums S_c = S / 2^(E+1) of the batch in.idx:
+  // the nearest possible hit (policy::nearest_for_exponent) keeps S_c below
+  // 2^kSumBits. Sets t_scale_ = 2^(E+1).
+  int sum_exponent(const FormInputs& in);
   // Appends the comparison with the block's best (S > best >= 0 wins; a tie keeps the
   // earlier, lower index) and records the win, for flag kHit set by the inside test.
   static void keep_nearest(Program& p);

@@ -38,6 +38,8 @@ struct Options : ReportOutput {
 inline const Config kMachine{1024, 32};
 inline const Config kQuickMachine{64, 32};
 inline const char* const kScenes[] = {"cornell", "spheres_1k", "spheres_10k", "one_triangle"};
+// A real scanned mesh (52,532 triangles), in the full run only.
+inline const char* const kScannedScene = "armadillo";
 
 // What one run measures over: the image size, the machine and the widths n.
 struct Setup {
@@ -86,7 +88,7 @@ struct SceneTable {
 };
 
 struct SceneResults {
-  std::vector<SceneTable> tables;  // in kScenes order
+  std::vector<SceneTable> tables;  // in kScenes order, then kScannedScene (full run)
   bool consistent = true;          // generic and const gave bit-identical results everywhere
 };
 

@@ -86,6 +86,15 @@ tables first):
   from n = 8 (few FMPP clocks, most of the work on the host) to the constant-multiply
   paper form at n = 24 and 32 (at most 2 % on the host); the watertight form is on it
   at n = 8-16 of one_triangle (n = 16: nothing on the host at 5.3k clocks).
+- **A scanned mesh (armadillo, 52,532 triangles)** behaves like the sphere fields at
+  a larger n: its small triangles seen from the eye exceed the condition limit below
+  n = 24 (61 host triangles there, 768 at n = 20), and its render's host share falls
+  from 27 % at n = 20 to 6.9 % at n = 24 and 0.27 % at n = 32 with the constant
+  multiply (mostly t from the host: far, small triangles leave loose t bounds); the
+  watertight form's tighter t needs the host for 0.9 % at n = 24. One oddity, not yet
+  explained: the object-parallel mapping gives 46 % of its render's t to the host at
+  n = 32 against 0.8 % at n = 24 (its answers are right either way; only the host's
+  share grows).
 - **The precision plan** (`fmpp-render`) picks, per frame, the smallest n whose sampled
   primary rays and frame meet the error target (0.2 %) with at most 1 % of the sample's
   rays redone. At 128 x 128 on the golden model it picks n = 20 for one_triangle, 24 for

@@ -19,13 +19,14 @@
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "tb/backend.h"
+#include "tests/diff/certify_common.h"
 
 namespace fmpp::isect {
 namespace {
 
 using glm::dvec3;
 
-mpq_class q(double v) { return mpq_class(v); }  // every double is a rational
+using namespace certify_test;
 
 // Exact P^-1 (P: the vertices relative to o as columns) by cofactors; false if singular.
 bool exact_inverse(const Triangle& t, const dvec3& o, mpq_class inv[3][3]) {
@@ -130,36 +131,19 @@ TEST(CertifyObjectBounds, RowAndSumBoundsHoldAgainstExactArithmetic) {
   EXPECT_GT(worst_sum, 0.1) << "the sum bound is not wildly loose";
 }
 
-struct Outcome {
-  std::vector<Hit> hits;
-  KernelStats st;
-};
-
 Outcome run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, unsigned n,
             MulMode mul = MulMode::kConst, unsigned blocks = 64, const std::string& backend = "cmodel") {
-  auto be = make_backend(backend, Config{blocks, 32});
-  Device dev(be->bus());
   KernelOptions o;
   o.mapping = Mapping::kObject;
   o.n = n;
   o.mul = mul;
-  Outcome r;
-  r.hits = intersect_fmpp(dev, rays, tris, o, &r.st);
-  be->finish();
-  return r;
+  return run_fmpp(rays, tris, o, blocks, backend);
 }
 
-// Every answer the exact reference's triangle, every t within the default accuracy.
-void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const std::vector<Triangle>& tris, unsigned n) {
-  const std::vector<Hit> ref = nearest_reference(rays, tris);
-  const double acc = policy::t_accuracy(KernelOptions{});
-  for (size_t i = 0; i < rays.size(); ++i) {
-    EXPECT_EQ(r.hits[i].tri, ref[i].tri) << "ray " << i << " n " << n;
-    if (ref[i].hit() && r.hits[i].tri == ref[i].tri) {
-      EXPECT_LE(std::abs(r.hits[i].t - ref[i].t), acc * ref[i].t) << "ray " << i << " n " << n;
-    }
-  }
-  EXPECT_EQ(r.st.uncertified_rays, 0u);
+// Every answer the exact reference's, and every ray the object-parallel mapping's.
+void expect_object_exact(const Outcome& r, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                         unsigned n) {
+  expect_exact(r, rays, tris, n);
   EXPECT_EQ(r.st.form_rays[kStatObject], rays.size());
 }
 
@@ -173,7 +157,7 @@ TEST(CertifyObjectKernel, RaysAtAnEdgeAreFlaggedTheMiddleIsNot) {
       std::vector<Ray> rays;
       for (double s : {-1.0, 1.0}) rays.push_back(Ray{dvec3(0), dvec3(0.1, -1 + s * std::ldexp(1.0, -40), 5)});
       const Outcome edge = run(rays, tris, n, mul);
-      expect_exact(edge, rays, tris, n);
+      expect_object_exact(edge, rays, tris, n);
       EXPECT_EQ(edge.st.flagged_rays[kStatObject], 2u) << "n " << n;
       EXPECT_EQ(edge.hits[0].tri, 1) << "just outside: the triangle behind";
       EXPECT_EQ(edge.hits[1].tri, 0) << "just inside";
@@ -181,7 +165,7 @@ TEST(CertifyObjectKernel, RaysAtAnEdgeAreFlaggedTheMiddleIsNot) {
 
       const std::vector<Ray> middle = {Ray{dvec3(0), dvec3(0, -0.3, 5)}};
       const Outcome mid = run(middle, tris, n, mul);
-      expect_exact(mid, middle, tris, n);
+      expect_object_exact(mid, middle, tris, n);
       EXPECT_EQ(mid.st.flagged_total(), 0u) << "n " << n;
       EXPECT_EQ(mid.hits[0].tri, 0);
       EXPECT_EQ(mid.hits[0].redo, HostRedo::kNone);
@@ -211,7 +195,7 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
                                  Ray{dvec3(0), dvec3(0, 2.5, 7)}};      // c2 and its copy only
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n);
+    expect_object_exact(r, rays, tris, n);
     EXPECT_GE(r.st.passes, 2u);
     EXPECT_EQ(r.hits[0].tri, 0);
     EXPECT_EQ(r.hits[1].tri, 1);
@@ -230,18 +214,12 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
 // Random rays on a random scene: every answer is exact, few are flagged, and the RTL
 // (in lockstep with the golden model) gives the same answers and clocks.
 TEST(CertifyObjectKernel, RandomScenesAgreeWithTheExactReference) {
-  std::mt19937_64 g(3);
-  std::uniform_real_distribution<double> u(-1, 1);
   std::vector<Triangle> tris;
-  for (int k = 0; k < 90; ++k) {
-    const dvec3 c(8 * u(g), 8 * u(g), 20 + 8 * u(g));
-    tris.push_back(Triangle{{c + dvec3(u(g), u(g), u(g)), c + dvec3(u(g), u(g), u(g)), c + dvec3(u(g), u(g), u(g))}});
-  }
   std::vector<Ray> rays;
-  for (int i = 0; i < 300; ++i) rays.push_back(Ray{dvec3(0), dvec3(0.4 * u(g), 0.4 * u(g), 1)});
+  random_eye_scene(3, 90, 300, &tris, &rays);
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n);
+    expect_object_exact(r, rays, tris, n);
     EXPECT_LE(r.st.flagged_total(), rays.size() / 20) << "n " << n;
   }
 }

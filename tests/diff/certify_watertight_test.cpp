@@ -19,13 +19,14 @@
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 #include "tb/backend.h"
+#include "tests/diff/certify_common.h"
 
 namespace fmpp::isect {
 namespace {
 
 using glm::dvec3;
 
-mpq_class q(double v) { return mpq_class(v); }  // exact: every double is a rational
+using namespace certify_test;
 
 struct ExactVec {
   mpq_class v[3];
@@ -56,25 +57,6 @@ bool exact_constants(const Triangle& t, const dvec3& o, Exact* x) {
   }
   x->N = cross(sub(t.p[1], t.p[0]), sub(t.p[2], t.p[0]));
   return true;
-}
-
-// Hard placements: triangles of size 10^[-3, 4] at distances up to 10^6 from the origin,
-// every fourth a needle, dyadic coordinates.
-std::vector<Triangle> hard_triangles(uint64_t seed, int count) {
-  std::mt19937_64 g(seed);
-  std::uniform_real_distribution<double> u(-1, 1), e(-3, 4), far(0, 6);
-  auto dy = [](double v) { return std::ldexp(std::round(std::ldexp(v, 20)), -20); };
-  std::vector<Triangle> out;
-  while (static_cast<int>(out.size()) < count) {
-    const double size = std::pow(10.0, e(g)), dist = std::pow(10.0, far(g));
-    const dvec3 c(dist * u(g), dist * u(g), dist * u(g));
-    Triangle t;
-    for (int k = 0; k < 3; ++k) t.p[k] = c + size * dvec3(u(g), u(g), u(g));
-    if (out.size() % 4 == 1) t.p[2] = t.p[0] + 1e-6 * (t.p[1] - t.p[0]) + dvec3(0, size * 1e-7, 0);
-    for (auto& p : t.p) p = dvec3(dy(p.x), dy(p.y), dy(p.z));
-    out.push_back(t);
-  }
-  return out;
 }
 
 TEST(CertifyWatertight, ConstantsAreWithinTheirBounds) {
@@ -154,35 +136,12 @@ TEST(CertifyWatertight, RowAndSumBoundsHoldAgainstExactArithmetic) {
   EXPECT_GT(worst, 0.05) << "the bound is not wildly loose";
 }
 
-struct Outcome {
-  std::vector<Hit> hits;
-  KernelStats st;
-};
-
 Outcome run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, unsigned n) {
-  auto be = make_backend("cmodel", Config{64, 32});
-  Device dev(be->bus());
   KernelOptions o;
   o.n = n;
   o.watertight = true;
   o.origins = Origins::kGroup;
-  Outcome r;
-  r.hits = intersect_fmpp(dev, rays, tris, o, &r.st);
-  be->finish();
-  return r;
-}
-
-void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const std::vector<Triangle>& tris, unsigned n) {
-  const std::vector<Hit> ref = nearest_reference(rays, tris);
-  KernelOptions o;
-  o.n = n;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    EXPECT_EQ(r.hits[i].tri, ref[i].tri) << "ray " << i << " n " << n;
-    if (ref[i].hit() && r.hits[i].tri == ref[i].tri) {
-      EXPECT_LE(std::abs(r.hits[i].t - ref[i].t), policy::t_accuracy(o) * ref[i].t) << "ray " << i << " n " << n;
-    }
-  }
-  EXPECT_EQ(r.st.uncertified_rays, 0u);
+  return run_fmpp(rays, tris, o);
 }
 
 // A quad split along its diagonal, tilted, in front of a wall: rays through exact dyadic
@@ -228,15 +187,9 @@ TEST(WatertightKernel, JustInsideAndOutsideAnEdgeAreFlagged) {
 // Random rays on random triangles: every answer is the exact reference's, and only a
 // small share is flagged where nothing is close.
 TEST(WatertightKernel, RandomScenesAgreeWithTheExactReference) {
-  std::mt19937_64 g(3);
-  std::uniform_real_distribution<double> u(-1, 1);
   std::vector<Triangle> tris;
-  for (int k = 0; k < 60; ++k) {
-    const dvec3 c(8 * u(g), 8 * u(g), 20 + 8 * u(g));
-    tris.push_back(Triangle{{c + dvec3(u(g), u(g), u(g)), c + dvec3(u(g), u(g), u(g)), c + dvec3(u(g), u(g), u(g))}});
-  }
   std::vector<Ray> rays;
-  for (int i = 0; i < 400; ++i) rays.push_back(Ray{dvec3(0), dvec3(0.4 * u(g), 0.4 * u(g), 1)});
+  random_eye_scene(3, 60, 400, &tris, &rays);
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
     expect_exact(r, rays, tris, n);
