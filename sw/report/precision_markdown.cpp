@@ -91,10 +91,14 @@ tables first):
   n = 24 (61 host triangles there, 768 at n = 20), and its render's host share falls
   from 27 % at n = 20 to 6.9 % at n = 24 and 0.27 % at n = 32 with the constant
   multiply (mostly t from the host: far, small triangles leave loose t bounds); the
-  watertight form's tighter t needs the host for 0.9 % at n = 24. One oddity, not yet
-  explained: the object-parallel mapping gives 46 % of its render's t to the host at
-  n = 32 against 0.8 % at n = 24 (its answers are right either way; only the host's
-  share grows).
+  watertight form's tighter t needs the host for 0.9 % at n = 24. The object-parallel
+  mapping gives 46 % of its render's t to the host at n = 32 against 0.8 % at n = 24
+  (54 % of its primary hits, the same at n = 28): from n = 28 its condition limit is
+  2^25, and 56 ill-conditioned triangles that are host triangles at n = 24 (61 host
+  triangles against 5; the stage's large ones, its floor seen at a grazing angle among
+  them) stay on the FMPP, where its 28-bit matrix mantissas leave their t bounds above
+  2^-12: each of their hits takes one exact test on the host, where at n = 24 the host
+  tested them for every ray. The answers are right either way.
 - **The precision plan** (`fmpp-render`) picks, per frame, the smallest n whose sampled
   primary rays and frame meet the error target (0.2 %) with at most 1 % of the sample's
   rays redone. At 128 x 128 on the golden model it picks n = 20 for one_triangle, 24 for
