@@ -107,14 +107,6 @@ class PaperForm : public SharedOriginForm {
   }
 
   FormStat stat() const override { return kStatPaper; }
-  bool certified() const override { return true; }
-  double t_rel_bound(uint32_t best, size_t k) const override {
-    return certify::t_relative_bound(static_cast<double>(best), broadcasts[k].sum_bound);
-  }
-  void init(Program& p) const override {
-    SharedOriginForm::init(p);
-    p << writes(layout::ray::kBB, 0, layout::kSel) << flagop(layout::kUnc, 0, 0, lut::kZero);
-  }
 
  private:
   // A row bound of 2^kMaxNearBits or more (a quarter of T's 2^28 range) would leave

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sw/isect/certify.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/policy.h"
 
@@ -44,7 +45,11 @@ void SharedOriginForm::load_ray(Device& dev, unsigned b, const Ray& r, const std
 
 void SharedOriginForm::init(Program& p) const {
   p << writes(kBest, 0, layout::kSel) << writes(kIdx, 0, layout::kSel) << writes(kCnt, 0, layout::kSel)
-    << writes(kOne, 1, layout::kSel);
+    << writes(kOne, 1, layout::kSel) << writes(kBB, 0, layout::kSel) << flagop(layout::kUnc, 0, 0, lut::kZero);
+}
+
+double SharedOriginForm::t_rel_bound(uint32_t best, size_t k) const {
+  return certify::t_relative_bound(static_cast<double>(best), broadcasts[k].sum_bound);
 }
 
 int SharedOriginForm::sum_exponent(const FormInputs& in) {
@@ -65,17 +70,6 @@ int SharedOriginForm::sum_exponent(const FormInputs& in) {
 
 double SharedOriginForm::t_of(uint32_t best, const Ray& r) const {
   return 1.0 / (static_cast<double>(best) * t_scale_ * ray_scale(r.d));
-}
-
-void SharedOriginForm::keep_nearest(Program& p) {
-  using layout::kHit;
-  using layout::kWin;
-  // win <- hit and best - S < 0 (S > best >= 0; S <= 0 never wins, a tie keeps the earlier)
-  p << sub(kD, kBest, kS, kHit);
-  p.mask(layout::kDataMask);
-  p << ref(RefFn::kAnd, RefPart::kData, kD, layout::kSignBit, kWin, kHit);
-  p << func(FuncFn::kOr, kBest, kS, kS, kWin);
-  p << func(FuncFn::kOr, kIdx, kCnt, kCnt, kWin);
 }
 
 }  // namespace fmpp::isect

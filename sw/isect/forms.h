@@ -63,6 +63,8 @@ const FormInfo& form_for(const KernelOptions& opt, bool shared);
 // Rays sharing an origin (the paper's and the watertight form): each block holds the
 // ray's direction V, quantized with its own scale sv (largest component = 2^vbits); a
 // block's best is the largest compared sum S_c (0: no hit), and 1/t = S_c t_scale sv.
+// Both forms certify their results: each broadcast's sum_bound bounds its S_c, and the
+// pass's init clears the best's bound kBB and the flag kUnc.
 class SharedOriginForm : public RayForm {
  public:
   explicit SharedOriginForm(const KernelOptions& opt) : opt_(opt) {}
@@ -70,6 +72,8 @@ class SharedOriginForm : public RayForm {
   void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override;
   void init(Program& p) const override;
   double t_of(uint32_t best, const Ray& r) const override;
+  bool certified() const override { return true; }
+  double t_rel_bound(uint32_t best, size_t k) const override;
   double t_scale() const { return t_scale_; }
 
  protected:
@@ -79,9 +83,6 @@ class SharedOriginForm : public RayForm {
   // the nearest possible hit (policy::nearest_for_exponent) keeps S_c below
   // 2^kSumBits. Sets t_scale_ = 2^(E+1).
   int sum_exponent(const FormInputs& in);
-  // Appends the comparison with the block's best (S > best >= 0 wins; a tie keeps the
-  // earlier, lower index) and records the win, for flag kHit set by the inside test.
-  static void keep_nearest(Program& p);
 
   const KernelOptions& opt_;
   double t_scale_ = 1;  // 1/t = S_c t_scale sv

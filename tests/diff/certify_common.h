@@ -72,9 +72,9 @@ inline Outcome run_fmpp(const std::vector<Ray>& rays, const std::vector<Triangle
 }
 
 // Every answer is the exact reference's triangle, every t within the default accuracy,
-// and every ray was answered by a certifying form.
+// and every ray was answered by a certifying form (by `form`, a FormStat, if >= 0).
 inline void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
-                         unsigned n) {
+                         unsigned n, int form = -1) {
   const std::vector<Hit> ref = nearest_reference(rays, tris);
   const double acc = policy::t_accuracy(KernelOptions{});
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -84,6 +84,9 @@ inline void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const s
     }
   }
   EXPECT_EQ(r.st.uncertified_rays, 0u);
+  if (form >= 0) {
+    EXPECT_EQ(r.st.form_rays[form], rays.size());
+  }
 }
 
 }  // namespace fmpp::isect::certify_test
