@@ -42,7 +42,7 @@ void GeneralRayErrors::add(const glm::dvec3& o, const glm::dvec3& d, double sl, 
   }
 }
 
-GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl, double so, double unit, double K) {
+GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl) {
   GeneralCoeffs g{};
   // The form's cyclic order: c_i = p_j x p_k and e_i = p_k - p_j for (i, j, k) = (0, 1, 2),
   // (1, 2, 0), (2, 0, 1).
@@ -67,14 +67,19 @@ GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl, double
   }
   // n = c_1 + c_2 + c_3 (two additions), which is (p_2 - p_1) x (p_3 - p_1) exactly.
   g.nrm = cc[0] + cc[1] + cc[2];
-  const glm::dvec3 dn = (nerr + 3 * kU * nabs) * kUp + glm::dvec3(kEta);
+  g.dn = (nerr + 3 * kU * nabs) * kUp + glm::dvec3(kEta);
+  return g;
+}
+
+void general_det_row(GeneralCoeffs* gp, const glm::dvec3& p1, double so, double unit, double K) {
+  GeneralCoeffs& g = *gp;
+  const glm::dvec3& dn = g.dn;
   for (int j = 0; j < 3; ++j) {
     g.d[j] = -g.nrm[j] * so * K;
     g.dd[j] = (dn[j] * so * K + 3 * kU * std::abs(g.d[j])) * kUp + kEta;
   }
   // n . p_1: three products and two sums of computed values (gamma_3 < 4u), plus the
   // errors of n and of p_1 (one rounding) carried through.
-  const glm::dvec3& p1 = p[0];
   double e_dot = 0;
   for (int j = 0; j < 3; ++j) {
     e_dot += 4 * kU * std::abs(g.nrm[j] * p1[j]) + dn[j] * std::abs(p1[j]) +
@@ -82,7 +87,6 @@ GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl, double
   }
   g.d[3] = glm::dot(g.nrm, p1) / unit * K;
   g.dd[3] = ((e_dot * kUp + kEta) / unit * K + 2 * kU * std::abs(g.d[3])) * kUp + kEta;
-  return g;
 }
 
 double row_bound(const double* v, const double* dv, const double* ew, int count, int e, unsigned n, double wmax) {

@@ -27,11 +27,15 @@ struct GeneralCoeffs {
   double a[18], da[18];  // edge rows: row i terms 6i..6i+2 (c_i sv, on V), 6i+3..6i+5 (e_i sl, on L)
   double d[4], dd[4];    // det row: -n so K on O, then (n . p1) K / 2^25 on the unit word
   glm::dvec3 nrm;        // the computed normal (c_1 + c_2 + c_3)
+  glm::dvec3 dn;         // its error bound
 };
 
-// p[k] = the vertices minus the centre (as computed, one rounding each); sv, sl, so, K as
-// in form_general.cpp; unit = 2^kGeneralRayBits.
-GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl, double so, double unit, double K);
+// The edge rows (a, da) and the normal: p[k] = the vertices minus the centre (as
+// computed, one rounding each); sv, sl as in form_general.cpp.
+GeneralCoeffs general_coeffs(const glm::dvec3 p[3], double sv, double sl);
+// Then the det row (d, dd), scaled by K (which depends on the edge rows' exponent); so
+// as in form_general.cpp, unit = 2^kGeneralRayBits.
+void general_det_row(GeneralCoeffs* g, const glm::dvec3& p1, double so, double unit, double K);
 
 // |R' - R / 2^(e+1)| for a row R' = floor(sum_j X_j W_j / 2^n) with X = round(v 2^(n-1-e))
 // of the coefficients v (error bounds dv against the exact ones), |W_j| <= wmax and

@@ -125,7 +125,10 @@ class GeneralForm : public RayForm {
   void triangle(const Triangle& t, int k, unsigned q, double cond_limit) {
     const glm::dvec3 p[3] = {t.p[0] - c_, t.p[1] - c_, t.p[2] - c_};
     const glm::dvec3 ee[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
-    const glm::dvec3 nrm = glm::cross(p[1], p[2]) + glm::cross(p[2], p[0]) + glm::cross(p[0], p[1]);
+    // The coefficients: edge rows a and the normal, then the det row pre-scaled by K so
+    // that its value N makes floor(N 2^(q-1) / nv) = t / u.
+    certify::GeneralCoeffs g = certify::general_coeffs(p, sv_, sl_);
+    const glm::dvec3& nrm = g.nrm;
     if (nrm == glm::dvec3(0)) return;  // degenerate: no ray can hit it, nor can the reference
     // Conditioning of the edge tests: A_i is quantized with one step for the triangle's
     // 18 coefficients, about 2^-(n-1) of |V| e_max max(R, O) (R: the farthest vertex
@@ -143,18 +146,10 @@ class GeneralForm : public RayForm {
       host.push_back(k);
       return;
     }
-    // The coefficients: edge rows a, det row pre-scaled by K so that its value N makes
-    // floor(N 2^(q-1) / nv) = t / u.
     int64_t xa[18];
-    int ea = 0;
-    {
-      double a[18];
-      const certify::GeneralCoeffs probe = certify::general_coeffs(p, sv_, sl_, so_, unit_, 1.0);
-      std::copy(probe.a, probe.a + 18, a);
-      ea = mantissas(a, 18, opt_.n - 1, xa);
-    }
+    const int ea = mantissas(g.a, 18, opt_.n - 1, xa);
     const double K = std::ldexp(1.0, 1 - static_cast<int>(q) - (1 + ea)) / u_;
-    const certify::GeneralCoeffs g = certify::general_coeffs(p, sv_, sl_, so_, unit_, K);
+    certify::general_det_row(&g, p[0], so_, unit_, K);
     int64_t xd[4];
     const int ed = mantissas(g.d, 4, opt_.n - 1, xd);
     // The rows' bounds (certify_general.h) and the thresholds of the certainty tests.

@@ -106,11 +106,11 @@ TEST(CertifyGeneralBounds, RowsAndDistanceHoldAgainstExactArithmetic) {
       const unsigned qbits = 20;
       for (const Triangle& t : b.tris) {
         const dvec3 p[3] = {t.p[0] - c, t.p[1] - c, t.p[2] - c};
-        const certify::GeneralCoeffs g1 = certify::general_coeffs(p, sv, sl, so, unit, 1.0);
+        certify::GeneralCoeffs g = certify::general_coeffs(p, sv, sl);
         int64_t xa[18], xd[4];
-        const int ea = mantissas(g1.a, 18, n - 1, xa);
+        const int ea = mantissas(g.a, 18, n - 1, xa);
         const double K = std::ldexp(1.0, 1 - static_cast<int>(qbits) - (1 + ea)) / u_t;
-        const certify::GeneralCoeffs g = certify::general_coeffs(p, sv, sl, so, unit, K);
+        certify::general_det_row(&g, p[0], so, unit, K);
         const int ed = mantissas(g.d, 4, n - 1, xd);
         double ew_row[6], ew_det[4] = {werr.eo, werr.eo, werr.eo, 0};
         for (int j = 0; j < 3; ++j) ew_row[j] = werr.ev, ew_row[3 + j] = werr.el;
