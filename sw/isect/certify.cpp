@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sw/isect/certify_rounding.h"
 #include "sw/isect/layout.h"
 
 namespace fmpp::isect::certify {
@@ -12,9 +13,6 @@ namespace {
 
 using namespace ins;
 
-constexpr double kU = 0x1p-53;      // unit roundoff of double
-constexpr double kEta = 0x1p-1060;  // covers every underflow of the few dozen operations below
-constexpr double kUp = 1 + 0x1p-40;  // covers the rounding of a bound's own (positive) arithmetic
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Flags of the certainty tests (the shared-origin forms leave flag 4 unused).
 constexpr unsigned kAux = 4;

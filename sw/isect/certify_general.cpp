@@ -9,25 +9,14 @@
 #include <cmath>
 #include <limits>
 
+#include "sw/isect/certify_rounding.h"
+
 namespace fmpp::isect::certify {
 namespace {
 
-constexpr double kU = 0x1p-53;       // unit roundoff of double
-constexpr double kEta = 0x1p-1060;   // covers every underflow of the few operations per bound
-constexpr double kUp = 1 + 0x1p-40;  // covers the rounding of a bound's own arithmetic
 // A ray word is round(w / s) of a computed quotient |w / s| <= 2^25: the quotient's own
 // rounding adds 2^25 u < 2^-26 to the half step.
 constexpr double kWordRound = 0.5 + 0x1p-26;
-
-// Error of one component of glm::cross(a, b), a and b each within one rounding of exact:
-// x = a.y b.z - b.y a.z etc., four roundings against the exact operands.
-glm::dvec3 cross_error(const glm::dvec3& a, const glm::dvec3& b) {
-  return glm::dvec3(8 * kU * (std::abs(a.y * b.z) + std::abs(b.y * a.z)),
-                    8 * kU * (std::abs(a.z * b.x) + std::abs(b.z * a.x)),
-                    8 * kU * (std::abs(a.x * b.y) + std::abs(b.x * a.y))) *
-             kUp +
-         glm::dvec3(kEta);
-}
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "sw/isect/certify_rounding.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/layout.h"
 
@@ -13,8 +14,6 @@ namespace {
 
 using namespace ins;
 
-constexpr double kU = 0x1p-53;       // unit roundoff of double
-constexpr double kUp = 1 + 0x1p-40;  // covers the rounding of a bound's own (positive) arithmetic
 // |v_j - V_j / s_v| for the ray's rounded components: 1/2 for the rounding to an
 // integer, plus the rounding of the double quotient (at most u 2^(n-1) (1 + 2u) < 2^-20
 // for n <= 32).

@@ -6,28 +6,20 @@
 #include <cmath>
 
 #include "sw/isect/certify.h"
+#include "sw/isect/certify_rounding.h"
+#include "sw/isect/fixed_point.h"
 
 namespace fmpp::isect::certify {
 namespace {
-
-constexpr double kU = 0x1p-53;       // unit roundoff of double
-constexpr double kEta = 0x1p-1060;   // covers every underflow of the few dozen operations below
-constexpr double kUp = 1 + 0x1p-40;  // covers the rounding of a bound's own (positive) arithmetic
 
 // x ~ a x b for a, b each within a relative u of the exact vectors (one subtraction of
 // doubles each), with |x - exact| <= dx elementwise: per component two products and a
 // difference, four roundings counted from the exact inputs, |x^ - x| <= gamma_4 (|p| +
 // |q|) < 8 u (|p^| + |q^|) (p, q: the two products), plus underflow.
 void cross_bounded(const glm::dvec3& a, const glm::dvec3& b, double x[3], double dx[3]) {
-  for (int r = 0; r < 3; ++r) {
-    const int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
-    const double p = a[r1] * b[r2], q = a[r2] * b[r1];
-    x[r] = p - q;
-    dx[r] = 8 * kU * (std::abs(p) + std::abs(q)) * kUp + kEta;
-  }
+  const glm::dvec3 c = glm::cross(a, b), e = cross_error(a, b);
+  for (int r = 0; r < 3; ++r) x[r] = c[r], dx[r] = e[r];
 }
-
-double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 // The bound of one row floor(M . V_q / 2^n) against (m . V) / (2^(e+1) s_v), for the
 // mantissas M = round(m^ 2^(n-1-e)) of m^ with |m^ - m| <= dm (docs/intersection.md):
@@ -57,16 +49,16 @@ bool certified_edges(const Triangle& t, const glm::dvec3& o, EdgeConstants* ec) 
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     const glm::dvec3 e = t.p[k] - t.p[j];
-    cross_bounded(max_abs(a[j]) <= max_abs(a[k]) ? a[j] : a[k], e, ec->c[i], ec->dc[i]);
+    cross_bounded(max_component(a[j]) <= max_component(a[k]) ? a[j] : a[k], e, ec->c[i], ec->dc[i]);
   }
   // N = (P_1 - P_0) x (P_2 - P_0) (the sum of the exact c_i), and det = a . N for the
   // nearest vertex a (a_k . N is the same triple product for every k): three products
   // and two sums of the rounded a and N, |det^ - det| <= sum |a^| (dN (1 + 4u) + 8 u |N^|).
   double N[3], dN[3];
   cross_bounded(t.p[1] - t.p[0], t.p[2] - t.p[0], N, dN);
-  const glm::dvec3& an = max_abs(a[0]) <= std::min(max_abs(a[1]), max_abs(a[2]))
+  const glm::dvec3& an = max_component(a[0]) <= std::min(max_component(a[1]), max_component(a[2]))
                              ? a[0]
-                             : (max_abs(a[1]) <= max_abs(a[2]) ? a[1] : a[2]);
+                             : (max_component(a[1]) <= max_component(a[2]) ? a[1] : a[2]);
   const double det = an[0] * N[0] + an[1] * N[1] + an[2] * N[2];
   double eDet = 0;
   for (int j = 0; j < 3; ++j) eDet += std::abs(an[j]) * (dN[j] * (1 + 4 * kU) + 8 * kU * std::abs(N[j]));
