@@ -89,4 +89,19 @@ inline void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const s
   }
 }
 
+// The random eye scene (seed 3, `count` triangles, `nrays` rays) through run(rays, tris,
+// n) at n = 16, 24 and 32: every answer exact (from `form`, if >= 0), and at most 5 %
+// of the rays flagged, since nothing in it is close to an edge by construction.
+template <class Run>
+void expect_random_eye_scene_exact(Run run, int count, int nrays, int form = -1) {
+  std::vector<Triangle> tris;
+  std::vector<Ray> rays;
+  random_eye_scene(3, count, nrays, &tris, &rays);
+  for (unsigned n : {16u, 24u, 32u}) {
+    const Outcome r = run(rays, tris, n);
+    expect_exact(r, rays, tris, n, form);
+    EXPECT_LE(r.st.flagged_total(), rays.size() / 20) << "n " << n;
+  }
+}
+
 }  // namespace fmpp::isect::certify_test

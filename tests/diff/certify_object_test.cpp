@@ -206,14 +206,9 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
 
 // Random rays on a random scene: every answer is exact, and few are flagged.
 TEST(CertifyObjectKernel, RandomScenesAgreeWithTheExactReference) {
-  std::vector<Triangle> tris;
-  std::vector<Ray> rays;
-  random_eye_scene(3, 90, 300, &tris, &rays);
-  for (unsigned n : {16u, 24u, 32u}) {
-    const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n, kStatObject);
-    EXPECT_LE(r.st.flagged_total(), rays.size() / 20) << "n " << n;
-  }
+  expect_random_eye_scene_exact([](const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                                   unsigned n) { return run(rays, tris, n); },
+                                90, 300, kStatObject);
 }
 
 }  // namespace

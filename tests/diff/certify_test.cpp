@@ -185,14 +185,9 @@ TEST(CertifyKernel, TiesAndRaysInThePlaneAreFlagged) {
 // Random rays on random hard placements: every answer equals the exact reference, and
 // only a small share is flagged where nothing is close.
 TEST(CertifyKernel, RandomScenesAgreeWithTheExactReference) {
-  std::vector<Triangle> tris;
-  std::vector<Ray> rays;
-  random_eye_scene(3, 60, 400, &tris, &rays);
-  for (unsigned n : {16u, 24u, 32u}) {
-    const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n);
-    EXPECT_LE(r.st.flagged_total(), rays.size() / 20) << "n " << n;
-  }
+  expect_random_eye_scene_exact([](const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                                   unsigned n) { return run(rays, tris, n); },
+                                60, 400);
 }
 
 }  // namespace

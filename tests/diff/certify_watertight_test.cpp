@@ -187,14 +187,9 @@ TEST(WatertightKernel, JustInsideAndOutsideAnEdgeAreFlagged) {
 // Random rays on random triangles: every answer is the exact reference's, and only a
 // small share is flagged where nothing is close.
 TEST(WatertightKernel, RandomScenesAgreeWithTheExactReference) {
-  std::vector<Triangle> tris;
-  std::vector<Ray> rays;
-  random_eye_scene(3, 60, 400, &tris, &rays);
-  for (unsigned n : {16u, 24u, 32u}) {
-    const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n);
-    EXPECT_LE(r.st.flagged_total(), rays.size() / 20) << "n " << n;
-  }
+  expect_random_eye_scene_exact([](const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                                   unsigned n) { return run(rays, tris, n); },
+                                60, 400);
 }
 
 }  // namespace
