@@ -60,6 +60,8 @@ void KernelStats::add(const KernelStats& o) {
   oracle_nearest += o.oracle_nearest;
   oracle_any_steps += o.oracle_any_steps;
   oracle_nearest_steps += o.oracle_nearest_steps;
+  oracle_box += o.oracle_box;
+  oracle_box_steps += o.oracle_box_steps;
   for (int f = 0; f < kForms; ++f) {
     form_rays[f] += o.form_rays[f];
     flagged_rays[f] += o.flagged_rays[f];

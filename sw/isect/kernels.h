@@ -124,8 +124,9 @@ struct KernelStats {
   uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
   // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass
   // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
-  uint64_t oracle_any = 0, oracle_nearest = 0;
-  uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0;
+  // (box: the triangles whose box some ray crosses before its nearest hit, oracle.h).
+  uint64_t oracle_any = 0, oracle_nearest = 0, oracle_box = 0;
+  uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0, oracle_box_steps = 0;
   // Certification (docs/intersection.md, "Certified results"), per form: index
   // FormStat (paper ray-parallel, watertight, arbitrary-origin, paper object-parallel).
   static constexpr int kForms = 4;

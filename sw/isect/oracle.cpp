@@ -1,6 +1,7 @@
 // The any-hit and nearest-hit oracles of culling (see oracle.h).
 #include "sw/isect/oracle.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "sw/isect/reference.h"
@@ -8,19 +9,18 @@
 namespace fmpp::isect {
 
 Oracle::Oracle(const std::vector<Triangle>& tris) : tris_(tris) {
-  std::vector<Box> boxes;
-  boxes.reserve(tris.size());
+  boxes_.reserve(tris.size());
   // A hair of padding: the box test rounds, the reference does not.
-  for (const Triangle& t : tris) boxes.push_back(padded_box(t, 1e-9 * extent(t)));
-  bvh_ = Bvh(boxes);
+  for (const Triangle& t : tris) boxes_.push_back(padded_box(t, 1e-9 * extent(t)));
+  bvh_ = Bvh(boxes_);
 }
 
 void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
-                  std::vector<char>& any, std::vector<char>& nearest) const {
+                  std::vector<char>& any, std::vector<char>& nearest, std::vector<char>& box) const {
   constexpr double kSlack = 1e-9;
   for (size_t k = begin; k < end; ++k) {
     const Ray& r = rays[order[k]];
-    const std::vector<RayPacket> one = make_packets(rays, order, k, k + 1, 1, kSlack);
+    std::vector<RayPacket> one = make_packets(rays, order, k, k + 1, 1, kSlack);
     Hit best;
     bvh_.visit(one[0], [&](uint32_t tri) {
       if (static_cast<int>(tri) == r.exclude) return;
@@ -29,7 +29,13 @@ void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order
       any[tri] = 1;
       if (t < best.t || (t == best.t && static_cast<int>(tri) < best.tri)) best = Hit{static_cast<int>(tri), t};
     });
-    if (best.hit()) nearest[static_cast<size_t>(best.tri)] = 1;
+    if (best.hit()) {
+      nearest[static_cast<size_t>(best.tri)] = 1;
+      one[0].t1 = std::min(one[0].t1, best.t * glm::length(r.d) * (1 + kSlack));
+    }
+    bvh_.visit(one[0], [&](uint32_t tri) {
+      if (static_cast<int>(tri) != r.exclude && may_enter(one[0], boxes_[tri])) box[tri] = 1;
+    });
   }
 }
 

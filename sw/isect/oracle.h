@@ -17,15 +17,19 @@ namespace fmpp::isect {
 class Oracle {
  public:
   explicit Oracle(const std::vector<Triangle>& tris);
-  // Sets any[tri] and nearest[tri] (one entry per triangle) for rays[order[begin, end)].
+  // Sets any[tri] and nearest[tri] (one entry per triangle) for rays[order[begin, end)],
+  // and box[tri] for the triangles whose own box some ray crosses before its exact
+  // nearest hit (or its tmax): the fewest broadcasts culling by per-triangle boxes could
+  // make, knowing every ray's answer in advance.
   void mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
-            std::vector<char>& any, std::vector<char>& nearest) const;
+            std::vector<char>& any, std::vector<char>& nearest, std::vector<char>& box) const;
   // The exact nearest hit of r (t in its interval, its excluded triangle left out),
   // walking the hierarchy front to back.
   Hit nearest(const Ray& r) const;
 
  private:
   const std::vector<Triangle>& tris_;
+  std::vector<Box> boxes_;
   Bvh bvh_;
 };
 

@@ -30,16 +30,19 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     st->load_cycles += dev.cycles() - c0;
 
     bool sent = plan.walk(dev, base, count, &order);
-    for (;;) {
-      for (size_t j = 0; !sent && j < order.size(); ++j) {
+    for (size_t first = 0;;) {
+      for (size_t j = first; !sent && j < order.size(); ++j) {
         send_broadcast(dev, plan, order[j], static_cast<uint32_t>(j + 1), st);
       }
       sent = false;
       c0 = dev.cycles();
-      std::vector<size_t> next = plan.refine(dev, base, count, order);
+      bool appended = false;
+      std::vector<size_t> next = plan.refine(dev, base, count, order, &appended);
       st->readback_cycles += dev.cycles() - c0;
       if (next.empty()) break;
-      order = std::move(next);
+      first = appended ? order.size() : 0;
+      if (!appended) order.clear();
+      order.insert(order.end(), next.begin(), next.end());
     }
 
     c0 = dev.cycles();

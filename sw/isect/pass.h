@@ -40,11 +40,14 @@ class PassPlan {
   virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) = 0;
   // After each broadcast (object-parallel: the responders name the nearest triangle).
   virtual void after_broadcast(Device& /*dev*/, size_t /*k*/) {}
-  // After the broadcasts `done` of a pass: may read the blocks, prepare them again and
-  // return further broadcasts (numbered from 1 again); the last list is the one read back.
+  // After the broadcasts `done` of a pass: may read the blocks and return further
+  // broadcasts. Either the blocks keep what they hold and the new broadcasts continue
+  // after `done` (numbered on from done.size() + 1; *appended = true; the list read back
+  // is done followed by them), or the plan prepared the blocks again and they are
+  // numbered from 1 (*appended = false; the last list is the one read back).
   // Empty: the pass is complete.
   virtual std::vector<size_t> refine(Device& /*dev*/, size_t /*base*/, unsigned /*count*/,
-                                     const std::vector<size_t>& /*done*/) {
+                                     const std::vector<size_t>& /*done*/, bool* /*appended*/) {
     return {};
   }
   // After the pass's broadcasts: results and overflow flags.

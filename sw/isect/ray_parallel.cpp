@@ -125,9 +125,13 @@ class RayParallelPlan : public PassPlan {
     return order;
   }
 
-  // After the probe: each ray's nearest distance so far; the blocks start afresh and get
-  // the triangles that may lie, for some ray, at most as far as that ray's distance.
-  std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done) override {
+  // After the probe: each ray's nearest distance so far; the blocks get the triangles that
+  // may lie, for some ray, at most as far as that ray's distance. A certified form's
+  // blocks keep the probe's results and get only the triangles the probe did not send:
+  // its answer is the certain nearest of what it was sent, or the ray is flagged, in any
+  // order (an uncertain order is flagged). Otherwise they start afresh.
+  std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done,
+                             bool* appended) override {
     if (phase_ != Phase::kProbe) return {};
     phase_ = Phase::kFinal;
     const bool general = bounds_.distance == CullBounds::Distance::kGeneral;
@@ -151,11 +155,14 @@ class RayParallelPlan : public PassPlan {
         if (unc[b]) best[b] = kInf;
       }
     }
-    Program init;
-    init.mask(0);
-    form_.init(init);
-    init.mask(layout::kDataMask);
-    push_counted(dev, init.code(), st_);
+    *appended = form_.certified();
+    if (!*appended) {
+      Program init;
+      init.mask(0);
+      form_.init(init);
+      init.mask(layout::kDataMask);
+      push_counted(dev, init.code(), st_);
+    }
 
     const size_t nb = form_.broadcasts.size();
     std::vector<char> keep(nb, 0);
@@ -181,6 +188,16 @@ class RayParallelPlan : public PassPlan {
     std::vector<size_t> order;
     for (size_t k = 0; k < nb; ++k) {
       if (keep[k]) order.push_back(k);
+    }
+    if (*appended) {
+      std::vector<char> sent(nb, 0);
+      for (size_t k : done) sent[k] = 1;
+      std::vector<size_t> fresh;
+      for (size_t k : order) {
+        if (!sent[k]) fresh.push_back(k);
+      }
+      st_->culled += nb - done.size() - fresh.size();
+      return fresh;
     }
     st_->culled += nb - order.size();
     return order;
@@ -301,13 +318,17 @@ class RayParallelPlan : public PassPlan {
   // The oracles' broadcasts for this pass (oracle.h): the triangles on the FMPP that some
   // ray hits, and that are some ray's nearest hit, with their instructions.
   void count_oracle(size_t base, unsigned count) {
-    std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0);
-    oracle_->mark(rays_, idx_, base, base + count, any, nearest);
+    std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0), box(tris_.size(), 0);
+    oracle_->mark(rays_, idx_, base, base + count, any, nearest, box);
     for (const Broadcast& b : form_.broadcasts) {
       const size_t steps = b.program.code().size();
       if (any[static_cast<size_t>(b.tri)]) {
         ++st_->oracle_any;
         st_->oracle_any_steps += steps;
+      }
+      if (box[static_cast<size_t>(b.tri)]) {
+        ++st_->oracle_box;
+        st_->oracle_box_steps += steps;
       }
       if (nearest[static_cast<size_t>(b.tri)]) {
         ++st_->oracle_nearest;

@@ -43,6 +43,8 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
 nlohmann::json oracle_json(const KernelStats& st) {
   return {{"any_hit_broadcasts", st.oracle_any},
           {"nearest_hit_broadcasts", st.oracle_nearest},
+          {"box_broadcasts", st.oracle_box},
+          {"box_cycles", static_cast<uint64_t>(std::llround(st.oracle_cycles(st.oracle_box_steps)))},
           {"any_hit_cycles", static_cast<uint64_t>(std::llround(st.oracle_cycles(st.oracle_any_steps)))},
           {"nearest_hit_cycles", static_cast<uint64_t>(std::llround(st.oracle_cycles(st.oracle_nearest_steps)))},
           {"cycles_over_any_hit", st.oracle_any_steps ? static_cast<double>(st.cycles) / st.oracle_cycles(st.oracle_any_steps) : 0.0},
