@@ -5,6 +5,8 @@
 // moment) on the ray only. The hit needs the three A_i and their sum nv = n . V to share
 // the sign of det = n . (P_1 - O); its distance is t = det / nv, which each hitting
 // block computes by restoring division into a q-bit quotient.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -65,8 +67,9 @@ class GeneralForm : public RayForm {
 
   // The exclusion test compares with the broadcast's number in the pass.
   const std::vector<uint64_t>& code(size_t k, uint32_t number) override {
-    code_ = broadcasts[k].program.code();
-    code_[excl_pos_[k]] = ins::with_imm(code_[excl_pos_[k]], number);
+    const Broadcast& b = broadcasts[k];
+    code_ = b.program().code();
+    code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
     return code_;
   }
 
@@ -182,11 +185,14 @@ class GeneralForm : public RayForm {
       return;
     }
     Broadcast b;
-    size_t pos = 0;
-    b.program = program(xa, xd, dshift, th, &b.test_steps, &pos);
+    std::array<int64_t, 22> xs;  // xa, then xd
+    std::copy(xa, xa + 18, xs.begin());
+    std::copy(xd, xd + 4, xs.begin() + 18);
+    b.build = [this, xs, dshift, th](size_t* test_steps, size_t* excl_pos) {
+      return program(xs.data(), xs.data() + 18, dshift, th, test_steps, excl_pos);
+    };
     b.tri = k;
     broadcasts.push_back(std::move(b));
-    excl_pos_.push_back(pos);
     bounds_.push_back(bd);
   }
 
@@ -340,7 +346,6 @@ class GeneralForm : public RayForm {
   double o_reach_ = 0, unit_ = 1, sv_ = 1, sl_ = 1, so_ = 1, u_ = 1;
   bool has_tmin_ = false;               // some ray of the batch has tmin > 0
   certify::GeneralRayErrors word_err_;  // bounds on the batch's ray words
-  std::vector<size_t> excl_pos_;        // of each broadcast
   std::vector<Bounds> bounds_;          // of each broadcast
   std::vector<uint64_t> code_;
 };

@@ -4,6 +4,8 @@
 // and quantizes it: per triangle an exponent and n-bit mantissas (docs/intersection.md).
 // Both mappings use it: this file has the ray-parallel form and the object-parallel
 // mapping's ray program.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -99,7 +101,11 @@ class PaperForm : public SharedOriginForm {
         continue;
       }
       Broadcast b;
-      b.program = program(x, e - E, pb, &b.test_steps);
+      std::array<int64_t, 9> xs;
+      std::copy(x, x + 9, xs.begin());
+      b.build = [this, xs, shift = e - E, pb](size_t* test_steps, size_t*) {
+        return program(xs.data(), shift, pb, test_steps);
+      };
       b.tri = static_cast<int>(k);
       b.sum_bound = pb.sum;
       broadcasts.push_back(std::move(b));

@@ -9,6 +9,8 @@
 // exact reference. Certain decisions are exact and the exact reference is watertight, so
 // the form is watertight without moving any vertex: a ray through a shared edge has an
 // edge value of exactly 0 there, is flagged, and gets the exact answer.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -70,7 +72,13 @@ class WatertightForm : public SharedOriginForm {
     }
     const certify::WatertightBounds wb = certify::watertight_bounds(ec, e, f, n, opt_.vbits, f - E);
     if (wb.k > kMaxNearBits || !(wb.sum <= certify::kMaxSumBound)) return false;
-    b->program = program(x, y, f - E, wb, &b->test_steps);
+    std::array<int64_t, 12> xy;  // x row by row, then y
+    for (int i = 0; i < 3; ++i) std::copy(x[i], x[i] + 3, xy.begin() + 3 * i);
+    std::copy(y, y + 3, xy.begin() + 9);
+    b->build = [this, xy, shift = f - E, wb](size_t* test_steps, size_t*) {
+      const int64_t xs[3][3] = {{xy[0], xy[1], xy[2]}, {xy[3], xy[4], xy[5]}, {xy[6], xy[7], xy[8]}};
+      return program(xs, xy.data() + 9, shift, wb, test_steps);
+    };
     b->sum_bound = wb.sum;
     return true;
   }

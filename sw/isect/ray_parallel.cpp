@@ -249,8 +249,9 @@ class RayParallelPlan : public PassPlan {
 
   const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) override {
     (void)number;  // the pass's own numbering (select), the same in the probe and after it
-    *test_steps = form_.broadcasts[k].test_steps;
-    return form_.code(k, number_of_[k]);
+    const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
+    *test_steps = form_.broadcasts[k].test_steps();
+    return code;
   }
 
   void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
@@ -321,7 +322,7 @@ class RayParallelPlan : public PassPlan {
     std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0), box(tris_.size(), 0);
     oracle_->mark(rays_, idx_, base, base + count, any, nearest, box);
     for (const Broadcast& b : form_.broadcasts) {
-      const size_t steps = b.program.code().size();
+      const size_t steps = b.program().size();
       if (any[static_cast<size_t>(b.tri)]) {
         ++st_->oracle_any;
         st_->oracle_any_steps += steps;

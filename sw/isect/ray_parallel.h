@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -19,12 +20,30 @@
 
 namespace fmpp::isect {
 
-// One triangle's broadcast.
+// One triangle's broadcast. Its program is built on first use: a culled batch sends a
+// small share of its triangles (spheres_10k's frame builds about a third of them), and
+// a scanned mesh's programs would take hundreds of megabytes.
 struct Broadcast {
-  Program program;
-  size_t test_steps = 0;  // instructions up to the inside test
-  int tri = -1;           // the triangle
-  double sum_bound = 0;   // certified forms: the bound on the compared value of its hits
+  int tri = -1;          // the triangle
+  double sum_bound = 0;  // certified forms: the bound on the compared value of its hits
+  // Builds the program; *test_steps gets its instructions up to the inside test, *mark
+  // an instruction the form patches per pass (the arbitrary-origin form's exclusion).
+  std::function<Program(size_t* test_steps, size_t* mark)> build;
+
+  const Program& program() const {
+    if (!built_) {
+      program_ = build(&test_steps_, &mark_);
+      built_ = true;
+    }
+    return program_;
+  }
+  size_t test_steps() const { return program(), test_steps_; }
+  size_t mark() const { return program(), mark_; }
+
+ private:
+  mutable Program program_;
+  mutable size_t test_steps_ = 0, mark_ = 0;
+  mutable bool built_ = false;
 };
 
 // An intersection form of the ray-parallel mapping, prepared for one batch of rays.
@@ -43,7 +62,7 @@ class RayForm {
   // The per-pass WRITES of the selected blocks (run with mask 0; kDataMask follows).
   virtual void init(Program& p) const = 0;
   // Broadcast k's code, sent as number `number` (a form may patch it in).
-  virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program.code(); }
+  virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program().code(); }
   // The distance of a block's best.
   virtual double t_of(uint32_t best, const Ray& r) const = 0;
   // Which form this is (KernelStats' per-form counters).
