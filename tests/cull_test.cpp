@@ -15,6 +15,7 @@
 #include "sw/isect/meshes.h"
 #include "sw/isect/oracle.h"
 #include "sw/isect/order.h"
+#include "sw/isect/pass.h"
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 
@@ -271,6 +272,54 @@ TEST(Culling, ProbeChangesNoResult) {
       EXPECT_LT(walk.broadcasts, off.broadcasts / 2);
     }
   }
+}
+
+// A stand-in for several FMPPs that runs every pass itself, recording the order.
+class EveryPass : public PassShare {
+ public:
+  bool take(uint64_t turn, uint64_t pass, uint64_t passes) override {
+    EXPECT_EQ(turn, order.size());
+    EXPECT_LT(pass, passes);
+    order.push_back(pass);
+    return true;
+  }
+  void finish(PassPlan&, unsigned) override { ++calls; }
+  unsigned devices() const override { return 2; }
+  std::vector<uint64_t> order;
+  int calls = 0;
+};
+
+// Shared among FMPPs, the passes go out costliest first (the triangles the host's walk
+// reaches); the results do not depend on the order.
+TEST(Culling, SharedPassesGoCostliestFirst) {
+  const std::vector<Triangle> tris = test_scene();
+  // Two passes of rays too short to reach anything, then four of rays through the scene.
+  std::vector<Ray> rays;
+  for (int k = 0; k < 128; ++k) {
+    rays.push_back(Ray{{0.2, 0.1, 0}, {-1, 0.01 * k, 5}});
+    rays.back().tmax = 1e-6;
+  }
+  const std::vector<Ray> through = uniform_rays({0.2, 0.1, 0}, 256, 4);
+  rays.insert(rays.end(), through.begin(), through.end());
+  KernelStats alone, shared;
+  const std::vector<Hit> a = run(rays, tris, true, false, &alone);
+  auto be = make_backend("cmodel", Config{64, 32});
+  Device dev(be->bus());
+  KernelOptions o;
+  o.coherent = false;
+  EveryPass share;
+  o.share = &share;
+  const std::vector<Hit> b = intersect_fmpp(dev, rays, tris, o, &shared);
+  expect_same(a, b, rays);
+  EXPECT_EQ(alone.cycles, shared.cycles);
+  EXPECT_EQ(alone.broadcasts, shared.broadcasts);
+  ASSERT_EQ(share.order.size(), 6u);
+  std::vector<uint64_t> sorted = share.order;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(share.order[4], 0u) << "the passes that reach nothing go last";
+  EXPECT_EQ(share.order[5], 1u);
+  EXPECT_EQ(share.calls, 1);
 }
 
 TEST(Oracle, CountsWhatTheRaysHit) {

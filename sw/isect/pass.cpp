@@ -19,8 +19,13 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
   const size_t items = plan.items();
   const uint64_t planned = (items + blocks - 1) / blocks;
   if (opt.share && !plan.shareable()) throw std::invalid_argument("this mapping's passes cannot be shared among FMPPs");
-  for (size_t base = 0; base < items; base += blocks) {
-    if (opt.share && !opt.share->take(base / blocks, planned)) continue;  // another FMPP's pass
+  std::vector<size_t> perm;
+  if (opt.share && opt.share->devices() > 1) perm = plan.pass_order(blocks);
+  if (!perm.empty() && perm.size() != planned) throw std::logic_error("PassPlan::pass_order: not one entry per pass");
+  for (uint64_t turn = 0; turn < planned; ++turn) {
+    const uint64_t pass = perm.empty() ? turn : perm[turn];
+    const size_t base = static_cast<size_t>(pass) * blocks;
+    if (opt.share && !opt.share->take(turn, pass, planned)) continue;  // another FMPP's pass
     const unsigned count = static_cast<unsigned>(std::min<size_t>(blocks, items - base));
     ++st->passes;
     std::vector<size_t> order = plan.select(base, count);
@@ -49,7 +54,7 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     plan.read_back(dev, base, count, order);
     st->readback_cycles += dev.cycles() - c0;
     plan.host(base, count);
-    if (opt.progress) opt.progress(base / blocks + 1, planned);
+    if (opt.progress) opt.progress(turn + 1, planned);
   }
   if (opt.share) opt.share->finish(plan, blocks);
 }

@@ -54,6 +54,10 @@ class PassPlan {
   virtual void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) = 0;
   // Host work of the pass (overflowed items, triangles the FMPP does not take).
   virtual void host(size_t /*base*/, unsigned /*count*/) {}
+  // Several FMPPs (PassShare): the order in which the passes are handed out, costliest
+  // first where the plan can tell (so that no long pass is left for the end of a call);
+  // empty: in order. A permutation of 0 .. passes - 1.
+  virtual std::vector<size_t> pass_order(unsigned /*blocks*/) { return {}; }
   // Several FMPPs (PassShare): a plan whose passes each decide only their own items'
   // results, which results(base, count) lists as (ray index, hit) and set_result stores.
   virtual bool shareable() const { return false; }
@@ -67,11 +71,14 @@ class PassPlan {
 class PassShare {
  public:
   virtual ~PassShare() = default;
-  // Whether pass `pass` (of `passes`, asked in increasing order) is this device's.
-  virtual bool take(uint64_t pass, uint64_t passes) = 0;
+  // Whether the pass run at `turn` (of `passes`, asked in increasing turn), pass number
+  // `pass` of the plan, is this device's.
+  virtual bool take(uint64_t turn, uint64_t pass, uint64_t passes) = 0;
   // After the call's last pass: exchanges the results of the shareable `plan`, whose
   // passes hold `blocks` items each.
   virtual void finish(PassPlan& plan, unsigned blocks) = 0;
+  // How many devices take passes (1: the passes run in order, as without sharing).
+  virtual unsigned devices() const = 0;
 };
 
 // Runs every pass of `plan` on `dev`, adding clocks, instructions, broadcasts and passes

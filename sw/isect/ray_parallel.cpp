@@ -276,6 +276,26 @@ class RayParallelPlan : public PassPlan {
 
   // Each pass decides its own rays' hits alone: the passes can run on several FMPPs.
   bool shareable() const override { return true; }
+  // Costliest first, by the triangles the host's walk of each pass reaches (a pass's
+  // clocks grow with its broadcasts; the walk is the first step of select()).
+  std::vector<size_t> pass_order(unsigned blocks) override {
+    if (!opt_.cull) return {};  // every pass broadcasts every triangle
+    const size_t passes = (idx_.size() + blocks - 1) / blocks;
+    std::vector<size_t> reached(passes, 0), order(passes);
+    std::vector<char> reach(form_.broadcasts.size());
+    uint64_t tests = 0;
+    for (size_t p = 0; p < passes; ++p) {
+      const size_t base = p * blocks;
+      std::fill(reach.begin(), reach.end(), 0);
+      bvh_.reached(packets(base, static_cast<unsigned>(std::min<size_t>(blocks, idx_.size() - base)),
+                           opt_.cull_packet),
+                   reach, &tests);
+      reached[p] = static_cast<size_t>(std::count(reach.begin(), reach.end(), 1));
+      order[p] = p;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return reached[a] > reached[b]; });
+    return order;
+  }
   void results(size_t base, unsigned count, std::vector<std::pair<size_t, Hit>>* out) const override {
     for (unsigned b = 0; b < count; ++b) out->emplace_back(idx_[base + b], out_[idx_[base + b]]);
   }

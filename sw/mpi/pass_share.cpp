@@ -89,7 +89,7 @@ void SharedPasses::end_pass() {
   running_ = false;
 }
 
-bool SharedPasses::take(uint64_t pass, uint64_t passes) {
+bool SharedPasses::take(uint64_t turn, uint64_t pass, uint64_t passes) {
   if (idle_) return false;
   end_pass();
   if (!open_) {
@@ -103,7 +103,7 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
     fault_.maybe(s_.rank(), passes_run_);
     next_ = ask(passes_);
   }
-  if (next_ != static_cast<int64_t>(pass)) return false;
+  if (next_ != static_cast<int64_t>(turn)) return false;
   mine_.push_back(pass);
   ++passes_run_;
   next_ = kAsk;
@@ -112,6 +112,10 @@ bool SharedPasses::take(uint64_t pass, uint64_t passes) {
   pass_t0_ = std::chrono::steady_clock::now();
   return true;
 }
+
+// The same answer on every rank (the order of the passes must agree): the ranks of the
+// job, an idle leader included.
+unsigned SharedPasses::devices() const { return s_.active() ? static_cast<unsigned>(s_.size()) : 1; }
 
 void SharedPasses::finish(isect::PassPlan& plan, unsigned blocks) {
   const size_t items = plan.items();

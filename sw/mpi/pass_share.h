@@ -39,8 +39,9 @@ class SharedPasses : public isect::PassShare {
   // leader_works = false: rank 0 takes no pass (it schedules, shades and writes).
   SharedPasses(const Session& s, WorkQueue& q, const Device& dev, bool leader_works = true);
 
-  bool take(uint64_t pass, uint64_t passes) override;
+  bool take(uint64_t turn, uint64_t pass, uint64_t passes) override;
   void finish(isect::PassPlan& plan, unsigned blocks) override;
+  unsigned devices() const override;
 
   // The calls that follow fill batch `slot` of the next exchange (0 or 1).
   void begin_batch(int slot) { slot_ = slot; }
