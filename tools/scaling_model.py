@@ -3,9 +3,10 @@
 
 Reads the JSON report of an `fmpp-render` run under mpirun (any number of ranks): its
 `chips.pass_clocks` hold the measured clocks of every pass, grouped by exchange (the
-points where the chips meet: after each batch, or pair of independent batches). For N
-chips the model hands each exchange's passes out in order to the first free chip, as
-the work queue does, and adds:
+points where the chips meet: after each batch, or pair of independent batches), in the
+order the work queue handed them out (each call's passes costliest first by the host's
+estimate). For N chips the model hands each exchange's passes out in that order to the
+first free chip, as the work queue does, and adds:
   - the exchange: every result (24 bytes a ray) crosses the host's 64-bit bus once,
     8 bytes a clock (none on one chip);
   - a shared host bus: the chips' loads and read-backs (the report's share of the

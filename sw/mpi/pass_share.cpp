@@ -84,7 +84,7 @@ int64_t SharedPasses::ask(uint64_t passes) {
 
 void SharedPasses::end_pass() {
   if (!running_) return;
-  costs_.push_back(PassCost{exchanges_, call_, mine_.back(), dev_.cycles() - pass_c0_,
+  costs_.push_back(PassCost{exchanges_, call_, mine_.back(), dev_.cycles() - pass_c0_, turn_,
                             std::chrono::duration<double>(std::chrono::steady_clock::now() - pass_t0_).count()});
   running_ = false;
 }
@@ -105,6 +105,7 @@ bool SharedPasses::take(uint64_t turn, uint64_t pass, uint64_t passes) {
   }
   if (next_ != static_cast<int64_t>(turn)) return false;
   mine_.push_back(pass);
+  turn_ = turn;
   ++passes_run_;
   next_ = kAsk;
   running_ = true;

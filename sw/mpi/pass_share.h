@@ -62,10 +62,10 @@ class SharedPasses : public isect::PassShare {
   double wait_seconds() const { return wait_seconds_; }
   // Wall seconds this rank waited for the work queue's answers.
   double ask_seconds() const { return ask_seconds_; }
-  // The clocks of every pass run here: (exchange, call, pass, clocks), the scaling
-  // model's input.
+  // The clocks of every pass run here: (exchange, call, pass, clocks; turn: its place in
+  // the order the call's passes were handed out), the scaling model's input.
   struct PassCost {
-    uint64_t exchange, call, pass, clocks;
+    uint64_t exchange, call, pass, clocks, turn;
     double seconds;  // wall time of the pass here (simulation and the pass's host work)
   };
   const std::vector<PassCost>& pass_costs() const { return costs_; }
@@ -86,6 +86,7 @@ class SharedPasses : public isect::PassShare {
   std::vector<std::pair<int, size_t>> own_;  // (slot, ray) answered here since the last exchange
   uint64_t exchanges_ = 0;
   bool running_ = false;        // mine_.back() runs since pass_c0_
+  uint64_t turn_ = 0;           // the turn it was handed out at
   uint64_t pass_c0_ = 0;
   std::chrono::steady_clock::time_point pass_t0_;
   std::vector<PassCost> costs_;

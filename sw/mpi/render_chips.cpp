@@ -120,19 +120,19 @@ nlohmann::json RenderChips::report(const isect::KernelStats& mine, double clock_
                        {"exchange_wait_seconds", share_->wait_seconds()},
                        {"queue_wait_seconds", share_->ask_seconds()}};
   for (const SharedPasses::PassCost& c : share_->pass_costs()) {
-    me["pass_clocks"].push_back({c.exchange, c.call, c.pass, c.clocks, c.seconds});
+    me["pass_clocks"].push_back({c.exchange, c.call, c.pass, c.clocks, c.seconds, c.turn});
   }
   const std::vector<std::string> all = s_.gather(me.dump());
   if (!s_.leader()) return nullptr;
   nlohmann::json chips = nlohmann::json::array();
   uint64_t max_clocks = 0, sum_clocks = 0, transfers = 0;
-  // Every pass's clocks, by exchange, in the order of calls and passes (the input of
-  // tools/scaling_model.py).
+  // Every pass's clocks, by exchange, in the order of calls and of the passes' handing
+  // out (the input of tools/scaling_model.py).
   std::vector<std::map<std::pair<uint64_t, uint64_t>, uint64_t>> by_exchange(share_->exchanges());
   for (const std::string& j : all) {
     chips.push_back(nlohmann::json::parse(j));
     for (const auto& c : chips.back()["pass_clocks"]) {
-      by_exchange.at(c[0].get<size_t>())[{c[1].get<uint64_t>(), c[2].get<uint64_t>()}] = c[3].get<uint64_t>();
+      by_exchange.at(c[0].get<size_t>())[{c[1].get<uint64_t>(), c[5].get<uint64_t>()}] = c[3].get<uint64_t>();
     }
     // Which passes this chip ran: (exchange, call, pass, wall seconds); its busy seconds.
     nlohmann::json& chip = chips.back();
