@@ -179,7 +179,7 @@ module fmpp_array #(
 `endif
 
   // Coverage (make coverage): every opcode executed, every REF function on the data and
-  // on the address part, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP.
+  // on the address part, every CMP function with >= and <, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP.
 `ifdef FMPP_COVERAGE
   // One line per point: Verilator 5.006 merges the iterations of a generate loop into one
   // cover point, so a loop would not tell the opcodes apart.
@@ -197,12 +197,19 @@ module fmpp_array #(
   c_op_resets: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_RESETS);
   c_op_setsadr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SETSADR);
   c_op_flagop: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP);
+  c_op_cmp: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP);
   c_ref_through_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b0);
   c_ref_through_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b1);
   c_ref_and_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b0);
   c_ref_and_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b1);
   c_ref_or_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b0);
   c_ref_or_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b1);
+  c_cmp_through_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_through_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
+  c_cmp_and_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_and_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
+  c_cmp_or_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_or_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
   c_flagop_any_taken: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
   c_flagop_any_skipped: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
   c_word_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_WORD);

@@ -4,8 +4,8 @@
 // illegal instruction answers SLVERR at once and never reaches the array. Rules (see
 // docs/isa.md), all read from the map (fmpp_pkg): the opcode exists; none of its
 // reserved bits is set (fields it does not use, bits of a used field outside its
-// sub-fields: OpReserved); used word fields are below NumWords; REF_FN and FUNC_FN hold
-// a value the map names (<SUB>_LEGAL); REF on the address part names word 0.
+// sub-fields: OpReserved); used word fields are below NumWords; REF_FN, FUNC_FN and
+// CMP_FN hold a value the map names (<SUB>_LEGAL); REF on the address part names word 0.
 module fmpp_instr_check #(
   parameter int unsigned NumWords = 32
 ) (
@@ -55,6 +55,10 @@ module fmpp_instr_check #(
       end
       fmpp_pkg::OP_FUNC: begin
         if (!fmpp_pkg::FUNC_FN_LEGAL[x[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]]) legal_o = 1'b0;
+      end
+      fmpp_pkg::OP_CMP: begin
+        if (!fmpp_pkg::CMP_FN_LEGAL[x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W]]) legal_o = 1'b0;
+        if (!fmpp_pkg::CMP_LT_LEGAL[x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W]]) legal_o = 1'b0;
       end
       default: ;
     endcase

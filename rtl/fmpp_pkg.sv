@@ -133,7 +133,8 @@ package fmpp_pkg;
     OP_SETS = 5'd10,  // SEL <- 1 in every block
     OP_RESETS = 5'd11,  // SEL <- 0 in every block
     OP_SETSADR = 5'd12,  // SEL <- (block index == imm) in every block
-    OP_FLAGOP = 5'd13  // v <- FLAG_LUT[2 * flag FLAG_FA + flag FLAG_FB]; flag F <- v in every block, or, with FLAG_ANY set, only if some block has v = 1
+    OP_FLAGOP = 5'd13,  // v <- FLAG_LUT[2 * flag FLAG_FA + flag FLAG_FB]; flag F <- v in every block, or, with FLAG_ANY set, only if some block has v = 1
+    OP_CMP = 5'd14  // signed compare of word A with IMM (A >= IMM, or A < IMM by CMP_LT), combined with flag CMP_FS by CMP_FN into flag F, in every block
   } opcode_e;
 
   // Sub-fields: [lsb +: width] of the field named in the comment; their values, and
@@ -169,6 +170,19 @@ package fmpp_pkg;
   parameter int unsigned FLAG_LUT_W = 4;
   parameter int unsigned FLAG_ANY_LSB = 8;  // within IMM
   parameter int unsigned FLAG_ANY_W = 1;
+  parameter int unsigned CMP_FN_LSB = 0;  // within X
+  parameter int unsigned CMP_FN_W = 2;
+  parameter logic [1:0] CMP_FN_THROUGH = 2'd0;
+  parameter logic [1:0] CMP_FN_AND = 2'd1;
+  parameter logic [1:0] CMP_FN_OR = 2'd2;
+  parameter logic [3:0] CMP_FN_LEGAL = 4'b0111;
+  parameter int unsigned CMP_LT_LSB = 2;  // within X
+  parameter int unsigned CMP_LT_W = 1;
+  parameter logic [0:0] CMP_LT_GE = 1'd0;
+  parameter logic [0:0] CMP_LT_LT = 1'd1;
+  parameter logic [1:0] CMP_LT_LEGAL = 2'b11;
+  parameter int unsigned CMP_FS_LSB = 3;  // within X
+  parameter int unsigned CMP_FS_W = 3;
 
   // Queue entry (internal: one pushed bus write waiting for the array (not visible to the host))
   typedef enum logic [1:0] {
@@ -195,15 +209,15 @@ package fmpp_pkg;
   // Reserved instruction bits of each opcode: fields it does not use, and bits of a
   // used field that none of its sub-fields covers. A push with one of them set is ILLEGAL;
   // a field is used by the opcode exactly when its bits are not reserved.
-  parameter int unsigned NumOpcodes = 14;
+  parameter int unsigned NumOpcodes = 15;
   // OpReserved[op*64 +: 64]
-  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFFF, 64'h0000003FFFFFFFFF, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
+  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FC0FC000000000, 64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFFF, 64'h0000003FFFFFFFFF, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
   // The same, grouped for a cheap check: bits reserved for the same opcodes form one
   // segment; RsvSegMask[s*64 +: 64] are its bits, RsvSegOps[op*NumRsvSegs + s] = 1
   // if opcode op reserves segment s.
   parameter int unsigned NumRsvSegs = 9;
   parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000010F, 64'h0000000000001E10, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
-  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {9'b011001110, 9'b000111111, 9'b111111111, 9'b111111111, 9'b000111100, 9'b111111000, 9'b111111000, 9'b001111000, 9'b111110000, 9'b111110000, 9'b111010000, 9'b000001010, 9'b000111111, 9'b111111111};
+  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {9'b000001010, 9'b011001110, 9'b000111111, 9'b111111111, 9'b111111111, 9'b000111100, 9'b111111000, 9'b111111000, 9'b001111000, 9'b111110000, 9'b111110000, 9'b111010000, 9'b000001010, 9'b000111111, 9'b111111111};
 
 endpackage
 /* verilator lint_on UNUSEDPARAM */

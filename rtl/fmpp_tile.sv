@@ -6,6 +6,7 @@
 // bitwise operations, and executes the instruction broadcast by fmpp_array:
 //   - masked match (REF, SETSADR) of a word or of the block index into a flag,
 //   - masked parallel write (WRITES) and the block ALU, predicated on a flag,
+//   - signed compare of a word with the immediate (CMP) into a flag,
 //   - flag logic (SETS, RESETS, FLAGOP),
 //   - host writes of one word or one block's flags (queued window writes).
 // It also answers the host read port and reports its share of the responders.
@@ -74,6 +75,8 @@ module fmpp_tile #(
   // REF's source flag and FLAGOP's first flag share a multiplexer when the map puts them
   // in the same bits of X (a constant: both selections below fold into one).
   localparam bit FsIsFa = fmpp_pkg::REF_FS_LSB == fmpp_pkg::FLAG_FA_LSB;
+  // CMP's source flag likewise shares it when it sits where REF's does.
+  localparam bit CmpFsIsFs = fmpp_pkg::CMP_FS_LSB == fmpp_pkg::REF_FS_LSB;
 
   typedef logic [W*Lanes-1:0]  word_t;   // one word of every lane, plane k at [k*Lanes +: Lanes]
   typedef logic [NF*Lanes-1:0] flags_t;  // flag f of every lane at [f*Lanes +: Lanes]
@@ -86,7 +89,7 @@ module fmpp_tile #(
 
   word_t opa, opb, opd;
   word_t alu_r;
-  lane_t alu_c, alu_v;
+  lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
   word_t wr_data;
   logic  wr_en;
@@ -105,6 +108,7 @@ module fmpp_tile #(
     .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
     .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
     .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
+    .imm_i   (imm_i),
     .a_i     (opa),
     .b_i     (opb),
     .d_i     (opd),
@@ -112,14 +116,15 @@ module fmpp_tile #(
     .carry_o (alu_c),
     .ovf_o   (alu_v),
     .wr_c_o  (alu_wr_c),
-    .wr_v_o  (alu_wr_v)
+    .wr_v_o  (alu_wr_v),
+    .ge_o    (alu_ge)
   );
 
   // Selections every instruction needs, computed once per clock. (Written as loops
   // rather than functions: Verilator names function temporaries per call site, which
   // would stop it from sharing one C++ body among the tiles.)
   lane_t pred;         // flag F: the predicate
-  lane_t flag_a;       // REF: flag REF_FS; FLAGOP: flag FLAG_FA
+  lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
   lane_t flag_b;       // FLAGOP: flag FLAG_FB
   lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
   lane_t rd_lane_sel;  // one-hot lane of a window read
@@ -134,8 +139,11 @@ module fmpp_tile #(
   assign rd_lane = rd_block_i[5:0];
   logic [fmpp_pkg::REF_FS_W-1:0]  fa_idx;
   logic [fmpp_pkg::FLAG_FB_W-1:0] fb_idx;
-  assign fa_idx = (FsIsFa || op_i != fmpp_pkg::OP_FLAGOP) ? x_i[fmpp_pkg::REF_FS_LSB +: fmpp_pkg::REF_FS_W]
-                                                          : x_i[fmpp_pkg::FLAG_FA_LSB +: fmpp_pkg::FLAG_FA_W];
+  always_comb begin
+    fa_idx = x_i[fmpp_pkg::REF_FS_LSB +: fmpp_pkg::REF_FS_W];
+    if (!FsIsFa && op_i == fmpp_pkg::OP_FLAGOP) fa_idx = x_i[fmpp_pkg::FLAG_FA_LSB +: fmpp_pkg::FLAG_FA_W];
+    if (!CmpFsIsFs && op_i == fmpp_pkg::OP_CMP) fa_idx = x_i[fmpp_pkg::CMP_FS_LSB +: fmpp_pkg::CMP_FS_W];
+  end
   assign fb_idx = x_i[fmpp_pkg::FLAG_FB_LSB +: fmpp_pkg::FLAG_FB_W];
   always_comb begin
     pred = '0;
@@ -222,6 +230,16 @@ module fmpp_tile #(
                   default:              fl_new = match;  // THROUGH
                 endcase
               end
+            end
+            fmpp_pkg::OP_CMP: begin
+              // Signed compare with IMM on the ALU's subtracter; CMP_LT turns >= into <.
+              match = alu_ge ^ {Lanes{x_i[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT}};
+              fl_we = 1'b1;
+              case (x_i[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W])
+                fmpp_pkg::CMP_FN_AND: fl_new = flag_a & match;
+                fmpp_pkg::CMP_FN_OR:  fl_new = flag_a | match;
+                default:              fl_new = match;  // THROUGH
+              endcase
             end
             fmpp_pkg::OP_SETS, fmpp_pkg::OP_RESETS: begin
               fl_we  = 1'b1;

@@ -99,6 +99,15 @@ uint64_t ProgramGenerator::random_instruction() {
       i = ref(fn, addr ? RefPart::kAddr : RefPart::kData, addr ? 0 : word_index(), key, flag_index(), flag_index());
       break;
     }
+    case Op::kCmp: {
+      // Words often hold edge values, so constants at and next to them hit equality and
+      // the ends of the range (INT32_MIN, INT32_MAX) from both sides.
+      const uint32_t near = edge_value() + static_cast<uint32_t>(std::uniform_int_distribution<int>(-1, 1)(rng_));
+      const bool lt = std::uniform_int_distribution<unsigned>(0, 1)(rng_) == 1;
+      i = cmp(static_cast<CmpFn>(legal_code(map::kCmpFnLegal)), lt ? CmpLt::kLt : CmpLt::kGe, word_index(),
+              static_cast<int32_t>(near), flag_index(), flag_index());
+      break;
+    }
     case Op::kFunc:
       i = func(static_cast<FuncFn>(legal_code(map::kFuncFnLegal)), word_index(), word_index(), word_index(), pred);
       break;

@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/box_test.h"
@@ -138,6 +140,62 @@ TEST(FmppBoxTest, NeverRejectsARayThatMeetsTheBoxBeforeItsBest) {
   }
   EXPECT_GT(met, 200u) << "the boxes must meet rays";
   EXPECT_GT(rejected_empty * 10, empty * 8) << "most boxes no ray meets are rejected";
+}
+
+// Each compare of the test is one CMP folded into kWin (THROUGH first, AND after): no
+// scratch word, no sign test. One class (rays about +z), a box ahead and to the side:
+// two compares on x, two on y and the distance; the reach best - BB is the only SUB and
+// a flagged block's unbounded reach the only WRITES. The rays inside the box's slopes
+// are selected, those outside are not.
+TEST(FmppBoxTest, EachCompareIsOneCmp) {
+  const unsigned blocks = 64, count = 9;
+  auto be = make_backend("cmodel", Config{blocks, 32});
+  Device dev(be->bus());
+  SharedBoxTest test(glm::dvec3(0), kVbits, 1.0, std::ldexp(1.0, -20));
+  test.clear();
+  for (unsigned b = 0; b < count; ++b) {
+    // x slopes -0.1 .. 0.1 in steps of 0.025, y slope 0; block 6 has x slope 0.05.
+    const glm::dvec3 d(-0.1 + 0.025 * b, 0, 1);
+    test.add_ray(d);
+    const double sv = max_component(d) / std::ldexp(1.0, kVbits);
+    for (int j = 0; j < 3; ++j) {
+      dev.write_word(b, kV + static_cast<unsigned>(j), static_cast<uint32_t>(quantize(d[j], sv, int64_t{1} << kVbits, "ray")));
+    }
+    dev.write_word(b, kBest, 0);
+    dev.write_word(b, kBB, 0);
+  }
+  test.add_ray(glm::dvec3(0, 0.1, 1));  // (not loaded: widens the pass's y range only)
+  test.add_ray(glm::dvec3(0, -0.1, 1));
+  Program sel;
+  select_below(sel, count, blocks);
+  sel.mask(layout::kDataMask);
+  dev.push(sel.code());
+  Box box;  // x slopes 0.5/11 .. 0.06, y slopes -0.005 .. 0.005, 10 ahead
+  box.grow(glm::dvec3(0.5, -0.05, 10));
+  box.grow(glm::dvec3(0.6, 0.05, 11));
+  Program p;
+  p.assume_mask(layout::kDataMask);
+  ASSERT_EQ(test.append(box, p), SharedBoxTest::Verdict::kTest);
+  unsigned per_op[map::kNumOpcodes] = {};
+  std::vector<std::string> cmps;
+  for (uint64_t raw : p.code()) {
+    ++per_op[map::kFieldOp.get(raw)];
+    if (Instr::decode(raw).op == Op::kCmp) cmps.push_back(disasm(raw));
+  }
+  EXPECT_EQ(per_op[static_cast<unsigned>(Op::kCmp)], 5u);
+  EXPECT_EQ(per_op[static_cast<unsigned>(Op::kSub)], 1u);
+  EXPECT_EQ(per_op[static_cast<unsigned>(Op::kWrites)], 1u);
+  EXPECT_EQ(per_op[static_cast<unsigned>(Op::kRef)], 0u);
+  EXPECT_EQ(p.size(), 11u) << "FLAGOP, SUB, MASKSET, WRITES, 5 CMP, FLAGOP, MASKSET";
+  ASSERT_EQ(cmps.size(), 5u);
+  EXPECT_EQ(cmps[0].rfind("CMP.through f2 = f2, ", 0), 0u) << cmps[0];
+  for (size_t k = 1; k < cmps.size(); ++k) EXPECT_EQ(cmps[k].rfind("CMP.and f2 = f2, ", 0), 0u) << cmps[k];
+  dev.push(p.code());
+  const std::vector<bool> s = dev.read_flag_all(layout::kSel);
+  for (unsigned b = 0; b < blocks; ++b) EXPECT_EQ(s[b], b == 6) << "block " << b;
+  dev.push(ins::flagop(layout::kSel, layout::kTmp, layout::kTmp, lut::kA));
+  EXPECT_EQ(dev.responders().count, count);
+  EXPECT_FALSE(dev.overflow());
 }
 
 }  // namespace

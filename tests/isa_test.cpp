@@ -1,6 +1,7 @@
 // Instruction encoding, legality and disassembly.
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <cstdio>
 #include <map>
 #include <random>
@@ -30,7 +31,9 @@ TEST(Isa, EncodeDecodeRoundTrip) {
                          sets(),
                          resets(),
                          setsadr(4095),
-                         flagop(1, 2, 3, lut::kXor, true)};
+                         flagop(1, 2, 3, lut::kXor, true),
+                         cmp(CmpFn::kAnd, CmpLt::kLt, 17, INT32_MIN, 2, 3),
+                         cmp(CmpFn::kOr, CmpLt::kGe, 0, INT32_MAX, 7, 0)};
   for (const Instr& i : cases) {
     EXPECT_EQ(Instr::decode(i.encode()), i) << disasm(i.encode());
     EXPECT_TRUE(is_legal(i.encode(), 32)) << disasm(i.encode());
@@ -69,6 +72,10 @@ TEST(Isa, BuildersRejectOversizedOperands) {
   EXPECT_THROW(bitcopy(0, 32, 0, 0), std::invalid_argument);
   EXPECT_THROW(lshift(0, 64), std::invalid_argument);
   EXPECT_THROW(rshift(0, 0, 9), std::invalid_argument);
+  EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 64, 0, 0), std::invalid_argument);
+  EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 0, 0, 8), std::invalid_argument);
+  EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 0, 0, 0, 8), std::invalid_argument);
+  EXPECT_THROW(cmp(static_cast<CmpFn>(3), CmpLt::kGe, 0, 0, 0), std::invalid_argument);
   // The largest operands that fit are accepted.
   EXPECT_NO_THROW(add(63, 63, 63, 7));
   EXPECT_NO_THROW(bitcopy(63, 31, 63, 31, 7));
@@ -124,7 +131,7 @@ TEST(Isa, WithImmReplacesTheImmediateOnly) {
 }
 
 TEST(Isa, LegalityRules) {
-  EXPECT_FALSE(is_legal(uint64_t{14} << 59, 32)) << "unknown opcode";
+  EXPECT_FALSE(is_legal(uint64_t{15} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(uint64_t{31} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(nop().encode() | 1, 32)) << "NOP with an immediate";
   EXPECT_FALSE(is_legal(sets().encode() | (uint64_t{1} << 56), 32)) << "SETS with a flag";
@@ -159,6 +166,22 @@ TEST(Isa, LegalityRules) {
   EXPECT_FALSE(is_legal(flagop(0, 0, 0, 0).encode() | 0x10, 8));
   EXPECT_FALSE(is_legal(flagop(0, 0, 0, 0).encode() | 0x200, 8));
   EXPECT_TRUE(is_legal(flagop(7, 7, 7, 0xF, true).encode(), 8));
+  // CMP: function code 3 is undefined; it reads word A only (D and B reserved).
+  Instr c = cmp(CmpFn::kThrough, CmpLt::kLt, 7, -5, 1, 2);
+  EXPECT_TRUE(is_legal(c.encode(), 8));
+  c.x = static_cast<uint8_t>(map::kCmpFn.set(c.x, 3));
+  EXPECT_FALSE(is_legal(c.encode(), 8));
+  EXPECT_FALSE(is_legal(cmp(CmpFn::kThrough, CmpLt::kGe, 8, 0, 0).encode(), 8)) << "word past NumWords";
+  EXPECT_FALSE(is_legal(cmp(CmpFn::kThrough, CmpLt::kGe, 0, 0, 0).encode() | map::kFieldD.put(1), 8)) << "CMP with D";
+  EXPECT_FALSE(is_legal(cmp(CmpFn::kThrough, CmpLt::kGe, 0, 0, 0).encode() | map::kFieldB.put(1), 8)) << "CMP with B";
+}
+
+// The published encoding of CMP, in numbers: op 14, F, A, X = FS << 3 | LT << 2 | FN, IMM.
+TEST(Isa, CmpEncoding) {
+  EXPECT_EQ(cmp(CmpFn::kAnd, CmpLt::kLt, 5, -1, 2, 3).encode(),
+            (uint64_t{14} << 59) | (uint64_t{2} << 56) | (uint64_t{5} << 44) | (uint64_t{(3 << 3) | 4 | 1} << 32) |
+                0xFFFFFFFFull);
+  EXPECT_EQ(cmp(CmpFn::kThrough, CmpLt::kGe, 0, INT32_MIN, 0, 0).encode(), (uint64_t{14} << 59) | 0x80000000ull);
 }
 
 // A random legal instruction of opcode `op`, every field drawn at random within its
@@ -192,6 +215,9 @@ Instr random_legal(Op op, std::mt19937_64& rng) {
     case Op::kResets: return resets();
     case Op::kSetsadr: return setsadr(imm);
     case Op::kFlagop: return flagop(u(F), u(F), u(F), static_cast<uint8_t>(u(16)), u(2) == 1);
+    case Op::kCmp:
+      return cmp(static_cast<CmpFn>(code(map::kCmpFnLegal)), static_cast<CmpLt>(code(map::kCmpLtLegal)), u(W),
+                 static_cast<int32_t>(imm), u(F), u(F));
   }
   throw std::logic_error("random_legal: opcode " + std::to_string(static_cast<unsigned>(op)));
 }
@@ -237,6 +263,9 @@ TEST(Isa, RandomWordsAreRarelyLegalAndDisassembleByTheirOpcode) {
 TEST(Isa, Disassembly) {
   EXPECT_EQ(disasm(add(3, 1, 2).encode()), "ADD w3 = w1 + w2 ?f0");
   EXPECT_EQ(disasm(ref(RefFn::kAnd, RefPart::kAddr, 0, 5, 1, 2).encode()), "REF.and f1 = f2, addr ~ 0x00000005");
+  EXPECT_EQ(disasm(cmp(CmpFn::kThrough, CmpLt::kGe, 4, -7, 2, 0).encode()), "CMP.through f2 = f0, w4 >= -7");
+  EXPECT_EQ(disasm(cmp(CmpFn::kAnd, CmpLt::kLt, 9, INT32_MIN, 3, 5).encode()), "CMP.and f3 = f5, w9 < -2147483648");
+  EXPECT_EQ(disasm(cmp(CmpFn::kOr, CmpLt::kLt, 0, INT32_MAX, 1, 1).encode()), "CMP.or f1 = f1, w0 < 2147483647");
   EXPECT_EQ(disasm(uint64_t{20} << 59), "ILLEGAL(op=20 raw=0xa000000000000000)");
 }
 

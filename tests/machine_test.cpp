@@ -1,6 +1,8 @@
 // Golden model: each instruction against hand-computed results.
 #include <gtest/gtest.h>
 
+#include <climits>
+
 #include "fmpp/machine.h"
 
 namespace fmpp {
@@ -83,6 +85,42 @@ TEST_F(MachineTest, RefDataPartThroughAndOr) {
   run(ref(RefFn::kThrough, RefPart::kData, 1, 0xFFFFFFA5, 5));
   EXPECT_EQ(m.responders().count, 0u);  // SEL untouched
   for (unsigned b = 0; b < 4; ++b) EXPECT_EQ(m.flag(b, 5), b == 2) << b;
+}
+
+// CMP: signed word A >= imm (or <), combined into flag F; the mask, the selection, the
+// words, C and V play no part and do not change.
+TEST_F(MachineTest, CmpSignedAgainstTheImmediate) {
+  const uint32_t v[4] = {0x80000000u, 0xFFFFFFFFu, 0u, 0x7FFFFFFFu};  // INT32_MIN, -1, 0, INT32_MAX
+  for (unsigned b = 0; b < 4; ++b) m.write_word(b, 2, v[b]);
+  for (unsigned b = 0; b < 4; ++b) m.write_flags(b, static_cast<uint8_t>(1u << kC | 1u << kV | 1u << 5));
+  select(0);  // no block selected: CMP acts in every block anyway
+  run(maskset(~0u));  // a full mask would make any REF match; CMP ignores it
+  // (m, expected per block) for each constant: >= equality holds at the constant itself.
+  struct Case { int32_t imm; unsigned ge; } cases[] = {
+      {INT32_MIN, 0xF}, {INT32_MIN + 1, 0xE}, {-1, 0xE}, {0, 0xC}, {1, 0x8}, {INT32_MAX, 0x8}, {INT32_MAX - 1, 0x8}};
+  for (const Case& c : cases) {
+    run(cmp(CmpFn::kThrough, CmpLt::kGe, 2, c.imm, 3));
+    run(cmp(CmpFn::kThrough, CmpLt::kLt, 2, c.imm, 4));
+    for (unsigned b = 0; b < 4; ++b) {
+      EXPECT_EQ(m.flag(b, 3), ((c.ge >> b) & 1) != 0) << "w >= " << c.imm << " in block " << b;
+      EXPECT_EQ(m.flag(b, 4), ((c.ge >> b) & 1) == 0) << "w < " << c.imm << " in block " << b;
+    }
+  }
+  // AND and OR with a source flag: f3 = (w >= 0) = blocks 2, 3; f4 = (w < 0) = blocks 0, 1.
+  run(cmp(CmpFn::kThrough, CmpLt::kGe, 2, 0, 3));
+  run(cmp(CmpFn::kThrough, CmpLt::kLt, 2, 0, 4));
+  run(cmp(CmpFn::kAnd, CmpLt::kGe, 2, -1, 1, 4));  // (w < 0) and (w >= -1): block 1
+  run(cmp(CmpFn::kOr, CmpLt::kLt, 2, INT32_MAX, 4, 4));  // (w < 0) or (w < INT32_MAX): blocks 0, 1, 2
+  for (unsigned b = 0; b < 4; ++b) {
+    EXPECT_EQ(m.flag(b, 1), b == 1) << b;
+    EXPECT_EQ(m.flag(b, 4), b != 3) << b;
+    EXPECT_EQ(m.word(b, 2), v[b]) << "CMP writes no word";
+    EXPECT_TRUE(m.flag(b, kC) && m.flag(b, kV) && m.flag(b, 5)) << "CMP leaves C, V and other flags";
+    EXPECT_FALSE(m.flag(b, kSel)) << "CMP leaves SEL";
+  }
+  // The destination may be the source: f4 <- f4 and (w >= 0).
+  run(cmp(CmpFn::kAnd, CmpLt::kGe, 2, 0, 4, 4));
+  for (unsigned b = 0; b < 4; ++b) EXPECT_EQ(m.flag(b, 4), b == 2) << b;
 }
 
 TEST_F(MachineTest, RefAddressPart) {

@@ -3,6 +3,8 @@
 // values. Runs on several built configurations.
 #include <gtest/gtest.h>
 
+#include <climits>
+
 #include "tb/lockstep.h"
 #include "tb/rtl_bus.h"
 
@@ -126,6 +128,34 @@ TEST_P(RtlDirected, MaskedWriteAndMatch) {
   EXPECT_EQ(rd(map::kRegResp), 0u);
   push(flagop(0, 3, 3, lut::kA, true));
   EXPECT_EQ(rd(map::kRegResp) & 0xFFFFFFFF, cfg.blocks);
+}
+
+// CMP on the RTL: signed compares at the ends of the range and at equality, combined
+// with a source flag; no word, C, V or SEL changes. Block 0 and the last block differ.
+TEST_P(RtlDirected, CmpComparesSignedWithTheImmediate) {
+  const unsigned last = cfg.blocks - 1;
+  put(0, 1, 0x80000000u);  // INT32_MIN
+  if (last != 0) put(last, 1, 0x7FFFFFFFu);  // INT32_MAX
+  push(resets());
+  push(maskset(~0u));  // CMP ignores the mask
+  ASSERT_EQ(lock->write(map::kWinFlagsBase, 1u << map::kFlagC | 1u << map::kFlagV, 0x01), Resp::kOkay);
+  push(cmp(CmpFn::kThrough, CmpLt::kGe, 1, INT32_MIN, 2));      // both: true (equal at block 0)
+  push(cmp(CmpFn::kThrough, CmpLt::kLt, 1, INT32_MIN + 1, 3));  // block 0 only
+  push(cmp(CmpFn::kThrough, CmpLt::kGe, 1, INT32_MAX, 4));      // the last block only (equal)
+  push(cmp(CmpFn::kAnd, CmpLt::kLt, 1, INT32_MAX, 5, 2));       // f2 and w < MAX: block 0 only
+  push(cmp(CmpFn::kOr, CmpLt::kGe, 1, 0, 2, 3));                // f3 or w >= 0: block 0 (f3), the last (w)
+  const uint8_t f0 = flags(0);
+  EXPECT_EQ(f0, (1u << map::kFlagC) | (1u << map::kFlagV) | (1u << 2) | (1u << 3) | (1u << 5)) << std::hex << +f0;
+  if (last != 0) {
+    EXPECT_EQ(flags(last), (1u << 2) | (1u << 4)) << std::hex << +flags(last);
+    EXPECT_EQ(get(last, 1), 0x7FFFFFFFu);
+  }
+  EXPECT_EQ(get(0, 1), 0x80000000u) << "CMP writes no word";
+  EXPECT_EQ(rd(map::kRegResp), 0u) << "CMP leaves SEL";
+  // Code 3 of CMP_FN is not an instruction.
+  Instr bad = cmp(CmpFn::kThrough, CmpLt::kGe, 1, 0, 2);
+  bad.x = static_cast<uint8_t>(map::kCmpFn.set(bad.x, 3));
+  EXPECT_EQ(lock->write(map::kRegQueue, bad.encode()), Resp::kSlvErr);
 }
 
 TEST_P(RtlDirected, BadAccessesAnswerSlverr) {

@@ -63,6 +63,9 @@ bool is_legal(uint64_t raw, unsigned num_words) {
     case Op::kFunc:
       if (!defined(kFuncFnLegal, kFuncFn.get(i.x))) return false;
       break;
+    case Op::kCmp:
+      if (!defined(kCmpFnLegal, kCmpFn.get(i.x)) || !defined(kCmpLtLegal, kCmpLt.get(i.x))) return false;
+      break;
     default:
       break;
   }
@@ -76,6 +79,15 @@ const char* ref_fn_name(unsigned fn) {
     case RefFn::kThrough: return "through";
     case RefFn::kAnd: return "and";
     case RefFn::kOr: return "or";
+  }
+  return "?";
+}
+
+const char* cmp_fn_name(unsigned fn) {
+  switch (static_cast<CmpFn>(fn)) {
+    case CmpFn::kThrough: return "through";
+    case CmpFn::kAnd: return "and";
+    case CmpFn::kOr: return "or";
   }
   return "?";
 }
@@ -120,6 +132,11 @@ std::string disasm(uint64_t raw) {
       }
       break;
     }
+    case Op::kCmp:
+      std::snprintf(buf, sizeof buf, "CMP.%s f%u = f%u, w%u %s %d", cmp_fn_name(static_cast<unsigned>(kCmpFn.get(i.x))),
+                    i.f, static_cast<unsigned>(kCmpFs.get(i.x)), i.a,
+                    kCmpLt.get(i.x) == static_cast<unsigned>(CmpLt::kLt) ? "<" : ">=", static_cast<int32_t>(i.imm));
+      break;
     case Op::kFunc:
       std::snprintf(buf, sizeof buf, "FUNC w%u = w%u %s w%u ?f%u", i.d, i.a,
                     func_fn_symbol(static_cast<unsigned>(kFuncFn.get(i.x))), i.b, i.f);
@@ -205,6 +222,13 @@ Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigne
                      map::kRefPart.put(code("ref", "part", static_cast<unsigned>(part), map::kRefPartLegal)) |
                      map::kRefFs.put(flag("ref", "fs", fs));
   return make(Op::kRef, flag("ref", "fd", fd), 0, word("ref", "a", a), 0, static_cast<unsigned>(x), key);
+}
+Instr cmp(CmpFn fn, CmpLt lt, unsigned a, int32_t imm, unsigned fd, unsigned fs) {
+  const uint64_t x = map::kCmpFn.put(code("cmp", "fn", static_cast<unsigned>(fn), map::kCmpFnLegal)) |
+                     map::kCmpLt.put(code("cmp", "lt", static_cast<unsigned>(lt), map::kCmpLtLegal)) |
+                     map::kCmpFs.put(flag("cmp", "fs", fs));
+  return make(Op::kCmp, flag("cmp", "fd", fd), 0, word("cmp", "a", a), 0, static_cast<unsigned>(x),
+              static_cast<uint32_t>(imm));
 }
 Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred) {
   const uint64_t x = map::kFuncFn.put(code("func", "fn", static_cast<unsigned>(fn), map::kFuncFnLegal));

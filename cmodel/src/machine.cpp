@@ -29,6 +29,8 @@ constexpr unsigned kV = map::kFlagV;
 // Function codes as plain numbers, for the branch-free kernels.
 constexpr unsigned kRefThrough = static_cast<unsigned>(RefFn::kThrough);
 constexpr unsigned kRefAnd = static_cast<unsigned>(RefFn::kAnd);
+constexpr unsigned kCmpThrough = static_cast<unsigned>(CmpFn::kThrough);
+constexpr unsigned kCmpAnd = static_cast<unsigned>(CmpFn::kAnd);
 constexpr unsigned kFuncAnd = static_cast<unsigned>(FuncFn::kAnd);
 constexpr unsigned kFuncOr = static_cast<unsigned>(FuncFn::kOr);
 
@@ -116,6 +118,18 @@ FMPP_KERNEL void k_ref_data(const uint32_t* a, uint8_t* fl, size_t n, uint32_t k
   }
 }
 
+// CMP: fd <- combine(flag fs, (int32(a) >= imm) xor lt). The mask is not used.
+FMPP_KERNEL void k_cmp(const uint32_t* a, uint8_t* fl, size_t n, int32_t imm, uint32_t lt, unsigned fn, unsigned fs,
+                       unsigned fd) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t f = fl[i];
+    const uint32_t m = static_cast<uint32_t>(static_cast<int32_t>(a[i]) >= imm) ^ lt;
+    const uint32_t old = (f >> fs) & 1u;
+    const uint32_t v = fn == kCmpThrough ? m : fn == kCmpAnd ? (old & m) : (old | m);
+    fl[i] = static_cast<uint8_t>((f & ~(1u << fd)) | (v << fd));
+  }
+}
+
 // FLAGOP: fd <- lut[2 fa + fb] as a sum of products (byte-wide, vectorizable).
 // With if_any, nothing changes unless the result is 1 somewhere.
 FMPP_KERNEL void k_flagop(uint8_t* fl, size_t n, unsigned fa, unsigned fb, unsigned fd, unsigned lut, bool if_any) {
@@ -162,6 +176,11 @@ void Machine::execute(uint64_t raw) {
       }
       break;
     }
+    case Op::kCmp:
+      k_cmp(row(in.a), fl, n, static_cast<int32_t>(in.imm),
+            map::kCmpLt.get(in.x) == static_cast<unsigned>(CmpLt::kLt) ? 1u : 0u,
+            static_cast<unsigned>(map::kCmpFn.get(in.x)), static_cast<unsigned>(map::kCmpFs.get(in.x)), in.f);
+      break;
     case Op::kFunc:
       k_logic(row(in.d), row(in.a), row(in.b), fl, n, in.f, static_cast<unsigned>(map::kFuncFn.get(in.x)));
       break;

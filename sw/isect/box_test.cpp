@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -21,16 +20,16 @@ using layout::kTmp;
 using layout::kWin;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Constants stay within +-2^29 and the compared values within +-2^30 (directions
-// 2^vbits <= 2^28, S_c below 2^30, a flagged block's reach -2^30): no difference the
-// test forms can overflow.
+// Constants c stay within +-2^29 and the compared values within +-2^30 (directions
+// 2^vbits <= 2^28, S_c below 2^30, a flagged block's reach -2^30). Each compare is one
+// CMP (a signed compare with the immediate, no difference formed): V >= c is CMP GE c,
+// V <= c and reach <= c are CMP LT c + 1, and since c < 2^29, c + 1 fits in 32 bits.
+// The one difference the test forms, the reach best - BB (word D, free between
+// broadcasts), stays within +-2^30 as well.
 constexpr double kWordLimit = 0x1p29;
-// Scratch words: free between broadcasts (T, S, D and this broadcast's bound BN are each
-// broadcast's own temporaries).
-constexpr unsigned kScratch[] = {kT + 0, kT + 1, kT + 2, kS, kBN};
 
 // One compare of a class: V_word >= c (lo), V_word <= c (hi), or the best's reach
-// best - BB <= c (dist; word kD holds best - BB).
+// best - BB <= c (dist; word kD holds best - BB). |c| < 2^29.
 struct Compare {
   enum Kind { kLo, kHi, kDist } kind;
   unsigned word;
@@ -89,7 +88,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
     // The box's range along the class axis, u = s (p - O)_i; a ray of the class has u > 0.
     const double u0 = s > 0 ? lo[i] : -hi[i], u1 = s > 0 ? hi[i] : -lo[i];
     if (!(u1 > 0)) continue;  // behind every ray of the class
-    std::vector<Compare> cmp;
+    std::vector<Compare> cmps;
     bool possible = true;
     for (int j = 0; j < 3; ++j) {
       if (j == i) continue;
@@ -105,31 +104,31 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
         break;
       }
       // Both now lie within the pass's components (|c| < 2^29): exact as integers.
-      if (cmin > lo_v) cmp.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
-      if (cmax < hi_v) cmp.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
+      if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
+      if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
     }
     if (!possible) continue;
     if (u0 > 0) {
       // Any point of the box on the ray has S_c <= 2^vbits / (u0 t_scale).
       const double thr = std::ceil(unit_ / (u0 * t_scale_) * (1 + 0x1p-40)) + 1;
-      if (thr < kWordLimit) cmp.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+      if (thr < kWordLimit) cmps.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
     }
-    if (cmp.empty()) return Verdict::kSome;  // a ray of the pass is of this class and passes
-    classes.push_back(std::move(cmp));
+    if (cmps.empty()) return Verdict::kSome;  // a ray of the pass is of this class and passes
+    classes.push_back(std::move(cmps));
     class_id.push_back(c);
   }
   if (classes.empty()) return Verdict::kNone;
 
-  p.mask(0);
   p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
   bool dist = false;
-  for (const std::vector<Compare>& cmp : classes) {
-    for (const Compare& k : cmp) dist = dist || k.kind == Compare::kDist;
+  for (const std::vector<Compare>& cmps : classes) {
+    for (const Compare& k : cmps) dist = dist || k.kind == Compare::kDist;
   }
   if (dist) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
     // A flagged block's best may not be a hit at all (an uncertain inside test): its
     // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
+    p.mask(0);
     p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
   }
   // With one class left, a ray of another class cannot meet the box at all (its class
@@ -144,24 +143,15 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
       p << ref(RefFn::kThrough, RefPart::kData, kV + c / 2, static_cast<uint32_t>(key), kWin);
       first = false;
     }
-    const std::vector<Compare>& cmp = classes[n];
-    for (size_t b = 0; b < cmp.size(); b += std::size(kScratch)) {
-      const size_t e = std::min(cmp.size(), b + std::size(kScratch));
-      p.mask(0);
-      for (size_t k = b; k < e; ++k) p << writes(kScratch[k - b], static_cast<uint32_t>(cmp[k].c), kSel);
-      for (size_t k = b; k < e; ++k) {
-        const unsigned w = kScratch[k - b];
-        switch (cmp[k].kind) {
-          case Compare::kLo: p << sub(w, cmp[k].word, w, kSel); break;     // V - c >= 0
-          case Compare::kHi:                                                 // c - V >= 0
-          case Compare::kDist: p << sub(w, w, cmp[k].word, kSel); break;  // c - (best - BB) >= 0
-        }
+    // One CMP per compare, folded into kWin (it acts in every block; the mask plays no part).
+    for (const Compare& k : classes[n]) {
+      const CmpFn fn = first ? CmpFn::kThrough : CmpFn::kAnd;
+      if (k.kind == Compare::kLo) {
+        p << cmp(fn, CmpLt::kGe, k.word, static_cast<int32_t>(k.c), kWin, kWin);  // V >= c
+      } else {
+        p << cmp(fn, CmpLt::kLt, k.word, static_cast<int32_t>(k.c + 1), kWin, kWin);  // V <= c, reach <= c
       }
-      p.mask(layout::kDataMask);  // a REF against 0 under it tests the sign bit
-      for (size_t k = b; k < e; ++k) {
-        p << ref(first ? RefFn::kThrough : RefFn::kAnd, RefPart::kData, kScratch[k - b], 0, kWin, kWin);
-        first = false;
-      }
+      first = false;
     }
     if (!one) p << flagop(kHit, n == 0 ? kWin : kHit, kWin, n == 0 ? lut::kA : lut::kOr);
   }

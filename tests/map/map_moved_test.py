@@ -34,9 +34,11 @@ COPIED = ["rtl", "cmodel", "tb", "tools", "docs", os.path.join("sw", "fmpp"), os
 # (lsb within their field), register fields, and new codes.
 FIELDS = {"IMM": 32, "B": 26, "OP": 21, "X": 15, "F": 12, "A": 6, "D": 0}
 SUBFIELDS = {"REF_FN": 4, "REF_PART": 0, "REF_FS": 1, "FUNC_FN": 3, "BIT_I": 20, "BIT_J": 3,
-             "FLAG_FA": 0, "FLAG_FB": 3, "FLAG_LUT": 12, "FLAG_ANY": 31}
+             "FLAG_FA": 0, "FLAG_FB": 3, "FLAG_LUT": 12, "FLAG_ANY": 31,
+             "CMP_FN": 0, "CMP_LT": 5, "CMP_FS": 2}
 VALUES = {"REF_FN": {"THROUGH": 3, "AND": 1, "OR": 0}, "REF_PART": {"DATA": 1, "ADDR": 0},
-          "FUNC_FN": {"AND": 2, "OR": 3, "XOR": 0}}
+          "FUNC_FN": {"AND": 2, "OR": 3, "XOR": 0}, "CMP_FN": {"THROUGH": 2, "AND": 0, "OR": 3},
+          "CMP_LT": {"GE": 1, "LT": 0}}
 FLAGS = {"SEL": 1, "C": 7, "V": 4}
 REGISTERS = {
     "ID": {"MINOR": 48, "MAJOR": 32, "MAGIC": 0},

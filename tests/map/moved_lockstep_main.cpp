@@ -54,6 +54,10 @@ void directed(Device& dev) {
   p << bitcopy(3, 30, 0, 0) << lshift(4, 1) << writes(5, 0xDEADBEEF);
   p << ref(RefFn::kThrough, RefPart::kData, 0, 0x5A5A5A5A, f2) << flagop(f3, f2, f2, lut::kNotA);
   p << Instr::decode(with_imm(writes(6, 0).encode(), 0x13572468u));  // IMM patched in place
+  const unsigned f4 = free_flag(3), f5 = free_flag(4);
+  p << cmp(CmpFn::kThrough, CmpLt::kLt, 0, x + 1, f4);  // x < x + 1
+  p << cmp(CmpFn::kAnd, CmpLt::kGe, 1, y, f4, f4);      // and y >= y
+  p << cmp(CmpFn::kOr, CmpLt::kGe, 0, x + 1, f5, f2);   // f2 (0) or x >= x + 1
   dev.push(p.code());
   const int64_t want = dot_reference({x}, {y}, n);
   expect(static_cast<int32_t>(dev.read_word(0, 2)) == want,
@@ -64,6 +68,8 @@ void directed(Device& dev) {
   expect(dev.read_word(0, 6) == 0x13572468u, "ins::with_imm");
   expect(((dev.read_flags(0) >> f3) & 1) == 1 && ((dev.read_flags(0) >> f2) & 1) == 0,
          "REF.through (no match) then FLAGOP not-a");
+  expect(((dev.read_flags(0) >> f4) & 1) == 1 && ((dev.read_flags(0) >> f5) & 1) == 0,
+         "CMP.through <, CMP.and >= (equal), CMP.or >=");
   const Responders r = dev.responders();
   expect(r.any && r.count == 1 && r.first == 0, "RESP after SETS");
   expect(!dev.overflow(), "STATUS.OVF");

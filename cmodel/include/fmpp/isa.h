@@ -37,6 +37,8 @@ bool is_legal(uint64_t raw, unsigned num_words);
 std::string disasm(uint64_t raw);
 
 // Codes of the sub-fields (generated from the map, like every position used here).
+using map::CmpFn;
+using map::CmpLt;
 using map::FuncFn;
 using map::RefFn;
 using map::RefPart;
@@ -50,6 +52,9 @@ Instr maskset(uint32_t mask);
 // fd <- fn(flag fs, match) where match = (((src ^ key) & ~mask) == 0),
 // src = word `a` (kData) or the block index (kAddr; `a` must be 0).
 Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigned fs = map::kFlagSEL);
+// fd <- fn(flag fs, m) where m = (int32(word a) >= int32(imm)) for kGe, its negation
+// (word a < imm) for kLt; the mask is not used. One clock; no word, C or V changes.
+Instr cmp(CmpFn fn, CmpLt lt, unsigned a, int32_t imm, unsigned fd, unsigned fs = map::kFlagSEL);
 Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
 Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
 Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);

@@ -129,8 +129,9 @@ enum class Op : uint8_t {
   kResets = 11,  // SEL <- 0 in every block
   kSetsadr = 12,  // SEL <- (block index == imm) in every block
   kFlagop = 13,  // v <- FLAG_LUT[2 * flag FLAG_FA + flag FLAG_FB]; flag F <- v in every block, or, with FLAG_ANY set, only if some block has v = 1
+  kCmp = 14,  // signed compare of word A with IMM (A >= IMM, or A < IMM by CMP_LT), combined with flag CMP_FS by CMP_FN into flag F, in every block
 };
-inline constexpr unsigned kNumOpcodes = 14;
+inline constexpr unsigned kNumOpcodes = 15;
 inline constexpr const char* kOpNames[kNumOpcodes] = {
     "NOP",
     "MASKSET",
@@ -146,6 +147,7 @@ inline constexpr const char* kOpNames[kNumOpcodes] = {
     "RESETS",
     "SETSADR",
     "FLAGOP",
+    "CMP",
 };
 // Reserved instruction bits of each opcode: fields it does not use, and bits of a used
 // field that none of its sub-fields covers. A push with one of them set is ILLEGAL; a
@@ -165,6 +167,7 @@ inline constexpr uint64_t kOpReserved[kNumOpcodes] = {
     0x07FFFFFFFFFFFFFFull,  // RESETS
     0x07FFFFFF00000000ull,  // SETSADR
     0x00FFFFC0FFFFFEF0ull,  // FLAGOP
+    0x00FC0FC000000000ull,  // CMP
 };
 
 // Sub-fields: bit positions inside the field named in the comment (get/put apply to that
@@ -197,6 +200,13 @@ inline constexpr uint8_t kXor = 0x6;  // a ^ b
 inline constexpr uint8_t kAndNotB = 0x4;  // a & ~b
 }  // namespace lut
 inline constexpr BitField kFlagAny{8, 1};  // within IMM: 1: write flag F only if the result is 1 in some block
+inline constexpr BitField kCmpFn{0, 2};  // within X: how the compare combines with flag CMP_FS (as REF_FN)
+enum class CmpFn : uint8_t { kThrough = 0, kAnd = 1, kOr = 2 };
+inline constexpr uint32_t kCmpFnLegal = 0x7;
+inline constexpr BitField kCmpLt{2, 1};  // within X: which compare: word A >= IMM (GE) or word A < IMM (LT), both signed
+enum class CmpLt : uint8_t { kGe = 0, kLt = 1 };
+inline constexpr uint32_t kCmpLtLegal = 0x3;
+inline constexpr BitField kCmpFs{3, 3};  // within X: source flag combined with the compare
 
 struct NamedConfig {
   const char* name;
