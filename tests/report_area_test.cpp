@@ -96,6 +96,27 @@ TEST(ReportArea, ReportSetsTheFitBesideTable3) {
   EXPECT_NE(r.find(want), std::string::npos) << want << "\n" << r;
 }
 
+// The comparison with an earlier synthesis: the same models with 32 more $_MUX_ and 4
+// more $_XOR_ per block cost 32 x 12 + 4 x 12 = 432 transistors and 36 cells more per block.
+TEST(ReportArea, BaselineSectionShowsThePerBlockDifference) {
+  SynthDir before("before"), now("now");
+  before.write(kSizes, kModels);
+  std::vector<SynthDir::Model> more = kModels;
+  more[1].blk += 32;
+  more[2].blk += 4;
+  now.write(kSizes, more);
+  std::ostringstream out;
+  write_baseline_section(read_synth(now.path()), read_synth(before.path()), "the old RTL", 23, out);
+  const std::string r = out.str();
+  const double blk0 = 8 * 16 + 300 * 12 + 70 * 12 + 9 * 2;
+  const std::string want_t = "| " + grouped(blk0) + " | " + grouped(blk0 + 432) + " | +432 |";
+  for (const std::string& want : {std::string("## Against an earlier synthesis: the old RTL"),
+                                  std::string("| block without its words | 387 | 423 | +36 |"), want_t,
+                                  std::string("| 0 | 2,049 | 2,049 | 0 |"), std::string("    test synthesis")}) {
+    EXPECT_NE(r.find(want), std::string::npos) << want << "\n" << r;
+  }
+}
+
 TEST(ReportArea, BadInputFailsNamingTheFileLineAndField) {
   SynthDir d("bad");
   auto expect_error = [&](const std::string& summary, const std::string& cells, const std::string& want) {

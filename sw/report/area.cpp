@@ -22,6 +22,8 @@ struct AreaOptions {
   unsigned words = kPaperWordsRayParallel;
   std::string out;
   std::string fpga_csv;  // tools/fpga.sh summary.csv: adds the FPGA section (fpga.cpp)
+  std::string baseline_dir;    // an earlier synthesis: adds the section comparing the two
+  std::string baseline_label;  // what the earlier RTL was
 };
 }  // namespace
 
@@ -36,13 +38,23 @@ void register_area(CLI::App& app) {
       ->check(CLI::Range(1u, 64u));
   sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout ('-': stdout)");
   sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh: adds the measured FPGA clock and size");
+  sub->add_option("--baseline-dir", opt->baseline_dir,
+                  "tools/synth.sh output of an earlier RTL: adds a section comparing its costs with these");
+  sub->add_option("--baseline-label", opt->baseline_label, "what the earlier RTL of --baseline-dir was (its heading)");
   sub->callback([opt] {
     if (!opt->out.empty()) check_writable("--out", opt->out);
+    if (opt->baseline_dir.empty() != opt->baseline_label.empty()) {
+      throw std::runtime_error("--baseline-dir and --baseline-label go together (got only " +
+                               std::string(opt->baseline_dir.empty() ? "--baseline-label" : "--baseline-dir") + ")");
+    }
     const SynthData data = read_synth(opt->synth_dir);
+    SynthData before;
+    if (!opt->baseline_dir.empty()) before = read_synth(opt->baseline_dir);
     FpgaData fpga;
     if (!opt->fpga_csv.empty()) fpga = read_fpga(opt->fpga_csv);
     auto write = [&](std::ostream& os) {
       write_area_report(data, opt->words, os);
+      if (!before.sizes.empty()) write_baseline_section(data, before, opt->baseline_label, opt->words, os);
       if (!fpga.runs.empty()) write_fpga_section(fpga, os);
     };
     if (opt->out.empty() || opt->out == "-") {

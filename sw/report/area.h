@@ -100,4 +100,10 @@ std::string grouped(double v);
 // comparison.
 void write_area_report(const SynthData& data, unsigned words, std::ostream& out);
 
+// A section setting the cost model of `data` beside that of an earlier synthesis
+// `before` (the same flow on an earlier RTL, named by `label`): what a change of the RTL
+// cost per block, per word and in the fixed part, and the two runs' provenance.
+void write_baseline_section(const SynthData& data, const SynthData& before, const std::string& label, unsigned words,
+                            std::ostream& out);
+
 }  // namespace fmpp::report

@@ -203,7 +203,8 @@ void how_measured(std::ostream& out) {
          "counts them, writing summary.csv and cells.csv) and then this report. docs/area.md is this report over the "
          "results committed in docs/synth/: after `make synth`, `cp build/synth/*.csv docs/synth/` and "
          "`build/fmpp-report area --synth-dir docs/synth --fpga-csv docs/fpga/summary.csv --out docs/area.md` (the ctest report_area_doc checks that "
-         "it is current).\n";
+         "it is current). A section comparing with an earlier synthesis, below, comes from the same command with "
+         "`--baseline-dir DIR --baseline-label TEXT` on that run's CSVs, kept in a folder of docs/synth/.\n";
 }
 
 }  // namespace
@@ -218,6 +219,31 @@ void write_area_report(const SynthData& data, unsigned words, std::ostream& out)
   table3(out, a);
   what_differs(out, a);
   how_measured(out);
+}
+
+void write_baseline_section(const SynthData& data, const SynthData& before, const std::string& label, unsigned words,
+                            std::ostream& out) {
+  const AreaModel now = area_model(data, words), was = area_model(before, words);
+  out << "\n## Against an earlier synthesis: " << label << "\n\n";
+  out << "The same flow and sizes on the earlier RTL (`--baseline-dir`), its provenance:\n\n";
+  std::istringstream prov(before.provenance);
+  for (std::string l; std::getline(prov, l);) out << "    " << l << "\n";
+  out << "\n| part | cells before | cells now | difference | transistors before | transistors now | difference |\n";
+  out << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  auto signed_grouped = [](double v) { return std::abs(v) < 0.5 ? std::string("0") : (v > 0 ? "+" : "") + grouped(v); };
+  auto row = [&](const char* what, double c0, double c1, double t0, double t1) {
+    out << "| " << what << " | " << grouped(c0) << " | " << grouped(c1) << " | " << signed_grouped(c1 - c0) << " | "
+        << grouped(t0) << " | " << grouped(t1) << " | " << signed_grouped(t1 - t0) << " |\n";
+  };
+  row("block without its words", was.cells.per_block, now.cells.per_block, was.transistors.per_block,
+      now.transistors.per_block);
+  row("word of a block", was.cells.per_block_word, now.cells.per_block_word, was.transistors.per_block_word,
+      now.transistors.per_block_word);
+  row("fixed part", was.cells.fixed, now.cells.fixed, was.transistors.fixed, now.transistors.fixed);
+  const double b0 = was.transistors.per_block + words * was.transistors.per_block_word;
+  const double b1 = now.transistors.per_block + words * now.transistors.per_block_word;
+  out << "\nA block of " << words << " words: " << grouped(b0) << " -> " << grouped(b1) << " transistors ("
+      << (b1 >= b0 ? "+" : "") << fixed((b1 - b0) / b0 * 100, 2) << " %).\n";
 }
 
 }  // namespace fmpp::report
