@@ -1,7 +1,9 @@
 // `fmpp-report area`, the Markdown (area.h): one function per section of docs/area.md,
 // each formatting the synthesized sizes, the fitted cost model and the paper's figures.
 #include <cmath>
+#include <algorithm>
 #include <iomanip>
+#include <map>
 #include <ostream>
 #include <sstream>
 
@@ -240,9 +242,43 @@ void write_baseline_section(const SynthData& data, const SynthData& before, cons
   row("word of a block", was.cells.per_block_word, now.cells.per_block_word, was.transistors.per_block_word,
       now.transistors.per_block_word);
   row("fixed part", was.cells.fixed, now.cells.fixed, was.transistors.fixed, now.transistors.fixed);
+  // The fit spreads a change over its four parts; a direct figure per word count: the
+  // cost between the fewest and the most blocks synthesized with those words, per block.
+  out << "\nPer block measured directly (sizes of equal words, smallest and largest block count, "
+         "difference divided by the block difference):\n\n";
+  out << "| words | blocks | cells per block before | now | difference | transistors per block before | now | "
+         "difference |\n| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  auto span = [](const SynthData& d, unsigned w, unsigned b) -> const SynthSize* {
+    for (const SynthSize& z : d.sizes) {
+      if (z.words == w && z.blocks == b) return &z;
+    }
+    return nullptr;
+  };
+  std::map<unsigned, std::pair<unsigned, unsigned>> range;  // words -> fewest, most blocks (in both runs)
+  for (const SynthSize& z : data.sizes) {
+    if (!span(before, z.words, z.blocks)) continue;
+    auto it = range.find(z.words);
+    if (it == range.end()) {
+      range[z.words] = {z.blocks, z.blocks};
+    } else {
+      it->second.first = std::min(it->second.first, z.blocks);
+      it->second.second = std::max(it->second.second, z.blocks);
+    }
+  }
+  for (const auto& [w, r] : range) {
+    if (r.first == r.second) continue;
+    const double db = r.second - r.first;
+    const SynthSize *a0 = span(before, w, r.first), *a1 = span(before, w, r.second);
+    const SynthSize *n0 = span(data, w, r.first), *n1 = span(data, w, r.second);
+    const double c0 = (a1->cells - a0->cells) / db, c1 = (n1->cells - n0->cells) / db;
+    const double t0 = (a1->transistors - a0->transistors) / db, t1 = (n1->transistors - n0->transistors) / db;
+    out << "| " << w << " | " << r.first << " .. " << r.second << " | " << grouped(c0) << " | " << grouped(c1) << " | "
+        << signed_grouped(c1 - c0) << " | " << grouped(t0) << " | " << grouped(t1) << " | " << signed_grouped(t1 - t0)
+        << " |\n";
+  }
   const double b0 = was.transistors.per_block + words * was.transistors.per_block_word;
   const double b1 = now.transistors.per_block + words * now.transistors.per_block_word;
-  out << "\nA block of " << words << " words: " << grouped(b0) << " -> " << grouped(b1) << " transistors ("
+  out << "\nA block of " << words << " words by the fit: " << grouped(b0) << " -> " << grouped(b1) << " transistors ("
       << (b1 >= b0 ? "+" : "") << fixed((b1 - b0) / b0 * 100, 2) << " %).\n";
 }
 

@@ -152,7 +152,7 @@ def _how_generated():
         "the array and the checker slice instructions with the field parameters, the tile and ALU "
         "slice X and IMM with the sub-field parameters.",
         "- `cmodel/include/fmpp/map.h`: the same as `fmpp::map::BitField` values (`get`, `put`, "
-        "`set`, `mask`), enums (`Op`, `Err`, `RefFn`, `RefPart`, `FuncFn`), names (`kOpNames`, "
+        "`set`, `mask`), enums (`Op`, `Err`, `RefFn`, `RefPart`, `FuncFn`, `CmpFn`, `CmpLt`), names (`kOpNames`, "
         "`kErrNames`), `kOpReserved`, the `k<Sub>Legal` masks and the FLAGOP tables (`lut::`). The "
         "model, the instruction builders (`fmpp::ins`), the Device and the random program generator "
         "use only these.",
