@@ -38,7 +38,7 @@ TEST(Device, IndicesOutsideTheDeviceAreRefused) {
 TEST(Device, EachErrorReportsItsOwnCause) {
   ModelBus bus(Config{64, 8});
   Device dev(bus);
-  const uint64_t illegal = uint64_t{14} << 59;  // no such opcode
+  const uint64_t illegal = map::kFieldOp.put(map::kNumOpcodes);  // no such opcode
   try {
     dev.push(illegal);
     ADD_FAILURE();
@@ -118,7 +118,7 @@ TEST_P(BusRules, AnInvalidPushIsAnsweredAfterTheQueueDrains) {
   ASSERT_EQ(bus.write(map::kRegCtrl, 200), Resp::kOkay);  // 201 clocks per entry
   for (unsigned k = 0; k < map::kQueueDepth; ++k) ASSERT_EQ(bus.write(map::kRegQueue, ins::nop().encode()), Resp::kOkay);
   const uint64_t c0 = bus.cycles();
-  ASSERT_EQ(bus.write(map::kRegQueue, uint64_t{14} << 59), Resp::kSlvErr);
+  ASSERT_EQ(bus.write(map::kRegQueue, map::kFieldOp.put(map::kNumOpcodes)), Resp::kSlvErr);
   EXPECT_GT(bus.cycles() - c0, (map::kQueueDepth - 1) * 200u) << "answered before the earlier pushes ran";
   uint64_t err = 0;
   ASSERT_EQ(bus.read(map::kRegError, &err), Resp::kOkay);
