@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "sw/isect/fixed_point.h"
@@ -70,7 +71,7 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
   }
 }
 
-SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
+SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint) const {
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
@@ -112,9 +113,16 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
     if (u0 > 0) {
       // Any point of the box on the ray has S_c <= 2^vbits / (u0 t_scale).
       const double thr = std::ceil(unit_ / (u0 * t_scale_) * (1 + 0x1p-40)) + 1;
-      if (thr < kWordLimit) cmp.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+      if (thr < kWordLimit) {
+        cmp.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+        // And the ray's own reach (its tmax as a compared sum, 0 for none): hits in the box
+        // have S_c <= thr, so none of them lies before tmax if thr < the reach.
+        if (reach_) cmp.push_back({Compare::kDist, cull_.reach, static_cast<int64_t>(thr)});
+      }
     }
-    if (cmp.empty()) return Verdict::kSome;  // a ray of the pass is of this class and passes
+    // A ray of the pass is of this class and passes (unless it is a hinted one: then the
+    // blocks decide, with the class test alone).
+    if (cmp.empty() && hint < 0) return Verdict::kSome;
     classes.push_back(std::move(cmp));
     class_id.push_back(c);
   }
@@ -124,7 +132,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
   p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
   bool dist = false;
   for (const std::vector<Compare>& cmp : classes) {
-    for (const Compare& k : cmp) dist = dist || k.kind == Compare::kDist;
+    for (const Compare& k : cmp) dist = dist || (k.kind == Compare::kDist && k.word == kD);
   }
   if (dist) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
@@ -154,7 +162,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
         switch (cmp[k].kind) {
           case Compare::kLo: p << sub(w, cmp[k].word, w, kSel); break;     // V - c >= 0
           case Compare::kHi:                                                 // c - V >= 0
-          case Compare::kDist: p << sub(w, w, cmp[k].word, kSel); break;  // c - (best - BB) >= 0
+          case Compare::kDist: p << sub(w, w, cmp[k].word, kSel); break;  // c - (best - BB) >= 0, c - reach >= 0
         }
       }
       p.mask(layout::kDataMask);  // a REF against 0 under it tests the sign bit
@@ -163,17 +171,29 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
         first = false;
       }
     }
+    if (first) p << flagop(kWin, kTmp, kTmp, lut::kA);  // one class, no compare: every ray
     if (!one) p << flagop(kHit, n == 0 ? kWin : kHit, kWin, n == 0 ? lut::kA : lut::kOr);
   }
-  p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
+  if (hint >= 0) {
+    if (!has_cull_) throw std::logic_error("SharedBoxTest: a hint without the words to hold it");
+    // The blocks whose ray's hint is this leaf's triangle leave it out (Ray::hint); C is
+    // free between broadcasts.
+    constexpr unsigned kC = map::kFlagC;
+    p.mask(0);  // every bit compared (kDataMask would leave only the sign)
+    p << ref(RefFn::kThrough, RefPart::kData, cull_.hint, static_cast<uint32_t>(hint), kC, kC);
+    p << flagop(kC, kTmp, kC, lut::kAndNotB);
+    p << flagop(kSel, one ? kWin : kHit, kC, lut::kAnd);
+  } else {
+    p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
+  }
   p.mask(layout::kDataMask);
   return Verdict::kTest;
 }
 
-bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st) const {
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint) const {
   Program p;
   p.assume_mask(layout::kDataMask);
-  const Verdict v = append(b, p);
+  const Verdict v = append(b, p, hint);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
