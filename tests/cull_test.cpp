@@ -274,6 +274,69 @@ TEST(Culling, ProbeChangesNoResult) {
   }
 }
 
+TEST(CullHint, PlaneBeyondReachOnlyWithAMargin) {
+  const Triangle t{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
+  Ray r{{0.2, 0.2, 5}, {0, 0, -5}};  // meets the plane z = 0 at t = 1
+  r.tmax = 1 - 1e-4;
+  EXPECT_TRUE(plane_beyond_reach(r, t));
+  r.tmax = 1;
+  EXPECT_FALSE(plane_beyond_reach(r, t)) << "the plane at the end of the reach";
+  r.tmax = 0.5;
+  r.tmin = 0.25;
+  EXPECT_TRUE(plane_beyond_reach(r, t));
+  r.tmin = 0;
+  r.o = {0.2, 0.2, -5};  // behind the origin: t = -1 < tmin
+  r.tmax = 2;
+  EXPECT_TRUE(plane_beyond_reach(r, t));
+  // Nearly parallel: no proof, whatever the distance.
+  Ray g{{0, 0, 1e-9}, {1, 1, -1e-9}};
+  g.tmax = 0.5;
+  EXPECT_FALSE(plane_beyond_reach(g, t));
+  const Triangle flat{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}};
+  EXPECT_FALSE(plane_beyond_reach(r, flat)) << "a degenerate triangle has no plane";
+}
+
+// Shadow rays from a light to points on the scene's triangles, each with its own triangle
+// as hint and tmax 1 - 1e-4, as the renderer casts them: the hints and the rays' reach
+// (both on the FMPP) change no result and cut broadcasts; a false hint is ignored; an
+// FMPP without the two words runs without them.
+TEST(CullHint, ShadowRaysLeaveTheirOwnTriangleOut) {
+  const std::vector<Triangle> tris = test_scene();
+  const glm::dvec3 light(0.3, 6, 0.2);
+  std::vector<Ray> rays, plain;
+  for (size_t k = 0; k < tris.size(); ++k) {
+    for (const glm::dvec3& w : {glm::dvec3(0.2, 0.3, 0.5), glm::dvec3(0.6, 0.2, 0.2)}) {
+      const glm::dvec3 p = w.x * tris[k].p[0] + w.y * tris[k].p[1] + w.z * tris[k].p[2];
+      Ray r{light, p - light};
+      r.tmax = 1 - 1e-4;
+      plain.push_back(r);
+      r.hint = static_cast<int>(k);
+      rays.push_back(r);
+    }
+  }
+  KernelStats with, without;
+  const std::vector<Hit> a = run(plain, tris, true, true, &without);
+  const std::vector<Hit> b = run(rays, tris, true, true, &with);
+  expect_same(a, b, rays);
+  EXPECT_LT(with.broadcasts, without.broadcasts);
+  // False hints (the triangle some ray does hit first): ignored, the results unchanged.
+  std::vector<Ray> wrong = plain;
+  size_t false_hints = 0;
+  for (size_t i = 0; i < wrong.size(); ++i) {
+    if (a[i].hit() && a[i].t < wrong[i].tmax) wrong[i].hint = a[i].tri, ++false_hints;
+  }
+  ASSERT_GT(false_hints, 10u);
+  KernelStats st;
+  expect_same(a, run(wrong, tris, true, true, &st), wrong);
+  // With 14 words the blocks hold neither word: no hint, no reach, the same results.
+  auto be = make_backend("cmodel", Config{64, 14});
+  Device dev(be->bus());
+  KernelOptions o;
+  KernelStats narrow;
+  expect_same(a, intersect_fmpp(dev, rays, tris, o, &narrow), rays);
+  EXPECT_EQ(narrow.broadcasts, without.broadcasts);
+}
+
 // A stand-in for several FMPPs that runs every pass itself, recording the order.
 class EveryPass : public PassShare {
  public:

@@ -144,11 +144,13 @@ TEST(Shade, AHitQueriesTheLightsInFrontAndSpawnsItsMaterialsRays) {
   ShadeOutput out;
   shader.shade(r, Path{0, glm::dvec3(1), RayKind::kPrimary}, h, true, img, out);
   expect_near(img[0], 0.5 * glm::dvec3(0.7) * 0.1);  // ambient through the local share
-  // Only the light above: one shadow ray from it, ending at the point (t = 1).
+  // Only the light above: one shadow ray from it, towards the point (t = 1), asking what
+  // lies before 1 - 1e-4, with the point's triangle as its culling hint.
   ASSERT_EQ(out.shadow_rays.size(), 1u);
   expect_near(out.shadow_rays[0].o, sc.lights[0].position);
   expect_near(out.shadow_rays[0].o + out.shadow_rays[0].d, glm::dvec3(0.25, 0.25, 0));
-  EXPECT_EQ(out.shadow_rays[0].tmax, 1);
+  EXPECT_EQ(out.shadow_rays[0].tmax, 1 - 1e-4);
+  EXPECT_EQ(out.shadow_rays[0].hint, 0);
   EXPECT_EQ(out.shadows[0].own, 0);
   // One mirror ray, upward, starting just above the surface, excluding the triangle.
   ASSERT_EQ(out.next.size(), 1u);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "sw/isect/fixed_point.h"
@@ -20,16 +21,16 @@ using layout::kTmp;
 using layout::kWin;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Constants c stay within +-2^29 and the compared values within +-2^30 (directions
-// 2^vbits <= 2^28, S_c below 2^30, a flagged block's reach -2^30). Each compare is one
-// CMP (a signed compare with the immediate, no difference formed): V >= c is CMP GE c,
-// V <= c and reach <= c are CMP LT c + 1, and since c < 2^29, c + 1 fits in 32 bits.
-// The one difference the test forms, the reach best - BB (word D, free between
-// broadcasts), stays within +-2^30 as well.
+// Constants c stay within +-2^29 (directions 2^vbits <= 2^28; distance cuts below the
+// limit). Each compare is one CMP, a signed compare with the immediate that forms no
+// difference and so cannot overflow whatever the word holds: V >= c is CMP GE c; V <= c
+// and a reach <= c are CMP LT c + 1, and since c < 2^29, c + 1 fits in 32 bits. The one
+// difference the test forms, the best's reach best - BB (word D, free between
+// broadcasts), stays within +-2^30 (S_c below 2^30, a flagged block's reach -2^30).
 constexpr double kWordLimit = 0x1p29;
 
-// One compare of a class: V_word >= c (lo), V_word <= c (hi), or the best's reach
-// best - BB <= c (dist; word kD holds best - BB). |c| < 2^29.
+// One compare of a class: V_word >= c (lo), V_word <= c (hi), or a reach <= c (dist:
+// the best's, word kD holding best - BB, or the ray's own, its cull word). |c| < 2^29.
 struct Compare {
   enum Kind { kLo, kHi, kDist } kind;
   unsigned word;
@@ -69,7 +70,7 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
   }
 }
 
-SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
+SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint) const {
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
@@ -111,9 +112,16 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
     if (u0 > 0) {
       // Any point of the box on the ray has S_c <= 2^vbits / (u0 t_scale).
       const double thr = std::ceil(unit_ / (u0 * t_scale_) * (1 + 0x1p-40)) + 1;
-      if (thr < kWordLimit) cmps.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+      if (thr < kWordLimit) {
+        cmps.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+        // And the ray's own reach (its tmax as a compared sum, 0 for none): hits in the box
+        // have S_c <= thr, so none of them lies before tmax if thr < the reach.
+        if (reach_) cmps.push_back({Compare::kDist, cull_.reach, static_cast<int64_t>(thr)});
+      }
     }
-    if (cmps.empty()) return Verdict::kSome;  // a ray of the pass is of this class and passes
+    // A ray of the pass is of this class and passes (unless it is a hinted one: then the
+    // blocks decide, with the class test alone).
+    if (cmps.empty() && hint < 0) return Verdict::kSome;
     classes.push_back(std::move(cmps));
     class_id.push_back(c);
   }
@@ -122,7 +130,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
   p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
   bool dist = false;
   for (const std::vector<Compare>& cmps : classes) {
-    for (const Compare& k : cmps) dist = dist || k.kind == Compare::kDist;
+    for (const Compare& k : cmps) dist = dist || (k.kind == Compare::kDist && k.word == kD);
   }
   if (dist) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
@@ -149,21 +157,33 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p) const {
       if (k.kind == Compare::kLo) {
         p << cmp(fn, CmpLt::kGe, k.word, static_cast<int32_t>(k.c), kWin, kWin);  // V >= c
       } else {
-        p << cmp(fn, CmpLt::kLt, k.word, static_cast<int32_t>(k.c + 1), kWin, kWin);  // V <= c, reach <= c
+        p << cmp(fn, CmpLt::kLt, k.word, static_cast<int32_t>(k.c + 1), kWin, kWin);  // V <= c, D <= c, reach <= c
       }
       first = false;
     }
+    if (first) p << flagop(kWin, kTmp, kTmp, lut::kA);  // one class, no compare: every ray
     if (!one) p << flagop(kHit, n == 0 ? kWin : kHit, kWin, n == 0 ? lut::kA : lut::kOr);
   }
-  p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
+  if (hint >= 0) {
+    if (!has_cull_) throw std::logic_error("SharedBoxTest: a hint without the words to hold it");
+    // The blocks whose ray's hint is this leaf's triangle leave it out (Ray::hint); C is
+    // free between broadcasts.
+    constexpr unsigned kC = map::kFlagC;
+    p.mask(0);  // every bit compared (kDataMask would leave only the sign)
+    p << ref(RefFn::kThrough, RefPart::kData, cull_.hint, static_cast<uint32_t>(hint), kC, kC);
+    p << flagop(kC, kTmp, kC, lut::kAndNotB);
+    p << flagop(kSel, one ? kWin : kHit, kC, lut::kAnd);
+  } else {
+    p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
+  }
   p.mask(layout::kDataMask);
   return Verdict::kTest;
 }
 
-bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st) const {
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint) const {
   Program p;
   p.assume_mask(layout::kDataMask);
-  const Verdict v = append(b, p);
+  const Verdict v = append(b, p, hint);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());

@@ -29,6 +29,7 @@
 #include "sw/fmpp/program.h"
 #include "sw/isect/cull.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/layout.h"
 
 namespace fmpp::isect {
 
@@ -45,15 +46,22 @@ class SharedBoxTest {
   // A compare every ray of the pass passes, or a class no ray has, is left out.
   void clear();
   void add_ray(const glm::dvec3& d);
+  // The words that hold each block's reach and hint (layout::ray::cull_words), where the
+  // FMPP has them; set_reach: whether the blocks of this pass hold their ray's reach (a
+  // finite tmax: a box beyond it is cut too).
+  void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
+  void set_reach(bool on) { reach_ = on && has_cull_; }
 
   // Appends the test of box b: SEL <- the block's ray may meet b before its best
   // (unselected blocks: 0), the selection saved in flag kTmp. Unless the host decides
   // alone (nothing appended): no ray of the pass can meet b, or some ray surely may.
+  // hint >= 0: b is the box of that one triangle, and the blocks holding it as their
+  // ray's hint (word cull_words().hint; Ray::hint) leave it out (needs set_cull_words).
   enum class Verdict { kNone, kSome, kTest };
-  Verdict append(const Box& b, Program& p) const;
+  Verdict append(const Box& b, Program& p, int hint = -1) const;
   // Runs the test on the device and reads the ANY responder; SEL is restored after it.
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
-  bool any(Device& dev, const Box& b, KernelStats* st) const;
+  bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1) const;
 
  private:
   glm::dvec3 origin_;
@@ -61,6 +69,8 @@ class SharedBoxTest {
   double t_scale_;  // 1/t = S_c t_scale sv
   double angle_;
   unsigned classes_ = 0;
+  layout::ray::CullWords cull_{0, 0, 0};
+  bool has_cull_ = false, reach_ = false;
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
 };
 

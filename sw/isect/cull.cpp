@@ -57,6 +57,23 @@ double entry_distance(const RayPacket& p, const Box& b) {
   return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
 }
 
+bool plane_beyond_reach(const Ray& r, const Triangle& t) {
+  const glm::dvec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], w = t.p[0] - r.o;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double nd = glm::dot(n, r.d), dl = glm::length(r.d), nl = glm::length(n);
+  // Rounding: each component of n is within 2^-50 |e1| |e2| of the exact cross product,
+  // each dot product within 2^-50 of its terms' magnitudes; 1e-12 is far above both.
+  const double eps = 1e-12 * glm::length(e1) * glm::length(e2);
+  const double num_err = eps * glm::length(w), den_err = eps * dl;
+  // Far from parallel (the hit's own angle of incidence is then not tiny either), and the
+  // denominator's sign certain.
+  if (!(std::abs(nd) >= 1e-6 * nl * dl) || !(std::abs(nd) > 2 * den_err)) return false;
+  const double tp = glm::dot(n, w) / nd;
+  const double dt = (num_err + std::abs(tp) * den_err) / (std::abs(nd) - den_err) + 1e-12 * std::abs(tp);
+  if (!std::isfinite(tp) || !std::isfinite(dt)) return false;
+  return tp - dt >= r.tmax || tp + dt < r.tmin;
+}
+
 Box padded_box(const Triangle& t, double pad) {
   Box b;
   for (const glm::dvec3& p : t.p) b.grow(p);

@@ -171,6 +171,12 @@ void Bvh::walk_near_first(Key&& key, Enter&& enter, Leaf&& leaf) const {
   }
 }
 
+// True only if the ray certainly has no point on the plane of t with tmin <= t < tmax (the
+// plane is crossed beyond tmax or before tmin, and the ray is far from parallel to it),
+// with a margin far above double's rounding: then no hit of t in the ray's interval
+// exists, and culling may leave t out for the ray (Ray::hint).
+bool plane_beyond_reach(const Ray& r, const Triangle& t);
+
 // The box of triangle t padded by `pad` on every side.
 Box padded_box(const Triangle& t, double pad);
 // The largest side of the triangle's bounding box.

@@ -2,6 +2,7 @@
 // (see forms.h).
 #include "sw/isect/forms.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -66,6 +67,14 @@ int SharedOriginForm::sum_exponent(const FormInputs& in) {
   const int E = static_cast<int>(e_real) - 1;
   t_scale_ = std::ldexp(1.0, E + 1);
   return E;
+}
+
+uint32_t SharedOriginForm::reach_word(const Ray& r) const {
+  // 1/t = S_c t_scale sv, so a hit with t < tmax has S_c > 1 / (tmax t_scale sv); the
+  // floor of that, less one step for the division's rounding, is below every such S_c.
+  const double s = 1.0 / (r.tmax * t_scale_ * ray_scale(r.d));
+  if (!(s >= 2)) return 0;  // tmax infinite, or too far to cut anything
+  return static_cast<uint32_t>(std::min(std::floor(s * (1 - 0x1p-40)) - 1, 0x1p30));
 }
 
 double SharedOriginForm::t_of(uint32_t best, const Ray& r) const {

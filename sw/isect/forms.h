@@ -75,6 +75,9 @@ class SharedOriginForm : public RayForm {
   bool certified() const override { return true; }
   double t_rel_bound(uint32_t best, size_t k) const override;
   double t_scale() const { return t_scale_; }
+  // The ray's reach as a compared sum: at most the S_c of any hit with t < tmax (0: no
+  // cut), for the FMPP's box test (word kReach).
+  uint32_t reach_word(const Ray& r) const;
 
  protected:
   // The scale of a direction's components: its largest becomes 2^vbits.

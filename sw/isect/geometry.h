@@ -20,13 +20,17 @@ struct Triangle {
 // ray leaving a surface names its triangle in `exclude` so it cannot hit it again.
 // Hits at t >= tmax are of no interest to the caller (a shadow ray only asks what lies
 // before its point): the result may then report them or not, which lets the FMPP skip
-// triangles out of reach.
+// triangles out of reach. `hint` names a triangle whose plane the caller expects beyond
+// tmax (a shadow ray's own surface): culling leaves it out for this ray where it can
+// prove that (plane_beyond_reach, cull.h), and ignores the hint otherwise. It never
+// changes a result.
 struct Ray {
   glm::dvec3 o;
   glm::dvec3 d;
   double tmin = 0;
   int exclude = -1;
   double tmax = std::numeric_limits<double>::infinity();
+  int hint = -1;
 };
 
 // Input limits (docs/intersection.md): the intersection tests multiply up to three

@@ -33,8 +33,13 @@ void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order
       nearest[static_cast<size_t>(best.tri)] = 1;
       one[0].t1 = std::min(one[0].t1, best.t * glm::length(r.d) * (1 + kSlack));
     }
+    // A proven hint (Ray::hint) is left out, as culling leaves it out.
+    const int hint = r.hint >= 0 && static_cast<size_t>(r.hint) < tris_.size() && plane_beyond_reach(r, tris_[r.hint])
+                         ? r.hint
+                         : -1;
     bvh_.visit(one[0], [&](uint32_t tri) {
-      if (static_cast<int>(tri) != r.exclude && may_enter(one[0], boxes_[tri])) box[tri] = 1;
+      const int t = static_cast<int>(tri);
+      if (t != r.exclude && t != hint && may_enter(one[0], boxes_[tri])) box[tri] = 1;
     });
   }
 }

@@ -19,8 +19,9 @@ class Oracle {
   explicit Oracle(const std::vector<Triangle>& tris);
   // Sets any[tri] and nearest[tri] (one entry per triangle) for rays[order[begin, end)],
   // and box[tri] for the triangles whose own box some ray crosses before its exact
-  // nearest hit (or its tmax): the fewest broadcasts culling by per-triangle boxes could
-  // make, knowing every ray's answer in advance.
+  // nearest hit (or its tmax), its proven hint left out (Ray::hint): the fewest
+  // broadcasts culling by per-triangle boxes could make, knowing every ray's answer in
+  // advance.
   void mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
             std::vector<char>& any, std::vector<char>& nearest, std::vector<char>& box) const;
   // The exact nearest hit of r (t in its interval, its excluded triangle left out),

@@ -13,6 +13,10 @@ using fmpp::isect::Ray;
 
 namespace {
 
+// A shadow ray runs from the light (t = 0) to the shaded point (t = 1); what it meets
+// from here on is the point's own surface as far as the fixed point's error can tell.
+constexpr double kShadowEnd = 1 - 1e-4;
+
 glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
   const glm::dvec3 v0 = t.p[1] - t.p[0], v1 = t.p[2] - t.p[0], v2 = p - t.p[0];
   const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
@@ -87,9 +91,12 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
     const double len = glm::length(l);
     if (len == 0 || glm::dot(s.nf, l) <= 0 || glm::dot(s.n, l) <= 0) continue;  // light behind the surface
     const glm::dvec3 c = m.direct(path.weight, s, l / len, light.color);
-    // Cast from the light: every shadow ray of one light shares its origin.
+    // Cast from the light: every shadow ray of one light shares its origin. It asks only
+    // what lies before kShadowEnd (hits beyond count as lit below), so its own triangle,
+    // whose plane it meets at t = 1, is a culling hint (Ray::hint).
     Ray sr{light.position, s.p - light.position};
-    sr.tmax = 1;
+    sr.tmax = kShadowEnd;
+    sr.hint = h.tri;
     out.shadow_rays.push_back(sr);
     out.shadows.push_back(Shadow{path.pixel, c, h.tri});
   }
@@ -109,7 +116,7 @@ void Shader::add_unshadowed(const std::vector<Shadow>& shadows, const std::vecto
   for (size_t i = 0; i < hits.size(); ++i) {
     // Lit unless the first thing from the light is something other than the point's
     // own triangle, before the point (t < 1; 1e-4 absorbs the fixed-point error).
-    const bool lit = !hits[i].hit() || hits[i].tri == shadows[i].own || hits[i].t >= 1 - 1e-4;
+    const bool lit = !hits[i].hit() || hits[i].tri == shadows[i].own || hits[i].t >= kShadowEnd;
     if (lit) img[shadows[i].pixel] += shadows[i].contribution;
   }
 }
