@@ -37,6 +37,27 @@ struct Compare {
   int64_t c;
 };
 
+// A box's slopes seen from the origin overstate those of a triangle inside it that lies
+// across the view (a box has 8 corners; the triangle covers 3 of its points). x / u is
+// linear-fractional, so over a convex set with u > 0 its extremes are at the set's
+// vertices: for the triangle grown by a cube of half-side e (the error pad and the
+// directions' widening; every point the FMPP may report a hit at), the 24 points
+// vertex +- e per axis. tri is relative to the origin; s u is the class axis i.
+void narrow_to_triangle(const Triangle& tri, double e, int i, double s, int j, double* smin, double* smax) {
+  double a = kInf, b = -kInf;
+  for (const glm::dvec3& v : tri.p) {
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 q = v + e * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+      const double u = s * q[i];
+      if (!(u > 0)) return;  // the set reaches u <= 0: the box's range stands
+      a = std::min(a, q[j] / u);
+      b = std::max(b, q[j] / u);
+    }
+  }
+  *smin = std::max(*smin, a);
+  *smax = std::min(*smax, b);
+}
+
 }  // namespace
 
 SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle)
@@ -70,10 +91,17 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
   }
 }
 
-SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint) const {
+SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
+                                             double pad) const {
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
+  Triangle rel;
+  const Triangle* tri = nullptr;
+  if (leaf) {
+    for (int k = 0; k < 3; ++k) rel.p[k] = leaf->p[k] - origin_;
+    tri = &rel;
+  }
   const double far = glm::length(glm::max(glm::abs(lo), glm::abs(hi)));
   if (!std::isfinite(far)) return Verdict::kSome;  // cannot bound it: every ray may meet it
   const double widen = (2 * angle_ + 0x1p-40) * far;
@@ -95,8 +123,9 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
       if (j == i) continue;
       // Slopes x / u over the part of the box with u > 0, in units of 2^-vbits.
       const double x0 = lo[j], x1 = hi[j];
-      const double smin = x0 >= 0 ? x0 / u1 : (u0 > 0 ? x0 / u0 : -kInf);
-      const double smax = x1 <= 0 ? x1 / u1 : (u0 > 0 ? x1 / u0 : kInf);
+      double smin = x0 >= 0 ? x0 / u1 : (u0 > 0 ? x0 / u0 : -kInf);
+      double smax = x1 <= 0 ? x1 / u1 : (u0 > 0 ? x1 / u0 : kInf);
+      if (tri) narrow_to_triangle(*tri, pad + widen, i, s, j, &smin, &smax);
       const double cmin = std::floor(smin * unit_) - 2, cmax = std::ceil(smax * unit_) + 2;
       // Decided on the host: no ray of the pass inside, or every one.
       const double lo_v = static_cast<double>(vmin_[c][j]), hi_v = static_cast<double>(vmax_[c][j]);
@@ -180,10 +209,11 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   return Verdict::kTest;
 }
 
-bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint) const {
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,
+                        double pad) const {
   Program p;
   p.assume_mask(layout::kDataMask);
-  const Verdict v = append(b, p, hint);
+  const Verdict v = append(b, p, hint, leaf, pad);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());

@@ -57,11 +57,15 @@ class SharedBoxTest {
   // alone (nothing appended): no ray of the pass can meet b, or some ray surely may.
   // hint >= 0: b is the box of that one triangle, and the blocks holding it as their
   // ray's hint (word cull_words().hint; Ray::hint) leave it out (needs set_cull_words).
+  // leaf: b is the box of that one triangle, padded by pad (every point where the FMPP
+  // may report a hit of it lies within pad of it): the directions are tested against the
+  // triangle's own slopes, narrower than the box's.
   enum class Verdict { kNone, kSome, kTest };
-  Verdict append(const Box& b, Program& p, int hint = -1) const;
+  Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0) const;
   // Runs the test on the device and reads the ANY responder; SEL is restored after it.
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
-  bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1) const;
+  bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
+           double pad = 0) const;
 
  private:
   glm::dvec3 origin_;

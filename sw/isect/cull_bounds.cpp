@@ -82,7 +82,8 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
       pad = 2 * ext * delta;
     }
     pad += 1e-9 * (ext + far);  // the box test's own rounding
-    cb.boxes.push_back(padded_box(t, std::isfinite(pad) ? std::min(pad, kMaxPad) : kMaxPad));
+    cb.pad.push_back(std::isfinite(pad) ? std::min(pad, kMaxPad) : kMaxPad);
+    cb.boxes.push_back(padded_box(t, cb.pad.back()));
     cb.rel.push_back(rel);
     const glm::dvec3 nrm = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
     cb.normal.push_back(glm::length(nrm) > 0 ? glm::normalize(nrm) : glm::dvec3(0));

@@ -22,6 +22,7 @@ struct CullBounds {
   // arbitrary-origin form), or not bounded here (the watertight form: no distance cut).
   enum class Distance { kRelative, kGeneral, kNone };
   std::vector<Box> boxes;          // per broadcast: the triangle's padded box
+  std::vector<double> pad;         // per broadcast: that pad
   std::vector<double> rel;         // kRelative: relative distance error bound, per broadcast (else 0)
   std::vector<glm::dvec3> normal;  // unit normal, per broadcast (kGeneral)
   bool use_tmax = false;           // the rays' tmax may cut their reach

@@ -225,9 +225,13 @@ class RayParallelPlan : public PassPlan {
       const Bvh::Node& n = nodes[id];
       if (!node_reach_[id]) return false;
       if (n.count == 0) return true;
-      // A one-triangle leaf is left out for the blocks whose proven hint it is.
-      const int tri = n.count == 1 ? form_.broadcasts[bvh_.item(n.first)].tri : -1;
-      return boxes_->any(dev, n.box, st_, tri >= 0 && hinted_[static_cast<size_t>(tri)] ? tri : -1);
+      // A one-triangle leaf is tested against the triangle's own slopes, and left out for
+      // the blocks whose proven hint it is.
+      if (n.count != 1) return boxes_->any(dev, n.box, st_);
+      const size_t k = bvh_.item(n.first);
+      const int tri = form_.broadcasts[k].tri;
+      return boxes_->any(dev, n.box, st_, hinted_[static_cast<size_t>(tri)] ? tri : -1,
+                         &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
     };
     std::vector<uint32_t> leaf;
     bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
