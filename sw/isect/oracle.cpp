@@ -44,6 +44,18 @@ void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order
   }
 }
 
+void Oracle::count(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
+                   const std::vector<Broadcast>& broadcasts, KernelStats* st) const {
+  std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0), box(tris_.size(), 0);
+  mark(rays, order, begin, end, any, nearest, box);
+  for (const Broadcast& b : broadcasts) {
+    const size_t t = static_cast<size_t>(b.tri), steps = b.program().size();
+    if (any[t]) ++st->oracle_any, st->oracle_any_steps += steps;
+    if (box[t]) ++st->oracle_box, st->oracle_box_steps += steps;
+    if (nearest[t]) ++st->oracle_nearest, st->oracle_nearest_steps += steps;
+  }
+}
+
 Hit Oracle::nearest(const Ray& r) const {
   constexpr double kSlack = 1e-9;
   const std::vector<Ray> one{r};

@@ -11,6 +11,8 @@
 
 #include "sw/isect/cull.h"
 #include "sw/isect/geometry.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/ray_parallel.h"
 
 namespace fmpp::isect {
 
@@ -24,6 +26,10 @@ class Oracle {
   // advance.
   void mark(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
             std::vector<char>& any, std::vector<char>& nearest, std::vector<char>& box) const;
+  // Counts, for rays[order[begin, end)] (one pass), the broadcasts among `broadcasts` each
+  // oracle would make, with their instructions (KernelStats::oracle_*).
+  void count(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin, size_t end,
+             const std::vector<Broadcast>& broadcasts, KernelStats* st) const;
   // The exact nearest hit of r (t in its interval, its excluded triangle left out),
   // walking the hierarchy front to back.
   Hit nearest(const Ray& r) const;

@@ -14,6 +14,7 @@
 #include "sw/isect/layout.h"
 #include "sw/isect/oracle.h"
 #include "sw/isect/order.h"
+#include "sw/isect/pass_hints.h"
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
 
@@ -78,7 +79,7 @@ class RayParallelPlan : public PassPlan {
       std::fill(reach_.begin(), reach_.end(), 0);
       bvh_.reached(packets(base, count, opt_.cull_packet), reach_, &st_->box_tests);
     }
-    if (oracle_) count_oracle(base, count);
+    if (oracle_) oracle_->count(rays_, idx_, base, base + count, form_.broadcasts, st_);
     if (boxes_) {  // walk() decides the rest on the FMPP, as it goes
       number_of_.assign(nb, 0);
       // A node is worth walking into if the host's walk reached some leaf below it.
@@ -230,8 +231,7 @@ class RayParallelPlan : public PassPlan {
       if (n.count != 1) return boxes_->any(dev, n.box, st_);
       const size_t k = bvh_.item(n.first);
       const int tri = form_.broadcasts[k].tri;
-      return boxes_->any(dev, n.box, st_, hinted_[static_cast<size_t>(tri)] ? tri : -1,
-                         &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
+      return boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
     };
     std::vector<uint32_t> leaf;
     bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
@@ -258,50 +258,13 @@ class RayParallelPlan : public PassPlan {
     form_.init(init);
     init.mask(layout::kDataMask);  // the broadcasts keep this mask throughout
     push_counted(dev, init.code(), st_);
-    write_reach(dev, base, count);
-  }
-
-  // For the FMPP's box tests (walk), where the FMPP has the words (layout::ray::cull_words):
-  // each block's reach (its ray's tmax: a box beyond it is cut whatever the block's best)
-  // and the leaf it leaves out, its ray's hint (Ray::hint) where plane_beyond_reach
-  // proves it (kNoHint for none). The two words cost two bus writes a ray; they are
-  // written only where the proven hints are many different triangles (one in kHintShare
-  // rays or more): a triangle that is the hint of many rays (a large wall) is broadcast
-  // for the rays that do not end on it anyway, and the reach matters little without the
-  // hints (a ray's own triangle, sent, cuts the boxes beyond it). Measured at 128 x 128
-  // (4096 blocks, n = 24; clocks of the frame): without the words, in every pass, and
-  // with kHintShare 8, 16, 32, 64: the Cornell box 1,571,313, 1,606,334, 1,554,779,
-  // 1,568,069, 1,568,069, 1,578,101; armadillo 5,985,452, 5,768,022, 5,806,729,
-  // 5,755,695, 5,750,122, 5,759,830; scans 8,174,883, 7,662,250, 7,790,352, then
-  // 7,662,250 from 16 on.
-  static constexpr unsigned kHintShare = 32;
-  void write_reach(Device& dev, size_t base, unsigned count) {
-    for (int t : hinted_list_) hinted_[static_cast<size_t>(t)] = 0;
-    hinted_list_.clear();
-    if (!boxes_ || !cull_words_) return;
-    const layout::ray::CullWords cw = layout::ray::cull_words(opt_.mul == MulMode::kGeneric);
-    std::vector<uint32_t> word(count, layout::ray::kNoHint), reach(count, 0);
-    bool cut = false;
-    for (unsigned b = 0; b < count; ++b) {
-      const Ray& r = rays_[idx_[base + b]];
-      reach[b] = shared_->reach_word(r);
-      cut = cut || reach[b] > 0;
-      if (r.hint < 0 || static_cast<size_t>(r.hint) >= tris_.size() || !plane_beyond_reach(r, tris_[r.hint])) continue;
-      word[b] = static_cast<uint32_t>(r.hint);
-      if (!hinted_[static_cast<size_t>(r.hint)]) hinted_list_.push_back(r.hint);
-      hinted_[static_cast<size_t>(r.hint)] = 1;
+    // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
+    if (boxes_ && cull_words_) {
+      hints_.write(dev, rays_, idx_, base, count, tris_, *shared_,
+                   layout::ray::cull_words(opt_.mul == MulMode::kGeneric), *boxes_);
+    } else {
+      hints_.clear();
     }
-    if (hinted_list_.size() * kHintShare < count) {
-      for (int t : hinted_list_) hinted_[static_cast<size_t>(t)] = 0;
-      hinted_list_.clear();
-      cut = false;
-    }
-    boxes_->set_reach(cut);
-    if (cut) {
-      for (unsigned b = 0; b < count; ++b) dev.write_word(b, cw.reach, reach[b]);
-    }
-    if (hinted_list_.empty()) return;
-    for (unsigned b = 0; b < count; ++b) dev.write_word(b, cw.hint, word[b]);
   }
 
   const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) override {
@@ -393,28 +356,6 @@ class RayParallelPlan : public PassPlan {
   }
 
  private:
-  // The oracles' broadcasts for this pass (oracle.h): the triangles on the FMPP that some
-  // ray hits, and that are some ray's nearest hit, with their instructions.
-  void count_oracle(size_t base, unsigned count) {
-    std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0), box(tris_.size(), 0);
-    oracle_->mark(rays_, idx_, base, base + count, any, nearest, box);
-    for (const Broadcast& b : form_.broadcasts) {
-      const size_t steps = b.program().size();
-      if (any[static_cast<size_t>(b.tri)]) {
-        ++st_->oracle_any;
-        st_->oracle_any_steps += steps;
-      }
-      if (box[static_cast<size_t>(b.tri)]) {
-        ++st_->oracle_box;
-        st_->oracle_box_steps += steps;
-      }
-      if (nearest[static_cast<size_t>(b.tri)]) {
-        ++st_->oracle_nearest;
-        st_->oracle_nearest_steps += steps;
-      }
-    }
-  }
-
   const std::vector<Ray>& rays_;
   const std::vector<size_t>& idx_;
   const std::vector<Triangle>& tris_;
@@ -443,8 +384,7 @@ class RayParallelPlan : public PassPlan {
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
   std::vector<bool> ovf_, unc_, t_loose_;
-  std::vector<char> hinted_ = std::vector<char>(tris_.size(), 0);  // some block of the pass has this hint
-  std::vector<int> hinted_list_;
+  PassHints hints_{tris_.size()};  // the pass's reach and hint words
   std::vector<int> all_, candidates_;
   const double t_acc_ = policy::t_accuracy(opt_);
 };
