@@ -74,6 +74,11 @@ bool plane_beyond_reach(const Ray& r, const Triangle& t) {
   return tp - dt >= r.tmax || tp + dt < r.tmin;
 }
 
+int proven_hint(const Ray& r, const std::vector<Triangle>& tris) {
+  if (r.hint < 0 || static_cast<size_t>(r.hint) >= tris.size()) return -1;
+  return plane_beyond_reach(r, tris[static_cast<size_t>(r.hint)]) ? r.hint : -1;
+}
+
 Box padded_box(const Triangle& t, double pad) {
   Box b;
   for (const glm::dvec3& p : t.p) b.grow(p);

@@ -176,6 +176,8 @@ void Bvh::walk_near_first(Key&& key, Enter&& enter, Leaf&& leaf) const {
 // with a margin far above double's rounding: then no hit of t in the ray's interval
 // exists, and culling may leave t out for the ray (Ray::hint).
 bool plane_beyond_reach(const Ray& r, const Triangle& t);
+// r.hint where plane_beyond_reach proves it (a valid index of tris), else -1.
+int proven_hint(const Ray& r, const std::vector<Triangle>& tris);
 
 // The box of triangle t padded by `pad` on every side.
 Box padded_box(const Triangle& t, double pad);

@@ -34,9 +34,7 @@ void Oracle::mark(const std::vector<Ray>& rays, const std::vector<size_t>& order
       one[0].t1 = std::min(one[0].t1, best.t * glm::length(r.d) * (1 + kSlack));
     }
     // A proven hint (Ray::hint) is left out, as culling leaves it out.
-    const int hint = r.hint >= 0 && static_cast<size_t>(r.hint) < tris_.size() && plane_beyond_reach(r, tris_[r.hint])
-                         ? r.hint
-                         : -1;
+    const int hint = proven_hint(r, tris_);
     bvh_.visit(one[0], [&](uint32_t tri) {
       const int t = static_cast<int>(tri);
       if (t != r.exclude && t != hint && may_enter(one[0], boxes_[tri])) box[tri] = 1;

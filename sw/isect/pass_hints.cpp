@@ -20,10 +20,11 @@ void PassHints::write(Device& dev, const std::vector<Ray>& rays, const std::vect
     const Ray& r = rays[idx[base + b]];
     reach[b] = form.reach_word(r);
     cut = cut || reach[b] > 0;
-    if (r.hint < 0 || static_cast<size_t>(r.hint) >= tris.size() || !plane_beyond_reach(r, tris[r.hint])) continue;
-    hint[b] = static_cast<uint32_t>(r.hint);
-    if (!hinted_[static_cast<size_t>(r.hint)]) list_.push_back(r.hint);
-    hinted_[static_cast<size_t>(r.hint)] = 1;
+    const int h = proven_hint(r, tris);
+    if (h < 0) continue;
+    hint[b] = static_cast<uint32_t>(h);
+    if (!hinted_[static_cast<size_t>(h)]) list_.push_back(h);
+    hinted_[static_cast<size_t>(h)] = 1;
   }
   if (list_.size() * kHintShare < count) {
     clear();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "sw/isect/box_test.h"
 #include "sw/isect/cull.h"
@@ -53,8 +54,10 @@ class RayParallelPlan : public PassPlan {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         shared_ = shared;
         const layout::ray::CullWords cw = layout::ray::cull_words(opt_.mul == MulMode::kGeneric);
-        cull_words_ = words >= cw.words;
-        if (cull_words_) boxes_->set_cull_words(cw);
+        if (words >= cw.words) {
+          cull_words_ = cw;
+          boxes_->set_cull_words(cw);
+        }
         origin_ = *origin;
       } else {
         // The probe only guesses (the final broadcasts decide), so it walks the triangles'
@@ -190,21 +193,15 @@ class RayParallelPlan : public PassPlan {
         keep[k] = entry <= bounds_.reach_for(k, u, best[b], quantum);
       });
     }
+    // Kept blocks already hold the probe's triangles: only the others are sent.
+    if (*appended) {
+      for (size_t k : done) keep[k] = 0;
+    }
     std::vector<size_t> order;
     for (size_t k = 0; k < nb; ++k) {
       if (keep[k]) order.push_back(k);
     }
-    if (*appended) {
-      std::vector<char> sent(nb, 0);
-      for (size_t k : done) sent[k] = 1;
-      std::vector<size_t> fresh;
-      for (size_t k : order) {
-        if (!sent[k]) fresh.push_back(k);
-      }
-      st_->culled += nb - done.size() - fresh.size();
-      return fresh;
-    }
-    st_->culled += nb - order.size();
+    st_->culled += nb - order.size() - (*appended ? done.size() : 0);
     return order;
   }
 
@@ -260,8 +257,7 @@ class RayParallelPlan : public PassPlan {
     push_counted(dev, init.code(), st_);
     // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
     if (boxes_ && cull_words_) {
-      hints_.write(dev, rays_, idx_, base, count, tris_, *shared_,
-                   layout::ray::cull_words(opt_.mul == MulMode::kGeneric), *boxes_);
+      hints_.write(dev, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
     } else {
       hints_.clear();
     }
@@ -376,7 +372,7 @@ class RayParallelPlan : public PassPlan {
   Bvh bvh_, probe_bvh_;
   std::unique_ptr<SharedBoxTest> boxes_;  // culling on the FMPP (shared-origin paper form)
   const SharedOriginForm* shared_ = nullptr;  // the form, with boxes_
-  bool cull_words_ = false;                   // the blocks have room for reach and hint
+  std::optional<layout::ray::CullWords> cull_words_;  // where the blocks have room for reach and hint
   glm::dvec3 origin_{0};
   std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it
   Phase phase_ = Phase::kAll;
