@@ -81,7 +81,7 @@ TEST(HitCheck, ClassifiesEveryDisagreement) {
 TEST(Embree, SameHitsAsReferenceOnARender) {
   for (const char* name : {"cornell", "spheres_1k"}) {
     const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/" + name + ".json");
-    EmbreeIntersector e(s.triangles, fmpp_spawn_margin(s.triangles));
+    EmbreeIntersector e(s.triangles, float_spawn_margin(s.triangles));
     CheckingIntersector check(e, s.triangles, uint64_t{1} << 40);
     RenderOptions ro;
     ro.width = ro.height = 24;
@@ -121,7 +121,7 @@ TEST(Embree, StreamGivesTheSameHits) {
 // A budget below a batch's tests checks every stride-th ray only.
 TEST(Embree, CheckBudgetSamplesTheBatch) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");
-  EmbreeIntersector e(s.triangles, fmpp_spawn_margin(s.triangles));
+  EmbreeIntersector e(s.triangles, float_spawn_margin(s.triangles));
   CheckingIntersector check(e, s.triangles, 100 * s.triangles.size());
   check.set_batch_kind(BatchKind::kPrimary);
   check.intersect(primary_rays(s.camera, 40, 40));
@@ -132,7 +132,7 @@ TEST(Embree, CheckBudgetSamplesTheBatch) {
 // The image drawn through Embree stays within the tracer's bound on the reference's.
 TEST(Embree, RenderMatchesReference) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");
-  EmbreeIntersector e(s.triangles, fmpp_spawn_margin(s.triangles));
+  EmbreeIntersector e(s.triangles, float_spawn_margin(s.triangles));
   ReferenceIntersector ref(s.triangles);
   RenderOptions ro;
   ro.width = ro.height = 32;

@@ -51,6 +51,11 @@ if [ -z "${ASAN_OPTIONS:-}" ]; then
       2> "$dir/err.txt"; then exit 1; fi
   grep -q "out of memory while reading $dir/many.txt" "$dir/err.txt"
 fi
+# Options the object-parallel mapping would ignore are refused, not silently dropped.
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --mapping object --watertight 2> "$dir/err.txt"; then exit 1; fi
+grep -q "the watertight form exists in the ray-parallel mapping only" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --mapping object --origins general 2> "$dir/err.txt"; then exit 1; fi
+grep -q "origins general (the arbitrary-origin form) exists in the ray-parallel mapping only" "$dir/err.txt"
 # Malformed input: the error names the file and the line.
 printf '0 0 0  1 0 0  0 1\n' > "$dir/bad.txt"
 if "$bin" --triangles "$dir/bad.txt" --rays "$dir/rays.txt" 2> "$dir/err.txt"; then exit 1; fi

@@ -38,6 +38,17 @@ fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backe
 grep -q '"backend": "reference"' "$dir/r.json"
 "$render" --help > "$dir/help.txt"
 grep -q -- "--scene TEXT=scenes/cornell.json" "$dir/help.txt"
+# A plan that cannot keep its error target writes no picture unless asked to (a zero
+# target cannot be shown on 64 sampled pixels of a 32 x 32 frame).
+fails "the precision plan cannot keep --error-target 0: no n meets the error target" "$render" --scene "$scene" \
+  --backend cmodel --width 32 --height 32 --plan-pixels 64 --error-target 0 --out "$dir/miss.png"
+test ! -e "$dir/miss.png"
+"$render" --scene "$scene" --backend cmodel --width 32 --height 32 --plan-pixels 64 --error-target 0 \
+  --accept-plan-miss --quiet --out "$dir/miss.png" --report "$dir/miss.json"
+grep -q '"accepted_miss": true' "$dir/miss.json"
+grep -q '"met_target": false' "$dir/miss.json"
+# Options a mapping would ignore are refused before the plan.
+fails "--watertight with --mapping object" "$render" --scene "$scene" --backend cmodel --mapping object --watertight
 grep -q -- "--backend TEXT:{reference,cmodel,rtl,lockstep,systemc}=rtl" "$dir/help.txt"
 
 # ------------------------------------------------------------------- fmpp-sim

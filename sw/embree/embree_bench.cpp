@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     rt::EmbreeOptions eo;
     eo.robust = robust;
     eo.stream = stream;
-    rt::EmbreeIntersector embree(scene.triangles, rt::fmpp_spawn_margin(scene.triangles), eo);
+    rt::EmbreeIntersector embree(scene.triangles, rt::float_spawn_margin(scene.triangles), eo);
     rt::RenderOptions ro;
     ro.width = width;
     ro.height = height;

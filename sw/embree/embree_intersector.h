@@ -39,8 +39,8 @@ struct EmbreeOptions {
 class EmbreeIntersector : public Intersector {
  public:
   // Builds Embree's BVH over `tris` (timed apart: build_seconds()). `spawn_margin` is
-  // the distance secondary rays start off a surface; the benchmark passes the FMPP's
-  // (FmppIntersector::spawn_margin) so that both renders spawn their rays alike.
+  // the distance secondary rays start off a surface beyond the hit point's own error:
+  // Embree's float hits carry no bound, so callers pass float_spawn_margin (render.h).
   // Throws std::runtime_error with Embree's message if the device or scene fails.
   EmbreeIntersector(const std::vector<fmpp::isect::Triangle>& tris, double spawn_margin,
                     const EmbreeOptions& opt = EmbreeOptions());

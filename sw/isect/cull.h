@@ -38,6 +38,9 @@ struct Box {
     hi = glm::max(hi, b.hi);
   }
   bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+  bool contains(const glm::dvec3& p) const {
+    return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z;
+  }
 };
 
 // Rays bounded together: o + t d with o in `o`, d a unit vector in `d`, t in [t0, t1].

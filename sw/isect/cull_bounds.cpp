@@ -8,24 +8,9 @@
 #include "sw/isect/policy.h"
 
 namespace fmpp::isect {
-namespace {
 
-// The arbitrary-origin form's edge-test condition of triangle t (as form_general.cpp
-// computes it): (e_max / e_min) reach / h_min relative to the centre c of the scene's box,
-// reach the farthest of its vertices and of the batch's origins (o_reach) from c.
-double general_condition(const Triangle& t, const glm::dvec3& c, double o_reach) {
-  const glm::dvec3 p1 = t.p[0] - c, p2 = t.p[1] - c, p3 = t.p[2] - c;
-  const glm::dvec3 nrm = glm::cross(p2, p3) + glm::cross(p3, p1) + glm::cross(p1, p2);
-  const double e[3] = {glm::length(p3 - p2), glm::length(p1 - p3), glm::length(p2 - p1)};
-  const double emax = std::max({e[0], e[1], e[2]}), emin = std::min({e[0], e[1], e[2]});
-  const double reach = std::max({glm::length(p1), glm::length(p2), glm::length(p3), o_reach});
-  return emax * emax * reach / (emin * glm::length(nrm));
-}
-
-}  // namespace
-
-CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
-                       const RayForm& form, const KernelOptions& opt, const glm::dvec3* origin) {
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
+                       const glm::dvec3* origin) {
   constexpr double kMaxPad = 1e200;  // above any coordinate, below overflow of the box arithmetic
   CullBounds cb;
   cb.use_tmax = origin != nullptr && !opt.watertight;
@@ -36,20 +21,11 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
   // relative to their largest component: 2^-20 is far above either.
   cb.angle = std::ldexp(1.0, -20);
   const double unit = std::ldexp(1.0, -static_cast<int>(policy::operand_bits(opt)));
-  double dmin = 1, o_reach = 0;
-  glm::dvec3 centre(0);
   if (origin) {
-    dmin = policy::nearest_for_exponent(distance_range(tris, *origin));
+    const double dmin = policy::nearest_for_exponent(distance_range(tris, *origin));
     cb.sum_floor = std::ldexp(1.0, policy::kSumBits) * dmin;
   } else {
-    Box all;
-    for (const Triangle& t : tris) {
-      for (const glm::dvec3& p : t.p) all.grow(p);
-    }
-    centre = 0.5 * (all.lo + all.hi);
-    for (size_t i : idx) o_reach = std::max(o_reach, glm::length(rays[i].o - centre));
-    cb.reach = o_reach;
-    for (const glm::dvec3& p : {all.lo, all.hi}) cb.reach = std::max(cb.reach, glm::length(p - centre));
+    cb.reach = form.frame_reach();  // the arbitrary-origin form's own frame
   }
   for (const Broadcast& b : form.broadcasts) {
     const Triangle& t = tris[static_cast<size_t>(b.tri)];
@@ -78,7 +54,7 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>
       // Arbitrary-origin form: one rounding step of its 18 coefficients moves each edge
       // value by 2^-(n-1) |V| e_max reach, against |V| e_i h / 3 for a ray through the
       // triangle: the edges move by at most 27 cond 2^-(n-1) of the triangle.
-      const double delta = 32 * general_condition(t, centre, o_reach) * std::ldexp(1.0, 1 - static_cast<int>(opt.n));
+      const double delta = 32 * b.edge_cond * std::ldexp(1.0, 1 - static_cast<int>(opt.n));
       pad = 2 * ext * delta;
     }
     pad += 1e-9 * (ext + far);  // the box test's own rounding

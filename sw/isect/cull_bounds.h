@@ -41,8 +41,9 @@ struct CullBounds {
   double reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const;
 };
 
-// The bounds of form's broadcasts for rays[idx[..]]; origin as for run_ray_parallel.
-CullBounds cull_bounds(const std::vector<Triangle>& tris, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
-                       const RayForm& form, const KernelOptions& opt, const glm::dvec3* origin);
+// The bounds of form's broadcasts (prepared for its batch of rays); origin as for
+// run_ray_parallel.
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
+                       const glm::dvec3* origin);
 
 }  // namespace fmpp::isect

@@ -143,6 +143,29 @@ void evaluate(const Ray& r, const Triangle& tri, int su[3], Ratio* t) {
 
 }  // namespace
 
+bool degenerate(const Triangle& tri) {
+  // N_k = e_i f_j - e_j f_i with e = B - A, f = C - A rounded (one rounding each): each
+  // product carries at most 3 roundings (e, f, the product), the difference one more,
+  // so |fl(N_k) - N_k| <= gamma_4 (|e_i f_j| + |e_j f_i|) + 2 eta; 8 eps of the sum of
+  // the computed magnitudes, plus 8 tiny for underflow, covers it.
+  const glm::dvec3 e = tri.p[1] - tri.p[0], f = tri.p[2] - tri.p[0];
+  if (std::isfinite(max_norm(e)) && std::isfinite(max_norm(f))) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      const double a = e[i] * f[j], b = e[j] * f[i];
+      const double bound = 8 * kEps * (std::abs(a) + std::abs(b)) + 8 * kTiny;
+      if (std::abs(a - b) > bound) return false;
+    }
+  }
+  Workspace& w = workspace();
+  const int s = common_scale({&tri.p[0], &tri.p[1], &tri.p[2]});
+  w.load(w.o, tri.p[0], s);
+  w.load_rel(w.b, tri.p[1], s);
+  w.load_rel(w.c, tri.p[2], s);
+  Workspace::cross(w.bc, w.b, w.c);
+  return sgn(w.bc[0]) == 0 && sgn(w.bc[1]) == 0 && sgn(w.bc[2]) == 0;
+}
+
 void enclose(Candidate* c) {
   const double v = to_double(c->exact, -std::numeric_limits<double>::infinity());  // within 1 ulp
   c->lo = std::nextafter(v, -std::numeric_limits<double>::infinity());

@@ -66,6 +66,14 @@ struct FromOrigin {
 };
 FromOrigin from_origin(const glm::dvec3& o, const Triangle& tri);
 
+// True iff the triangle is exactly degenerate: its vertices are collinear (repeated
+// vertices included), so that N = (B - A) x (C - A) is exactly 0 and no ray meets it
+// (det = D . N = 0). Filtered: a component of N computed in double that exceeds its
+// error bound settles it; otherwise N is evaluated in integers. The host's routing of
+// triangles uses this, never a rounded normal (a small or thin triangle far from the
+// origin can round to a zero normal and still be hit).
+bool degenerate(const Triangle& tri);
+
 // Tests one ray against any number of triangles.
 class RayTest {
  public:

@@ -11,6 +11,8 @@
 #include <limits>
 
 #include "sw/isect/certify_general.h"
+#include "sw/isect/cull.h"
+#include "sw/isect/exact.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/forms.h"
 #include "sw/isect/policy.h"
@@ -31,13 +33,26 @@ static_assert(kWords == kGeneralWords, "the advertised word count is the layout'
 
 class GeneralForm : public RayForm {
  public:
-  explicit GeneralForm(const FormInputs& in) : opt_(in.opt) {
+  explicit GeneralForm(const FormInputs& in) : opt_(in.opt), st_(in.st) {
     const unsigned q = opt_.qbits;
     in.st->general_rays += in.idx.size();
+    const std::vector<char> outlier = frame(in);
     scales(in);
     const double cond_limit = policy::general_cond_limit(opt_);
-    for (size_t k = 0; k < in.tris.size(); ++k) triangle(in.tris[k], static_cast<int>(k), q, cond_limit);
+    for (size_t k = 0; k < in.tris.size(); ++k) {
+      if (outlier[k]) {
+        if (exact::degenerate(in.tris[k])) {
+          ++st_->degenerate_triangles;
+        } else {
+          host.push_back(static_cast<int>(k));
+        }
+        continue;
+      }
+      triangle(in.tris[k], static_cast<int>(k), q, cond_limit);
+    }
   }
+
+  double frame_reach() const override { return reach_; }
 
   BestWords best_words() const override { return {kBest, kIdx, 0x7FFFFFFFu}; }
 
@@ -83,17 +98,63 @@ class GeneralForm : public RayForm {
   }
 
  private:
+  // The frame (docs/intersection.md, "The arbitrary-origin form's frame"): the box of the
+  // triangles the FMPP takes, whose centre the form works relative to and whose far
+  // corner sets the distance unit. Normally every triangle's box. A few triangles far
+  // outside the bulk of the scene (a distant speck) would stretch it a thousandfold and
+  // cost every other triangle its precision: when at most kMaxOutliers triangles lie
+  // outside the bulk (the box of the middle 98 % of centroids, grown by its own size on
+  // every side and to every ray's origin), and the bulk is over 2^10 times smaller than
+  // the whole, those triangles go to the host (exactly tested, counted) and the frame is
+  // the rest's box. A cost decision: the bounds hold for any frame. Returns the outliers.
+  std::vector<char> frame(const FormInputs& in) {
+    const size_t n = in.tris.size();
+    std::vector<char> outlier(n, 0);
+    Box all;
+    for (const Triangle& t : in.tris) {
+      for (const glm::dvec3& p : t.p) all.grow(p);
+    }
+    lo_ = all.lo;
+    hi_ = all.hi;
+    if (n < 2) return outlier;
+    Box bulk;
+    std::vector<double> c(n);
+    for (int a = 0; a < 3; ++a) {
+      for (size_t k = 0; k < n; ++k) c[k] = (in.tris[k].p[0][a] + in.tris[k].p[1][a] + in.tris[k].p[2][a]) / 3;
+      const size_t ilo = (n - 1) / 100, ihi = n - 1 - ilo;
+      std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(ilo), c.end());
+      bulk.lo[a] = c[ilo];
+      std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(ihi), c.end());
+      bulk.hi[a] = c[ihi];
+    }
+    const double size = max_component(bulk.hi - bulk.lo);
+    if (!(size > 0)) return outlier;
+    bulk.lo -= glm::dvec3(size);
+    bulk.hi += glm::dvec3(size);
+    for (size_t i : in.idx) bulk.grow(in.rays[i].o);  // the rays start inside the frame
+    if (!(max_component(all.hi - all.lo) > std::ldexp(max_component(bulk.hi - bulk.lo), 10))) return outlier;
+    Box rest;
+    size_t count = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const Triangle& t = in.tris[k];
+      if (bulk.contains(t.p[0]) && bulk.contains(t.p[1]) && bulk.contains(t.p[2])) {
+        for (const glm::dvec3& p : t.p) rest.grow(p);
+      } else {
+        outlier[k] = 1;
+        ++count;
+      }
+    }
+    if (count > kMaxOutliers || count == n) return std::vector<char>(n, 0);
+    lo_ = rest.lo;
+    hi_ = rest.hi;
+    return outlier;
+  }
+
   // The batch's scales: direction sv, moment sl, origin so (each the largest of its kind
   // over 2^kGeneralRayBits) and the quotient unit u; and the bounds on the ray words.
   void scales(const FormInputs& in) {
-    // Work relative to the scene's centre: smaller coordinates, less cancellation.
-    glm::dvec3 lo(kInf), hi(-kInf);
-    for (const Triangle& t : in.tris) {
-      for (const glm::dvec3& p : t.p) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
-    }
+    // Work relative to the frame's centre: smaller coordinates, less cancellation.
+    const glm::dvec3 lo = lo_, hi = hi_;
     c_ = 0.5 * (lo + hi);
     double vmax = 0, lmax = 0, omax = 0, lambda_max = 0;
     for (size_t i : in.idx) {
@@ -122,6 +183,8 @@ class GeneralForm : public RayForm {
     so_ = (omax > 0 ? omax : span) / unit_;
     u_ = lambda_max / std::ldexp(1.0, static_cast<int>(opt_.qbits));
     for (size_t i : in.idx) word_err_.add(in.rays[i].o - c_, in.rays[i].d, sl_, so_);
+    reach_ = o_reach_;
+    for (const glm::dvec3& p : {lo, hi}) reach_ = std::max(reach_, glm::length(p - c_));
   }
 
   // Triangle k's program, or the host if its edge tests are too ill-conditioned.
@@ -132,7 +195,14 @@ class GeneralForm : public RayForm {
     // that its value N makes floor(N 2^(q-1) / nv) = t / u.
     certify::GeneralCoeffs g = certify::general_coeffs(p, sv_, sl_);
     const glm::dvec3& nrm = g.nrm;
-    if (nrm == glm::dvec3(0)) return;  // degenerate: no ray can hit it, nor can the reference
+    // Exactly degenerate (collinear vertices): no ray meets it, in exact arithmetic as in
+    // the reference. Decided exactly, never on the rounded normal: a small or thin
+    // triangle far from the centre can round to nrm = 0 and still be hit. Such a one
+    // has an infinite (or undefined) condition below and goes to the host.
+    if (exact::degenerate(t)) {
+      ++st_->degenerate_triangles;
+      return;
+    }
     // Conditioning of the edge tests: A_i is quantized with one step for the triangle's
     // 18 coefficients, about 2^-(n-1) of |V| e_max max(R, O) (R: the farthest vertex
     // from the centre, O: the farthest origin), while a ray through the triangle has
@@ -192,6 +262,7 @@ class GeneralForm : public RayForm {
       return program(xs.data(), xs.data() + 18, dshift, th, test_steps, excl_pos);
     };
     b.tri = k;
+    b.edge_cond = cond;
     broadcasts.push_back(std::move(b));
     bounds_.push_back(bd);
   }
@@ -341,8 +412,12 @@ class GeneralForm : public RayForm {
     return p;
   }
 
+  static constexpr size_t kMaxOutliers = 64;
   const KernelOptions& opt_;
-  glm::dvec3 c_{0};  // the scene's centre
+  glm::dvec3 lo_{0}, hi_{0};  // the frame's box
+  glm::dvec3 c_{0};           // its centre
+  double reach_ = 0;          // the farthest of its corners and of the origins from c_
+  KernelStats* st_;
   double o_reach_ = 0, unit_ = 1, sv_ = 1, sl_ = 1, so_ = 1, u_ = 1;
   bool has_tmin_ = false;               // some ray of the batch has tmin > 0
   certify::GeneralRayErrors word_err_;  // bounds on the batch's ray words

@@ -152,9 +152,17 @@ glm::dvec3 closest_point(const Triangle& t, const glm::dvec3& q) {
 
 DistanceRange distance_range(const std::vector<Triangle>& tris, const glm::dvec3& q) {
   DistanceRange r;
-  for (const Triangle& t : tris) {
+  std::vector<double> far(tris.size(), 0);
+  for (size_t k = 0; k < tris.size(); ++k) {
+    const Triangle& t = tris[k];
     r.min = std::min(r.min, glm::length(closest_point(t, q) - q));
-    for (const glm::dvec3& p : t.p) r.max = std::max(r.max, glm::length(p - q));
+    for (const glm::dvec3& p : t.p) far[k] = std::max(far[k], glm::length(p - q));
+    r.max = std::max(r.max, far[k]);
+  }
+  if (!far.empty()) {
+    const size_t at = far.size() - 1 - (far.size() - 1) / 100;
+    std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(at), far.end());
+    r.bulk = far[at];
   }
   return r;
 }

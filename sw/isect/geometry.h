@@ -62,6 +62,11 @@ enum class HostRedo : uint8_t { kNone, kFlagged, kTFromHost, kOverflow };
 struct Hit {
   int tri = -1;  // index of the nearest triangle, -1 for a miss
   double t = std::numeric_limits<double>::infinity();
+  // A bound on the relative error of t, |t - exact t| <= t_err t: 0 for an exact t (the
+  // exact value rounded, within one ulp: the reference, and every t the host computed),
+  // the certified bound of the kernel's own t otherwise (at most KernelOptions::
+  // t_accuracy). The ray tracer offsets the rays it spawns from the hit by it.
+  double t_err = 0;
   HostRedo redo = HostRedo::kNone;  // set by intersect_fmpp, for the per-ray-kind counts
   bool hit() const { return tri >= 0; }
 };
@@ -81,6 +86,9 @@ ClosestRegion closest_region(glm::dvec3 ab, glm::dvec3 ac, glm::dvec3 aq);
 struct DistanceRange {
   double min = std::numeric_limits<double>::infinity();
   double max = 0;
+  // The farthest of the triangles' farthest vertices once the farthest 1 % of the
+  // triangles are left out (max with fewer than 101): what a distant speck does not move.
+  double bulk = 0;
 };
 DistanceRange distance_range(const std::vector<Triangle>& tris, const glm::dvec3& q);
 

@@ -6,13 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "sw/isect/forms.h"
 #include "sw/isect/layout.h"
 #include "sw/isect/object_parallel.h"
+#include "sw/isect/pass.h"
 #include "sw/isect/policy.h"
 #include "sw/isect/ray_parallel.h"
+#include "sw/isect/reference.h"
 
 namespace fmpp::isect {
 
@@ -51,6 +54,7 @@ void KernelStats::add(const KernelStats& o) {
   overflow_rays += o.overflow_rays;
   overflow_triangles += o.overflow_triangles;
   host_triangles += o.host_triangles;
+  degenerate_triangles += o.degenerate_triangles;
   host_tests += o.host_tests;
   culled += o.culled;
   box_tests += o.box_tests;
@@ -83,6 +87,15 @@ void KernelOptions::validate(const Config& cfg) const {
   if (cull_packet < 1) throw std::invalid_argument("cull_packet = 0: a culling packet needs at least one ray");
   if (!(t_accuracy >= 0 && t_accuracy < 1)) {
     throw std::invalid_argument("t accuracy " + std::to_string(t_accuracy) + " outside [0, 1)");
+  }
+  // Options a mapping would ignore are errors, not silently dropped: the object-parallel
+  // mapping has the paper's form only, and takes rays grouped by origin.
+  if (mapping == Mapping::kObject && watertight) {
+    throw std::invalid_argument("the watertight form exists in the ray-parallel mapping only (--mapping ray)");
+  }
+  if (mapping == Mapping::kObject && origins == Origins::kGeneral) {
+    throw std::invalid_argument("origins general (the arbitrary-origin form) exists in the ray-parallel mapping only; "
+                                "the object-parallel mapping groups rays by origin");
   }
   if (cond_bits > 60) throw std::invalid_argument("cond_bits = " + std::to_string(cond_bits) + " above 60");
   if (cfg.words < words_needed(*this)) {
@@ -129,29 +142,76 @@ RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, uns
   return rr;
 }
 
-std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& tris,
+int scene_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
+  double m = 0;
+  int low = std::numeric_limits<int>::max();  // exponent of the lowest set bit of any value
+  auto visit = [&](const glm::dvec3& v) {
+    for (int k = 0; k < 3; ++k) {
+      if (v[k] == 0) continue;
+      m = std::max(m, std::abs(v[k]));
+      int e;
+      const double f = std::frexp(v[k], &e);  // |f| in [0.5, 1)
+      const auto mant = static_cast<uint64_t>(std::abs(std::ldexp(f, 53)));
+      low = std::min(low, e - 53 + __builtin_ctzll(mant));
+    }
+  };
+  for (const Triangle& t : tris) {
+    for (const glm::dvec3& p : t.p) visit(p);
+  }
+  for (const Ray& r : rays) visit(r.o);
+  if (m == 0) return 0;
+  // The largest value into [1, 2), unless that would push a low bit below 2^-1074.
+  return std::max(-std::ilogb(m), -1074 - low);
+}
+
+std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& in_tris,
                                 const KernelOptions& opt, KernelStats* stats) {
   opt.validate(dev.config());
   KernelStats local;
   KernelStats& st = stats ? *stats : local;
   const uint64_t c0 = dev.cycles();
   std::vector<Hit> out(in_rays.size());
-  validate_input(in_rays, tris);
+  validate_input(in_rays, in_tris);
+  // No triangle: every ray misses. (The scales are derived from the scene's extent,
+  // which an empty scene does not have.)
+  if (in_tris.empty()) return out;
+  // The whole call - vertices, origins, tmin and tmax - is scaled by the power of two
+  // 2^s that brings its largest coordinate into [1, 2) (docs/intersection.md, "Input
+  // limits"): exact (s is held back where a low bit would fall below 2^-1074), and it
+  // changes no answer but every t by 2^s. So the kernels' double arithmetic never
+  // underflows for a scene of subnormal size nor overflows for one near the limit.
+  const int s = scene_exponent(in_rays, in_tris);
+  std::vector<Triangle> scaled;
+  if (s != 0) {
+    scaled = in_tris;
+    for (Triangle& t : scaled) {
+      for (glm::dvec3& p : t.p) p = glm::dvec3(std::ldexp(p.x, s), std::ldexp(p.y, s), std::ldexp(p.z, s));
+    }
+  }
+  const std::vector<Triangle>& tris = s != 0 ? scaled : in_tris;
   // Every direction is scaled by a power of two to a largest component in [1, 2), and its
   // parameters (tmin, tmax, the hit's t) by the inverse: exact, and the kernels' scales
   // then never see a direction's magnitude, only its shape.
   std::vector<Ray> rays(in_rays);
   std::vector<int> t_exp(rays.size(), 0);  // t = t' 2^t_exp
+  std::vector<size_t> tmin_rounded;
   for (size_t i = 0; i < rays.size(); ++i) {
     Ray& r = rays[i];
-    t_exp[i] = policy::direction_exponent(r.d);
-    r.d = glm::dvec3(std::ldexp(r.d.x, t_exp[i]), std::ldexp(r.d.y, t_exp[i]), std::ldexp(r.d.z, t_exp[i]));
+    const int dexp = policy::direction_exponent(r.d);
+    t_exp[i] = dexp - s;
+    r.o = glm::dvec3(std::ldexp(r.o.x, s), std::ldexp(r.o.y, s), std::ldexp(r.o.z, s));
+    r.d = glm::dvec3(std::ldexp(r.d.x, dexp), std::ldexp(r.d.y, dexp), std::ldexp(r.d.z, dexp));
+    // tmin may overflow to infinity here: no hit within the scene is then beyond it,
+    // as none is beyond the exact tmin 2^s (the scene's hits are all below 4 / |d|).
+    // One that underflows and rounds is no longer exact: such a ray is answered by the
+    // exact reference on the caller's own values (counted with the overflow redos).
+    // tmax only limits what the caller needs, so a rounded one is rounded up.
     r.tmin = std::ldexp(r.tmin, -t_exp[i]);
-    r.tmax = std::ldexp(r.tmax, -t_exp[i]);
+    if (std::ldexp(r.tmin, t_exp[i]) != in_rays[i].tmin) tmin_rounded.push_back(i);
+    const double tmax = r.tmax;
+    r.tmax = std::ldexp(tmax, -t_exp[i]);
+    if (std::ldexp(r.tmax, t_exp[i]) < tmax) r.tmax = std::nextafter(r.tmax, std::numeric_limits<double>::infinity());
   }
-  // No triangle: every ray misses. (The scales are derived from the scene's extent,
-  // which an empty scene does not have.)
-  if (tris.empty()) return out;
   const auto [groups, general] = route_rays(rays, opt, dev.config().blocks);
   for (const auto& [key, idx] : groups) {
     ++st.groups;
@@ -172,7 +232,21 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
         form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st});
     run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr);
   }
-  for (size_t i = 0; i < out.size(); ++i) out[i].t = std::ldexp(out[i].t, t_exp[i]);
+  for (size_t i : tmin_rounded) {
+    out[i] = nearest_reference(std::vector<Ray>{in_rays[i]}, in_tris)[0];
+    out[i].redo = HostRedo::kOverflow;
+    t_exp[i] = 0;
+    ++st.overflow_rays;
+    st.host_tests += in_tris.size();
+  }
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!out[i].hit()) continue;
+    // Back to the caller's units: exact, but for a t in the subnormal range, which
+    // rounds within an ulp; it stays above tmin (and so above 0), as the reference's.
+    out[i].t = std::ldexp(out[i].t, t_exp[i]);
+    const double tmin = in_rays[i].tmin;
+    if (out[i].t <= tmin) out[i].t = std::nextafter(tmin, std::numeric_limits<double>::infinity());
+  }
   st.cycles += dev.cycles() - c0;
   return out;
 }

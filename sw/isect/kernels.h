@@ -116,7 +116,8 @@ struct KernelStats {
   uint64_t test_steps = 0;       // of those, the ones up to the T >= 0 test (the paper's count)
   uint64_t overflow_rays = 0;    // rays redone on the host after an overflow
   uint64_t overflow_triangles = 0;
-  uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular)
+  uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular as rounded)
+  uint64_t degenerate_triangles = 0;  // exactly degenerate (collinear vertices): no ray meets them, skipped
   uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
   uint64_t culled = 0;           // broadcasts skipped by culling
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
@@ -171,6 +172,11 @@ struct RayRoutes {
   std::vector<size_t> general;
 };
 RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks);
+
+// The exponent s of the power of two by which intersect_fmpp scales a call's vertices
+// and ray origins: the largest |coordinate| into [1, 2), held back so that no nonzero
+// value loses a bit (below 2^-1074); 0 if every coordinate is 0.
+int scene_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tris);
 
 // Nearest hit of each ray, computed on the FMPP behind `dev`.
 std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,

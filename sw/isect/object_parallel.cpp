@@ -154,13 +154,14 @@ class ObjectParallelPlan : public PassPlan {
         if (best_[r].tri >= 0) {
           h.tri = best_[r].tri;
           h.t = 1.0 / (static_cast<double>(best_[r].s) * s_to_inv_t * ray_scale(ray.d));
-          t_loose = !(certify::t_relative_bound(static_cast<double>(best_[r].s), static_cast<double>(best_[r].b)) <=
-                      t_acc);
+          h.t_err = certify::t_relative_bound(static_cast<double>(best_[r].s), static_cast<double>(best_[r].b));
+          t_loose = !(h.t_err <= t_acc);
           if (t_loose) {  // the triangle is certain, its t not precise enough
             ++st_->t_bound_rays[kStatObject];
             ++st_->certify_tests[kStatObject];
             ++st_->host_tests;
             h.t = intersect_reference(ray, tris_[static_cast<size_t>(h.tri)]);
+            h.t_err = 0;
           }
         }
         merge_host(ray, tris_, host_, &h, st_, true);

@@ -78,9 +78,11 @@ void merge_host(const Ray& r, const std::vector<Triangle>& tris, const std::vect
   if (host.empty()) return;
   if (certain_current || hit->tri < 0) {
     // Exact comparisons (no rounded t): a certified current hit is evaluated again with
-    // them, so its t comes back exact too.
+    // them. If it stays the nearest it keeps its own t and bound, so that a host
+    // triangle that changes no answer (a distant speck) changes no t either.
     st->host_tests += host.size() + (hit->tri >= 0 ? 1 : 0);
-    *hit = nearest_reference_among(r, tris, host, hit->tri);
+    const Hit h = nearest_reference_among(r, tris, host, hit->tri);
+    if (!(hit->tri >= 0 && h.tri == hit->tri)) *hit = h;
     return;
   }
   // An uncertified current hit (a form that answers for other geometry, such as the

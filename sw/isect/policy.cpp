@@ -44,7 +44,12 @@ double condition(const Triangle& t, const glm::dvec3& o) {
 }
 
 double nearest_for_exponent(const DistanceRange& dr) {
-  return std::max(dr.min, dr.max * std::ldexp(1.0, -kDistanceFloorBits));
+  // The floor follows the bulk of the scene, not its farthest triangle: a distant speck
+  // must not cost the near triangles their bits.
+  const double d = std::max(dr.min, dr.bulk * std::ldexp(1.0, -kDistanceFloorBits));
+  // 0 only if every vertex is the origin itself: every triangle is then degenerate (the
+  // forms send singular ones to the host, which finds no hit), and any scale will do.
+  return d > 0 ? d : 1;
 }
 
 double object_sum_limit(unsigned mbits, double dmax) {

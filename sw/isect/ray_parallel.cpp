@@ -47,7 +47,7 @@ class RayParallelPlan : public PassPlan {
                   const glm::dvec3* origin, unsigned words)
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
     if (opt_.cull) {
-      bounds_ = cull_bounds(tris, rays, idx, form, opt, origin);
+      bounds_ = cull_bounds(tris, form, opt, origin);
       bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
       if (opt_.fmpp_boxes && origin && shared && form_.stat() == kStatPaper) {
@@ -278,7 +278,9 @@ class RayParallelPlan : public PassPlan {
       Hit& h = out_[idx_[base + b]];
       h.tri = form_.broadcasts[order[pos]].tri;
       h.t = form_.t_of(best, r);
-      t_loose_[b] = form_.certified() && !(form_.t_rel_bound_at(dev, b, best, order[pos]) <= t_acc_);
+      // Every form certifies (an uncertified one would have no bound to give).
+      h.t_err = form_.t_rel_bound_at(dev, b, best, order[pos]);
+      t_loose_[b] = form_.certified() && !(h.t_err <= t_acc_);
     });
     unc_.assign(count, false);
     if (form_.certified()) {
@@ -344,6 +346,7 @@ class RayParallelPlan : public PassPlan {
           ++st_->certify_tests[f];
           ++st_->host_tests;
           out_[i].t = intersect_reference(r, tris_[out_[i].tri]);
+          out_[i].t_err = 0;
         }
         merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
         if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;

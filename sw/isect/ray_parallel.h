@@ -26,6 +26,7 @@ namespace fmpp::isect {
 struct Broadcast {
   int tri = -1;          // the triangle
   double sum_bound = 0;  // certified forms: the bound on the compared value of its hits
+  double edge_cond = 0;  // the arbitrary-origin form: its edge-test condition (culling pads)
   // Builds the program; *test_steps gets its instructions up to the inside test, *mark
   // an instruction the form patches per pass (the arbitrary-origin form's exclusion).
   std::function<Program(size_t* test_steps, size_t* mark)> build;
@@ -77,6 +78,10 @@ class RayForm {
   virtual double t_rel_bound_at(Device& /*dev*/, unsigned /*b*/, uint32_t best, size_t k) const {
     return t_rel_bound(best, k);
   }
+  // Forms that work relative to a frame of their own (the arbitrary-origin form): the
+  // farthest of its box's corners and of the batch's origins from its centre, for the
+  // culling allowances (cull_bounds.h); 0 for the others.
+  virtual double frame_reach() const { return 0; }
 };
 
 // Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]]. `origin` is

@@ -32,6 +32,7 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"overflow_triangles", st.overflow_triangles},
           {"overflow_count", st.overflow_rays + st.overflow_triangles},
           {"host_triangles", st.host_triangles},
+          {"degenerate_triangles", st.degenerate_triangles},
           {"host_tests", st.host_tests},
           {"flagged_rays", st.flagged_total()},
           {"uncertified_rays", st.uncertified_rays},

@@ -35,11 +35,12 @@ void wait_quietly(MPI_Request* req) {
 struct Record {
   uint64_t index;
   double t;
+  double t_err;
   int32_t tri;
   int16_t redo;
   int16_t slot;
 };
-static_assert(std::is_trivially_copyable_v<Record> && sizeof(Record) == 24, "Record travels as bytes");
+static_assert(std::is_trivially_copyable_v<Record> && sizeof(Record) == 32, "Record travels as bytes");
 
 }  // namespace
 
@@ -147,7 +148,7 @@ void SharedPasses::exchange(const std::vector<std::vector<isect::Hit>*>& batches
   out.reserve(own_.size());
   for (const auto& [slot, i] : own_) {
     const isect::Hit& h = batches.at(static_cast<size_t>(slot))->at(i);
-    out.push_back(Record{i, h.t, h.tri, static_cast<int16_t>(h.redo), static_cast<int16_t>(slot)});
+    out.push_back(Record{i, h.t, h.t_err, h.tri, static_cast<int16_t>(h.redo), static_cast<int16_t>(slot)});
   }
   own_.clear();
   if (!s_.active() || s_.size() == 1) {
@@ -187,6 +188,7 @@ void SharedPasses::exchange(const std::vector<std::vector<isect::Hit>*>& batches
     isect::Hit& h = batches.at(static_cast<size_t>(all[i].slot))->at(static_cast<size_t>(all[i].index));
     h.tri = all[i].tri;
     h.t = all[i].t;
+    h.t_err = all[i].t_err;
     h.redo = static_cast<isect::HostRedo>(all[i].redo);
   }
 #endif

@@ -99,7 +99,7 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
                                const fmpp::isect::KernelOptions& opt,
                                const std::vector<unsigned>& candidates) {
   PassCostModel m;
-  Recorder rec(scene.triangles, fmpp_spawn_margin(scene.triangles));  // the FMPP render's rays
+  Recorder rec(scene.triangles, 0);  // exact hits: the reference's rays, the FMPP render's up to its t bounds
   RenderOptions ro;
   ro.width = width;
   ro.height = height;

@@ -72,6 +72,9 @@ struct Plan {
   std::vector<PlanCandidate> candidates;
   std::vector<PassSizeEstimate> pass_sizes;  // the cost model's candidates (empty: not run)
   std::string why_bits, why_words, why_blocks, why_order;
+  // False if no candidate n keeps the error target on the frame sample (why_bits says by
+  // how much): a render at the plan's n may then be off by more than the target.
+  bool met_target = true;
 };
 
 Plan make_plan(const Scene& scene, const PlanRequest& req);

@@ -30,9 +30,9 @@ std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
 
 FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
                                  const fmpp::isect::KernelOptions& opt)
-    : dev_(dev), tris_(tris), opt_(opt), margin_(fmpp_spawn_margin(tris)) {}
+    : dev_(dev), tris_(tris), opt_(opt) {}
 
-double fmpp_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
+double float_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (const auto& t : tris) {
     for (const auto& p : t.p) {

@@ -44,10 +44,10 @@ class Intersector {
   // that order; several FMPPs (sw/mpi/) share out the passes of both at once.
   virtual std::pair<std::vector<fmpp::isect::Hit>, std::vector<fmpp::isect::Hit>> intersect_two(
       const std::vector<fmpp::isect::Ray>& a, BatchKind ka, const std::vector<fmpp::isect::Ray>& b, BatchKind kb);
-  // Distance a ray spawned at a hit must start off the surface, beyond the hit point's own
-  // error (spawn_offset), so that this intersector does not find the surface again: 0 for
-  // double precision; the FMPP's fixed-point kernels resolve distances relative to the
-  // extent of the triangles they hold.
+  // Distance a ray spawned at a hit must start off the surface beyond the hit point's own
+  // error (spawn_offset, from the hit's t_err), for an intersector whose hits carry no
+  // error bound: 0 for the reference and the FMPP (exact or certified t); Embree's float
+  // arithmetic takes float_spawn_margin.
   virtual double spawn_margin() const { return 0; }
 };
 
@@ -60,19 +60,16 @@ class ReferenceIntersector : public Intersector {
   const std::vector<fmpp::isect::Triangle>& tris_;
 };
 
-// The FMPP intersector's spawn margin for these triangles: 2e-5 of the half-diagonal
-// of their bounding box (0 for none). Other intersectors compared with the FMPP on the
-// same rays (sw/embree/) take the same margin.
-double fmpp_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris);
+// A spawn margin for an intersector in float arithmetic without error bounds (Embree,
+// sw/embree/): 2e-5 of the half-diagonal of the triangles' bounding box (0 for none).
+// The FMPP does not use it: its hits carry their certified error (Hit::t_err).
+double float_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris);
 
 class FmppIntersector : public Intersector {
  public:
   FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
                   const fmpp::isect::KernelOptions& opt);
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
-  // 1e-5 of the diagonal of the triangles' bounding box: the resolution of the
-  // fixed-point kernels, whose scale follows the geometry they hold.
-  double spawn_margin() const override { return margin_; }
   void set_batch_kind(BatchKind k) override { kind_ = k; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
@@ -84,7 +81,6 @@ class FmppIntersector : public Intersector {
   fmpp::isect::KernelStats stats_;
   fmpp::isect::KernelStats by_kind_[kNumBatchKinds];
   BatchKind kind_ = BatchKind::kPrimary;
-  double margin_ = 0;
 };
 
 struct RenderOptions {
@@ -112,8 +108,9 @@ struct RenderStats {
 // How far a secondary ray spawned at the point o + t d of ray r starts from the surface
 // (along the unit face normal n): the bound on that point's own error - from the
 // relative error t_err of t and the rounding of o + t d - projected on n and doubled (as
-// pbrt-v4 does). It depends on this hit alone, not on the scene's size; render() adds
-// the intersector's spawn_margin().
+// pbrt-v4 does). It depends on this hit alone, not on the scene's size: the shader gives
+// it the hit's own bound (Hit::t_err, at least 2^-40), and adds the intersector's
+// spawn_margin() (0 but for Embree).
 double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, double t_err);
 
 // The camera's primary rays through the pixel centres, row by row from the top (pixel

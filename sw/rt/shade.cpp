@@ -101,7 +101,9 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
     out.shadows.push_back(Shadow{path.pixel, c, h.tri});
   }
   if (!spawn) return;
-  const double off = spawn_offset(r, h.t, s.nf, kDoubleTError) + spawn_margin_;
+  // The hit point's own error: from t's (exact, or the FMPP's certified bound), never
+  // from the scene's size.
+  const double off = spawn_offset(r, h.t, s.nf, std::max(h.t_err, kDoubleTError)) + spawn_margin_;
   for (const auto& part : m.parts()) {
     Spawn sp;
     if (!part->spawn(path.weight, s, &sp)) continue;

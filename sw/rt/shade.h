@@ -40,8 +40,8 @@ struct ShadeOutput {
 class Shader {
  public:
   // The scene must outlive the shader. Secondary rays start off the surface by the bound
-  // on their hit point's own error (spawn_offset in render.h) plus `spawn_margin`, what
-  // the intersector needs to tell a new hit from the surface it leaves.
+  // on their hit point's own error (spawn_offset in render.h, from the hit's t_err) plus
+  // `spawn_margin`, for an intersector whose hits carry no bound (Embree).
   Shader(const Scene& scene, double spawn_margin);
 
   // Shades ray r of `path`, whose nearest hit is h: a miss adds the background to the

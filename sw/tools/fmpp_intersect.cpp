@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
         throw std::invalid_argument(given + " is too few: " + why + ", which needs " + k + " words per block; " + fix +
                                     ", or --origins group");
       }
+      opt.validate(cfg);  // every option and combination, before any work
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       KernelStats st;

@@ -18,6 +18,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "tb/backend.h"
 #include "sw/isect/stats_json.h"
@@ -92,6 +95,10 @@ int main(int argc, char** argv) {
                  "pixels allowed off the reference (a 95 % upper bound from sampled pixels)")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
+  bool accept_miss = false;
+  app.add_flag("--accept-plan-miss", accept_miss,
+               "render even when the precision plan finds no n that keeps --error-target (without it, such a "
+               "render stops with an error before any work on the frame)");
   int sample_pixels = 3000;
   app.add_option("--plan-pixels", sample_pixels,
                  "precision plan: pixels of the frame drawn at random and rendered per candidate n")
@@ -145,6 +152,10 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--trace " + bo.trace_file + " on several ranks: every FMPP would write that file");
     }
     check_trace_options(backend, bo);
+    if (mapping == "object" && watertight) {
+      throw std::invalid_argument("--watertight with --mapping object: the watertight form exists in the ray-parallel "
+                                  "mapping only; use --mapping ray");
+    }
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
@@ -197,10 +208,22 @@ int main(int argc, char** argv) {
       if (app.count("--blocks")) pr.blocks = blocks;
       if (app.count("--words")) pr.words = words;
       const rt::Plan plan = rt::make_plan(scene, pr);
+      if (!plan.met_target && !accept_miss) {
+        std::ostringstream t;
+        t << target;
+        throw std::runtime_error("the precision plan cannot keep --error-target " + t.str() + ": " + plan.why_bits +
+                                 "; no picture written (raise --error-target, or give --accept-plan-miss to render "
+                                 "anyway)");
+      }
+      if (!plan.met_target && !quiet) {
+        std::fprintf(stderr, "warning: rendering although the plan missed its target (--accept-plan-miss): %s\n",
+                     plan.why_bits.c_str());
+      }
       const Config cfg = plan.config;
       bits = plan.options.n;
       rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
                      {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
+                     {"met_target", plan.met_target}, {"accepted_miss", !plan.met_target && accept_miss},
                      {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order}};
       for (const auto& e : plan.pass_sizes) {
         rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},

@@ -54,11 +54,15 @@ BOUNDS = {
     "default/ray": certified_t,
     "exact": lambda n: 1e-8,  # fmpp-intersect --backend reference: t printed with 9 digits
 }
-KINDS = ("false_hit", "missed", "other_triangle", "tie_order")
+KINDS = ("false_hit", "missed", "other_triangle", "tie_order", "refused")
 
 
-def run(cmd, report=None):
+def run(cmd, report=None, refusable=False):
+    """The tool's output (and its JSON report). A refusable run (the FMPP on a valid input)
+    that fails returns (None, its error) to be counted as a refused input."""
     p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0 and refusable and p.returncode == 1:
+        return None, p.stderr.strip()
     if p.returncode != 0:
         sys.stderr.write("diffrun: command failed (%d): %s\n%s" % (p.returncode, " ".join(cmd), p.stderr))
         sys.exit(2)
@@ -146,8 +150,8 @@ def main():
     ap.add_argument("--table", help="also write the markdown table here")
     ap.add_argument("--json", help="write the counts here")
     a = ap.parse_args()
-    known = list(hardgen.FAMILIES) + list(hardgen.EXTREME)
-    families = a.families.split(",") if a.families else list(hardgen.FAMILIES) + (
+    known = list(hardgen.FAMILIES) + list(hardgen.PLACEMENT) + list(hardgen.EXTREME)
+    families = a.families.split(",") if a.families else list(hardgen.FAMILIES) + list(hardgen.PLACEMENT) + (
         list(hardgen.EXTREME) if a.reference_only else [])
     for f in families:
         if f not in known:
@@ -189,10 +193,17 @@ def main():
                     if be != "reference":
                         report = os.path.join(tmp, "%s_%d_%d.json" % (fam, i, j))
                         cmd += ["--bits", str(n), "--blocks", "64", "--words", "32", "--report", report] + FORMS[form]
-                    jobs.append(((be, form, n, fam), pool.submit(run, cmd, report), exact, tris, rays))
-        for key, fut, exact, tris, rays in jobs:
+                    jobs.append(((be, form, n, fam), pool.submit(run, cmd, report, True), exact, tris, rays, cmd))
+        refusals = []
+        for key, fut, exact, tris, rays, cmd in jobs:
             bound = BOUNDS.get(key[1])
             out, rep = fut.result()
+            if out is None:  # every input here is valid: a refusal is a disagreement on every ray
+                refusals.append("%s: %s" % (" ".join(cmd), rep))
+                c = {k: 0 for k in KINDS}
+                c.update(rays=len(rays), max_rel_t=0.0, over_bound=0, refused=len(rays), disagreements=len(rays))
+                add_counts(fmpp.setdefault(key, {}), c)
+                continue
             c = compare_fmpp(parse_hits(out), exact, tris, rays, bound(key[2]) if bound else None)
             if isinstance(rep, dict):
                 c.update(certify_counts(rep))
@@ -208,7 +219,7 @@ def main():
     if runs:
         short = {f: f.replace("_", " ") for f in families}
         lines.append("| backend | form/mapping | n | " + " | ".join(short[f] for f in families) +
-                     " | all | false hit / missed / other / tie | max rel t err | over bound | flagged | t redone |")
+                     " | all | false hit / missed / other / tie / refused | max rel t err | over bound | flagged | t redone |")
         lines.append("|" + " --- |" * (len(families) + 9))
         for be, form, n in runs:
             tot = {}
@@ -226,6 +237,8 @@ def main():
     sys.stdout.write(text)
     for b in ref_bad[:50]:
         sys.stderr.write("REFERENCE DISAGREES: %s\n" % b)
+    for r in refusals[:20]:
+        sys.stderr.write("VALID INPUT REFUSED: %s\n" % r)
     if a.table:
         with open(a.table, "w") as f:
             f.write(text)

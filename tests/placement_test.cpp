@@ -1,0 +1,202 @@
+// Exact wherever the scene sits (docs/intersection.md, "Placement and scale"): answers
+// that do not depend on where a scene is or how big it is. Each case is run through every
+// form and mapping at n = 16, 24 and 32 and compared with the exact reference; the
+// parameter is the backend (Model/...: the golden model, label unit; Rtl/...: the RTL in
+// lockstep with it, label rtl). The randomized families of the same kind are in
+// tests/diff (hardgen.py: scaled, translated, small_among_large, thin_slivers, far_speck,
+// far_ties).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/isect/exact.h"
+#include "sw/isect/kernels.h"
+#include "sw/isect/policy.h"
+#include "sw/isect/reference.h"
+#include "tb/backend.h"
+
+namespace fmpp::isect {
+namespace {
+
+struct Form {
+  const char* name;
+  Mapping mapping;
+  Origins origins;
+  bool watertight;
+};
+constexpr Form kForms[] = {
+    {"paper/ray", Mapping::kRay, Origins::kGroup, false},
+    {"watertight/ray", Mapping::kRay, Origins::kGroup, true},
+    {"arbitrary-origin/ray", Mapping::kRay, Origins::kGeneral, false},
+    {"default/ray", Mapping::kRay, Origins::kAuto, false},
+    {"paper/object", Mapping::kObject, Origins::kAuto, false},
+};
+
+class Placement : public ::testing::TestWithParam<const char*> {
+ protected:
+  // Every form at n = 16, 24, 32: the reference's triangle for every ray, t within the
+  // certified accuracy (or one ulp, for a t in the subnormal range), no valid input refused.
+  void expect_exact_everywhere(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
+    const std::vector<Hit> ref = nearest_reference(rays, tris);
+    const double acc = policy::t_accuracy(KernelOptions{});
+    for (const Form& f : kForms) {
+      for (unsigned n : {16u, 24u, 32u}) {
+        KernelOptions o;
+        o.n = n;
+        o.mapping = f.mapping;
+        o.origins = f.origins;
+        o.watertight = f.watertight;
+        auto be = make_backend(GetParam(), Config{64, 32});
+        Device dev(be->bus());
+        KernelStats st;
+        std::vector<Hit> got;
+        ASSERT_NO_THROW(got = intersect_fmpp(dev, rays, tris, o, &st)) << f.name << " n " << n;
+        be->finish();
+        for (size_t i = 0; i < rays.size(); ++i) {
+          EXPECT_EQ(got[i].tri, ref[i].tri) << f.name << " n " << n << " ray " << i;
+          if (ref[i].hit() && got[i].tri == ref[i].tri) {
+            const double tol = std::max(acc * ref[i].t, std::nextafter(ref[i].t, 1e300) - ref[i].t);
+            EXPECT_LE(std::abs(got[i].t - ref[i].t), tol) << f.name << " n " << n << " ray " << i;
+            EXPECT_GT(got[i].t, rays[i].tmin) << f.name << " n " << n << " ray " << i;
+            EXPECT_LE(got[i].t_err, acc) << "a kernel's t comes with its certified bound";
+          }
+        }
+        EXPECT_EQ(st.uncertified_rays, 0u);
+      }
+    }
+  }
+};
+
+// Two triangles: a 3-unit one at z = 4 and a sliver 2^29 from the origin whose normal,
+// computed in double relative to the scene's centre, rounds to zero. The arbitrary-origin
+// form used to drop the triangle it could not represent, though it is not degenerate:
+// both rays hit triangle 0 at t = 1 and came back as misses, every counter at 0.
+TEST_P(Placement, FarSliverDoesNotLoseTheNearTriangle) {
+  const std::vector<Triangle> tris = {
+      {{{0, 0, 4}, {3, 0, 4}, {0, 3, 4}}},
+      {{{536870912, 536870912, 536870912}, {1073741824, 536870912, 536870912}, {536870912, 1073741824, 536870912}}}};
+  const std::vector<Ray> rays = {{{0, 0, 0}, {1, 1, 4}}, {{0.5, 0.25, 0}, {0.5, 0.75, 4}}};
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  ASSERT_EQ(ref[0].tri, 0);
+  ASSERT_EQ(ref[0].t, 1);
+  ASSERT_EQ(ref[1].tri, 0);
+  expect_exact_everywhere(rays, tris);
+}
+
+// Ordinary magnitudes: eight 64-unit triangles at the corners of a box of half-size
+// 8192, and one triangle about 6e-5 across near (-4382, -7943, -7970), seen by two rays
+// with their own origins: its normal relative to the box's centre rounds to zero, and
+// the arbitrary-origin form used to drop it (both rays missed).
+TEST_P(Placement, SmallTriangleFarFromTheCentre) {
+  std::vector<Triangle> tris;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c((k & 1) ? 8192 : -8192, (k & 2) ? 8192 : -8192, (k & 4) ? 8192 : -8192);
+    tris.push_back({{c, c + glm::dvec3(64, 0, 0), c + glm::dvec3(0, 64, 0)}});
+  }
+  // Found by search: its normal, relative to the box's centre, sums to exactly 0 in double.
+  const glm::dvec3 a(-4381.9423828125, -7943.0341796875, -7969.9130859375);
+  const glm::dvec3 b(-4381.942337036133, -7943.034118652344, -7969.913146972656);
+  const glm::dvec3 c(-4381.942337036133, -7943.034149169922, -7969.913146972656);
+  tris.push_back({{a, b, c}});
+  const glm::dvec3 aim = (a + b + c) / 3.0;
+  std::vector<Ray> rays;
+  for (const glm::dvec3& o : {aim + glm::dvec3(0.25, -0.5, 3), aim + glm::dvec3(-1, 0.5, 2)}) rays.push_back({o, aim - o});
+  const std::vector<Hit> ref = nearest_reference(rays, tris);
+  ASSERT_EQ(ref[0].tri, 8);
+  ASSERT_EQ(ref[1].tri, 8);
+  expect_exact_everywhere(rays, tris);
+}
+
+// A small scene at every scale: 2^-1060 (subnormal coordinates) to 2^300, and far from
+// the origin. The kernels used to refuse the small ones ("no finite scale for the
+// compared sums", "ray origin out of range after scaling").
+TEST_P(Placement, AnyScaleAndPlace) {
+  const std::vector<Triangle> base = {
+      {{{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}}},
+      {{{-1, -1, 7}, {1, -1, 7}, {0, 1, 7}}},  // behind the first
+      {{{0.25, 0.25, 6}, {0.75, 0.25, 6}, {0.5, 0.625, 6}}},
+  };
+  const std::vector<Ray> base_rays = {{{0, 0, 0}, {0, 0, 1}},         {{0, 0, 0}, {0.05, 0.06, 1}},
+                                      {{0.5, 0.4, 0}, {0, 0, 1}},     {{0.5, 0.4, 5.5}, {0, 0, 1}},
+                                      {{3, 3, 3}, {-2.5, -2.6, 3}},   {{0, 0, 0}, {0.3, -0.1, 1}}};
+  for (int e : {-1060, -1030, -540, -100, 0, 60, 300}) {
+    for (double shift : {0.0, 1e6}) {
+      std::vector<Triangle> tris = base;
+      std::vector<Ray> rays = base_rays;
+      for (Triangle& t : tris) {
+        for (glm::dvec3& p : t.p) p = glm::dvec3(std::ldexp(p.x + shift, e), std::ldexp(p.y, e), std::ldexp(p.z, e));
+      }
+      for (Ray& r : rays) r.o = glm::dvec3(std::ldexp(r.o.x + shift, e), std::ldexp(r.o.y, e), std::ldexp(r.o.z, e));
+      SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(shift));
+      expect_exact_everywhere(rays, tris);
+    }
+  }
+}
+
+// Copies of one triangle (rotated and reversed vertex order) 2^50 from the origin: exact
+// ties, which go to the lowest index.
+TEST_P(Placement, FarTiesGoToTheLowestIndex) {
+  const glm::dvec3 far(0x1p50, -0x1p49, 0x1p48);
+  const glm::dvec3 a = far + glm::dvec3(-64, -64, 512), b = far + glm::dvec3(64, -64, 512),
+                   c = far + glm::dvec3(0, 64, 512);
+  const std::vector<Triangle> tris = {{{a, b, c}}, {{c, b, a}}, {{b, c, a}}};
+  std::vector<Ray> rays;
+  for (const glm::dvec3& p : {(a + b + c) / 3.0, 0.5 * (a + b), a}) rays.push_back({far, p - far});
+  for (const Hit& h : nearest_reference(rays, tris)) ASSERT_EQ(h.tri, 0);
+  expect_exact_everywhere(rays, tris);
+}
+
+INSTANTIATE_TEST_SUITE_P(Model, Placement, ::testing::Values("cmodel"));
+INSTANTIATE_TEST_SUITE_P(Rtl, Placement, ::testing::Values("lockstep"));
+
+TEST(ExactDegenerate, CollinearAndRepeatedVertices) {
+  EXPECT_TRUE(exact::degenerate({{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}}}));
+  EXPECT_TRUE(exact::degenerate({{{1, 2, 3}, {1, 2, 3}, {4, 5, 6}}}));
+  EXPECT_TRUE(exact::degenerate({{{0x1p-1074, 0, 0}, {0x1p-1073, 0, 0}, {0x1p-1072, 0, 0}}}));
+  // Collinear in exact arithmetic, though no double operation shows it directly.
+  const double x = 0.1, y = 0.3;
+  EXPECT_TRUE(exact::degenerate({{{0, 0, 0}, {x, y, 0}, {4 * x, 4 * y, 0}}}));
+}
+
+TEST(ExactDegenerate, RoundedZeroNormalIsNotDegenerate) {
+  // Apex 2^-60 off the base line, 2^29 from the origin: the cross product of the edges
+  // computed in double is 0 in two components, yet the triangle has an area.
+  const glm::dvec3 a(0x1p29, 0x1p29, 0x1p29);
+  const Triangle sliver = {{a, a + glm::dvec3(0x1p29, 0, 0), a + glm::dvec3(0x1p28, 0x1p-23, 0)}};
+  EXPECT_FALSE(exact::degenerate(sliver));
+  EXPECT_FALSE(exact::degenerate({{{0x1p-1074, 0, 0}, {0, 0x1p-1074, 0}, {0, 0, 0}}}));
+  // Its normal underflows to exactly 0 in double.
+  EXPECT_FALSE(exact::degenerate({{{0, 0, 0}, {0x1p-600, 0, 0}, {0, 0x1p-600, 0}}}));
+  EXPECT_FALSE(exact::degenerate({{{0, 0, 4}, {3, 0, 4}, {0, 3, 4}}}));
+}
+
+TEST(SceneExponent, BringsTheLargestCoordinateNearOneWithoutLosingBits) {
+  const std::vector<Ray> none;
+  EXPECT_EQ(scene_exponent(none, {{{{0x1p-1060, 0, 0}, {0, 0x1p-1061, 0}, {0, 0, 0}}}}), 1060);
+  EXPECT_EQ(scene_exponent(none, {{{{1.5, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}), 0);
+  EXPECT_EQ(scene_exponent(none, {{{{0x1p300, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}), -300);
+  // 2^300 beside 2^-1000: scaling by 2^-300 would round the small one away; held back.
+  EXPECT_EQ(scene_exponent(none, {{{{0x1p300, 0, 0}, {0, 0x1p-1000, 0}, {0, 0, 1}}}}), -74);
+  EXPECT_EQ(scene_exponent({{{0x1p-600, 0, 0}, {1, 0, 0}}}, {{{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}}}), 600);
+  EXPECT_EQ(scene_exponent(none, {{{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}}}), 0);
+}
+
+// Options a mapping would ignore are refused, not silently dropped.
+TEST(Options, ObjectMappingRefusesRayParallelForms) {
+  KernelOptions o;
+  o.mapping = Mapping::kObject;
+  o.watertight = true;
+  EXPECT_THROW(o.validate(Config{64, 32}), std::invalid_argument);
+  o.watertight = false;
+  o.origins = Origins::kGeneral;
+  EXPECT_THROW(o.validate(Config{64, 32}), std::invalid_argument);
+  o.origins = Origins::kGroup;
+  EXPECT_NO_THROW(o.validate(Config{64, 32}));
+}
+
+}  // namespace
+}  // namespace fmpp::isect
