@@ -59,7 +59,7 @@ TEST(HostileInput, BareCarriageReturnEndsACommentLikeANewline) {
   write("cr.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\n# c\rf 1 2 9\n");
   write("cr.json", scene_for("cr.obj"));
   EXPECT_EQ(scene_error("cr.json"),
-            dir() + "/cr.obj: cannot read mesh: not a valid obj file (OBJ: vertex index out of range)");
+            dir() + "/cr.obj:5: face refers to vertex 9 of 3");
   write("crok.obj", "v 0 0 -3\rv 1 0 -3\r\nv 0 1 -3\n# c\rf 1 2 3\r");
   write("crok.json", scene_for("crok.obj"));
   EXPECT_EQ(load_scene(dir() + "/crok.json").triangles.size(), 1u);

@@ -228,6 +228,7 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
   std::unique_ptr<DoubleValues> exact;
   if (ext == ".obj") {
     data = normalize_obj(path, std::move(data));
+    check_obj_indices(path, data);
     exact = std::make_unique<DoubleValues>(data);
   }
   Assimp::Importer imp;

@@ -17,6 +17,15 @@ namespace rt {
 // Throws SceneError naming `path` for text that is not a readable text file.
 std::string normalize_obj(const std::string& path, std::string text);
 
+// Checks every index of every face ('f') statement of normalized OBJ text against the
+// positions ('v'), texture coordinates ('vt') and normals ('vn') defined before it (OBJ
+// indices start at 1; a negative one counts back from the last so far). The library
+// checks positions but takes a normal or texture-coordinate index out of range
+// silently. Throws SceneError "<path>:<line>: face refers to normal 99 of 1" (or
+// "texture coordinate", "vertex"; "... 0: indices start at 1"). Tokens that are not
+// integers are left to the library's parser, which refuses them.
+void check_obj_indices(const std::string& path, const std::string& text);
+
 // The library reads coordinates in single precision; OBJ files hold decimal text that
 // the ray tracer reads in double (the scenes' renders depend on it, and the input limit
 // 1e100 is beyond float). This table maps each 'v' and 'vn' statement's numbers as the
