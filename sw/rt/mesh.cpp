@@ -112,6 +112,26 @@ glm::dvec3 unit(glm::dvec3 v) {
   return v / glm::length(v);
 }
 
+// A node's transform to the file's root, in double: p -> m p (rows of [3x3 | t]).
+// glTF nodes carry TRS or a matrix (the library composes TRS as T R S); the other
+// formats' nodes are the identity.
+struct Affine {
+  double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+  bool identity = true;
+  double n[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // inverse transpose of the 3x3, for normals
+  bool mirrors = false;                                   // negative determinant
+
+  glm::dvec3 point(const glm::dvec3& p) const {
+    return glm::dvec3(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                      m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                      m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+  }
+  glm::dvec3 normal(const glm::dvec3& v) const {
+    return glm::dvec3(n[0][0] * v.x + n[0][1] * v.y + n[0][2] * v.z, n[1][0] * v.x + n[1][1] * v.y + n[1][2] * v.z,
+                      n[2][0] * v.x + n[2][1] * v.y + n[2][2] * v.z);
+  }
+};
+
 struct Walker {
   const std::string& path;
   const aiScene& scene;
@@ -122,7 +142,59 @@ struct Walker {
     return exact ? (*exact)(v.x, v.y, v.z) : glm::dvec3(v.x, v.y, v.z);
   }
 
-  void mesh(const aiMesh& m, MeshGroup& g) const {
+  // parent x the node's own transform; refused if not affine, not finite or singular.
+  Affine compose(const Affine& parent, const aiMatrix4x4& t, const std::string& name) const {
+    const double local[4][4] = {{t.a1, t.a2, t.a3, t.a4}, {t.b1, t.b2, t.b3, t.b4}, {t.c1, t.c2, t.c3, t.c4},
+                                {t.d1, t.d2, t.d3, t.d4}};
+    bool id = true, finite = true;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        id = id && local[r][c] == (r == c ? 1 : 0);
+        finite = finite && std::isfinite(local[r][c]);
+      }
+    }
+    if (id) return parent;
+    const std::string where = path + ": node '" + name + "': its transform ";
+    if (!finite) throw SceneError(where + "is not finite");
+    if (local[3][0] != 0 || local[3][1] != 0 || local[3][2] != 0 || local[3][3] != 1) {
+      throw SceneError(where + "is not affine (its last row is not 0 0 0 1)");
+    }
+    Affine a;
+    a.identity = false;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        double v = 0;
+        for (int k = 0; k < 3; ++k) v += parent.m[r][k] * local[k][c];
+        a.m[r][c] = v + (c == 3 ? parent.m[r][3] : 0);
+      }
+    }
+    // Normals need only the direction of the inverse transpose: the cofactor matrix
+    // times the sign of the determinant, computed on the 3x3 scaled to a largest entry
+    // of 1 (so that neither overflows; normals are normalized after).
+    double big = 0;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) big = std::max(big, std::abs(a.m[r][c]));
+    }
+    if (!std::isfinite(big)) throw SceneError(where + "is not finite once composed with its parents'");
+    double x[3][3];
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) x[r][c] = big > 0 ? a.m[r][c] / big : 0;
+    }
+    const double det = x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+                       x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+    if (!(std::abs(det) > 0)) throw SceneError(where + "is singular (it flattens the mesh)");
+    const double sign = det < 0 ? -1 : 1;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        a.n[r][c] = sign * (x[r1][c1] * x[r2][c2] - x[r1][c2] * x[r2][c1]);
+      }
+    }
+    a.mirrors = det < 0;
+    return a;
+  }
+
+  void mesh(const aiMesh& m, MeshGroup& g, const Affine& to_root) const {
     const bool normals = m.HasNormals();
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
@@ -139,19 +211,29 @@ struct Walker {
                            std::to_string(i) + " of " + std::to_string(m.mNumVertices));
         }
         t.p[c] = value(m.mVertices[i]);
-        const std::string why = fmpp::isect::check_point(t.p[c]);
-        if (!why.empty()) {
-          throw SceneError(path + ": vertex of face " + std::to_string(f) + " of part '" + g.name + "' " + why +
-                           (std::isfinite(t.p[c].x) && std::isfinite(t.p[c].y) && std::isfinite(t.p[c].z)
-                                ? ""
-                                : std::string(" (") + (exact ? "or a value that rounds like another one " : "") +
-                                      "beyond the single precision of the mesh reader, 3.4e38)"));
+        // The file's own value first, then where the node transforms put it.
+        for (int placed = 0; placed < (to_root.identity ? 1 : 2); ++placed) {
+          if (placed) t.p[c] = to_root.point(t.p[c]);
+          const std::string why = fmpp::isect::check_point(t.p[c]);
+          if (!why.empty()) {
+            throw SceneError(path + ": vertex of face " + std::to_string(f) + " of part '" + g.name + "' " +
+                             (placed ? "placed by the node transforms " : "") + why +
+                             (placed || (std::isfinite(t.p[c].x) && std::isfinite(t.p[c].y) && std::isfinite(t.p[c].z))
+                                  ? ""
+                                  : std::string(" (") + (exact ? "or a value that rounds like another one " : "") +
+                                        "beyond the single precision of the mesh reader, 3.4e38)"));
+          }
         }
         n[c] = normals ? value(m.mNormals[i]) : glm::dvec3(0);
         const std::string nwhy = fmpp::isect::check_point(n[c]);
         if (!nwhy.empty()) {
           throw SceneError(path + ": normal of face " + std::to_string(f) + " of part '" + g.name + "' " + nwhy);
         }
+        if (!to_root.identity) n[c] = to_root.normal(n[c]);
+      }
+      if (to_root.mirrors) {  // keep the front face where it was (the glTF rule)
+        std::swap(t.p[1], t.p[2]);
+        std::swap(n[1], n[2]);
       }
       glm::dvec3 fn = unit(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
       if (fn == glm::dvec3(0)) fn = glm::dvec3(0, 0, 1);
@@ -164,8 +246,10 @@ struct Walker {
     }
   }
 
-  void node(const aiNode& nd, const std::string& parent) const {
+  void node(const aiNode& nd, const std::string& parent, const Affine& parent_to_root, int depth = 0) const {
     const std::string name = nd.mName.length ? nd.mName.C_Str() : parent;
+    if (depth > 1000) throw SceneError(path + ": node '" + name + "': nodes nested more than 1000 deep");
+    const Affine to_root = compose(parent_to_root, nd.mTransformation, name);
     if (nd.mNumMeshes) {
       MeshGroup g;
       g.name = name;
@@ -175,13 +259,13 @@ struct Walker {
           throw SceneError(path + ": part '" + name + "' refers to mesh " + std::to_string(mi) + " of " +
                            std::to_string(scene.mNumMeshes));
         }
-        mesh(*scene.mMeshes[mi], g);
+        mesh(*scene.mMeshes[mi], g, to_root);
       }
       out.triangles += g.triangles.size();
       if (!g.triangles.empty()) out.groups.push_back(std::move(g));
     }
     for (unsigned k = 0; k < nd.mNumChildren; ++k) {
-      if (nd.mChildren[k]) node(*nd.mChildren[k], name);
+      if (nd.mChildren[k]) node(*nd.mChildren[k], name, to_root, depth + 1);
     }
   }
 };
@@ -243,7 +327,7 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
                      (why.empty() ? "" : " (" + why + ")"));
   }
   Mesh m;
-  Walker{path, *sc, exact.get(), m}.node(*sc->mRootNode, "");
+  Walker{path, *sc, exact.get(), m}.node(*sc->mRootNode, "", Affine{});
   if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
   return m;
 }
