@@ -3,6 +3,7 @@
 // matrices, nested, a mesh instanced twice). Each renders on the golden model
 // byte-identical to the same geometry transformed in advance and saved as OBJ.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <cstring>
@@ -22,9 +23,14 @@ namespace {
 
 using glm::dvec3;
 
+// A directory of the running test's own: ctest runs the tests of a binary as parallel
+// processes, and they write files of the same names.
 std::string dir() {
   std::string d = ::testing::TempDir();
   while (d.size() > 1 && d.back() == '/') d.pop_back();
+  const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  d += std::string("/") + "transform_" + t->name();
+  ::mkdir(d.c_str(), 0700);
   return d;
 }
 

@@ -1,6 +1,7 @@
 // Mesh files through assimp, confined to the file itself (see mesh.h).
 #include "sw/rt/mesh.h"
 
+#include <assimp/material.h>
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
@@ -8,6 +9,8 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <charconv>
+#include <map>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -18,6 +21,8 @@
 #include <unordered_map>
 
 #include "sw/isect/io.h"
+
+#include <nlohmann/json.hpp>
 #include "sw/rt/isolate.h"
 #include "sw/rt/obj_text.h"
 #include "sw/rt/scene.h"
@@ -137,6 +142,7 @@ struct Walker {
   const aiScene& scene;
   const DoubleValues* exact;  // OBJ only
   Mesh& out;
+  const std::vector<int>& material_of;  // the library's material index -> Mesh::materials, or -1
 
   glm::dvec3 value(const aiVector3D& v) const {
     return exact ? (*exact)(v.x, v.y, v.z) : glm::dvec3(v.x, v.y, v.z);
@@ -196,6 +202,7 @@ struct Walker {
 
   void mesh(const aiMesh& m, MeshGroup& g, const Affine& to_root) const {
     const bool normals = m.HasNormals();
+    const int material = m.mMaterialIndex < material_of.size() ? material_of[m.mMaterialIndex] : -1;
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
       if (face.mNumIndices != 3 || !face.mIndices) {
@@ -243,6 +250,7 @@ struct Walker {
       }
       g.triangles.push_back(t);
       g.normals.push_back(n);
+      g.material.push_back(material);
     }
   }
 
@@ -307,6 +315,156 @@ namespace {
 
 double g_mesh_seconds = 60;
 
+// A value the library read in single precision, as the decimal number the file most
+// likely wrote: the shortest decimal that reads back as the same float, read in double
+// (0.8f -> 0.8, not 0.800000011920929), as the scene file's numbers are read.
+double file_decimal(float f) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf - 1, f);
+  *r.ptr = 0;
+  return std::strtod(buf, nullptr);
+}
+
+// The MTL libraries an OBJ file names (mtllib): each in the mesh's own directory, a
+// .mtl file, read within the limits of a mesh file; a library that cannot be read is an
+// error naming the OBJ line (the faces' materials would silently be lost otherwise).
+std::map<std::string, MtlMaterial> read_mtl_libraries(const std::string& path, const std::string& text) {
+  std::map<std::string, MtlMaterial> mtl;
+  const fs::path self = normal_path(path);
+  for (const ObjStatement& st : obj_statements(text, "mtllib")) {
+    std::istringstream names(st.value);
+    std::string name;
+    while (names >> name) {
+      const std::string where = path + ":" + std::to_string(st.line) + ": mtllib '" + name + "': ";
+      const fs::path lib = normal_path((self.parent_path() / name).string());
+      if (lib.parent_path() != self.parent_path()) {
+        throw SceneError(where + "not beside the mesh (a material library must be in the mesh's own directory)");
+      }
+      if (lower_extension(lib.string()) != ".mtl") throw SceneError(where + "not a .mtl file");
+      std::string lib_text;
+      const std::string err = fmpp::isect::read_input(lib.string(), "material library", fmpp::isect::kMaxMeshBytes, &lib_text);
+      if (!err.empty()) throw SceneError(where + err);
+      parse_mtl(lib.string(), std::move(lib_text), mtl);
+    }
+  }
+  return mtl;
+}
+
+// Two glTF material extensions the mesh library does not read, taken from the file's
+// JSON (a .glb's first chunk): KHR_materials_transmission's transmissionFactor and
+// KHR_materials_ior's ior, per material index (NaN where absent). The library has
+// parsed the same JSON already; anything unexpected here is simply absent.
+struct GltfExtras {
+  double transmission = std::nan(""), ior = std::nan("");
+};
+std::vector<GltfExtras> gltf_extras(const std::string& data, const std::string& ext) {
+  std::string text = data;
+  if (ext == ".glb") {
+    uint32_t len = 0, type = 0;
+    if (data.size() < 20) return {};
+    std::memcpy(&len, data.data() + 12, 4);
+    std::memcpy(&type, data.data() + 16, 4);
+    if (type != 0x4E4F534Au || len > data.size() - 20) return {};  // "JSON"
+    text = data.substr(20, len);
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  std::vector<GltfExtras> out;
+  if (!j.is_object() || !j.contains("materials") || !j["materials"].is_array()) return out;
+  for (const auto& m : j["materials"]) {
+    GltfExtras e;
+    auto number = [&](const char* extension, const char* key, double* v) {
+      if (!m.is_object() || !m.contains("extensions") || !m["extensions"].is_object()) return;
+      const auto& x = m["extensions"];
+      if (x.contains(extension) && x[extension].is_object() && x[extension].contains(key) &&
+          x[extension][key].is_number()) {
+        *v = x[extension][key].get<double>();
+      }
+    };
+    number("KHR_materials_transmission", "transmissionFactor", &e.transmission);
+    number("KHR_materials_ior", "ior", &e.ior);
+    out.push_back(e);
+  }
+  return out;
+}
+
+// glTF metallic-roughness onto the Whitted materials (docs/raytracer.md, "Materials from
+// the mesh file").
+FileMaterial gltf_material(const aiMaterial& a, const std::string& name, const std::string& path, const GltfExtras& x) {
+  FileMaterial fm;
+  fm.m.name = name;
+  fm.where = path;
+  aiColor4D base(1, 1, 1, 1);
+  if (a.Get(AI_MATKEY_BASE_COLOR, base) != AI_SUCCESS) {
+    aiColor3D d(1, 1, 1);
+    if (a.Get(AI_MATKEY_COLOR_DIFFUSE, d) == AI_SUCCESS) base = aiColor4D(d.r, d.g, d.b, 1);
+  }
+  float metallic = 1, roughness = 1, transmission = 0, ior = 1.5f;  // the format's defaults
+  a.Get(AI_MATKEY_METALLIC_FACTOR, metallic);
+  a.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
+  a.Get(AI_MATKEY_TRANSMISSION_FACTOR, transmission);
+  a.Get(AI_MATKEY_REFRACTI, ior);
+  const float all[] = {base.r, base.g, base.b, metallic, roughness, transmission, ior};
+  for (float v : all) {
+    if (!std::isfinite(v)) throw SceneError(path + ": material '" + name + "': a factor is not finite");
+  }
+  fm.m.diffuse = glm::clamp(glm::dvec3(file_decimal(base.r), file_decimal(base.g), file_decimal(base.b)), 0.0, 1.0);
+  const double r = std::clamp(file_decimal(roughness), 0.0, 1.0), mt = std::clamp(file_decimal(metallic), 0.0, 1.0);
+  fm.m.specular = 1 - r;
+  const double r4 = r * r * r * r;  // Blinn-Phong exponent of the GGX width alpha = r^2: 2 / alpha^2 - 2
+  fm.m.shininess = r4 > 0 ? std::clamp(2 / r4 - 2, 1.0, 10000.0) : 10000.0;
+  fm.m.reflectivity = mt * (1 - r);
+  const double tr = std::isnan(x.transmission) ? file_decimal(transmission) : x.transmission;
+  const double eta = std::isnan(x.ior) ? file_decimal(ior) : x.ior;
+  if (!std::isfinite(tr) || !std::isfinite(eta)) throw SceneError(path + ": material '" + name + "': a factor is not finite");
+  fm.m.transparency = std::min(std::clamp(tr, 0.0, 1.0), 1 - fm.m.reflectivity);
+  fm.m.ior = std::clamp(eta, 1.0, 4.0);
+  return fm;
+}
+
+// The file's materials: Mesh::materials, and for each of the library's materials its
+// index there (-1: the library's default, given to faces without a material).
+std::vector<int> file_materials(const std::string& path, const std::string& ext, const aiScene& sc,
+                                const std::string& text, Mesh& m) {
+  const std::string& obj_text = text;
+  std::vector<int> index(sc.mNumMaterials, -1);
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb") return index;  // PLY, OFF, STL: none
+  std::map<std::string, MtlMaterial> mtl;
+  std::map<std::string, size_t> first_use;
+  if (ext == ".obj") {
+    mtl = read_mtl_libraries(path, obj_text);
+    for (const ObjStatement& st : obj_statements(obj_text, "usemtl")) first_use.emplace(st.value, st.line);
+  }
+  const std::vector<GltfExtras> extras = ext == ".obj" ? std::vector<GltfExtras>{} : gltf_extras(text, ext);
+  for (unsigned i = 0; i < sc.mNumMaterials; ++i) {
+    if (!sc.mMaterials || !sc.mMaterials[i]) continue;
+    aiString an;
+    sc.mMaterials[i]->Get(AI_MATKEY_NAME, an);
+    const std::string name = an.C_Str();
+    // The library's defaults, for faces without a material: OBJ faces before any
+    // usemtl; glTF primitives without one (its reader appends that material last).
+    if (ext == ".obj" ? name == AI_DEFAULT_MATERIAL_NAME : i + 1 == sc.mNumMaterials) continue;
+    FileMaterial fm;
+    if (ext == ".obj") {
+      const auto it = mtl.find(name);
+      if (it != mtl.end()) {
+        fm.m = it->second.m;
+        fm.where = it->second.where;
+      } else {
+        fm.defined = false;
+        fm.m.name = name;
+        const auto use = first_use.find(name);
+        fm.where = path + (use != first_use.end() ? ":" + std::to_string(use->second) : "");
+      }
+    } else {
+      fm = gltf_material(*sc.mMaterials[i], name.empty() ? "material" + std::to_string(i) : name, path,
+                         i < extras.size() ? extras[i] : GltfExtras{});
+    }
+    index[i] = static_cast<int>(m.materials.size());
+    m.materials.push_back(fm);
+  }
+  return index;
+}
+
 // The library's part: `data` is the file's bytes (already checked and read).
 Mesh parse_mesh(const std::string& path, const std::string& ext, std::string data) {
   std::unique_ptr<DoubleValues> exact;
@@ -315,6 +473,7 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
     check_obj_indices(path, data);
     exact = std::make_unique<DoubleValues>(data);
   }
+  const std::string text = ext == ".obj" || ext == ".gltf" || ext == ".glb" ? data : std::string();
   Assimp::Importer imp;
   auto* io = new ConfinedIo(path, std::move(data));
   imp.SetIOHandler(io);  // the importer owns and deletes it
@@ -327,7 +486,8 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
                      (why.empty() ? "" : " (" + why + ")"));
   }
   Mesh m;
-  Walker{path, *sc, exact.get(), m}.node(*sc->mRootNode, "", Affine{});
+  const std::vector<int> material_of = file_materials(path, ext, *sc, text, m);
+  Walker{path, *sc, exact.get(), m, material_of}.node(*sc->mRootNode, "", Affine{});
   if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
   return m;
 }
@@ -345,8 +505,27 @@ T get(const std::string& s, size_t& pos) {
   pos += sizeof v;
   return v;
 }
+void put_string(std::string& s, const std::string& v) {
+  put<uint64_t>(s, v.size());
+  s += v;
+}
+std::string get_string(const std::string& s, size_t& pos) {
+  const uint64_t len = get<uint64_t>(s, pos);
+  if (len > s.size() - pos) throw SceneError("mesh reader: short result");
+  std::string v = s.substr(pos, len);
+  pos += len;
+  return v;
+}
 std::string serialize(const Mesh& m) {
   std::string s;
+  put<uint64_t>(s, m.materials.size());
+  for (const FileMaterial& f : m.materials) {
+    put_string(s, f.m.name);
+    put_string(s, f.where);
+    put<uint8_t>(s, f.defined);
+    put(s, f.m.diffuse);
+    for (double v : {f.m.specular, f.m.shininess, f.m.reflectivity, f.m.transparency, f.m.ior}) put(s, v);
+  }
   put<uint64_t>(s, m.skipped_primitives);
   put<uint64_t>(s, m.groups.size());
   for (const MeshGroup& g : m.groups) {
@@ -356,6 +535,7 @@ std::string serialize(const Mesh& m) {
     for (size_t i = 0; i < g.triangles.size(); ++i) {
       for (int c = 0; c < 3; ++c) put(s, g.triangles[i].p[c]);
       for (int c = 0; c < 3; ++c) put(s, g.normals[i][c]);
+      put<int32_t>(s, g.material[i]);
     }
   }
   return s;
@@ -363,21 +543,37 @@ std::string serialize(const Mesh& m) {
 Mesh deserialize(const std::string& s) {
   Mesh m;
   size_t pos = 0;
+  const uint64_t materials = get<uint64_t>(s, pos);
+  if (materials > s.size()) throw SceneError("mesh reader: short result");
+  for (uint64_t k = 0; k < materials; ++k) {
+    FileMaterial f;
+    f.m.name = get_string(s, pos);
+    f.where = get_string(s, pos);
+    f.defined = get<uint8_t>(s, pos) != 0;
+    f.m.diffuse = get<glm::dvec3>(s, pos);
+    f.m.specular = get<double>(s, pos);
+    f.m.shininess = get<double>(s, pos);
+    f.m.reflectivity = get<double>(s, pos);
+    f.m.transparency = get<double>(s, pos);
+    f.m.ior = get<double>(s, pos);
+    m.materials.push_back(f);
+  }
   m.skipped_primitives = get<uint64_t>(s, pos);
   const uint64_t groups = get<uint64_t>(s, pos);
   for (uint64_t k = 0; k < groups; ++k) {
     MeshGroup g;
-    const uint64_t len = get<uint64_t>(s, pos);
-    if (len > s.size() - pos) throw SceneError("mesh reader: short result");
-    g.name.assign(s, pos, len);
-    pos += len;
+    g.name = get_string(s, pos);
     const uint64_t n = get<uint64_t>(s, pos);
-    if (n > (s.size() - pos) / (6 * sizeof(glm::dvec3))) throw SceneError("mesh reader: short result");
+    if (n > (s.size() - pos) / (6 * sizeof(glm::dvec3) + sizeof(int32_t))) throw SceneError("mesh reader: short result");
     g.triangles.resize(n);
     g.normals.resize(n);
+    g.material.resize(n);
     for (uint64_t i = 0; i < n; ++i) {
       for (int c = 0; c < 3; ++c) g.triangles[i].p[c] = get<glm::dvec3>(s, pos);
       for (int c = 0; c < 3; ++c) g.normals[i][c] = get<glm::dvec3>(s, pos);
+      const int32_t mi = get<int32_t>(s, pos);
+      if (mi < -1 || mi >= static_cast<int64_t>(m.materials.size())) throw SceneError("mesh reader: bad material index");
+      g.material[i] = mi;
     }
     m.triangles += n;
     m.groups.push_back(std::move(g));

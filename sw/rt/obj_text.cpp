@@ -3,6 +3,8 @@
 
 #include <assimp/fast_atof.h>
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 
 #include "sw/isect/io.h"
@@ -68,6 +70,96 @@ void check_obj_indices(const std::string& path, const std::string& text) {
       }
     }
   });
+}
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\f\v");
+  if (a == std::string::npos) return "";
+  const size_t b = s.find_last_not_of(" \t\f\v");
+  return s.substr(a, b - a + 1);
+}
+
+}  // namespace
+
+std::vector<ObjStatement> obj_statements(const std::string& text, const std::string& tag) {
+  std::vector<ObjStatement> out;
+  fmpp::isect::for_each_line(text, [&](const std::string& line, size_t lineno) {
+    const std::string t = trim(line);
+    if (t.size() > tag.size() && t.compare(0, tag.size(), tag) == 0 && std::isspace(static_cast<unsigned char>(t[tag.size()]))) {
+      out.push_back(ObjStatement{lineno, trim(t.substr(tag.size()))});
+    }
+  });
+  return out;
+}
+
+void parse_mtl(const std::string& path, std::string text, std::map<std::string, MtlMaterial>& out) {
+  const std::string err = fmpp::isect::check_text(path, &text);
+  if (!err.empty()) throw SceneError(err);
+  MtlMaterial* cur = nullptr;
+  bool has_ks = false;
+  int illum = -1;
+  glm::dvec3 ks(0);
+  double transparency = 0;
+  // The last material's derived values, once its statements are all read.
+  auto finish = [&]() {
+    if (!cur) return;
+    Material& m = cur->m;
+    if (has_ks) {
+      m.specular = ks.x == ks.y && ks.y == ks.z ? ks.x : (ks.x + ks.y + ks.z) / 3;
+      m.specular = std::clamp(m.specular, 0.0, 1.0);
+    }
+    m.transparency = std::clamp(transparency, 0.0, 1.0);
+    m.reflectivity = illum >= 3 && illum <= 7 ? std::min(m.specular, 1 - m.transparency) : 0;
+  };
+  fmpp::isect::for_each_line(text, [&](const std::string& line, size_t lineno) {
+    std::istringstream ss(line);
+    std::string tag;
+    if (!(ss >> tag)) return;
+    const std::string where = path + ":" + std::to_string(lineno) + ": ";
+    if (tag == "newmtl") {
+      finish();
+      const std::string name = trim(line.substr(line.find("newmtl") + 6));
+      if (name.empty()) throw SceneError(where + "newmtl without a name");
+      const auto [it, fresh] = out.emplace(name, MtlMaterial{});
+      if (!fresh) throw SceneError(where + "material '" + name + "' defined again (first at " + it->second.where + ")");
+      cur = &it->second;
+      cur->m = Material{};
+      cur->m.name = name;
+      cur->m.ior = 1;  // the MTL default: light does not bend
+      cur->where = path + ":" + std::to_string(lineno);
+      has_ks = false;
+      illum = -1;
+      ks = glm::dvec3(0);
+      transparency = 0;
+      return;
+    }
+    static const std::map<std::string, int> kCounts = {{"Kd", 3}, {"Ks", 3}, {"Ns", 1}, {"d", 1}, {"Tr", 1}, {"Ni", 1}, {"illum", 1}};
+    const auto known = kCounts.find(tag);
+    if (known == kCounts.end()) return;  // Ka, Ke, Tf, map_Kd, bump, ...: not used
+    if (!cur) throw SceneError(where + "'" + tag + "' before any newmtl");
+    double v[3];
+    for (int k = 0; k < known->second; ++k) {
+      std::string tok;
+      if (!(ss >> tok) || !fmpp::isect::parse_finite(tok, &v[k])) {
+        throw SceneError(where + "'" + tag + "' needs " + std::to_string(known->second) + " finite number" +
+                         (known->second > 1 ? "s" : ""));
+      }
+    }
+    Material& m = cur->m;
+    if (tag == "Kd") m.diffuse = glm::clamp(glm::dvec3(v[0], v[1], v[2]), 0.0, 1.0);
+    if (tag == "Ks") {
+      ks = glm::dvec3(v[0], v[1], v[2]);
+      has_ks = true;
+    }
+    if (tag == "Ns") m.shininess = std::clamp(v[0], 1.0, 10000.0);
+    if (tag == "d") transparency = 1 - v[0];
+    if (tag == "Tr") transparency = v[0];
+    if (tag == "Ni") m.ior = std::clamp(v[0], 1.0, 4.0);
+    if (tag == "illum") illum = v[0] >= 0 && v[0] <= 10 ? static_cast<int>(v[0]) : -1;
+  });
+  finish();
 }
 
 DoubleValues::DoubleValues(const std::string& obj_text) {

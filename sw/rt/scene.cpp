@@ -364,7 +364,8 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
     if (it == mats.end()) field_error(file, field, "no material '" + name.get<std::string>() + "'");
     return it->second;
   };
-  const int def = material(require(m, "material", file, where), where + ".material");
+  // The mesh's default material: for faces without one of their own in the file.
+  const int def = m.contains("material") ? material(m["material"], where + ".material") : -1;
   std::map<std::string, int> group_mat;
   if (m.contains("groups")) {
     if (!m["groups"].is_object()) field_error(file, where + ".groups", "expected an object of group: material");
@@ -373,18 +374,42 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
   const Placement pl = m.contains("transform") ? placement(m["transform"], file, where + ".transform") : Placement{};
   Mesh mesh = load_mesh(path);
   s.files.push_back(path);
+  // The file's materials, added to the scene as faces use them; one the scene file
+  // defines by the same name takes its place (docs/raytracer.md, "Materials from the
+  // mesh file").
+  std::vector<int> file_to_scene(mesh.materials.size(), -1);
+  auto from_file = [&](int fi) {
+    if (file_to_scene[fi] >= 0) return file_to_scene[fi];
+    const FileMaterial& fm = mesh.materials[fi];
+    const auto it = mats.find(fm.m.name);
+    if (it != mats.end()) return file_to_scene[fi] = it->second;
+    if (!fm.defined) {
+      throw SceneError(fm.where + ": usemtl '" + fm.m.name +
+                       "': no material of that name in the file's material libraries, nor in the materials of " + file);
+    }
+    s.materials.push_back(fm.m);
+    return file_to_scene[fi] = static_cast<int>(s.materials.size() - 1);
+  };
   std::map<std::string, bool> used;
   for (MeshGroup& g : mesh.groups) {
     place(pl, g, file, where + ".transform");
-    int mat = def;
     const auto it = group_mat.find(g.name);
-    if (it != group_mat.end()) {
-      mat = it->second;
-      used[g.name] = true;
+    if (it != group_mat.end()) used[g.name] = true;
+    for (size_t i = 0; i < g.triangles.size(); ++i) {
+      int mat = def;
+      if (it != group_mat.end()) {
+        mat = it->second;
+      } else if (i < g.material.size() && g.material[i] >= 0) {
+        mat = from_file(g.material[i]);
+      }
+      if (mat < 0) {
+        field_error(file, where + ".material",
+                    "missing: faces of " + path + " (part '" + g.name + "') have no material of their own");
+      }
+      s.material_of.push_back(mat);
     }
     s.triangles.insert(s.triangles.end(), g.triangles.begin(), g.triangles.end());
     s.normals.insert(s.normals.end(), g.normals.begin(), g.normals.end());
-    s.material_of.insert(s.material_of.end(), g.triangles.size(), mat);
   }
   for (const auto& [g, m2] : group_mat) {
     if (!used.count(g)) field_error(file, where + ".groups." + g, "no group '" + g + "' in " + path);
@@ -457,8 +482,10 @@ Scene load_scene(const std::string& json_path) {
   }
 
   std::map<std::string, int> mats;
-  const json& jm = require(j, "materials", f, "");
-  if (!jm.is_object() || jm.empty()) field_error(f, "materials", "expected an object of named materials");
+  // Optional when the mesh files give every face its material.
+  static const json kNoMaterials = json::object();
+  const json& jm = j.contains("materials") ? j["materials"] : kNoMaterials;
+  if (!jm.is_object()) field_error(f, "materials", "expected an object of named materials");
   for (const auto& [name, m] : jm.items()) {
     const std::string w = "materials." + name;
     reject_unknown(m, {"diffuse", "specular", "shininess", "reflectivity", "transparency", "ior"}, f, w);
