@@ -59,7 +59,7 @@ TEST(HostileInput, BareCarriageReturnEndsACommentLikeANewline) {
   write("cr.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\n# c\rf 1 2 9\n");
   write("cr.json", scene_for("cr.obj"));
   EXPECT_EQ(scene_error("cr.json"),
-            dir() + "/cr.obj: cannot read mesh: not a valid obj file (OBJ: vertex index out of range)");
+            dir() + "/cr.obj:5: face refers to vertex 9 of 3");
   write("crok.obj", "v 0 0 -3\rv 1 0 -3\r\nv 0 1 -3\n# c\rf 1 2 3\r");
   write("crok.json", scene_for("crok.obj"));
   EXPECT_EQ(load_scene(dir() + "/crok.json").triangles.size(), 1u);
@@ -77,13 +77,20 @@ TEST(HostileInput, ObjCommentsByteOrderMarksAndRepeatedCorners) {
   EXPECT_EQ(with_area, 3);
 }
 
-TEST(HostileInput, MaterialLibrariesAreNotFollowed) {
-  // A FIFO as material library would block any reader that opens it; /dev/zero never ends.
+TEST(HostileInput, MaterialLibrariesAreReadOnlyBesideTheMesh) {
+  // A FIFO as material library would block any reader that opens it; /dev/zero never
+  // ends. Libraries are read (issue 27) only as regular .mtl files in the mesh's own
+  // directory, within the limits; anything else is an error naming the OBJ line.
   const std::string fifo = dir() + "/block.mtl";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  write("mtl.obj", "mtllib block.mtl\nmtllib ../../../../../../dev/zero\nv 0 0 -3\nv 1 0 -3\nv 0 1 -3\nusemtl x\nf 1 2 3\n");
+  write("mtl.obj", "mtllib block.mtl\nv 0 0 -3\nv 1 0 -3\nv 0 1 -3\nusemtl x\nf 1 2 3\n");
   write("mtl.json", scene_for("mtl.obj"));
-  EXPECT_EQ(scene_error("mtl.json"), "no error");
+  EXPECT_EQ(scene_error("mtl.json"),
+            dir() + "/mtl.obj:1: mtllib 'block.mtl': " + fifo + ": cannot read material library: not a regular file (FIFO)");
+  write("zero.obj", "mtllib ../../../../../../dev/zero\nv 0 0 -3\nv 1 0 -3\nv 0 1 -3\nusemtl x\nf 1 2 3\n");
+  write("zero.json", scene_for("zero.obj"));
+  EXPECT_EQ(scene_error("zero.json"), dir() + "/zero.obj:1: mtllib '../../../../../../dev/zero': not beside the mesh (a "
+                                              "material library must be in the mesh's own directory)");
 }
 
 TEST(HostileInput, SpecialFilesAreRefusedBeforeReading) {

@@ -56,6 +56,17 @@ if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --mapping object --
 grep -q "the watertight form exists in the ray-parallel mapping only" "$dir/err.txt"
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --mapping object --origins general 2> "$dir/err.txt"; then exit 1; fi
 grep -q "origins general (the arbitrary-origin form) exists in the ray-parallel mapping only" "$dir/err.txt"
+# A triangle or ray file without a record is refused by name (exit 1, no output written).
+printf '# nothing\n\n' > "$dir/empty.txt"
+rm -f "$dir/none.txt"
+if "$bin" --triangles "$dir/empty.txt" --rays "$dir/rays.txt" --backend reference --out "$dir/none.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "empty.txt: holds no triangle (every line is empty or a comment)" "$dir/err.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/empty.txt" --backend cmodel --out "$dir/none.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "empty.txt: holds no ray (every line is empty or a comment)" "$dir/err.txt"
+: > "$dir/zero.txt"
+if "$bin" --triangles "$dir/zero.txt" --rays "$dir/rays.txt" --backend reference --out "$dir/none.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "zero.txt: holds no triangle" "$dir/err.txt"
+test ! -e "$dir/none.txt"
 # Malformed input: the error names the file and the line.
 printf '0 0 0  1 0 0  0 1\n' > "$dir/bad.txt"
 if "$bin" --triangles "$dir/bad.txt" --rays "$dir/rays.txt" 2> "$dir/err.txt"; then exit 1; fi

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 
 #include "sw/rt/scene.h"
@@ -102,8 +103,23 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
   const BadObj bad_objs[] = {
       {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n",
        "cannot read mesh: not a valid obj file (OBJ: vertex index out of range)"},
-      {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n",
-       "cannot read mesh: not a valid obj file (OBJ: vertex index out of range)"},
+      {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n", "4: face refers to vertex 4 of 3"},
+      // Normal and texture-coordinate indices are checked like positions (the library
+      // took them silently), with the line; negative ones count back from the last.
+      {"badnormal", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 1\nf 1//99 2//99 3//99\n",
+       "5: face refers to normal 99 of 1"},
+      {"badnormal2", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 1\nvt 0 0\n\nf 1/1/1 2/1/1 3/1/2 # late\n",
+       "7: face refers to normal 2 of 1"},
+      {"badtex", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvt 0 0\nf 1/1 2/2 3/1\n",
+       "5: face refers to texture coordinate 2 of 1"},
+      {"badtexneg", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvt 0 0\nf -3/-1 -2/-2 -1/-1\n",
+       "5: face refers to texture coordinate -2 of 1"},
+      {"zeronormal", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvn 0 0 1\nf 1//0 2//1 3//1\n",
+       "5: face refers to normal 0: indices start at 1"},
+      {"latenormal", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1//1 2//1 3//1\nvn 0 0 1\n",
+       "4: face refers to normal 1 of 0"},
+      {"crlfnormal", "v 0 0 -3\r\nv 1 0 -3\r\nv 0 1 -3\rvn 0 0 1\r\nf 1//1 2//1 3//5\r\n",
+       "5: face refers to normal 5 of 1"},
       {"nofaces", "v 0 0 -3\nv 1 0 -3\n", "cannot read mesh: not a valid obj file (Validation failed: Mesh  contains no faces)"},
       {"bignum", "v 0 0 -3\nv 1e160 0 -3\nv 0 1 -3\nf 1 2 3\n",
        "vertex of face 0 of part 'defaultobject' is too far out: |1e+160| exceeds the limit 1e+100"},
@@ -116,8 +132,13 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
     const std::string obj = std::string(b.name) + ".obj", json = std::string(b.name) + ".json";
     write(obj, b.text);
     write(json, scene_json(R"({"file": ")" + obj + R"(", "material": "m"})"));
-    EXPECT_EQ(error_of(json), dir() + "/" + obj + ": " + b.error);
+    const std::string sep = std::isdigit(static_cast<unsigned char>(b.error[0])) ? ":" : ": ";
+    EXPECT_EQ(error_of(json), dir() + "/" + obj + sep + b.error);
   }
+  // Indices in range, negative ones included, load.
+  write("goodidx.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nvt 0 0\nvt 1 0\nvn 0 0 1\nf -3/1/1 -2/-1/-1 3/2/1\n");
+  write("goodidx.json", scene_json(R"({"file": "goodidx.obj", "material": "m"})"));
+  EXPECT_EQ(error_of("goodidx.json"), "no error");
 
   write("dirmesh.json", scene_json(R"({"file": ".", "material": "m"})"));
   EXPECT_EQ(error_of("dirmesh.json"), dir() + "/.: cannot read mesh: is a directory");

@@ -32,7 +32,7 @@ fails "--out $dir/no/such/x.png: cannot write" "$render" --scene "$scene" --back
 fails "--report $dir/no/such/r.json: cannot write" \
   "$render" --scene "$scene" --backend reference --out "$dir/x.png" --report "$dir/no/such/r.json"
 test ! -e "$dir/x.png"  # refused before the render
-fails "--out -: the PNG needs a file name" "$render" --scene "$scene" --backend reference --out -
+fails "--out -: the image needs a file name" "$render" --scene "$scene" --backend reference --out -
 fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backend reference --out "$dir/x.png"
 "$render" --scene "$scene" --backend reference --width 4 --height 4 --out "$dir/x.png" --report - --quiet > "$dir/r.json"
 grep -q '"backend": "reference"' "$dir/r.json"
@@ -86,11 +86,16 @@ test -s "$dir/run/precision-quick/precision_data.json"
 test -z "$(ls -A "$dir/run/docs")"
 # ------------------------------------------------ hostile input and outputs (issue 14)
 r8=(--backend reference --width 8 --height 8 --quiet)
-fails "/dev/full: write failed (No space left on device)" "$render" --scene "$scene" "${r8[@]}" --out /dev/full
+# A device has no image extension, so it is refused before the render (a failed write
+# of an image is tested in tests/output_file_test.cpp and with fmpp-intersect).
+fails "--out /dev/full: no extension" "$render" --scene "$scene" "${r8[@]}" --out /dev/full
 cp "$src/scenes/one_triangle.json" "$src/scenes/one_triangle.obj" "$dir/"
-fails "is the input mesh of --scene" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" --out "$dir/one_triangle.obj"
+fails "--out $dir/one_triangle.obj: unknown image format '.obj'" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" \
+  --out "$dir/one_triangle.obj"
+cp "$dir/one_triangle.json" "$dir/scene.png"
+fails "is the input --scene" "$render" --scene "$dir/scene.png" "${r8[@]}" --out "$dir/scene.png"
 cmp "$dir/one_triangle.obj" "$src/scenes/one_triangle.obj"
-fails "is the input --scene" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" --out "$dir/one_triangle.json"
+fails "unknown image format '.json'" "$render" --scene "$dir/one_triangle.json" "${r8[@]}" --out "$dir/one_triangle.json"
 fails "--report and --out name the same file" "$render" --scene "$scene" "${r8[@]}" --out "$dir/a.png" --report "$dir/a.png"
 fails "not a regular file (character device)" "$render" --scene /dev/zero "${r8[@]}" --out "$dir/a.png"
 fails "--width: 'abc' is not a whole number" "$render" --scene "$scene" "${r8[@]}" --width abc --out "$dir/a.png"
@@ -106,4 +111,15 @@ fails "--trace /dev/full: not a regular file" "$sim" --config tiny --ops 10 --tr
 "$render" --scene "$scene" "${r8[@]}" --out "$dir/ok.png" --report "$dir/ok.json"
 test -s "$dir/ok.png" && test -s "$dir/ok.json" && test -z "$(ls "$dir" | grep -F .tmp-)"
 
+# The output format follows the extension: .png or .pfm; any other (.jpg, none) is
+# refused before any work - before the scene is read (a scene that does not exist is
+# not what the error names) and with no file written.
+fails "--out $dir/x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm" \
+  "$render" --scene "$dir/no-such-scene.json" --backend cmodel --out "$dir/x.jpg"
+fails "--out $dir/x: no extension" "$render" --scene "$scene" --backend reference --out "$dir/x"
+test ! -e "$dir/x.jpg" && test ! -e "$dir/x"
+"$render" --scene "$scene" "${r8[@]}" --out "$dir/ok.PFM"
+# 8 x 8 RGB floats after a three-line header.
+test "$(head -c 12 "$dir/ok.PFM")" = "$(printf 'PF\n8 8\n-1.0\n')"
+test "$(stat -c %s "$dir/ok.PFM")" -eq $((12 + 8 * 8 * 3 * 4))
 echo "tools CLI: OK"

@@ -4,6 +4,9 @@
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -35,6 +38,43 @@ void Image::write_png(const std::string& path) const {
     throw std::runtime_error(path + ": cannot encode PNG");
   }
   fmpp::write_output(path, png);
+}
+
+void Image::write_pfm(const std::string& path) const {
+  // Header: "PF" (three channels), width and height, and the scale, negative for
+  // little-endian data (its magnitude, 1, is not applied to the values).
+  std::string pfm = "PF\n" + std::to_string(w_) + " " + std::to_string(h_) + "\n-1.0\n";
+  const size_t header = pfm.size();
+  pfm.resize(header + px_.size() * 3 * sizeof(float));
+  char* out = &pfm[header];
+  for (int y = h_ - 1; y >= 0; --y) {  // bottom row first
+    for (int x = 0; x < w_; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const float v = static_cast<float>(at(x, y)[c]);
+        uint32_t bits;
+        std::memcpy(&bits, &v, 4);
+        for (int b = 0; b < 4; ++b) *out++ = static_cast<char>((bits >> (8 * b)) & 0xff);  // little-endian
+      }
+    }
+  }
+  fmpp::write_output(path, pfm);
+}
+
+void Image::write(const std::string& path) const {
+  switch (image_format(path)) {
+    case ImageFormat::kPng: return write_png(path);
+    case ImageFormat::kPfm: return write_pfm(path);
+  }
+}
+
+ImageFormat image_format(const std::string& path, const std::string& option) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".pfm") return ImageFormat::kPfm;
+  throw std::invalid_argument(option + " " + path + ": " +
+                              (ext.empty() ? std::string("no extension") : "unknown image format '" + ext + "'") +
+                              ": the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)");
 }
 
 ImageDiff compare(const Image& a, const Image& b, int tolerance) {

@@ -23,11 +23,24 @@ class Image {
   // Writes a PNG (stb_image_write), atomically and checked (fmpp::write_output). Throws
   // std::runtime_error naming the path and the cause on failure.
   void write_png(const std::string& path) const;
+  // Writes a PFM (Portable Float Map, "PF": RGB, 32-bit little-endian floats, rows from
+  // the bottom up, as the format defines): the linear radiance, unclamped, no gamma.
+  // Atomic and checked like write_png.
+  void write_pfm(const std::string& path) const;
+  // Writes the format that image_format(path) names.
+  void write(const std::string& path) const;
 
  private:
   int w_, h_;
   std::vector<glm::dvec3> px_;
 };
+
+// The output formats, chosen by the file name's extension (case-insensitive): ".png"
+// (8-bit, tone-mapped as to_rgb8) and ".pfm" (linear radiance, 32-bit float, unclamped).
+enum class ImageFormat { kPng, kPfm };
+// The format of `path`; throws std::invalid_argument("<option> <path>: ...") naming the
+// extension and the accepted ones for any other (".jpg", none).
+ImageFormat image_format(const std::string& path, const std::string& option = "--out");
 
 struct ImageDiff {
   uint64_t pixels = 0;        // pixels whose 8-bit value differs in any channel

@@ -1,7 +1,7 @@
 // Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb), all read by
 // one library (assimp), with every index and coordinate it returns checked here before
-// use. Only the file itself is opened (and, for .gltf, buffer files in its directory):
-// OBJ material libraries are not followed, as the scene gives the materials.
+// use. Only the file itself is opened (for .gltf, also buffer files in its directory;
+// for .obj, the material libraries its mtllib statements name in its directory).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sw/isect/geometry.h"
+#include "sw/rt/scene.h"
 
 namespace rt {
 
@@ -21,10 +22,22 @@ struct MeshGroup {
   std::string name;
   std::vector<fmpp::isect::Triangle> triangles;
   std::vector<std::array<glm::dvec3, 3>> normals;
+  std::vector<int> material;  // per triangle: an index into Mesh::materials, or -1 (none of its own)
+};
+
+// A material the mesh file gives its faces (OBJ usemtl with its MTL library; glTF
+// metallic-roughness), mapped onto the renderer's (docs/raytracer.md, "Materials from
+// the mesh file"). `defined` is false for an OBJ usemtl name that no library of the
+// file defines: the scene file must then define it.
+struct FileMaterial {
+  Material m;          // m.name: the file's name for it
+  bool defined = true;
+  std::string where;   // "x.mtl:3" (its newmtl), "x.obj:7" (the first usemtl of an undefined one), "x.gltf"
 };
 
 struct Mesh {
   std::vector<MeshGroup> groups;
+  std::vector<FileMaterial> materials;
   size_t triangles = 0;
   size_t skipped_primitives = 0;  // points and lines, which hold no triangles
 };

@@ -5,9 +5,13 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <map>
 #include <unordered_map>
+#include <vector>
 
 #include <glm/glm.hpp>
+
+#include "sw/rt/scene.h"
 
 namespace rt {
 
@@ -16,6 +20,39 @@ namespace rt {
 // is all the parser sees, so no check and parser can disagree on where a statement is.
 // Throws SceneError naming `path` for text that is not a readable text file.
 std::string normalize_obj(const std::string& path, std::string text);
+
+// Checks every index of every face ('f') statement of normalized OBJ text against the
+// positions ('v'), texture coordinates ('vt') and normals ('vn') defined before it (OBJ
+// indices start at 1; a negative one counts back from the last so far). The library
+// checks positions but takes a normal or texture-coordinate index out of range
+// silently. Throws SceneError "<path>:<line>: face refers to normal 99 of 1" (or
+// "texture coordinate", "vertex"; "... 0: indices start at 1"). Tokens that are not
+// integers are left to the library's parser, which refuses them.
+void check_obj_indices(const std::string& path, const std::string& text);
+
+// The statements `tag` ("mtllib", "usemtl") of normalized OBJ text: for each, its line
+// and the rest of the line after the tag, trimmed of white space at both ends.
+struct ObjStatement {
+  size_t line;
+  std::string value;
+};
+std::vector<ObjStatement> obj_statements(const std::string& text, const std::string& tag);
+
+// A material of an MTL library, mapped onto the renderer's (docs/raytracer.md,
+// "Materials from the mesh file"): Kd -> diffuse; Ks -> specular (the mean of its three
+// values, their common value when equal); Ns -> shininess; d (dissolve) or Tr -> transparency
+// (1 - d, or Tr); Ni -> ior; illum 3 to 7 (reflection on) -> reflectivity = the specular
+// weight. Values are clamped to the renderer's ranges, and reflectivity to
+// 1 - transparency. Other statements (Ka, Ke, Tf, map_*, bump, ...) are ignored.
+struct MtlMaterial {
+  Material m;
+  std::string where;  // "<file>:<line>" of its newmtl
+};
+// Parses the text of the MTL file `path` (already read within the limits) into `out`,
+// keyed by name. Throws SceneError "<path>:<line>: ..." for a statement without its
+// numbers, a number that is not finite, a statement before the first newmtl, or a name
+// defined twice (in this file or an earlier one of `out`).
+void parse_mtl(const std::string& path, std::string text, std::map<std::string, MtlMaterial>& out);
 
 // The library reads coordinates in single precision; OBJ files hold decimal text that
 // the ray tracer reads in double (the scenes' renders depend on it, and the input limit

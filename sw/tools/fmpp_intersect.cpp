@@ -93,6 +93,10 @@ int main(int argc, char** argv) {
     const std::vector<Triangle> tris = read_triangles(tri_file);
     stage = "reading " + ray_file;
     const std::vector<Ray> rays = read_rays(ray_file);
+    // A file without records is a mistake (a wrong path, a truncated export), not a
+    // question with an empty answer: refused by name, before any work.
+    if (tris.empty()) throw std::invalid_argument(tri_file + ": holds no triangle (every line is empty or a comment)");
+    if (rays.empty()) throw std::invalid_argument(ray_file + ": holds no ray (every line is empty or a comment)");
     nlohmann::json rep;
     rep["triangles"] = tris.size();
     rep["rays"] = rays.size();

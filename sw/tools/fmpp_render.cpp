@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(int_range(1, 1 << 24));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
-  app.add_option("--out", out, "output PNG")->capture_default_str();
+  app.add_option("--out", out, "output image: .png (8-bit) or .pfm (linear radiance, unclamped)")->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
       ->capture_default_str()
@@ -158,7 +158,8 @@ int main(int argc, char** argv) {
     }
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
-    if (out == "-") throw std::invalid_argument("--out -: the PNG needs a file name (stdout is only for --report -)");
+    if (out == "-") throw std::invalid_argument("--out -: the image needs a file name (stdout is only for --report -)");
+    rt::image_format(out);  // .png or .pfm, refused before any work otherwise
     if (leader) check_writable("--out", out, false);
     if (leader && !report_file.empty()) check_writable("--report", report_file);
     stage = "loading " + scene_file;
@@ -284,7 +285,7 @@ int main(int argc, char** argv) {
     }
     if (!leader) return 0;  // rank 0 writes
     stage = "writing " + out;
-    img->write_png(out);
+    img->write(out);
     if (compare) {
       rt::ReferenceIntersector ref(scene.triangles);
       rt::RenderOptions quiet_ro = ro;

@@ -21,7 +21,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const rt::Mesh m = rt::load_mesh(path);
     size_t n = 0;
     for (const rt::MeshGroup& g : m.groups) {
-      if (g.normals.size() != g.triangles.size()) __builtin_trap();
+      if (g.normals.size() != g.triangles.size() || g.material.size() != g.triangles.size()) __builtin_trap();
+      for (int mi : g.material) {  // a file material, or none
+        if (mi < -1 || mi >= static_cast<int>(m.materials.size())) __builtin_trap();
+      }
       for (const auto& t : g.triangles) {
         for (const auto& p : t.p) {
           if (!fmpp::isect::check_point(p).empty()) __builtin_trap();

@@ -1,0 +1,135 @@
+// Output formats (issue 27): the extension chooses PNG (8-bit) or PFM (linear radiance,
+// unclamped); any other is refused by name. The PFM is read back here by a reader
+// written from the format's definition, independent of the writer.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "sw/rt/image.h"
+#include "sw/rt/render.h"
+#include "sw/rt/scene.h"
+
+#ifndef FMPP_SOURCE_DIR
+#define FMPP_SOURCE_DIR "."
+#endif
+
+namespace rt {
+namespace {
+
+std::string tmp_path(const std::string& name) {
+  std::string d = ::testing::TempDir();
+  while (d.size() > 1 && d.back() == '/') d.pop_back();
+  return d + "/" + name;
+}
+
+// A PFM reader: "PF" (RGB) or "Pf" (grey), width, height, scale (negative: little-endian
+// data), each separated by white space, one white-space byte, then rows bottom to top.
+struct Pfm {
+  int w = 0, h = 0;
+  std::vector<float> rgb;  // top row first, as Image stores it
+  float at(int x, int y, int c) const { return rgb[(static_cast<size_t>(y) * w + x) * 3 + c]; }
+};
+Pfm read_pfm(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream hs(data);
+  std::string magic;
+  double scale = 0;
+  Pfm p;
+  hs >> magic >> p.w >> p.h >> scale;
+  EXPECT_EQ(magic, "PF");
+  EXPECT_LT(scale, 0) << "little-endian";
+  const size_t header = static_cast<size_t>(hs.tellg()) + 1;
+  const size_t n = static_cast<size_t>(p.w) * p.h * 3;
+  EXPECT_EQ(data.size(), header + n * 4);
+  p.rgb.resize(n);
+  for (int row = 0; row < p.h; ++row) {  // file row 0 is the image's bottom row
+    for (size_t k = 0; k < static_cast<size_t>(p.w) * 3; ++k) {
+      const unsigned char* b = reinterpret_cast<const unsigned char*>(data.data()) + header +
+                               (static_cast<size_t>(row) * p.w * 3 + k) * 4;
+      const uint32_t bits = b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<uint32_t>(b[3]) << 24);
+      float v;
+      std::memcpy(&v, &bits, 4);
+      p.rgb[static_cast<size_t>(p.h - 1 - row) * p.w * 3 + k] = v;
+    }
+  }
+  return p;
+}
+
+TEST(ImageFormat, ExtensionChoosesTheFormat) {
+  EXPECT_EQ(image_format("a.png"), ImageFormat::kPng);
+  EXPECT_EQ(image_format("dir.x/A.PNG"), ImageFormat::kPng);
+  EXPECT_EQ(image_format("a.pfm"), ImageFormat::kPfm);
+  EXPECT_EQ(image_format("a.Pfm"), ImageFormat::kPfm);
+  auto error_of = [](const std::string& p) {
+    try {
+      image_format(p);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of("x.jpg"),
+            "--out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm (linear radiance, "
+            "32-bit float)");
+  EXPECT_EQ(error_of("render"),
+            "--out render: no extension: the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)");
+  EXPECT_NE(error_of("x.png.exr").find("unknown image format '.exr'"), std::string::npos);
+}
+
+TEST(ImageFormat, PfmHoldsTheUnclampedLinearValues) {
+  Image img(3, 2);
+  img.at(0, 0) = glm::dvec3(0.5, 2.75, 1000.25);  // top left
+  img.at(2, 1) = glm::dvec3(1e-3, 0, 7);          // bottom right
+  img.at(1, 0) = glm::dvec3(0.1, 0.2, 0.3);
+  const std::string path = tmp_path("values.pfm");
+  img.write(path);
+  const Pfm p = read_pfm(path);
+  ASSERT_EQ(p.w, 3);
+  ASSERT_EQ(p.h, 2);
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 3; ++x) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(p.at(x, y, c), static_cast<float>(img.at(x, y)[c])) << x << " " << y;
+    }
+  }
+  EXPECT_EQ(p.at(0, 0, 2), 1000.25f);
+}
+
+TEST(ImageFormat, RenderedRadianceAboveOneSurvivesInPfmOnly) {
+  // The one-triangle scene under a light four times as bright: its lit pixels exceed 1,
+  // which the PNG clamps to 255 and the PFM keeps.
+  Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/one_triangle.json");
+  for (Light& l : s.lights) l.color *= 4.0;
+  ReferenceIntersector ref(s.triangles);
+  RenderOptions ro;
+  ro.width = 16;
+  ro.height = 16;
+  const Image img = render(s, ref, ro, nullptr);
+  const std::string pfm = tmp_path("bright.pfm"), png = tmp_path("bright.png");
+  img.write(pfm);
+  img.write(png);
+  const Pfm p = read_pfm(pfm);
+  ASSERT_EQ(p.w, 16);
+  ASSERT_EQ(p.h, 16);
+  float brightest = 0;
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(p.at(x, y, c), static_cast<float>(img.at(x, y)[c]));
+        brightest = std::max(brightest, p.at(x, y, c));
+      }
+    }
+  }
+  EXPECT_GT(brightest, 1.5f);
+  std::ifstream in(png, std::ios::binary);
+  char sig[8] = {};
+  in.read(sig, 8);
+  EXPECT_EQ(std::memcmp(sig, "\x89PNG\r\n\x1a\n", 8), 0);
+}
+
+}  // namespace
+}  // namespace rt
