@@ -47,6 +47,17 @@ test ! -e "$dir/miss.png"
   --accept-plan-miss --quiet --out "$dir/miss.png" --report "$dir/miss.json"
 grep -q '"accepted_miss": true' "$dir/miss.json"
 grep -q '"met_target": false' "$dir/miss.json"
+# The plan is cached per scene files and options: the second render reuses it.
+"$render" --scene "$scene" --backend cmodel --width 16 --height 16 --quiet --plan-cache "$dir/plans" \
+  --out "$dir/c1.png" --report "$dir/c1.json"
+"$render" --scene "$scene" --backend cmodel --width 16 --height 16 --quiet --plan-cache "$dir/plans" \
+  --out "$dir/c2.png" --report "$dir/c2.json"
+grep -q '"cached": false' "$dir/c1.json"
+grep -q '"cached": true' "$dir/c2.json"
+cmp "$dir/c1.png" "$dir/c2.png"
+"$render" --scene "$scene" --backend cmodel --width 16 --height 16 --quiet --plan-cache "$dir/plans" --replan \
+  --out "$dir/c3.png" --report "$dir/c3.json"
+grep -q '"cached": false' "$dir/c3.json"
 # Options a mapping would ignore are refused before the plan.
 fails "--watertight with --mapping object" "$render" --scene "$scene" --backend cmodel --mapping object --watertight
 grep -q -- "--backend TEXT:{reference,cmodel,rtl,lockstep,systemc}=rtl" "$dir/help.txt"

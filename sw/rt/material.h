@@ -97,6 +97,8 @@ class Surface {
                     const glm::dvec3& color) const;
   // Every scattering in turn, in the order the renderer spawns their rays.
   const std::vector<std::unique_ptr<Scattering>>& parts() const { return parts_; }
+  // Whether it spawns rays: a mirror or glass beside the diffuse part.
+  bool spawns() const { return parts_.size() > 1; }
 
  private:
   std::vector<std::unique_ptr<Scattering>> parts_;

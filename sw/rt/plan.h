@@ -27,6 +27,7 @@
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,11 +54,15 @@ struct PlanRequest {
   // Overrides.
   std::optional<unsigned> bits, blocks, words;
   fmpp::isect::KernelOptions base;    // mapping, multiply, watertight, cull...
+  // Called with a line on each step the plan takes (what it tries, what it found, how
+  // long it took), for the console; nullptr for none.
+  std::function<void(const std::string&)> progress;
 };
 
 struct PlanCandidate {
   unsigned n;
-  double wrong_rate;      // sampled, with cond_bits = 60 (the machine's own answers)
+  double wrong_rate;      // sampled, with cond_bits = 60 (the machine's own answers); -1: not sampled (too many
+                          // triangles beyond the conditioning limit decided it)
   double host_share;      // triangles over the conditioning limit of this n
   double pixel_rate = -1;   // sampled pixels off by more than 8 levels; -1 if not rendered
   double pixel_bound = -1;  // upper confidence bound on the full frame's share; -1 if not rendered

@@ -25,7 +25,7 @@ std::pair<std::vector<Hit>, std::vector<Hit>> Intersector::intersect_two(const s
 }
 
 std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
-  return fmpp::isect::nearest_reference(rays, tris_);
+  return ref_.nearest(rays);
 }
 
 FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,

@@ -21,6 +21,7 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/reference_bvh.h"
 #include "sw/rt/image.h"
 #include "sw/rt/ray_kind.h"
 #include "sw/rt/scene.h"
@@ -53,11 +54,13 @@ class Intersector {
 
 class ReferenceIntersector : public Intersector {
  public:
-  explicit ReferenceIntersector(const std::vector<fmpp::isect::Triangle>& tris) : tris_(tris) {}
+  // The exact reference, through a hierarchy over the triangles (reference_bvh.h: the
+  // same answers as nearest_reference, faster on large meshes).
+  explicit ReferenceIntersector(const std::vector<fmpp::isect::Triangle>& tris) : ref_(tris) {}
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
 
  private:
-  const std::vector<fmpp::isect::Triangle>& tris_;
+  fmpp::isect::ReferenceBvh ref_;
 };
 
 // A spawn margin for an intersector in float arithmetic without error bounds (Embree,

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "sw/isect/reference.h"
 #include "sw/rt/render.h"
 
 namespace rt {
@@ -83,8 +85,22 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
     img[path.pixel] += path.weight * scene_.background;
     return;
   }
-  const SurfacePoint s = surface_point(r, h);
   const Surface& m = surfaces_[scene_.material_of[h.tri]];
+  // A hit that spawns rays (a mirror, glass) gets its t exactly: one exact test of the
+  // triangle the intersector certified, as the barycentrics below are the host's too.
+  // Its rays then start where the reference's do, off by the bound of that exact point
+  // (2^-40 of t), not by the kernel's certified bound (up to 2^-12), which would move
+  // them by far more than the reference's and show as pixels off it. Other hits shade
+  // at the intersector's t; their shadow rays need no more (kShadowEnd).
+  Hit hx = h;
+  if (spawn && h.t_err > 0 && m.spawns()) {
+    const double t = fmpp::isect::intersect_reference(r, scene_.triangles[h.tri]);
+    if (t < std::numeric_limits<double>::infinity()) {
+      hx.t = t;
+      hx.t_err = 0;
+    }
+  }
+  const SurfacePoint s = surface_point(r, hx);
   img[path.pixel] += m.ambient(path.weight, scene_.ambient);
   for (const Light& light : scene_.lights) {
     const glm::dvec3 l = light.position - s.p;
@@ -103,7 +119,7 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
   if (!spawn) return;
   // The hit point's own error: from t's (exact, or the FMPP's certified bound), never
   // from the scene's size.
-  const double off = spawn_offset(r, h.t, s.nf, std::max(h.t_err, kDoubleTError)) + spawn_margin_;
+  const double off = spawn_offset(r, hx.t, s.nf, std::max(hx.t_err, kDoubleTError)) + spawn_margin_;
   for (const auto& part : m.parts()) {
     Spawn sp;
     if (!part->spawn(path.weight, s, &sp)) continue;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -26,6 +27,7 @@
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
 #include "sw/rt/plan.h"
+#include "sw/rt/plan_cache.h"
 #include "sw/rt/render.h"
 #include "sw/mpi/render_chips.h"
 
@@ -95,6 +97,13 @@ int main(int argc, char** argv) {
                  "pixels allowed off the reference (a 95 % upper bound from sampled pixels)")
       ->capture_default_str()
       ->check(finite_range(0.0, 1.0));
+  bool replan = false;
+  app.add_flag("--replan", replan, "plan again even if this scene and these options have a cached plan");
+  std::string plan_cache = rt::default_plan_cache_dir();
+  app.add_option("--plan-cache", plan_cache,
+                 "directory of cached precision plans (a second render of the same scene files with the same options "
+                 "reuses its plan; empty: no cache)")
+      ->capture_default_str();
   bool accept_miss = false;
   app.add_flag("--accept-plan-miss", accept_miss,
                "render even when the precision plan finds no n that keeps --error-target (without it, such a "
@@ -201,6 +210,7 @@ int main(int argc, char** argv) {
       pr.base.watertight = watertight;
       pr.base.t_accuracy = t_accuracy;
       if (app.count("--bits")) pr.bits = bits;
+      if (!quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
       if (!config.empty()) {
         const Config c = named_config(config);
         pr.blocks = c.blocks;
@@ -208,7 +218,20 @@ int main(int argc, char** argv) {
       }
       if (app.count("--blocks")) pr.blocks = blocks;
       if (app.count("--words")) pr.words = words;
-      const rt::Plan plan = rt::make_plan(scene, pr);
+      const std::string key = rt::plan_key(scene, pr);
+      std::optional<rt::Plan> cached = replan ? std::nullopt : rt::load_plan(plan_cache, key, pr);
+      const bool from_cache = cached.has_value();
+      if (from_cache && !quiet) {
+        std::fprintf(stderr, "plan: reused %s/%s.json (same scene files and options; --replan plans again)\n",
+                     plan_cache.c_str(), key.c_str());
+      }
+      const rt::Plan plan = from_cache ? *cached : rt::make_plan(scene, pr);
+      if (!from_cache && !plan_cache.empty()) {
+        std::string why;
+        if (!rt::store_plan(plan_cache, key, plan, &why) && !quiet) {
+          std::fprintf(stderr, "plan: not cached (%s)\n", why.c_str());
+        }
+      }
       if (!plan.met_target && !accept_miss) {
         std::ostringstream t;
         t << target;
@@ -225,6 +248,7 @@ int main(int argc, char** argv) {
       rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
                      {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
                      {"met_target", plan.met_target}, {"accepted_miss", !plan.met_target && accept_miss},
+                     {"cached", from_cache}, {"key", key},
                      {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order}};
       for (const auto& e : plan.pass_sizes) {
         rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},

@@ -1,0 +1,166 @@
+// The precision plan's cache (see plan_cache.h).
+#include "sw/rt/plan_cache.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace rt {
+namespace {
+
+// Bumped whenever what a plan decides, or how, changes.
+constexpr const char* kPlanVersion = "plan-2";
+
+uint64_t fnv1a(const std::string& s, uint64_t h) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::ostringstream o;
+  o << f.rdbuf();
+  return o.str();
+}
+
+nlohmann::json request_json(const PlanRequest& r) {
+  const fmpp::isect::KernelOptions& o = r.base;
+  return {{"width", r.width},
+          {"height", r.height},
+          {"max_depth", r.max_depth},
+          {"target", r.target_wrong_rate},
+          {"max_host_share", r.max_host_share},
+          {"max_flagged_share", r.max_flagged_share},
+          {"sample_rays", r.sample_rays},
+          {"sample_pixels", r.sample_pixels},
+          {"confidence", r.confidence},
+          {"rtl_configs", r.rtl_configs},
+          {"bits", r.bits ? static_cast<int>(*r.bits) : -1},
+          {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
+          {"words", r.words ? static_cast<int>(*r.words) : -1},
+          {"mapping", static_cast<int>(o.mapping)},
+          {"mul", static_cast<int>(o.mul)},
+          {"watertight", o.watertight},
+          {"t_accuracy", o.t_accuracy},
+          {"cull", o.cull},
+          {"cull_packet", o.cull_packet},
+          {"cull_probe", o.cull_probe},
+          {"fmpp_boxes", o.fmpp_boxes},
+          {"coherent", o.coherent},
+          {"cond_bits", o.cond_bits}};
+}
+
+}  // namespace
+
+std::string default_plan_cache_dir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/fmpp/plans";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/fmpp/plans";
+  return "";
+}
+
+std::string plan_key(const Scene& scene, const PlanRequest& req) {
+  uint64_t h = fnv1a(kPlanVersion, 14695981039346656037ull);
+  // The program itself: another build may plan differently.
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const auto size = std::filesystem::file_size(exe, ec);
+    const auto when = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
+    h = fnv1a(exe.string() + ":" + std::to_string(size) + ":" + std::to_string(when), h);
+  }
+  for (const std::string& f : scene.files) h = fnv1a(read_all(f) + '\0', h);
+  h = fnv1a(request_json(req).dump(), h);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::optional<Plan> load_plan(const std::string& dir, const std::string& key, const PlanRequest& req) {
+  if (dir.empty()) return std::nullopt;
+  std::ifstream f(dir + "/" + key + ".json");
+  if (!f) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(f);
+    Plan p;
+    p.options = req.base;
+    p.config = fmpp::Config{j.at("blocks").get<unsigned>(), j.at("words").get<unsigned>()};
+    p.config.validate();
+    p.options.n = j.at("bits").get<unsigned>();
+    p.options.coherent = j.at("coherent").get<bool>();
+    p.met_target = j.at("met_target").get<bool>();
+    p.why_bits = j.at("why_bits").get<std::string>();
+    p.why_words = j.at("why_words").get<std::string>();
+    p.why_blocks = j.at("why_blocks").get<std::string>();
+    p.why_order = j.at("why_order").get<std::string>();
+    for (const auto& c : j.at("candidates")) {
+      PlanCandidate pc;
+      pc.n = c.at("n").get<unsigned>();
+      pc.wrong_rate = c.at("wrong_rate").get<double>();
+      pc.host_share = c.at("host_share").get<double>();
+      pc.pixel_rate = c.at("pixel_rate").get<double>();
+      pc.pixel_bound = c.at("pixel_bound").get<double>();
+      pc.pixels_sampled = c.at("pixels_sampled").get<size_t>();
+      pc.flagged_share = c.at("flagged_share").get<double>();
+      pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
+      p.candidates.push_back(pc);
+    }
+    for (const auto& e : j.at("pass_sizes")) {
+      PassSizeEstimate s;
+      s.blocks = e.at("blocks").get<unsigned>();
+      s.passes = e.at("passes").get<size_t>();
+      s.broadcasts = e.at("broadcasts").get<uint64_t>();
+      s.clocks = e.at("clocks").get<double>();
+      p.pass_sizes.push_back(s);
+    }
+    if (p.options.n < 2 || p.options.n > 32) return std::nullopt;
+    return p;
+  } catch (const std::exception&) {
+    return std::nullopt;  // not a plan of this version: planned again
+  }
+}
+
+bool store_plan(const std::string& dir, const std::string& key, const Plan& p, std::string* why) {
+  if (dir.empty()) return false;
+  nlohmann::json j = {{"blocks", p.config.blocks},     {"words", p.config.words},       {"bits", p.options.n},
+                      {"coherent", p.options.coherent}, {"met_target", p.met_target},   {"why_bits", p.why_bits},
+                      {"why_words", p.why_words},       {"why_blocks", p.why_blocks},   {"why_order", p.why_order},
+                      {"candidates", nlohmann::json::array()}, {"pass_sizes", nlohmann::json::array()}};
+  for (const PlanCandidate& c : p.candidates) {
+    j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
+                               {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
+                               {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
+                               {"sample_cycles", c.sample_cycles}});
+  }
+  for (const PassSizeEstimate& s : p.pass_sizes) {
+    j["pass_sizes"].push_back(
+        {{"blocks", s.blocks}, {"passes", s.passes}, {"broadcasts", s.broadcasts}, {"clocks", s.clocks}});
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::string path = dir + "/" + key + ".json", tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << j.dump(1) << "\n";
+    if (!f) {
+      if (why) *why = "cannot write " + tmp;
+      return false;
+    }
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    if (why) *why = "cannot write " + path + ": " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rt
