@@ -225,7 +225,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "plan: reused %s/%s.json (same scene files and options; --replan plans again)\n",
                      plan_cache.c_str(), key.c_str());
       }
+      const auto plan_t0 = std::chrono::steady_clock::now();
       const rt::Plan plan = from_cache ? *cached : rt::make_plan(scene, pr);
+      const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_t0).count();
       if (!from_cache && !plan_cache.empty()) {
         std::string why;
         if (!rt::store_plan(plan_cache, key, plan, &why) && !quiet) {
@@ -248,7 +250,7 @@ int main(int argc, char** argv) {
       rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
                      {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
                      {"met_target", plan.met_target}, {"accepted_miss", !plan.met_target && accept_miss},
-                     {"cached", from_cache}, {"key", key},
+                     {"cached", from_cache}, {"key", key}, {"seconds", plan_seconds},
                      {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order}};
       for (const auto& e : plan.pass_sizes) {
         rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},
@@ -260,7 +262,16 @@ int main(int argc, char** argv) {
              {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
              {"sample_cycles", c.sample_cycles}});
       }
-      if (!quiet) std::fprintf(stderr, "plan: %s, n = %u (%s)\n", cfg.str().c_str(), bits, plan.why_bits.c_str());
+      if (!quiet) {
+        // One short line; the reasons, every candidate and the cost model's estimates are
+        // in the report's "plan".
+        const std::string how = pr.bits ? "n set by the user"
+                                : !plan.met_target ? "no n keeps the error target"
+                                : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
+                                                                           : "the widest n; some costs over their limits";
+        std::fprintf(stderr, "plan: n = %u, %u blocks x %u words (%s; %.1f s%s); the reasons are in --report's plan\n",
+                     bits, cfg.blocks, cfg.words, how.c_str(), plan_seconds, from_cache ? ", cached" : "");
+      }
       mpi::RenderChips chips(*session);
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
