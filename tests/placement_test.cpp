@@ -196,6 +196,10 @@ TEST(Options, ObjectMappingRefusesRayParallelForms) {
   EXPECT_THROW(o.validate(Config{64, 32}), std::invalid_argument);
   o.origins = Origins::kGroup;
   EXPECT_NO_THROW(o.validate(Config{64, 32}));
+  o.mapping = Mapping::kRay;
+  o.watertight = true;
+  o.origins = Origins::kGeneral;
+  EXPECT_THROW(o.validate(Config{64, 32}), std::invalid_argument);
 }
 
 }  // namespace

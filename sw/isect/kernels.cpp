@@ -93,6 +93,10 @@ void KernelOptions::validate(const Config& cfg) const {
   if (mapping == Mapping::kObject && watertight) {
     throw std::invalid_argument("the watertight form exists in the ray-parallel mapping only (--mapping ray)");
   }
+  if (watertight && mapping == Mapping::kRay && origins == Origins::kGeneral) {
+    throw std::invalid_argument("the watertight form takes rays sharing an origin; origins general sends every ray "
+                                "to the arbitrary-origin form, so it would never run");
+  }
   if (mapping == Mapping::kObject && origins == Origins::kGeneral) {
     throw std::invalid_argument("origins general (the arbitrary-origin form) exists in the ray-parallel mapping only; "
                                 "the object-parallel mapping groups rays by origin");
