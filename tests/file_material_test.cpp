@@ -16,42 +16,17 @@
 #include "sw/rt/mesh.h"
 #include "sw/rt/render.h"
 #include "sw/rt/scene.h"
+#include "tests/test_files.h"
 
 namespace rt {
 namespace {
 
 using glm::dvec3;
 
-// A directory of the running test's own: ctest runs the tests of a binary as parallel
-// processes, and they write files of the same names.
-std::string dir() {
-  std::string d = ::testing::TempDir();
-  while (d.size() > 1 && d.back() == '/') d.pop_back();
-  const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
-  d += std::string("/") + "file_material_" + t->name();
-  ::mkdir(d.c_str(), 0700);
-  return d;
-}
-
-std::string write(const std::string& name, const std::string& text) {
-  std::ofstream f(dir() + "/" + name, std::ios::binary);
-  f << text;
-  return dir() + "/" + name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string dir() { return test_files::own_dir("file_material_"); }
+std::string write(const std::string& name, const std::string& text) { return test_files::write(dir(), name, text); }
+using test_files::error_of;
+using test_files::slurp;
 
 std::string scene(const std::string& materials, const std::string& meshes) {
   return R"({"camera": {"eye": [0.5, 1.5, 2], "look_at": [0, -0.5, -3.5], "up": [0, 1, 0], "fov_y_deg": 45},
@@ -60,17 +35,7 @@ std::string scene(const std::string& materials, const std::string& meshes) {
 }
 
 std::string render_png(const std::string& json_path, const std::string& png_name) {
-  const Scene s = load_scene(json_path);
-  fmpp::ModelBus bus(fmpp::Config{256, 32});
-  fmpp::Device dev(bus);
-  fmpp::isect::KernelOptions ko;
-  FmppIntersector fi(dev, s.triangles, ko);
-  RenderOptions ro;
-  ro.width = ro.height = 24;
-  const Image img = render(s, fi, ro, nullptr);
-  const std::string png = dir() + "/" + png_name;
-  img.write_png(png);
-  return slurp(png);
+  return test_files::render_png(dir(), json_path, png_name);
 }
 
 void expect_same_materials(const Scene& a, const Scene& b) {
@@ -194,19 +159,7 @@ TEST(FileMaterial, BadLibrariesAreErrorsNamingTheLine) {
 
 // ---------------------------------------------------------------------------- glTF
 
-std::string base64(const std::string& in) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < in.size(); i += 3) {
-    const uint32_t b = (static_cast<uint8_t>(in[i]) << 16) | (i + 1 < in.size() ? static_cast<uint8_t>(in[i + 1]) << 8 : 0) |
-                       (i + 2 < in.size() ? static_cast<uint8_t>(in[i + 2]) : 0);
-    out += k[(b >> 18) & 63];
-    out += k[(b >> 12) & 63];
-    out += i + 1 < in.size() ? k[(b >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? k[b & 63] : '=';
-  }
-  return out;
-}
+using test_files::base64;
 
 // A glTF of two meshes (a box, a tetrahedron) in two nodes, each primitive with the
 // given material text (e.g. `, "material": 0`), and the file's "materials" array.
