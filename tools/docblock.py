@@ -1,8 +1,16 @@
 """Generated blocks inside hand-written Markdown, and the facts every measured figure
-carries (machine, date). Used by tools/gallery.py and tools/bench_embree.py.
+carries (machine, date). Used by tools/docs.py (make docs, docs-update, docs_check),
+tools/gallery.py and tools/bench_embree.py.
 
 A block is the text between the lines `<!-- NAME:begin ... -->` and `<!-- NAME:end -->`;
-replace_block rewrites only that text, so the prose around it stays the author's.
+replace_block rewrites only that text, so the prose around it stays the author's. This
+is the one marker syntax of the project's generated text: a whole generated file lives
+in docs/generated/ instead.
+
+Generators never write the committed files: they save each block with save_block under
+the build directory's docs/ tree (BUILD/docs/blocks/<file>/<NAME>.md, <file> the
+committed file's path without .md), and `make docs-update` (tools/docs.py update)
+installs the saved blocks with replace_block.
 """
 import datetime
 import json
@@ -28,6 +36,42 @@ def replace_block(path, name, text):
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(doc)
     os.replace(tmp, path)
+
+
+def read_block(path, name):
+    """The text of the block NAME of the file at path (without its marker lines), or None."""
+    with open(path, encoding="utf-8") as f:
+        doc = f.read()
+    m = re.search(r"^<!-- %s:begin[^\n]*-->\n(.*?)^<!-- %s:end -->$" % (re.escape(name), re.escape(name)), doc, re.M | re.S)
+    return m.group(1).rstrip("\n") if m else None
+
+
+def block_file(out_dir, target, name):
+    """Where a generator saves the block NAME of the committed file target (a path
+    relative to the repository, e.g. README.md or docs/raytracer.md)."""
+    stem = target[:-3] if target.endswith(".md") else target
+    return os.path.join(out_dir, "blocks", stem, name + ".md")
+
+
+def save_block(out_dir, target, name, text):
+    path = block_file(out_dir, target, name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(text.rstrip("\n") + "\n")
+    print("wrote %s (block %s of %s)" % (path, name, target))
+
+
+def saved_blocks(out_dir):
+    """(target, name, text) of every block saved under out_dir."""
+    found = []
+    base = os.path.join(out_dir, "blocks")
+    for d, _, files in os.walk(base):
+        for f in sorted(files):
+            if f.endswith(".md"):
+                stem = os.path.relpath(d, base)
+                with open(os.path.join(d, f), encoding="utf-8") as h:
+                    found.append((stem + ".md", f[:-3], h.read()))
+    return sorted(found)
 
 
 def cpu_model():

@@ -5,7 +5,7 @@
 // of the paper's form and the watertight one on a closed mesh around the eye.
 //
 // The subcommand measures (precision_measure.cpp), picks per scene the smallest n
-// meeting each criterion (precision_choose.cpp) and writes docs/precision.md
+// meeting each criterion (precision_choose.cpp) and writes docs/generated/precision.md
 // (precision_markdown.cpp), its JSON data and the plots (tools/plot_precision.py);
 // precision.h holds the data passed between them.
 #include <chrono>

@@ -27,7 +27,7 @@
 namespace fmpp::report::precision {
 
 struct Options : ReportOutput {
-  Options() : ReportOutput("docs/precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
+  Options() : ReportOutput("precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
   std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
   int size = 32;
 };
