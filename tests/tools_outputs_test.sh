@@ -51,7 +51,7 @@ grep -qF "](../intersection.md#" "$build/precision-quick.md"
 # tools/gallery.py writes its pictures and blocks under the build directory it is given
 # (BUILD/docs), never README.md or docs/ (a scratch build directory holding fmpp-render).
 mkdir "$dir/b" && ln -s "$render" "$dir/b/fmpp-render"
-/usr/bin/python3 "$src/tools/gallery.py" --build "$dir/b" --only one_triangle > /dev/null 2> "$dir/gallery.txt" ||
+/usr/bin/python3 "$src/tools/gallery.py" --build "$dir/b" --only one_triangle --partial > /dev/null 2> "$dir/gallery.txt" ||
   { cat "$dir/gallery.txt" >&2; exit 1; }
 test -s "$dir/b/docs/img/gallery/one_triangle.png"
 test -s "$dir/b/docs/blocks/README/gallery.md" && test -s "$dir/b/docs/blocks/docs/raytracer/gallery-oracle.md"
@@ -70,10 +70,10 @@ test ! -e "$dir/w.fst"
 fails "backend 'cmodel' has no waveform" "$intersect" --triangles "$none" --rays "$none" --backend cmodel \
   --trace "$dir/w.fst"
 # --config names both sizes: --blocks or --words beside it is refused, not overridden.
-fails "--config excludes --blocks" "$render" --scene "$none" --backend cmodel --config large --blocks 64
-fails "--config excludes --words" "$render" --scene "$none" --backend cmodel --config large --words 26
-fails "--config excludes --blocks" "$intersect" --triangles "$none" --rays "$none" --config small --blocks 64
-fails "--config excludes --words" "$intersect" --triangles "$none" --rays "$none" --config small --words 16
+fails "--blocks excludes --config" "$render" --scene "$none" --backend cmodel --config large --blocks 64
+fails "--words excludes --config" "$render" --scene "$none" --backend cmodel --config large --words 26
+fails "--blocks excludes --config" "$intersect" --triangles "$none" --rays "$none" --config small --blocks 64
+fails "--words excludes --config" "$intersect" --triangles "$none" --rays "$none" --config small --words 16
 fails "unknown FMPP configuration 'huge'" "$render" --scene "$none" --backend cmodel --config huge
 fails "unknown FMPP configuration 'huge'" "$intersect" --triangles "$none" --rays "$none" --config huge
 # One range for --bits in every tool: [2, 32].

@@ -116,8 +116,9 @@ def provenance():
 
 def readme_block(build):
     scenes = list(PICTURE)
-    lines = ["| " + " | ".join(scenes[:3]) + " |", "| --- | --- | --- |"]
-    for i, row in enumerate((scenes[:3], scenes[3:])):
+    rows = [scenes[i:i + 3] for i in range(0, len(scenes), 3)]
+    lines = ["| " + " | ".join(rows[0]) + " |", "| " + " | ".join("---" for _ in rows[0]) + " |"]
+    for i, row in enumerate(rows):
         if i > 0:
             lines.append("| " + " | ".join("**%s**" % s for s in row) + " |")
         lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
@@ -136,7 +137,8 @@ def readme_block(build):
 def raytracer_block(build):
     lines = ["`%s` for each frame S, N x N (golden model). %s" % (" ".join(command("S", "N")), provenance()), ""]
     lines += figures_table(build, FRAMES)
-    lines += [""] + by_kind_table(build, "scans", 256)
+    if ("scans", 256) in FRAMES:
+        lines += [""] + by_kind_table(build, "scans", 256)
     return "\n".join(lines)
 
 
@@ -146,6 +148,8 @@ def main():
     ap.add_argument("--out-dir", help="where the pictures and blocks go (default: BUILD/docs; installed by make docs-update)")
     ap.add_argument("--only", action="append", help="render only this scene (repeatable); tables from all reports")
     ap.add_argument("--tables-only", action="store_true", help="no renders: make the blocks from the reports")
+    ap.add_argument("--partial", action="store_true",
+                    help="tables of the frames rendered so far only (with --only: a quick look, not for the docs)")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     out = os.path.abspath(a.out_dir or os.path.join(build, "docs"))
@@ -164,6 +168,11 @@ def main():
         if os.path.exists(png_path(build, scene, side)):
             os.makedirs(os.path.join(out, "img", "gallery"), exist_ok=True)
             shutil.copyfile(png_path(build, scene, side), os.path.join(out, "img", "gallery", scene + ".png"))
+    if a.partial:
+        have = lambda s, n: os.path.exists(report_path(build, s, n))  # noqa: E731
+        FRAMES[:] = [f for f in FRAMES if have(*f)]
+        for s in [s for s in PICTURE if not have(s, PICTURE[s])]:
+            del PICTURE[s]
     docblock.save_block(out, "README.md", "gallery", readme_block(build))
     docblock.save_block(out, "docs/raytracer.md", "gallery-oracle", raytracer_block(build))
     print("make docs-update installs them into README.md, docs/raytracer.md and docs/img/gallery/")
