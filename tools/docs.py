@@ -286,6 +286,9 @@ PAPER_SECTIONS = ["Table 1: instructions per basic operation", "Steps per broadc
                   "Table 2: ideal FMPP against the sequential machine", "Fig. 7: limited capacity, 1024 x 1024 pixels"]
 
 
+PRECISION_CHECK = "one_triangle"  # the scene of precision.md whose section docs_check measures again
+
+
 class Checker:
     def __init__(self):
         self.errors = []
@@ -365,6 +368,14 @@ def check(build):
         have, now = sections(committed("docs/generated/paper-reproduction.md")), sections(open(paper, encoding="utf-8").read())
         for name in PAPER_SECTIONS:
             c.same("docs/generated/paper-reproduction.md, section '%s'" % name, have.get(name), now.get(name, ""))
+
+        # docs/generated/precision.md: the section of its cheapest scene (every column a count).
+        prec = os.path.join(tmp, "precision.md")
+        run([tool(build, "fmpp-report"), "precision", "--only-scene", PRECISION_CHECK, "--no-plots", "--out", prec,
+             "--img-dir", os.path.join(tmp, "precision-img"), "--data-dir", os.path.join(tmp, "precision-data")])
+        have, now = sections(committed("docs/generated/precision.md")), sections(open(prec, encoding="utf-8").read())
+        name = next((h for h in now if h.startswith(PRECISION_CHECK + " (")), None)
+        c.same("docs/generated/precision.md, section '%s'" % name, have.get(name), now.get(name, ""))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if c.errors:

@@ -30,6 +30,7 @@ struct Options : ReportOutput {
   Options() : ReportOutput("precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
   std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
   int size = 32;
+  std::string only_scene;  // measure this scene only, no leak rates (tools/docs.py check)
 };
 
 // The machine every figure is measured on: the RTL's medium configuration (a 32 x 32
