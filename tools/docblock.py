@@ -97,6 +97,15 @@ def cpu_mhz():
     return 0.0
 
 
+def load_average():
+    """The 1-minute load average when a measurement starts (the machine may be shared), or None."""
+    try:
+        with open("/proc/loadavg", encoding="utf-8") as f:
+            return float(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return None
+
+
 def machine():
     """One line naming the machine: CPU, cores, OS."""
     os_name = "unknown OS"
@@ -129,7 +138,7 @@ def save_provenance(directory, root):
     """Records in directory/provenance.json when, where and on which commit its
     measurements were made, for tables rewritten later from them."""
     with open(os.path.join(directory, "provenance.json"), "w", encoding="utf-8") as f:
-        json.dump({"date": now(), "machine": machine(), "commit": git_commit(root)}, f)
+        json.dump({"date": now(), "machine": machine(), "commit": git_commit(root), "load": load_average()}, f)
 
 
 def provenance(directory):
@@ -139,7 +148,8 @@ def provenance(directory):
         sys.exit("%s missing: make the measurements first (without --tables-only)" % path)
     with open(path, encoding="utf-8") as f:
         p = json.load(f)
-    return "Measured %s on %s, commit %s" % (p["date"], p["machine"], p["commit"])
+    load = "" if p.get("load") is None else " (load average %.1f at the start)" % p["load"]
+    return "Measured %s on %s%s, commit %s" % (p["date"], p["machine"], load, p["commit"])
 
 
 def run(cmd, log=sys.stderr):

@@ -108,7 +108,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(int_range(1, 1 << 24));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
-  app.add_option("--out", out, "output image: .png (8-bit) or .pfm (linear radiance, unclamped)")->capture_default_str();
+  app.add_option("--out", out,
+                 "output image: .png (8-bit) or .pfm (linear radiance, unclamped); by default in the current directory")
+      ->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
       ->capture_default_str()
