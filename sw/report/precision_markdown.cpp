@@ -101,9 +101,9 @@ tables first):
   tested them for every ray. The answers are right either way.
 - **The precision plan** (`fmpp-render`) picks, per frame, the smallest n whose sampled
   primary rays and frame meet the error target (0.2 %) with at most 1 % of the sample's
-  rays redone. At 128 x 128 on the golden model it picks n = 20 for one_triangle, 24 for
-  cornell and spheres_1k and 28 for spheres_10k and the two scanned scenes; the measured
-  full frames (next section) are within the target.
+  rays redone. Its choices on the shipped scenes at 128 x 128, and the measured full
+  frames against the target, are in [raytracer.md](../raytracer.md#the-precision-plan)
+  (a generated table the ctest docs_check keeps current).
 )";
 
 const char* kHardCases = R"(## Hard cases
