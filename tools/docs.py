@@ -153,8 +153,8 @@ def plan_block(rows):
 def share_sentence(r):
     rays = sum(r["rays"].values())
     redone = sum(k["flagged"] + k["t_from_host"] for k in r["rays_redone"].values())
-    return ("for the default scene %.2f %% (%s of %s rays at %d x %d on the golden model, clock for clock "
-            "the RTL's: [raytracer.md](docs/raytracer.md#the-precision-plan))." % (
+    return ("for the default scene %.2f %% (%s of %s rays at %d x %d, counted on the golden model, which "
+            "the RTL matches clock for clock: [raytracer.md](docs/raytracer.md#the-precision-plan))." % (
                 100.0 * redone / rays, docblock.fmt_int(redone), docblock.fmt_int(rays), PLAN_SIDE, PLAN_SIDE))
 
 
