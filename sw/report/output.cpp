@@ -48,7 +48,11 @@ std::string machine_description() {
       break;
     }
   }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
+  std::string load;
+  std::ifstream l("/proc/loadavg");  // a shared machine's timings depend on what else runs
+  double avg = 0;
+  if (l >> avg) load = ", load average " + fmt(avg, 1);
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores" + load;
 }
 
 void add_output_options(CLI::App* sub, ReportOutput& o) {

@@ -18,7 +18,8 @@ std::string fmt(double v, int prec = 0);
 std::string today();
 
 // The machine a report was measured on, for the same line: the CPU model from
-// /proc/cpuinfo ("unknown CPU" where there is none) and the number of cores.
+// /proc/cpuinfo ("unknown CPU" where there is none), the number of cores and the
+// 1-minute load average as the report is written (where /proc/loadavg exists).
 std::string machine_description();
 
 // The build directory the tool was built in (FMPP_BINARY_DIR): where a report goes
