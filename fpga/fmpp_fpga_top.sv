@@ -1,5 +1,5 @@
 // fmpp_fpga_top: a pin-saving harness that puts a small FMPP on an iCE40 for
-// place-and-route and timing (tools/fpga.sh, figures in docs/area.md).
+// place-and-route and timing (tools/fpga.sh, figures in docs/generated/area.md).
 //
 // The full AXI4-Lite port needs about 220 pins, more than the iCE40 packages have.
 // Here every input of fmpp_top comes from a flip-flop of one shift chain loaded

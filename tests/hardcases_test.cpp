@@ -5,7 +5,7 @@
 //
 // Every case compares the FMPP with the reference. Where a fixed-point form cannot meet
 // the exact behaviour for a principled reason, the case asserts a bound instead and says
-// why; docs/precision.md ("Hard cases") lists every case, its behaviour and its bound.
+// why; docs/generated/precision.md ("Hard cases") lists every case, its behaviour and its bound.
 // No overflow may be silent: every run checks that an overflow left in the machine was
 // counted (KernelStats) and redone, and cases that provoke one assert the count.
 #include <gtest/gtest.h>
@@ -107,7 +107,7 @@ class HardCases : public ::testing::TestWithParam<const char*> {
   }
 };
 
-// The depth error a form may make on a hit (docs/precision.md, "Depth"):
+// The depth error a form may make on a hit (docs/generated/precision.md, "Depth"):
 // - paper forms, the triangle's own test: T carries a relative error of about
 //   cond 2^-bits, so the sum S = 1/t does too: 8 cond 2^-bits allowed;
 // - ray-parallel, the compared sum S_c is brought to one exponent chosen so that the
@@ -196,7 +196,7 @@ Fan make_fan() {
 // one triangle, and it is one of those sharing the edge or vertex (both are correct: the
 // ray meets them at the same point; the reference and the watertight form take the
 // lowest index). The paper's form decides an exact edge by the sign
-// of a rounded T (docs/precision.md): it may crack there, so for it the asserted bound is
+// of a rounded T (docs/generated/precision.md): it may crack there, so for it the asserted bound is
 // that every ray a margin inside a triangle (8 cond 2^-bits of its height) hits exactly
 // that triangle, as the reference does; the cracks on the exact edges are counted.
 TEST_P(HardCases, FanSharedEdgesAndVertex) {

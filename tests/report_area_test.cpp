@@ -134,7 +134,7 @@ TEST(ReportArea, BadInputFailsNamingTheFileLineAndField) {
   const std::string cells_ok = "blocks,words,cell,count\n1,8,$_NOT_,10\n";
   expect_error("# c\nblocks,words,cells,transistors,flops\n1,8,1x0,20,0\n", cells_ok,
                "summary.csv:3: field 'cells' is '1x0', not a finite non-negative number");
-  // "inf" is a number to stod, and gave -nan in docs/area.md.
+  // "inf" is a number to stod, and gave -nan in docs/generated/area.md.
   expect_error("blocks,words,cells,transistors,flops\n1,8,inf,20,0\n", cells_ok,
                "summary.csv:2: field 'cells' is 'inf', not a finite non-negative number");
   expect_error("blocks,words,cells,transistors\n", cells_ok, "summary.csv:1: header has no column 'flops'");

@@ -37,7 +37,7 @@ fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backe
 "$render" --scene "$scene" --backend reference --width 4 --height 4 --out "$dir/x.png" --report - --quiet > "$dir/r.json"
 grep -q '"backend": "reference"' "$dir/r.json"
 "$render" --help > "$dir/help.txt"
-grep -q -- "--scene TEXT=scenes/cornell.json" "$dir/help.txt"
+grep -q -- "--scene TEXT=$src/scenes/cornell.json" "$dir/help.txt"
 # A plan that cannot keep its error target writes no picture unless asked to (a zero
 # target cannot be shown on 64 sampled pixels of a 32 x 32 frame).
 fails "the precision plan cannot keep --error-target 0: no n meets the error target" "$render" --scene "$scene" \
@@ -76,25 +76,15 @@ fails "this build has no coverage" "$sim" --config tiny --ops 10 --coverage-out 
 fails "unknown subcommand 'foo' (one of: area, paper, precision)" "$report" foo
 fails "A subcommand is required" "$report"
 fails "--out -: the report needs a file name" "$report" precision --quick --out -
-fails "--out $dir: is a directory" "$report" precision --quick --out "$dir"
-test ! -e "$dir/precision-quick"  # a refused run creates nothing
+fails "--out $dir: is a directory" "$report" precision --quick --out "$dir" --img-dir "$dir/pq" --data-dir "$dir/pq"
+test ! -e "$dir/pq"  # a refused run creates nothing
 fails "--size excludes --quick" "$report" precision --quick --size 16
-fails "$dir/none.csv: cannot open" "$report" area --synth-dir "$src/docs/synth" --fpga-csv "$dir/none.csv" --out -
+fails "$dir/none.csv: cannot open" "$report" area --synth-dir "$src/docs/data/synth" --fpga-csv "$dir/none.csv" --out -
 fails "$dir/none.csv: cannot open" "$report" paper --quick --fpga-csv "$dir/none.csv" --out "$dir/p.md"
-"$report" area --synth-dir "$src/docs/synth" --out - > "$dir/area.md"
+"$report" area --synth-dir "$src/docs/data/synth" --out - > "$dir/area.md"
 grep -q "^# FMPP area" "$dir/area.md"
-"$report" paper --help > "$dir/help.txt"
-grep -q -- "--out TEXT=docs/paper-reproduction.md" "$dir/help.txt"
-grep -q -- "--img-dir TEXT=docs/img" "$dir/help.txt"
-"$report" precision --help > "$dir/help.txt"
-grep -q -- "--out TEXT=docs/precision.md" "$dir/help.txt"
-# A quick run never writes the committed report: without --out it writes
-# precision-quick.md and precision-quick/ in the current directory.
-mkdir -p "$dir/run/docs"
-(cd "$dir/run" && "$report" precision --quick --no-plots 2> /dev/null)
-test -s "$dir/run/precision-quick.md"
-test -s "$dir/run/precision-quick/precision_data.json"
-test -z "$(ls -A "$dir/run/docs")"
+# The reports' default paths (the build directory, never docs/) are tested in
+# tests/tools_outputs_test.sh.
 # ------------------------------------------------ hostile input and outputs (issue 14)
 r8=(--backend reference --width 8 --height 8 --quiet)
 # A device has no image extension, so it is refused before the render (a failed write

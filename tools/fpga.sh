@@ -9,8 +9,8 @@
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
 #   summary.csv   device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
 #   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing
-# `cp build/fpga/summary.csv build/fpga/critical_*.txt docs/fpga/` keeps a run's figures
-# with the docs (docs/area.md reads them through fmpp-report area).
+# `cp build/fpga/summary.csv build/fpga/critical_*.txt docs/data/fpga/` keeps a run's figures
+# with the docs (docs/generated/area.md reads them through fmpp-report area).
 #
 # Usage: fpga.sh [DEVICE:PACKAGE:BLOCKSxWORDS ...]
 #   default: hx8k:ct256:1x8 hx8k:ct256:2x8 hx8k:ct256:3x8 up5k:sg48:1x8 up5k:sg48:2x8

@@ -2,12 +2,13 @@
 """make gallery: every shipped scene rendered through the golden model, its clocks
 against the culling oracles, the README's gallery and docs/raytracer.md's table.
 
-    tools/gallery.py [--build build] [--only scans] [--tables-only]
+    tools/gallery.py [--build build] [--out-dir build/docs] [--only scans] [--tables-only]
 
-Renders each frame of FRAMES with fmpp-render (golden model, --oracle), keeps the
-reports in BUILD/gallery/, copies one picture per scene to docs/img/gallery/, and
-rewrites the generated blocks `gallery` of README.md and `gallery-oracle` of
-docs/raytracer.md. --tables-only rewrites the blocks from the reports already there.
+Renders each frame of FRAMES with fmpp-render (golden model, --oracle) and keeps the
+reports in BUILD/gallery/; writes one picture per scene to OUT/img/gallery/ and the
+generated blocks `gallery` of README.md and `gallery-oracle` of docs/raytracer.md to
+OUT/blocks/ (docblock.save_block). It never writes the committed files: `make
+docs-update` installs them. --tables-only makes the blocks from the reports already there.
 """
 import argparse
 import json
@@ -42,12 +43,12 @@ CAPTION = {
 }
 
 
-def report_path(build, scene, side):
-    return os.path.join(build, "gallery", "%s_%d.json" % (scene, side))
+def report_path(build, scene, side, folder="gallery"):
+    return os.path.join(build, folder, "%s_%d.json" % (scene, side))
 
 
-def png_path(build, scene, side):
-    return os.path.join(build, "gallery", "%s_%d.png" % (scene, side))
+def png_path(build, scene, side, folder="gallery"):
+    return os.path.join(build, folder, "%s_%d.png" % (scene, side))
 
 
 def command(scene, side, report="r.json", out="out.png"):
@@ -55,15 +56,17 @@ def command(scene, side, report="r.json", out="out.png"):
         "--width", str(side), "--height", str(side), "--oracle", "--report", report, "--out", out]
 
 
-def render(build, scene, side):
-    cmd = command(scene, side, report_path(build, scene, side), png_path(build, scene, side))
+def render(build, scene, side, folder="gallery"):
+    """Renders one frame into BUILD/folder (tools/docs.py's check renders a few into its own folder)."""
+    os.makedirs(os.path.join(build, folder), exist_ok=True)
+    cmd = command(scene, side, report_path(build, scene, side, folder), png_path(build, scene, side, folder))
     cmd[0] = os.path.join(build, "fmpp-render")
     cmd[2] = os.path.join(ROOT, cmd[2])
     docblock.run(cmd + ["--quiet"])
 
 
-def load(build, scene, side):
-    path = report_path(build, scene, side)
+def load(build, scene, side, folder="gallery"):
+    path = report_path(build, scene, side, folder)
     if not os.path.exists(path):
         sys.exit("%s missing: run tools/gallery.py without --tables-only first" % path)
     with open(path, encoding="utf-8") as f:
@@ -74,12 +77,15 @@ def rays(rep):
     return sum(rep["rays"].values())
 
 
-def figures_table(build, frames):
+WALL_COLUMN = 9  # the one column of figures_table that depends on the machine (tools/docs.py check)
+
+
+def figures_table(build, frames, folder="gallery"):
     rows = ["| scene | triangles | frame | rays | FMPP clocks | any-hit oracle | culled / any-hit | nearest-hit oracle "
             "| at 50 MHz | golden-model wall time |",
             "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for scene, side in frames:
-        r = load(build, scene, side)
+        r = load(build, scene, side, folder)
         o = r["oracle"]
         rows.append("| %s | %s | %d x %d | %s | %s | %s | %.2f | %s | %.1f ms | %.3g s |" % (
             scene, docblock.fmt_int(r["triangles"]), side, side, docblock.fmt_int(rays(r)), docblock.fmt_int(r["cycles"]),
@@ -110,8 +116,9 @@ def provenance():
 
 def readme_block(build):
     scenes = list(PICTURE)
-    lines = ["| " + " | ".join(scenes[:3]) + " |", "| --- | --- | --- |"]
-    for i, row in enumerate((scenes[:3], scenes[3:])):
+    rows = [scenes[i:i + 3] for i in range(0, len(scenes), 3)]
+    lines = ["| " + " | ".join(rows[0]) + " |", "| " + " | ".join("---" for _ in rows[0]) + " |"]
+    for i, row in enumerate(rows):
         if i > 0:
             lines.append("| " + " | ".join("**%s**" % s for s in row) + " |")
         lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
@@ -130,17 +137,22 @@ def readme_block(build):
 def raytracer_block(build):
     lines = ["`%s` for each frame S, N x N (golden model). %s" % (" ".join(command("S", "N")), provenance()), ""]
     lines += figures_table(build, FRAMES)
-    lines += [""] + by_kind_table(build, "scans", 256)
+    if ("scans", 256) in FRAMES:
+        lines += [""] + by_kind_table(build, "scans", 256)
     return "\n".join(lines)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", default="build", help="build directory holding fmpp-render")
+    ap.add_argument("--out-dir", help="where the pictures and blocks go (default: BUILD/docs; installed by make docs-update)")
     ap.add_argument("--only", action="append", help="render only this scene (repeatable); tables from all reports")
-    ap.add_argument("--tables-only", action="store_true", help="no renders: rewrite the blocks from the reports")
+    ap.add_argument("--tables-only", action="store_true", help="no renders: make the blocks from the reports")
+    ap.add_argument("--partial", action="store_true",
+                    help="tables of the frames rendered so far only (with --only: a quick look, not for the docs)")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
+    out = os.path.abspath(a.out_dir or os.path.join(build, "docs"))
     for name in a.only or []:
         if name not in PICTURE:
             sys.exit("--only %s: not a gallery scene (%s)" % (name, ", ".join(PICTURE)))
@@ -152,12 +164,18 @@ def main():
             if a.only and scene not in a.only:
                 continue
             render(build, scene, side)
-            if PICTURE[scene] == side:
-                os.makedirs(os.path.join(ROOT, "docs", "img", "gallery"), exist_ok=True)
-                shutil.copyfile(png_path(build, scene, side), os.path.join(ROOT, "docs", "img", "gallery", scene + ".png"))
-    docblock.replace_block(os.path.join(ROOT, "README.md"), "gallery", readme_block(build))
-    docblock.replace_block(os.path.join(ROOT, "docs", "raytracer.md"), "gallery-oracle", raytracer_block(build))
-    print("wrote README.md (gallery) and docs/raytracer.md (gallery-oracle)")
+    for scene, side in PICTURE.items():
+        if os.path.exists(png_path(build, scene, side)):
+            os.makedirs(os.path.join(out, "img", "gallery"), exist_ok=True)
+            shutil.copyfile(png_path(build, scene, side), os.path.join(out, "img", "gallery", scene + ".png"))
+    if a.partial:
+        have = lambda s, n: os.path.exists(report_path(build, s, n))  # noqa: E731
+        FRAMES[:] = [f for f in FRAMES if have(*f)]
+        for s in [s for s in PICTURE if not have(s, PICTURE[s])]:
+            del PICTURE[s]
+    docblock.save_block(out, "README.md", "gallery", readme_block(build))
+    docblock.save_block(out, "docs/raytracer.md", "gallery-oracle", raytracer_block(build))
+    print("make docs-update installs them into README.md, docs/raytracer.md and docs/img/gallery/")
 
 
 if __name__ == "__main__":

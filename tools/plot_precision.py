@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots of the precision report (docs/precision.md) from the data fmpp-report precision writes.
+"""Plots of the precision report (docs/generated/precision.md) from the data fmpp-report precision writes.
 
 Usage: plot_precision.py precision_data.json OUT_DIR
 

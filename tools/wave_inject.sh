@@ -26,6 +26,7 @@ t=$(sed -n 's/^waveform: .* at t = \([0-9]*\) (cycle.*/\1/p' "$out/inject.txt")
 [ -n "$t" ] || { echo "wave_inject.sh: no waveform time in the report" >&2; exit 1; }
 "$root/tools/gen_gtkw.py" --config "$config" --dumpfile "$out/inject.fst" --closed bus,selection,block0 \
   --size 1600x1200 --out "$out/inject.gtkw"
-# 15 clocks before the edge and 10 after (10 time units per clock).
-"$root/tools/wave_shot.sh" "$out/inject.fst" "$out/inject.gtkw" "$out/inject.png" "$t" $((t - 150)) $((t + 100)) 1600x1200
+# 15 clocks up to the edge (10 time units per clock): the trace ends with the mismatch,
+# so the marker is the last instant of the picture.
+"$root/tools/wave_shot.sh" "$out/inject.fst" "$out/inject.gtkw" "$out/inject.png" "$t" $((t - 150)) "$t" 1600x1200
 echo "open it yourself: gtkwave $out/inject.fst tb/fmpp.gtkw   (marker: t = $t)"

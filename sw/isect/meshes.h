@@ -2,7 +2,7 @@
 // perturbed, tessellated sphere around a point, with rays aimed exactly at its edges and
 // vertices (where a non-watertight test leaks) or spread uniformly over all directions.
 // Shared by tests/isect_test.cpp, tests/hardcases_test.cpp and fmpp-report precision, so
-// that the leak rate reported in docs/precision.md is the one the tests bound.
+// that the leak rate reported in docs/generated/precision.md is the one the tests bound.
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 // The numerical policy of the intersection kernels, in one place: which triangles are
 // too ill-conditioned for the fixed-point format (and go to the host), the
 // object-parallel sum cap, the common exponent of the compared sums, the
-// direction scaling and the cull margin (docs/intersection.md, docs/precision.md).
+// direction scaling and the cull margin (docs/intersection.md, docs/generated/precision.md).
 //
 // The kernels, the precision plan, the reports and the hard-case tests' tolerances all
 // read these functions; none keeps a copy of a threshold, so changing one here moves

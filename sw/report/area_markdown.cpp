@@ -1,4 +1,4 @@
-// `fmpp-report area`, the Markdown (area.h): one function per section of docs/area.md,
+// `fmpp-report area`, the Markdown (area.h): one function per section of docs/generated/area.md,
 // each formatting the synthesized sizes, the fitted cost model and the paper's figures.
 #include <cmath>
 #include <algorithm>
@@ -202,11 +202,12 @@ void what_differs(std::ostream& out, const AreaModel& a) {
 void how_measured(std::ostream& out) {
   out << "\n## How this was measured\n\n";
   out << "`make synth` runs tools/synth.sh (yosys on every size above, flip-flops legalized so that `stat -tech cmos` "
-         "counts them, writing summary.csv and cells.csv) and then this report. docs/area.md is this report over the "
-         "results committed in docs/synth/: after `make synth`, `cp build/synth/*.csv docs/synth/` and "
-         "`build/fmpp-report area --synth-dir docs/synth --fpga-csv docs/fpga/summary.csv --out docs/area.md` (the ctest report_area_doc checks that "
-         "it is current). A section comparing with an earlier synthesis, below, comes from the same command with "
-         "`--baseline-dir DIR --baseline-label TEXT` on that run's CSVs, kept in a folder of docs/synth/.\n";
+         "counts them, writing summary.csv and cells.csv) and then this report. docs/generated/area.md is this report over "
+         "the results committed in docs/data/synth/ and docs/data/fpga/: after `make synth`, `cp build/synth/*.csv "
+         "docs/data/synth/`, then `make docs` regenerates this file into build/docs/generated/area.md and `make "
+         "docs-update` installs it (the ctest docs_check checks that it is current). A section comparing with an "
+         "earlier synthesis, below, comes from the same command with `--baseline-dir DIR --baseline-label TEXT` on "
+         "that run's CSVs, kept in a folder of docs/data/synth/.\n";
 }
 
 }  // namespace

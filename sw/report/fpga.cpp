@@ -166,7 +166,7 @@ void write_fpga_section(const FpgaData& d, std::ostream& out) {
   }
   out << "\nThe critical path of the " << ref.blocks << " x " << ref.words << " run on iCE40" << ref.device << " ("
       << fixed(ref.crit_ns, 1) << " ns) starts at `" << ref.crit_from << "` and ends at `" << ref.crit_to
-      << "`; docs/fpga/ keeps nextpnr's listing of each run's path, net by net.\n\n";
+      << "`; docs/data/fpga/ keeps nextpnr's listing of each run's path, net by net.\n\n";
   out << "**What this implies.** The measured " << fixed(ref.fmax_mhz, 1) << " MHz (" << ref.blocks
       << " blocks; " << fixed(small->fmax_mhz, 1) << " MHz with " << small->blocks
       << ") is below the paper's assumed 50 MHz by a factor of " << fixed(50.0 / ref.fmax_mhz, 1)
@@ -195,7 +195,7 @@ void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, doub
   out << "## The paper's 50 MHz beside a measured clock\n\n";
   out << "Every clock figure above assumes the paper's 50 MHz. The one measured clock of this design is "
       << fixed(ref.fmax_mhz, 1) << " MHz: " << ref.blocks << " blocks of " << ref.words << " words placed and routed on "
-      << "an iCE40" << ref.device << " FPGA (`make fpga`, docs/area.md). The ray-parallel test rates at both clocks:\n\n";
+      << "an iCE40" << ref.device << " FPGA (`make fpga`, docs/generated/area.md). The ray-parallel test rates at both clocks:\n\n";
   out << "| blocks | tests/s at 50 MHz (paper) | x one CPU core | tests/s at " << fixed(ref.fmax_mhz, 1)
       << " MHz (measured, iCE40) | x one CPU core |\n| --- | --- | --- | --- | --- |\n";
   for (double side : {64.0, 256.0, 1024.0}) {
@@ -210,7 +210,7 @@ void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, doub
       << fixed(ref.fmax_mhz / 50.0, 2) << " times as large. The times of Fig. 7 grow by "
       << fixed(50.0 / ref.fmax_mhz, 2)
       << " at the measured clock. An FPGA clock is a lower bound for the chip the paper has in mind "
-         "(docs/area.md explains why).\n\n";
+         "(docs/generated/area.md explains why).\n\n";
 }
 
 }  // namespace fmpp::report

@@ -1,5 +1,5 @@
 // FPGA figures of `make fpga` (tools/fpga.sh: yosys synth_ice40 + nextpnr-ice40) for the
-// reports: docs/area.md sets them beside the ASIC estimate, docs/paper-reproduction.md
+// reports: docs/generated/area.md sets them beside the ASIC estimate, docs/generated/paper-reproduction.md
 // puts the measured clock beside the paper's 50 MHz.
 #pragma once
 
@@ -33,11 +33,11 @@ FpgaData read_fpga(const std::string& csv);
 // device (ties: the fastest). Throws std::runtime_error if no run was placed.
 const FpgaRun& reference_run(const FpgaData& d);
 
-// docs/area.md's FPGA section: the runs, the cost per block, the critical path and
+// docs/generated/area.md's FPGA section: the runs, the cost per block, the critical path and
 // what the figures imply for an ASIC.
 void write_fpga_section(const FpgaData& d, std::ostream& out);
 
-// docs/paper-reproduction.md: the measured FPGA clock beside the paper's 50 MHz. A
+// docs/generated/paper-reproduction.md: the measured FPGA clock beside the paper's 50 MHz. A
 // table of ray-parallel test rates at both clocks (`clocks_per_broadcast` per broadcast,
 // against `cpu_tests_per_s` of one CPU core) and what the clock changes in the
 // speed-up tables.

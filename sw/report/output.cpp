@@ -17,8 +17,13 @@
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
 #endif
+#ifndef FMPP_BINARY_DIR
+#define FMPP_BINARY_DIR FMPP_SOURCE_DIR "/build"
+#endif
 
 namespace fmpp::report {
+
+std::string build_dir() { return FMPP_BINARY_DIR; }
 
 std::string fmt(double v, int prec) {
   char buf[64];
@@ -43,26 +48,36 @@ std::string machine_description() {
       break;
     }
   }
-  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
+  std::string load;
+  std::ifstream l("/proc/loadavg");  // a shared machine's timings depend on what else runs
+  double avg = 0;
+  if (l >> avg) load = ", load average " + fmt(avg, 1);
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores" + load;
 }
 
 void add_output_options(CLI::App* sub, ReportOutput& o) {
-  o.out_opt = sub->add_option("--out", o.out, "markdown report to write (with --quick: " + o.quick_name + ".md)")
+  const std::string quick = build_dir() + "/" + o.quick_name;
+  o.out_opt = sub->add_option("--out", o.out, "markdown report to write (with --quick: " + quick + ".md)")
                   ->capture_default_str();
-  o.img_opt = sub->add_option("--img-dir", o.img_dir,
-                              "directory for the PNG plots and their data (with --quick: " + o.quick_name + ")")
+  o.img_opt = sub->add_option("--img-dir", o.img_dir, "directory for the PNG plots (with --quick: " + quick + ")")
                   ->capture_default_str();
+  o.data_opt = sub->add_option("--data-dir", o.data_dir,
+                               "directory for the JSON data of the plots, " + o.data_name + " (with --quick: " + quick + ")")
+                   ->capture_default_str();
   sub->add_flag("--no-plots", o.no_plots, "skip running tools/" + o.plot_script);
 }
 
 void prepare_outputs(ReportOutput& o) {
-  if (o.quick && o.out_opt->count() == 0) o.out = o.quick_name + ".md";
-  if (o.quick && o.img_opt->count() == 0) o.img_dir = o.quick_name;
+  const std::string quick = build_dir() + "/" + o.quick_name;
+  if (o.quick && o.out_opt->count() == 0) o.out = quick + ".md";
+  if (o.quick && o.img_opt->count() == 0) o.img_dir = quick;
+  if (o.quick && o.data_opt->count() == 0) o.data_dir = quick;
   if (o.out == "-") {
     throw std::invalid_argument("--out -: the report needs a file name (it is written beside its data and plots)");
   }
   if (o.out.empty()) throw std::invalid_argument("--out: empty path");
   if (o.img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
+  if (o.data_dir.empty()) throw std::invalid_argument("--data-dir: empty path");
   // The report first, so that a bad --out creates nothing.
   const std::filesystem::path md(o.out);
   std::error_code ec;
@@ -70,15 +85,17 @@ void prepare_outputs(ReportOutput& o) {
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
   check_writable("--out", o.out, false);
   std::filesystem::create_directories(o.img_dir);
-  check_writable("--img-dir", o.img_dir + "/" + o.data_name, false);
-  check_no_alias({{"--out", o.out}, {"--img-dir", o.img_dir + "/" + o.data_name}}, {});
+  std::filesystem::create_directories(o.data_dir);
+  check_writable("--data-dir", o.data_dir + "/" + o.data_name, false);
+  check_no_alias({{"--out", o.out}, {"--data-dir", o.data_dir + "/" + o.data_name}}, {});
 }
 
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data) {
   std::filesystem::create_directories(o.img_dir);
+  std::filesystem::create_directories(o.data_dir);
   const std::filesystem::path md(o.out);
   if (md.has_parent_path()) std::filesystem::create_directories(md.parent_path());
-  const std::string data_file = o.img_dir + "/" + o.data_name;
+  const std::string data_file = o.data_dir + "/" + o.data_name;
   write_output(data_file, data.dump(1) + "\n");
   write_output(o.out, markdown);
   if (o.no_plots) return;

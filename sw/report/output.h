@@ -18,36 +18,48 @@ std::string fmt(double v, int prec = 0);
 std::string today();
 
 // The machine a report was measured on, for the same line: the CPU model from
-// /proc/cpuinfo ("unknown CPU" where there is none) and the number of cores.
+// /proc/cpuinfo ("unknown CPU" where there is none), the number of cores and the
+// 1-minute load average as the report is written (where /proc/loadavg exists).
 std::string machine_description();
 
-// Where a report subcommand (`fmpp-report paper`, `precision`) writes: its Markdown,
-// and in img_dir its JSON data (data_name) and the plots tools/<plot_script> draws from
-// it. A --quick run (a smoke test, the subcommand's own flag) given no --out or
-// --img-dir writes <quick_name>.md and <quick_name>/ in the current directory instead
-// of the committed docs/ files.
+// The build directory the tool was built in (FMPP_BINARY_DIR): where a report goes
+// unless told otherwise. Never the source tree: only `make docs-update` copies the
+// generated documents over the committed ones (tools/docs.py).
+std::string build_dir();
+
+// Where a report subcommand (`fmpp-report paper`, `precision`) writes: its Markdown
+// (out), its JSON data (data_dir/data_name) and the plots tools/<plot_script> draws
+// from that data (img_dir). By default the build directory's copy of the docs/ layout:
+// BUILD/docs/generated/<doc_name>, BUILD/docs/img, BUILD/docs/data (what `make docs`
+// makes). A --quick run (a smoke test, the subcommand's own flag) writes
+// BUILD/<quick_name>.md and BUILD/<quick_name>/ instead. Whatever the current
+// directory: a default never depends on it.
 struct ReportOutput {
-  ReportOutput(std::string out_path, std::string quick, std::string data, std::string plot)
-      : out(std::move(out_path)), quick_name(std::move(quick)), data_name(std::move(data)), plot_script(std::move(plot)) {}
-  std::string out;
-  std::string img_dir = "docs/img";
+  ReportOutput(std::string doc, std::string quick, std::string data, std::string plot)
+      : doc_name(std::move(doc)), quick_name(std::move(quick)), data_name(std::move(data)), plot_script(std::move(plot)) {
+    out = build_dir() + "/docs/generated/" + doc_name;
+    img_dir = build_dir() + "/docs/img";
+    data_dir = build_dir() + "/docs/data";
+  }
+  std::string out, img_dir, data_dir;
   bool quick = false;
   bool no_plots = false;
-  std::string quick_name, data_name, plot_script;
+  std::string doc_name, quick_name, data_name, plot_script;
   CLI::Option* out_opt = nullptr;  // set by add_output_options
   CLI::Option* img_opt = nullptr;
+  CLI::Option* data_opt = nullptr;
 };
 
-// Declares --out, --img-dir (defaults shown) and --no-plots on the subcommand.
+// Declares --out, --img-dir, --data-dir (defaults shown) and --no-plots on the subcommand.
 void add_output_options(CLI::App* sub, ReportOutput& o);
 
 // Before the measurements: settles the paths (the --quick defaults) and checks them.
-// Creates the directories and checks that the report and img_dir/data_name can be
-// written; throws naming the option and path ("--out -" too: the report goes beside
+// Creates the directories and checks that the report, img_dir and data_dir/data_name
+// can be written; throws naming the option and path ("--out -" too: the report goes beside
 // its data and plots, not to stdout).
 void prepare_outputs(ReportOutput& o);
 
-// Writes `markdown` to o.out and `data` to o.img_dir/o.data_name (creating both
+// Writes `markdown` to o.out and `data` to o.data_dir/o.data_name (creating the
 // directories), then, unless --no-plots, runs
 // python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir> (fmpp::run_program,
 // sw/util/process.h: no shell).

@@ -13,6 +13,7 @@
 #include "sw/report/output.h"
 #include "sw/report/paper.h"
 #include "sw/report/report.h"
+#include "sw/tools/cli_options.h"
 
 namespace fmpp::report {
 
@@ -25,10 +26,13 @@ Command add_paper(CLI::App& app) {
   c.sub->add_option("--triangles", opt->triangles, "triangles in the step-count scene (at most 300 with --quick)")
       ->capture_default_str()
       ->check(CLI::Range(10u, 1000000u));
-  c.sub->add_option("--bits", opt->n, "multiplier bits n of the comparison")
+  c.sub->add_option("--bits", opt->n, "multiplier bits n of the comparison (the n sweep is 8 to 32 whatever this is)")
       ->capture_default_str()
-      ->check(CLI::Range(8u, 32u));
+      ->check(bits_range());
   c.sub->add_flag("--quick", opt->quick, "small measurement sizes (for tests)");
+  c.sub->add_flag("--counts-only", opt->counts_only,
+                  "measure the clock and instruction counts only, not the CPU's speed: the sections that compare "
+                  "with the CPU then hold a rate of 1 test/s (the deterministic part, for the docs_check test)");
   c.sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh (the measured clock)")
       ->capture_default_str();
   c.run = [opt]() -> int {
@@ -43,7 +47,7 @@ Command add_paper(CLI::App& app) {
     const paper::Workload w = paper::make_workload(rcfg, m_scene, o.quick);
     const paper::Broadcasts b = paper::measure_broadcasts(rcfg, w, o.n);
     const paper::Sweep sweep = paper::measure_sweep(rcfg, w);
-    const paper::CpuRates cpu = paper::measure_cpu(o.quick);
+    const paper::CpuRates cpu = o.counts_only ? paper::CpuRates{1, 1} : paper::measure_cpu(o.quick);
 
     const paper::Derived d = paper::derive(w, b, cpu, o.n);
 

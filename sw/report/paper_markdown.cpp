@@ -1,5 +1,6 @@
 // fmpp-report paper, the Markdown (paper.h): one function per section of
-// docs/paper-reproduction.md, each formatting figures measured or derived before.
+// docs/generated/paper-reproduction.md, each formatting figures measured or derived before.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -93,12 +94,28 @@ void sweep(std::ostream& md, const Sweep& s, const Workload& w) {
   md << "Steps per broadcast against n (golden model; " << s.triangles << " triangles, "
      << w.rays_op.size() << " rays):\n\n| n | ray generic | ray CSD | object generic | object CSD | paper ray | paper object |\n"
      << "| --- | --- | --- | --- | --- | --- | --- |\n";
+  // A width at which a mapping broadcast nothing has no steps per broadcast: the
+  // certified paper form gave every triangle to the host (its note says why).
+  std::vector<unsigned> none;
+  auto steps = [&](double v, unsigned k) {
+    if (v > 0) return fmt(v, 1);
+    if (std::find(none.begin(), none.end(), k) == none.end()) none.push_back(k);
+    return std::string("- (no broadcast)");
+  };
   for (const SweepRow& r : s.rows) {
     const unsigned k = r.n;
-    md << "| " << k << " | " << fmt(r.ray_generic, 1) << " | " << fmt(r.ray_const, 1) << " | " << fmt(r.obj_generic, 1)
-       << " | " << fmt(r.obj_const, 1) << " | " << 36 * k + 95 << " | " << 36 * k + 5 << " |\n";
+    md << "| " << k << " | " << steps(r.ray_generic, k) << " | " << steps(r.ray_const, k) << " | "
+       << steps(r.obj_generic, k) << " | " << steps(r.obj_const, k) << " | " << 36 * k + 95 << " | " << 36 * k + 5
+       << " |\n";
   }
   md << "\n";
+  for (unsigned k : none) {
+    md << "At n = " << k << " a mapping marked 'no broadcast' sent every triangle to the host, so there is no "
+          "broadcast to count: the paper's form certifies each answer, and with " << k - 1
+       << "-bit mantissas of P^-1 the error bound of T (intersection.md, \"The bounds of the paper's form\") would "
+          "leave the sign test uncertain for nearly every ray, so the form gives such a triangle to the host "
+          "instead of broadcasting it (form_paper.cpp). The counts of the other widths are unaffected.\n\n";
+  }
 }
 
 void table2(std::ostream& md, const Derived& d, unsigned n) {
@@ -106,7 +123,7 @@ void table2(std::ostream& md, const Derived& d, unsigned n) {
   md << "## Table 2: ideal FMPP against the sequential machine\n\n";
   md << "One block per ray (ray-parallel) or per triangle (object-parallel), m = 10,000 triangles, n = " << n
      << ", both at 50 MHz; the sequential machine takes 33 steps per ray-triangle test. The paper's "
-        "model ([paper.md](paper.md#7-a-model-of-the-papers-step-counts-derived-by-this-project)): ray-parallel m (36n + 95) + 18 R, object-parallel R (36n + 5) + 54 m. "
+        "model ([paper.md](../paper.md#7-a-model-of-the-papers-step-counts-derived-by-this-project)): ray-parallel m (36n + 95) + 18 R, object-parallel R (36n + 5) + 54 m. "
         "Ours: ray-parallel m x steps + R x (3 load clocks + "
      << fmt(cm.rp_read_ray, 2) << " readback clocks, measured), object-parallel R x (steps + "
      << fmt(cm.op_read_ray, 2) << " readback clocks, measured) + 12 load clocks per triangle.\n\n";
@@ -139,7 +156,7 @@ void fig7(std::ostream& md, const Derived& d) {
   }
   md << "\nThe paper's model reproduces its 1500x for 256^2 blocks; for 64^2 blocks it gives "
      << fmt(d.fig7_paper_64) << "x where the text says about 130x (the text does "
-        "not give the count behind that figure). The transistor side (Table 3) is in docs/area.md.\n\n";
+        "not give the count behind that figure). The transistor side (Table 3) is in [area.md](area.md).\n\n";
 }
 
 void amdahl(std::ostream& md, const Derived& d) {
@@ -167,11 +184,13 @@ void cpu(std::ostream& md, const CpuRates& rates, const Broadcasts& b, const Der
         "brute force; the comparison is of raw test rates, as in the paper.\n\n";
 }
 
-void plots(std::ostream& md, const Options& o) {
-  md << "## Plots\n\n![Fig. 5](img/fig5_ray_parallel.png)\n\n![Fig. 6](img/fig6_object_parallel.png)\n\n"
-        "![Fig. 7](img/fig7_limited.png)\n\n";
-  md << "Reproduce: `make build && build/fmpp-report paper` (writes this file, " << o.img_dir
-     << "/fig{5,6,7}*.png and the data in " << o.img_dir << "/paper_data.json).\n";
+void plots(std::ostream& md) {
+  md << "## Plots\n\n![Fig. 5](../img/fig5_ray_parallel.png)\n\n![Fig. 6](../img/fig6_object_parallel.png)\n\n"
+        "![Fig. 7](../img/fig7_limited.png)\n\n";
+  md << "Reproduce: `build/fmpp-report paper` writes this file, its plots and its data into the build "
+        "directory (build/docs/generated/paper-reproduction.md, build/docs/img/fig{5,6,7}*.png, "
+        "build/docs/data/paper_data.json); `make docs` runs it with the other generators and `make docs-update` "
+        "copies the results over the committed ones.\n";
 }
 
 }  // namespace
@@ -188,7 +207,7 @@ std::string markdown(const Options& o, const Config& rcfg, const std::string& da
   amdahl(md, d);
   cpu(md, m.cpu, m.b, d);
   write_clock_comparison(m.fpga, m.b.rp_const.st.steps_per_broadcast(), m.cpu.cpu, md);
-  plots(md, o);
+  plots(md);
   return md.str();
 }
 

@@ -5,12 +5,14 @@
 // of the paper's form and the watertight one on a closed mesh around the eye.
 //
 // The subcommand measures (precision_measure.cpp), picks per scene the smallest n
-// meeting each criterion (precision_choose.cpp) and writes docs/precision.md
+// meeting each criterion (precision_choose.cpp) and writes docs/generated/precision.md
 // (precision_markdown.cpp), its JSON data and the plots (tools/plot_precision.py);
 // precision.h holds the data passed between them.
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "sw/report/output.h"
 #include "sw/report/precision.h"
@@ -27,6 +29,12 @@ Command add_precision(CLI::App& app) {
   CLI::Option* size_opt = c.sub->add_option("--size", opt->size, "image width and height in pixels")
                               ->capture_default_str()
                               ->check(CLI::Range(2, 256));
+  std::vector<std::string> names(std::begin(precision::kScenes), std::end(precision::kScenes));
+  names.push_back(precision::kScannedScene);
+  c.sub->add_option("--only-scene", opt->only_scene,
+                    "measure this scene only and no leak rates: its section alone is the full run's (for the "
+                    "docs_check test)")
+      ->check(CLI::IsMember(names));
   c.sub->add_flag("--quick", opt->quick, "8 x 8 pixels, n = 8 and 24 only, fewer leak rays (for tests)")
       ->excludes(size_opt);
   c.run = [opt]() -> int {

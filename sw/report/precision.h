@@ -27,9 +27,10 @@
 namespace fmpp::report::precision {
 
 struct Options : ReportOutput {
-  Options() : ReportOutput("docs/precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
+  Options() : ReportOutput("precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
   std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
   int size = 32;
+  std::string only_scene;  // measure this scene only, no leak rates (tools/docs.py check)
 };
 
 // The machine every figure is measured on: the RTL's medium configuration (a 32 x 32

@@ -1,5 +1,5 @@
 // fmpp-report precision, the Markdown (precision.h): one function per section of
-// docs/precision.md, each formatting figures measured or chosen before; the prose that
+// docs/generated/precision.md, each formatting figures measured or chosen before; the prose that
 // reads the full run's numbers and the hard-case list are fixed text.
 #include <algorithm>
 #include <cmath>
@@ -51,7 +51,7 @@ tables first):
   renders the arbitrary-origin form of the reflection and refraction rays. A decision
   that is not certain within the form's bound is flagged and redone exactly on the host,
   and a t whose bound exceeds 2^-12 is computed there
-  ([intersection.md](intersection.md#certified-results-certifyh) derives each form's
+  ([intersection.md](../intersection.md#certified-results-certifyh) derives each form's
   bounds). The renders are identical to the reference's, or at 78-83 dB where a t
   within its 2^-12 moves a shading value by a level (50 dB once: one pixel of
   spheres_10k, object-parallel at n = 32, where such a t tips a shadow ray at an edge).
@@ -68,7 +68,7 @@ tables first):
   cornell) and the generic one 22n + 55, 3.2 to 3.6 times more, for bit-identical
   results (checked on every ray and image here). Use the constant multiply at every n.
 - **The watertight form** evaluates the edge functions on the scene's own vertices
-  ([intersection.md](intersection.md#the-watertight-form-form_watertightcpp-certify_watertightcpp)):
+  ([intersection.md](../intersection.md#the-watertight-form-form_watertightcpp-certify_watertightcpp)):
   nothing moves, it lets no ray through the closed sphere at any n, and its t is tighter
   (its render's t from the host: 0 % on cornell and spheres_1k at n = 24, against 0.13 %
   and 0.38 % with the paper's form). It costs about 22 % more steps per broadcast (225.6
@@ -101,9 +101,9 @@ tables first):
   tested them for every ray. The answers are right either way.
 - **The precision plan** (`fmpp-render`) picks, per frame, the smallest n whose sampled
   primary rays and frame meet the error target (0.2 %) with at most 1 % of the sample's
-  rays redone. At 128 x 128 on the golden model it picks n = 20 for one_triangle, 24 for
-  cornell and spheres_1k and 28 for spheres_10k and the two scanned scenes; the measured
-  full frames (next section) are within the target.
+  rays redone. Its choices on the shipped scenes at 128 x 128, and the measured full
+  frames against the target, are in [raytracer.md](../raytracer.md#the-precision-plan)
+  (a generated table the ctest docs_check keeps current).
 )";
 
 const char* kHardCases = R"(## Hard cases
@@ -166,7 +166,7 @@ void intro(std::ostream& md, const Options& o, const Setup& s, const std::string
      << "(clock-exact with the RTL: the lockstep tests check it) as an FMPP of " << machine.blocks << " blocks x "
      << machine.words << " words (the RTL's `" << (o.quick ? "small" : "medium")
      << "` configuration), ray-parallel, at " << size << " x " << size
-     << " pixels. The data behind the tables and plots is in `" << o.img_dir << "/precision_data.json`.\n\n";
+     << " pixels. The data behind the tables and plots is in `docs/data/precision_data.json`.\n\n";
   if (!consistent) {
     md << "**Generic and constant multiplies gave different results somewhere: see the tool's output. "
           "They must not (docs/intersection.md).**\n\n";
@@ -199,7 +199,7 @@ void what_is_measured(std::ostream& md) {
   different triangles; **hit/miss** = one hits and the other does not (both in % of the
   rays); **depth** = |t - t_ref| / t_ref over the rays hitting the same triangle (median
   and maximum).
-- **Certification** ([intersection.md](intersection.md#certified-results-certifyh)
+- **Certification** ([intersection.md](../intersection.md#certified-results-certifyh)
   derives the error bounds of each form): **flagged** = primary rays whose decision was
   not certain within the bounds, redone exactly on the host; **t host** = certified hits
   whose t bound exceeded the requested accuracy (2^-12), their t computed on the host;
@@ -213,14 +213,14 @@ void what_is_measured(std::ostream& md) {
   levels off in some channel.
 
 **The error bounds** behind the flagged and t-host columns are derived, per form, in
-[intersection.md](intersection.md#certified-results-certifyh): the paper's form
+[intersection.md](../intersection.md#certified-results-certifyh): the paper's form
 (P^-1 rows and the compared sum from the host's rounding, the mantissas, the quantized
 direction and the floors), the object-parallel mapping (the same, per block, held in
 words), the watertight form (edge functions on the scene's own vertices) and the
 arbitrary-origin form (edge rows, det and the quotient). Each bound is checked against
 exact rational arithmetic by the certify tests. The randomized differential tests of
 every form against exact arithmetic, and full renders of every scene at the plan's n
-against the exact reference, are in [certification.md](certification.md).
+against the exact reference, are in [certification.md](../certification.md).
 
 )";
 }
@@ -291,21 +291,22 @@ void choosing_n(std::ostream& md, const std::vector<Choice>& choices) {
 
 // The reading of the numbers is prose written for the full run; a quick run says so.
 void reading(std::ostream& md, bool quick) {
-  md << (quick ? "(A quick run: too few pixels and widths to read anything into; see docs/precision.md.)"
+  md << (quick ? "(A quick run: too few pixels and widths to read anything into; see docs/generated/precision.md.)"
                : kReading)
      << "\n\n";
 }
 
-void plots_and_cases(std::ostream& md, const Options& o, double seconds) {
-  md << "## Plots\n\n![accuracy against cycles](img/precision_scenes.png)\n\n"
-        "![leak rate and steps per broadcast against n](img/precision_leaks.png)\n\n"
-        "![FMPP clocks against the host's share of certified results](img/precision_pareto.png)\n\n";
+void plots_and_cases(std::ostream& md, double seconds) {
+  md << "## Plots\n\n![accuracy against cycles](../img/precision_scenes.png)\n\n"
+        "![leak rate and steps per broadcast against n](../img/precision_leaks.png)\n\n"
+        "![FMPP clocks against the host's share of certified results](../img/precision_pareto.png)\n\n";
   md << kHardCases << "\n";
-  md << "Reproduce: `make build && build/fmpp-report precision` (writes this file, " << o.img_dir
-     << "/precision_{scenes,leaks,pareto}.png and " << o.img_dir << "/precision_data.json; about "
-     << fmt(std::max(1.0, std::round(seconds / 60)))
-     << " min on the machine above). `--quick` is the ctest smoke run (without `--out` it writes "
-        "precision-quick.md, never this file).\n";
+  md << "Reproduce: `build/fmpp-report precision` (about " << fmt(std::max(1.0, std::round(seconds / 60)))
+     << " min on the machine above) writes this file, its plots and its data into the build directory "
+        "(build/docs/generated/precision.md, build/docs/img/precision_{scenes,leaks,pareto}.png, "
+        "build/docs/data/precision_data.json); `make docs` runs it with the other generators and `make "
+        "docs-update` copies the results over the committed ones. `--quick` is the ctest smoke run "
+        "(build/precision-quick.md).\n";
 }
 
 }  // namespace
@@ -319,7 +320,7 @@ std::string markdown(const Options& o, const Setup& s, const std::string& date, 
   leak_table(md, l);
   choosing_n(md, c);
   reading(md, o.quick);
-  plots_and_cases(md, o, seconds);
+  plots_and_cases(md, seconds);
   return md.str();
 }
 

@@ -207,12 +207,17 @@ Setup make_setup(const Options& o) {
 
 SceneResults measure_scenes(const Options& o, const Setup& s) {
   SceneResults r;
+  if (!o.only_scene.empty()) {
+    r.tables.push_back(measure_scene(o, s, o.only_scene.c_str(), r.consistent));
+    return r;
+  }
   for (const char* name : kScenes) r.tables.push_back(measure_scene(o, s, name, r.consistent));
   if (!o.quick) r.tables.push_back(measure_scene(o, s, kScannedScene, r.consistent));
   return r;
 }
 
 Leaks measure_leaks(const Options& o, const Setup& s) {
+  if (!o.only_scene.empty()) return Leaks{};  // one scene's section only
   std::fprintf(stderr, "[precision] leak rate on the closed sphere\n");
   const Config& machine = s.machine;
   const std::vector<Triangle> sphere = closed_sphere(SphereMeshOptions{});

@@ -1,10 +1,12 @@
 // fmpp-report: the command line front end. Subcommands register themselves here
 // (see report.h); this file holds no report logic.
 //
-//   fmpp-report area [--synth-dir build/synth]
-//   fmpp-report paper [--out docs/paper-reproduction.md] [--quick]
-//   fmpp-report precision [--out docs/precision.md] [--quick]
-// (--quick runs write paper-quick.md / precision-quick.md unless given --out.)
+//   fmpp-report area [--synth-dir build/synth] [--out FILE]     (stdout without --out)
+//   fmpp-report paper [--out FILE] [--quick]
+//   fmpp-report precision [--out FILE] [--quick]
+// paper and precision write under the build directory unless given paths: BUILD/docs/
+// (generated/, img/, data/), or BUILD/paper-quick.md, BUILD/precision-quick.md with
+// --quick (output.h); never the source tree, which only `make docs-update` writes.
 #include <cstdio>
 #include <exception>
 #include <string>

@@ -5,6 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,8 +15,56 @@
 #include "sw/util/cli_checks.h"
 #include "sw/util/files.h"
 #include "tb/backend.h"
+#include "tb/rtl_bus.h"
+
+#ifndef FMPP_SOURCE_DIR
+#define FMPP_SOURCE_DIR "."
+#endif
 
 namespace fmpp {
+
+// --bits: the multiplier width n, one range in every tool (fmpp-render, fmpp-intersect,
+// fmpp-report paper): what the kernels accept (sw/isect/kernels.cpp, sw/fmpp/program.cpp).
+inline constexpr unsigned kMinBits = 2, kMaxBits = 32;
+inline CLI::Validator bits_range() { return int_range(kMinBits, kMaxBits); }
+
+// A file of the repository (rel, e.g. "scenes/cornell.json") for a default path, so that
+// a default does not depend on the current directory: the source tree the tool was built
+// from, else the tree around the executable (BIN/.. or BIN), else the source tree's path
+// (whose absence the tool then names).
+inline std::string repo_file(const std::string& rel) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<fs::path> roots = {fs::path(FMPP_SOURCE_DIR)};
+  char exe[4096];
+  const ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (len > 0) {
+    const fs::path bin = fs::path(std::string(exe, static_cast<size_t>(len))).parent_path();
+    roots.push_back(bin.parent_path());
+    roots.push_back(bin);
+  }
+  for (const fs::path& root : roots) {
+    if (fs::is_regular_file(root / rel, ec)) return (root / rel).lexically_normal().string();
+  }
+  return (fs::path(FMPP_SOURCE_DIR) / rel).lexically_normal().string();
+}
+
+// --config NAME beside --blocks and --words: one or the other, never both (a named
+// configuration fixes both sizes). Declared on the options, so CLI11 refuses the
+// combination while parsing; the name itself is checked here, before any work.
+inline void exclude_config_sizes(CLI::Option* config, CLI::Option* blocks, CLI::Option* words) {
+  config->excludes(blocks)->excludes(words);
+}
+inline void check_config_name(const std::string& backend, const std::string& config) {
+  if (config.empty()) return;
+  (void)named_config(config);  // throws naming the known ones
+  if (backend == "cmodel" || backend == "reference") return;
+  for (const std::string& name : tb::rtl_configs()) {
+    if (name == config) return;
+  }
+  throw std::invalid_argument("--config " + config + ": no Verilated FMPP of that configuration is built (built: " +
+                              join(tb::rtl_configs(), ", ") + "); use --backend cmodel for any size");
+}
 
 // --backend: "reference" (the host's double-precision reference, no machine) and the
 // names make_backend accepts.
@@ -34,13 +85,14 @@ inline void add_trace_options(CLI::App& app, BackendOptions& bo) {
       ->needs(trace);
 }
 
-// The reference backend runs no hardware: a trace asked of it is refused, not ignored.
-// (make_backend refuses one for cmodel.)
+// The reference backend and the golden model run no RTL: a trace asked of them is
+// refused, not ignored, and before any work (make_backend would refuse it for cmodel
+// too, but only once the machine is built, after the precision plan).
 inline void check_trace_options(const std::string& backend, const BackendOptions& bo) {
   check_trace_window(bo.trace_start, bo.trace_end);
   check_trace_file(bo.trace_file);
-  if (backend == "reference" && !bo.trace_file.empty()) {
-    throw std::invalid_argument("backend 'reference' has no waveform: a trace needs rtl, lockstep or systemc");
+  if ((backend == "reference" || backend == "cmodel") && !bo.trace_file.empty()) {
+    throw std::invalid_argument("backend '" + backend + "' has no waveform: a trace needs rtl, lockstep or systemc");
   }
 }
 

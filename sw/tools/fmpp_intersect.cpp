@@ -46,13 +46,15 @@ int main(int argc, char** argv) {
   app.add_option("--mul", mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
       ->capture_default_str()
       ->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(int_range(2, 32));
-  app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
-  app.add_option("--words", words,
+  app.add_option("--bits", bits, "multiplier bits n")->capture_default_str()->check(bits_range());
+  CLI::Option* blocks_opt =
+      app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
+  CLI::Option* words_opt = app.add_option("--words", words,
                  "words per block, even (default: what the mapping and multiply need, 26 when rays take the "
                  "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
       ->check(even_words());
-  app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
+  exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
+                       blocks_opt, words_opt);
   app.add_option("--cond-bits", cond_bits,
                  "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
       ->capture_default_str()
@@ -81,6 +83,7 @@ int main(int argc, char** argv) {
   std::string stage = "checking the options";  // for an out-of-memory message
   try {
     check_trace_options(backend, bo);
+    check_config_name(backend, config);
     if (out_file == "-" && report_file == "-") {
       throw std::invalid_argument("--out and --report both write to stdout ('-'): give one of them a file");
     }

@@ -68,13 +68,15 @@ int main(int argc, char** argv) {
   }
   const bool leader = session->leader();
   CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
-  std::string scene_file = "scenes/cornell.json", backend = "rtl", mapping = "ray", mul = "const", config, out = "render.png",
-              report_file;
+  // The default scene is the repository's Cornell box wherever the tool is started; the
+  // picture goes to the path given, by default render.png in the current directory.
+  std::string scene_file = repo_file("scenes/cornell.json"), backend = "rtl", mapping = "ray", mul = "const", config,
+              out = "render.png", report_file;
   int width = 128, height = 128, depth = -1;
   unsigned blocks = 4096, words = 32, bits = 24;  // the plan decides unless given
   double clock_mhz = 50;
   bool compare = false, no_cull = false, quiet = false, watertight = false;
-  app.add_option("--scene", scene_file, "scene JSON file")->capture_default_str();
+  app.add_option("--scene", scene_file, "scene JSON file (default: the repository's Cornell box)")->capture_default_str();
   app.add_option("--backend", backend,
                  "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
       ->capture_default_str()
@@ -85,12 +87,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
-      ->check(int_range(1, map::kMaxBlocks));
-  app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
-      ->check(even_words());
-  app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words");
-  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(int_range(4, 32));
+  CLI::Option* blocks_opt = app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
+                               ->check(int_range(1, map::kMaxBlocks));
+  CLI::Option* words_opt = app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
+                              ->check(even_words());
+  exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
+                       blocks_opt, words_opt);
+  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(bits_range());
   double target = 0.002;
   app.add_option("--error-target", target,
                  "precision plan: wrong-triangle rate allowed per primary ray, and share of the frame's "
@@ -114,7 +117,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(int_range(1, 1 << 24));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
-  app.add_option("--out", out, "output image: .png (8-bit) or .pfm (linear radiance, unclamped)")->capture_default_str();
+  app.add_option("--out", out,
+                 "output image: .png (8-bit) or .pfm (linear radiance, unclamped); by default in the current directory")
+      ->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
       ->capture_default_str()
@@ -161,6 +166,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--trace " + bo.trace_file + " on several ranks: every FMPP would write that file");
     }
     check_trace_options(backend, bo);
+    check_config_name(backend, config);
     if (mapping == "object" && watertight) {
       throw std::invalid_argument("--watertight with --mapping object: the watertight form exists in the ray-parallel "
                                   "mapping only; use --mapping ray");

@@ -39,7 +39,7 @@ FORMS = {
     "arbitrary-origin/ray": ["--mapping", "ray", "--origins", "general"],
     "default/ray": ["--mapping", "ray"],  # --origins auto: the paper's form for shared origins, else arbitrary-origin
 }
-# Documented relative t bounds (docs/precision.md), by form, as a function of n; None
+# Documented relative t bounds (docs/generated/precision.md), by form, as a function of n; None
 # where the docs give no rigorous bound yet.
 def certified_t(n):
     """policy::t_accuracy: the default relative accuracy a certified t is held to, any n."""
