@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# tools/asic.sh's place-and-route step: one size through qflow (OSU018): synthesis by the
+# yosys script asic.sh wrote for that size (the same mapping, plus qflow's output buffers),
+# qflow's own post-processing and blifFanout, GrayWolf placement, qrouter routing (which
+# writes the routed nets' RC trees, <top>.rc). Every qflow stage must succeed and leave its
+# output; the log of all of them is pnr_BxW/pnr.log.
+#
+# Usage: asic_pnr.sh OUT NAME TOP TECHDIR   (NAME = <top>_BxW, OUT/NAME.ys must exist)
+# Environment: ASIC_PNR_DENSITY (GrayWolf's initial_density, default 0.6; qflow's own
+# default packs the cells tighter than qrouter can route).
+set -euo pipefail
+out=$1; name=$2; top=$3; tech=$4
+size=${name##*_}
+d=$out/pnr_$size
+scripts=${QFLOW_SCRIPTS:-/usr/lib/qflow/scripts}
+density=${ASIC_PNR_DENSITY:-0.6}
+[ -f "$out/$name.ys" ] || { echo "asic_pnr.sh: $out/$name.ys not found (run tools/asic.sh for $size first)" >&2; exit 2; }
+command -v qflow >/dev/null || { echo "asic_pnr.sh: qflow not found (make asic-deps)" >&2; exit 2; }
+
+rm -rf "$d"
+mkdir -p "$d/source" "$d/synthesis" "$d/layout" "$d/log"
+cat > "$d/qflow_vars.sh" <<EOF
+#!/usr/bin/tcsh -f
+set projectpath=$d
+set techdir=$tech
+set sourcedir=$d/source
+set synthdir=$d/synthesis
+set layoutdir=$d/layout
+set techname=osu018
+set scriptdir=$scripts
+set bindir=/usr/lib/qflow/bin
+set logdir=$d/log
+EOF
+# yosys: asic.sh's synthesis up to the library mapping, then qflow's own ending
+# (output buffers, net names enumerated, BLIF for ypostproc).
+{
+  sed -n '1,/^clean -purge$/p' "$out/$name.ys"
+  cat <<EOF
+iopadmap -outpad BUFX2 A:Y -bits
+opt
+clean
+rename -enumerate
+write_blif -buf BUFX2 A Y ${top}_mapped.blif
+EOF
+} > "$d/source/$top.ys"
+grep -q '^abc -liberty' "$d/source/$top.ys" || { echo "asic_pnr.sh: $out/$name.ys has no abc -liberty step" >&2; exit 2; }
+cat > "$d/project_vars.sh" <<EOF
+#!/usr/bin/tcsh -f
+set yosys_options = "-s $d/source/$top.ys"
+set fanout_options = "-l 100 -c 20"
+set initial_density = $density
+set run_opensta = 0
+set run_vesta = 0
+EOF
+cp "$tech/osu018.par" "$d/$top.par"
+cp "$tech/osu018.par" "$d/layout/$top.par"
+
+log=$d/pnr.log
+: > "$log"
+run() {  # stage, expected output, command...
+  local stage=$1 want=$2; shift 2
+  local t0; t0=$(date +%s)
+  echo "=== $stage: $*" >> "$log"
+  if ! (cd "$d" && nice -n 10 tcsh -f "$@") >> "$log" 2>&1; then
+    echo "asic_pnr.sh: qflow $stage failed (see $log)" >&2; return 1
+  fi
+  if [ ! -s "$want" ]; then
+    echo "asic_pnr.sh: qflow $stage left no $want (see $log)" >&2; return 1
+  fi
+  echo "=== $stage: done in $(( $(date +%s) - t0 )) s" >> "$log"
+  printf "  qflow %-10s %5d s\n" "$stage" $(( $(date +%s) - t0 ))
+}
+run synthesize "$d/synthesis/$top.rtlnopwr.v" "$scripts/synthesize.sh" "$d" "$top"
+run place "$d/layout/$top.def" "$scripts/placement.sh" -d "$d" "$top"
+run route "$d/layout/$top.rc" "$scripts/router.sh" "$d" "$top"
+# qrouter reports nets it could not route in its log; a partly routed design has no
+# meaningful parasitics.
+if grep -Eq "Final: [1-9][0-9]* nets? (failed|unrouted)|failed to route|Failed net" "$log"; then
+  echo "asic_pnr.sh: qrouter left nets unrouted (see $log)" >&2; exit 1
+fi
+# The netlist whose nets the RC file names: after placement (qflow may rename or add
+# cells there), without power pins.
+nl=$d/synthesis/$top.rtlnopwr.v
+[ -s "$d/layout/$top.rtlnopwr.v" ] && nl=$d/layout/$top.rtlnopwr.v
+cp "$nl" "$d/$top.v"
+echo "$(date -u +%Y-%m-%dT%H:%M:%SZ), $(basename "$out")/$name.ys" > "$d/pnr.done"
+grep -E "^(Final|Total|Number of|Placement|.*[Ww]irelength|Chip area|Core)" "$log" | tail -15 || true
