@@ -10,8 +10,11 @@
 #   4. latch   the same synthesis with the word storage in LATCH cells instead of
 #              flip-flops (area only: the storage variant of docs/area.md)
 # and, for the sizes of --pnr, placement (graywolf) and routing (qrouter) by qflow, the
-# routed wires' resistance and capacitance (qrouter's RC file, turned into SPEF by
-# tools/asic_report.py) read back into OpenSTA: Fmax unplaced against routed, one netlist.
+# routed wires' resistance and capacitance (qrouter's RC file, turned into SPEF by qflow's
+# rc2dly) read back into OpenSTA: Fmax unplaced against routed, one netlist; and, for the
+# sizes of --energy, power per instruction class from the switching activity of every net
+# during a real frame rendered through the Verilated RTL (ASIC_RENDER, traced to an FST;
+# tools/asic_activity.py evaluates the netlist on the traced register values).
 #
 # The RTL (top module, source files, the word storage's register names) comes from
 # rtl/synth_sources.txt alone. The timing constraints are written down once, below
@@ -27,17 +30,14 @@
 #   summary.csv, cells.csv, pnr.csv, energy.csv   written by tools/asic_report.py collect
 # A step that fails stops the flow with its name and the end of its log.
 #
-# and, for the sizes of --energy, power per instruction class from the switching activity
-# of every net during a real frame rendered through the Verilated RTL (ASIC_RENDER, traced
-# to an FST; tools/asic_activity.py evaluates the netlist on the traced register values).
-#
-# Usage: asic.sh [--pnr BxW[,BxW...] | --no-pnr] [--pnr-reuse] [--energy BxW,BxW | --no-energy]
-#                [--no-latch] [BxW ...]
+# Usage: asic.sh [--pnr BxW[,BxW...] | --no-pnr] [--energy BxW,BxW | --no-energy]
+#                [--no-latch] [--reuse] [BxW ...]
 #   default sizes: 1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32; default --pnr 1x8;
 #   default --energy 8x32,16x32 (two sizes of 32 words, the words of the traced machine:
-#   their difference is the energy of a block). --pnr-reuse keeps a place and route that
-#   finished in an earlier run into the same ASIC_OUT (pnr_BxW/pnr.done) instead of
-#   running qflow again (it takes most of an hour per size).
+#   their difference is the energy of a block). --reuse keeps what an earlier run into the
+#   same ASIC_OUT finished (a size's <top>_BxW.sta.log, a place and route's pnr.done)
+#   instead of running it again (placing and routing takes most of an hour per size);
+#   each reuse is printed.
 set -euo pipefail
 root=${FMPP_ROOT:-$(cd "$(dirname "$0")/.." && pwd)}
 tech=${ASIC_TECH:-/usr/share/qflow/tech/osu018}
@@ -73,7 +73,7 @@ while [ $# -gt 0 ]; do
     --pnr) IFS=, read -r -a pnr_sizes <<< "${2:-}"; shift 2 ;;
     --pnr=*) IFS=, read -r -a pnr_sizes <<< "${1#--pnr=}"; shift ;;
     --no-pnr) pnr_sizes=(); shift ;;
-    --pnr-reuse) pnr_reuse=1; shift ;;
+    --reuse) pnr_reuse=1; shift ;;
     --energy) IFS=, read -r -a energy_sizes <<< "${2:-}"; shift 2 ;;
     --no-energy) energy_sizes=(); shift ;;
     --no-latch) latch=0; shift ;;
@@ -207,7 +207,6 @@ set_output_delay $out_delay -clock clk [all_outputs]
 set_load $out_load [all_outputs]
 report_checks -path_delay max -digits 3 -fields {fanout cap slew}
 report_worst_slack
-$( [ -n "$spef" ] && echo "report_annotated_delay" )
 set_power_activity -global -activity $activity
 report_power -digits 4
 EOF
@@ -220,6 +219,11 @@ printf "%-7s %9s %13s %9s %10s %9s %8s\n" size cells "area(um^2)" "path(ns)" "Fm
 for s in "${sizes[@]}"; do
   b=${s%x*}; w=${s#*x}; n="${top}_${s}"
   t0=$(date +%s)
+  if [ $pnr_reuse -eq 1 ] && [ -s "$out/$n.sta.log" ] && [ -s "$out/$n.v" ]; then
+    "$py" "$root/tools/asic_report.py" line --dir "$out" --name "$n" --lef "$lef" --period "$period" --secs "reused" \
+      || fail "asic_report.py reading the results of $n" "$out/$n.sta.log"
+    continue
+  fi
   synth "$b" "$w" "$n"
   fanout "$n"
   sta_run "$out/$n.v" "$n" sta
@@ -234,12 +238,14 @@ for s in "${pnr_sizes[@]}"; do
   [ -f "$out/$n.v" ] || { synth "$b" "$w" "$n"; fanout "$n"; sta_run "$out/$n.v" "$n" sta; }
   d="$out/pnr_$s"
   if [ $pnr_reuse -eq 1 ] && [ -f "$d/pnr.done" ]; then
-    echo "  $s: reusing the place and route of $(cat "$d/pnr.done") in $d (--pnr-reuse)"
+    echo "  $s: reusing the place and route of $(cat "$d/pnr.done") in $d (--reuse)"
   else
     "$root/tools/asic_pnr.sh" "$out" "$n" "$top" "$tech" || fail "qflow place and route of $n (tools/asic_pnr.sh)" "$d/pnr.log"
   fi
-  "$py" "$root/tools/asic_report.py" spef --rc "$d/layout/$top.rc" --verilog "$d/$top.v" --lib "$lib" --out "$d/$top.spef" \
-    || fail "turning qrouter's RC file of $n into SPEF" "$d/pnr.log"
+  # qrouter's RC trees as SPEF (qflow's rc2dly picks the format by the extension)
+  "$qbin/rc2dly" -r "$d/layout/$top.rc" -l "$lib" -d "$d/$top.spef" > "$d/rc2dly.log" 2>&1 \
+    || fail "rc2dly turning qrouter's RC file of $n into SPEF" "$d/rc2dly.log"
+  grep -q '^\*D_NET' "$d/$top.spef" || fail "rc2dly wrote no *D_NET into $d/$top.spef" "$d/rc2dly.log"
   sta_run "$d/$top.v" "$n" sta_unplaced
   sta_run "$d/$top.v" "$n" sta_routed "$d/$top.spef"
   "$py" "$root/tools/asic_report.py" pnr-line --dir "$out" --name "$n" --period "$period" \
@@ -253,13 +259,22 @@ if [ ${#energy_sizes[@]} -gt 0 ]; then
   mkdir -p "$e"
   [ -x "$build/fmpp-render" ] || { echo "asic.sh: $build/fmpp-render not built (make asic builds it; --no-energy skips energy)" >&2; exit 2; }
   command -v fst2vcd >/dev/null || { echo "asic.sh: fst2vcd not found (Debian gtkwave)" >&2; exit 2; }
-  echo "energy: tracing fmpp-render $render"
-  # shellcheck disable=SC2086
-  (cd "$root" && nice -n 10 "$build/fmpp-render" $render --trace "$e/render.fst" --out "$e/render.png" \
-      --report "$e/render.json") > "$e/render.log" 2>&1 || fail "the traced render (fmpp-render $render)" "$e/render.log"
-  echo "$render" > "$e/render.args"
+  if [ $pnr_reuse -eq 1 ] && [ -s "$e/render.fst" ] && [ "$(cat "$e/render.args" 2>/dev/null)" = "$render" ]; then
+    echo "energy: reusing the traced render $e/render.fst (--reuse)"
+  else
+    echo "energy: tracing fmpp-render $render"
+    rm -f "$e/render.args"
+    # shellcheck disable=SC2086
+    (cd "$root" && nice -n 10 "$build/fmpp-render" $render --trace "$e/render.fst" --out "$e/render.png" \
+        --report "$e/render.json") > "$e/render.log" 2>&1 || fail "the traced render (fmpp-render $render)" "$e/render.log"
+    echo "$render" > "$e/render.args"
+  fi
   for s in "${energy_sizes[@]}"; do
     b=${s%x*}; w=${s#*x}; n="${top}_${s}"
+    if [ $pnr_reuse -eq 1 ] && [ -s "$e/$n.power_all.log" ] && [ "$e/$n.power_all.log" -nt "$e/render.fst" ]; then
+      echo "  $s: reusing the activity and power of an earlier run (--reuse)"
+      continue
+    fi
     [ -f "$out/$n.v" ] || { synth "$b" "$w" "$n"; fanout "$n"; sta_run "$out/$n.v" "$n" sta; }
     t0=$(date +%s)
     nice -n 10 "$py" "$root/tools/asic_activity.py" --netlist "$out/$n.v" --liberty "$lib" --fst "$e/render.fst" \

@@ -28,8 +28,6 @@ import re
 import subprocess
 import sys
 
-import numpy as np
-
 
 class Fail(Exception):
     pass
@@ -86,6 +84,8 @@ def compile_function(expr, pins):
 
     def take():
         nonlocal pos
+        if pos >= len(toks):
+            raise Fail(f"function {expr!r} ends early")
         pos += 1
         return toks[pos - 1]
 
@@ -286,7 +286,44 @@ class Trace:
 
 # --- evaluation ------------------------------------------------------------------------
 
+def self_test():
+    """The Liberty function compiler against truth tables (every OSU018 function form)."""
+    cases = {
+        "(A B)": lambda a, b, c, d: a & b,
+        "(!((A B)+C))": lambda a, b, c, d: 1 - ((a & b) | c),
+        "(!((A B)+(C D)))": lambda a, b, c, d: 1 - ((a & b) | (c & d)),
+        "(!((A+B) C))": lambda a, b, c, d: 1 - ((a | b) & c),
+        "(A^B)": lambda a, b, c, d: a ^ b,
+        "(!(A^B))": lambda a, b, c, d: 1 - (a ^ b),
+        "A'": lambda a, b, c, d: 1 - a,
+        "(!A)": lambda a, b, c, d: 1 - a,
+        "((A & !B) | (B * C))": lambda a, b, c, d: (a & (1 - b)) | (b & c),
+        "(!(A B C))": lambda a, b, c, d: 1 - (a & b & c),
+        "(!((A+B)+C))": lambda a, b, c, d: 1 - (a | b | c),
+    }
+    # all 16 input combinations at once: bit t of each pin's integer is row t
+    pins = {p: sum(((t >> i) & 1) << t for t in range(16)) for i, p in enumerate("ABCD")}
+    for expr, ref in cases.items():
+        fn = eval("lambda M, p_A, p_B, p_C, p_D: " + compile_function(expr, "ABCD"))
+        got = fn(0xFFFF, pins["A"], pins["B"], pins["C"], pins["D"])
+        want = sum(ref((t >> 0) & 1, (t >> 1) & 1, (t >> 2) & 1, (t >> 3) & 1) << t for t in range(16))
+        if got != want:
+            raise Fail(f"self-test: {expr!r} gives {got:#06x}, not {want:#06x}")
+    for bad in ("(A B", "A +", "(A $ B)"):
+        try:
+            compile_function(bad, "AB")
+        except Fail:
+            continue
+        raise Fail(f"self-test: {bad!r} was accepted")
+    print(f"asic_activity.py self-test: {len(cases)} functions agree with their truth tables")
+    return 0
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
+    global np
+    import numpy as np
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--netlist", required=True, help="gate-level Verilog (tools/asic.sh: <top>_BxW.v)")
     ap.add_argument("--liberty", required=True)

@@ -5,10 +5,18 @@
 # writes the routed nets' RC trees, <top>.rc). Every qflow stage must succeed and leave its
 # output; the log of all of them is pnr_BxW/pnr.log.
 #
-# Usage: asic_pnr.sh OUT NAME TOP TECHDIR   (NAME = <top>_BxW, OUT/NAME.ys must exist)
+# qrouter runs qflow's standard_route without its cleanup stage (stage 3, which re-routes
+# every net once more to shorten it: on 1 x 8 it took minutes per hundred nets, hours in
+# all); stage 2 has then routed every net or the route fails. ASIC_PNR_CLEANUP=1 keeps it.
+#
+# Usage: asic_pnr.sh [--from route] OUT NAME TOP TECHDIR   (NAME = <top>_BxW, OUT/NAME.ys
+#   must exist; --from route routes again a placement that finished in OUT/pnr_BxW)
 # Environment: ASIC_PNR_DENSITY (GrayWolf's initial_density, default 0.6; qflow's own
 # default packs the cells tighter than qrouter can route).
 set -euo pipefail
+from=synthesize
+if [ "${1:-}" = "--from" ]; then from=$2; shift 2; fi
+[ "$from" = synthesize ] || [ "$from" = route ] || { echo "asic_pnr.sh: --from synthesize|route" >&2; exit 2; }
 out=$1; name=$2; top=$3; tech=$4
 size=${name##*_}
 d=$out/pnr_$size
@@ -17,6 +25,9 @@ density=${ASIC_PNR_DENSITY:-0.6}
 [ -f "$out/$name.ys" ] || { echo "asic_pnr.sh: $out/$name.ys not found (run tools/asic.sh for $size first)" >&2; exit 2; }
 command -v qflow >/dev/null || { echo "asic_pnr.sh: qflow not found (make asic-deps)" >&2; exit 2; }
 
+if [ "$from" = route ]; then
+  [ -s "$d/layout/$top.def" ] && [ -s "$d/layout/$top.cfg" ] || { echo "asic_pnr.sh: no finished placement in $d" >&2; exit 2; }
+else
 rm -rf "$d"
 mkdir -p "$d/source" "$d/synthesis" "$d/layout" "$d/log"
 cat > "$d/qflow_vars.sh" <<EOF
@@ -54,9 +65,10 @@ set run_vesta = 0
 EOF
 cp "$tech/osu018.par" "$d/$top.par"
 cp "$tech/osu018.par" "$d/layout/$top.par"
+fi
 
 log=$d/pnr.log
-: > "$log"
+[ "$from" = route ] || : > "$log"
 run() {  # stage, expected output, command...
   local stage=$1 want=$2; shift 2
   local t0; t0=$(date +%s)
@@ -70,8 +82,17 @@ run() {  # stage, expected output, command...
   echo "=== $stage: done in $(( $(date +%s) - t0 )) s" >> "$log"
   printf "  qflow %-10s %5d s\n" "$stage" $(( $(date +%s) - t0 ))
 }
-run synthesize "$d/synthesis/$top.rtlnopwr.v" "$scripts/synthesize.sh" "$d" "$top"
-run place "$d/layout/$top.def" "$scripts/placement.sh" -d "$d" "$top"
+if [ "$from" = synthesize ]; then
+  run synthesize "$d/synthesis/$top.rtlnopwr.v" "$scripts/synthesize.sh" "$d" "$top"
+  run place "$d/layout/$top.def" "$scripts/placement.sh" -d "$d" "$top"
+fi
+# placement.sh wrote qrouter's script; without the cleanup stage unless asked for
+if [ "${ASIC_PNR_CLEANUP:-0}" != 1 ]; then
+  sed -i "s/^qrouter::standard_route \(${top}_route.def\) false\$/qrouter::standard_route \1 false true/" "$d/layout/$top.cfg"
+  grep -q "^qrouter::standard_route ${top}_route.def false true\$" "$d/layout/$top.cfg" \
+    || { echo "asic_pnr.sh: $d/layout/$top.cfg has no standard_route line to change" >&2; exit 1; }
+fi
+rm -f "$d/layout/$top.rc" "$d/layout/failed.out" "$d/layout/fail.out"
 run route "$d/layout/$top.rc" "$scripts/router.sh" "$d" "$top"
 # qrouter reports nets it could not route in its log; a partly routed design has no
 # meaningful parasitics.
