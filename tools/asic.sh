@@ -32,7 +32,8 @@
 #
 # Usage: asic.sh [--pnr BxW[,BxW...] | --no-pnr] [--energy BxW,BxW | --no-energy]
 #                [--no-latch] [--reuse] [BxW ...]
-#   default sizes: 1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32; default --pnr 1x8;
+#   default sizes: 1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32; default --pnr 1x8 (--pnr-until
+#   place stops after the placement: its wire estimate is timed, routing is skipped);
 #   default --energy 8x32,16x32 (two sizes of 32 words, the words of the traced machine:
 #   their difference is the energy of a block). --reuse keeps what an earlier run into the
 #   same ASIC_OUT finished (a size's <top>_BxW.sta.log, a place and route's pnr.done)
@@ -64,6 +65,7 @@ render=${ASIC_RENDER:---scene scenes/cornell.json --backend rtl --config small -
 trace_lanes=${ASIC_TRACE_LANES:-64}   # blocks in the tile of the traced configuration (small: 64 x 32)
 
 pnr_sizes=(1x8)
+pnr_until=route
 energy_sizes=(8x32 16x32)
 pnr_reuse=0
 latch=1
@@ -73,6 +75,7 @@ while [ $# -gt 0 ]; do
     --pnr) IFS=, read -r -a pnr_sizes <<< "${2:-}"; shift 2 ;;
     --pnr=*) IFS=, read -r -a pnr_sizes <<< "${1#--pnr=}"; shift ;;
     --no-pnr) pnr_sizes=(); shift ;;
+    --pnr-until) pnr_until=$2; shift 2 ;;
     --reuse) pnr_reuse=1; shift ;;
     --energy) IFS=, read -r -a energy_sizes <<< "${2:-}"; shift 2 ;;
     --no-energy) energy_sizes=(); shift ;;
@@ -110,7 +113,7 @@ machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null &&
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 sta_version=$(echo exit | sta -no_init 2>&1 | head -1 | sed 's/ Copyright.*//')
 {
-  echo "# FMPP standard cells: tools/asic.sh ${sizes[*]} --pnr ${pnr_sizes[*]:-none}"
+  echo "# FMPP standard cells: tools/asic.sh ${sizes[*]} --pnr ${pnr_sizes[*]:-none} --pnr-until $pnr_until --energy ${energy_sizes[*]:-none}"
   echo "# $(yosys -V | head -1); $sta_version; qflow $(dpkg-query -W -f='${Version}' qflow 2>/dev/null || echo '?'); OSU018 ($lib)"
   echo "# commit $commit, $stamp, on $machine"
   echo "# clock period $period ns (ideal clock), input delay $in_delay ns from $drive_cell, output delay $out_delay ns, output load $out_load pF; blifFanout $fanout_opts; global activity $activity"
@@ -198,7 +201,7 @@ sta_run() {  # netlist-verilog name tag [spef]
 read_liberty $lib
 read_verilog $v
 link_design $top
-$( [ -n "$spef" ] && echo "read_parasitics $spef" )
+$( [ -n "$spef" ] && echo "read_spef $spef" )
 create_clock -name clk -period $period [get_ports clk_i]
 set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
 set_input_delay $in_delay -clock clk \$data_in
@@ -212,6 +215,9 @@ report_power -digits 4
 EOF
   sta -no_init -no_splash -exit "$tcl" > "$log" 2>&1 || fail "OpenSTA on $n ($tag)" "$log"
   if grep -q "^Error" "$log"; then fail "OpenSTA on $n ($tag) reported an error" "$log"; fi
+  if [ -n "$spef" ] && grep -Eq "^Warning: .*(not found|syntax error)" "$log"; then
+    fail "OpenSTA on $n ($tag) could not place every net of $spef" "$log"
+  fi
   grep -q "^worst slack" "$log" || fail "OpenSTA on $n ($tag) printed no worst slack" "$log"
 }
 
@@ -232,21 +238,36 @@ for s in "${sizes[@]}"; do
     || fail "asic_report.py reading the results of $n" "$out/$n.sta.log"
 done
 
-# Place and route with qflow, then OpenSTA on the same netlist with the routed wires.
+# Place and route with qflow, then OpenSTA on the same netlist without wires, with the
+# placement's wire estimate and with the routed wires.
+[ "$pnr_until" = place ] || [ "$pnr_until" = route ] || { echo "asic.sh: --pnr-until place|route" >&2; exit 2; }
 for s in "${pnr_sizes[@]}"; do
   b=${s%x*}; w=${s#*x}; n="${top}_${s}"
   [ -f "$out/$n.v" ] || { synth "$b" "$w" "$n"; fanout "$n"; sta_run "$out/$n.v" "$n" sta; }
   d="$out/pnr_$s"
-  if [ $pnr_reuse -eq 1 ] && [ -f "$d/pnr.done" ]; then
-    echo "  $s: reusing the place and route of $(cat "$d/pnr.done") in $d (--reuse)"
+  done_file=$d/pnr.done
+  [ "$pnr_until" = route ] || done_file=$d/place.done
+  if [ $pnr_reuse -eq 1 ] && [ -f "$done_file" ]; then
+    echo "  $s: reusing the $( [ "$pnr_until" = route ] && echo "place and route" || echo placement) of $(cat "$done_file") in $d (--reuse)"
   else
-    "$root/tools/asic_pnr.sh" "$out" "$n" "$top" "$tech" || fail "qflow place and route of $n (tools/asic_pnr.sh)" "$d/pnr.log"
+    "$root/tools/asic_pnr.sh" --until "$pnr_until" "$out" "$n" "$top" "$tech" \
+      || fail "qflow place and route of $n (tools/asic_pnr.sh)" "$d/pnr.log"
+  fi
+  sta_run "$d/$top.v" "$n" sta_unplaced
+  "$py" "$root/tools/asic_report.py" placed-spef --def "$d/layout/$top.def" --lef "$lef" --verilog "$d/$top.v" \
+      --top "$top" --out "$d/$top.placed.spef" > "$d/placed_spef.log" 2>&1 \
+    || fail "the placement's wire estimate of $n (asic_report.py placed-spef)" "$d/placed_spef.log"
+  sta_run "$d/$top.v" "$n" sta_placed "$d/$top.placed.spef"
+  if [ "$pnr_until" = place ]; then
+    echo "  $s: placed, not routed (--pnr-until place)"
+    "$py" "$root/tools/asic_report.py" pnr-line --dir "$out" --name "$n" --period "$period" \
+      || fail "asic_report.py reading the placed results of $n" "$out/$n.sta_placed.log"
+    continue
   fi
   # qrouter's RC trees as SPEF (qflow's rc2dly picks the format by the extension)
   "$qbin/rc2dly" -r "$d/layout/$top.rc" -l "$lib" -d "$d/$top.spef" > "$d/rc2dly.log" 2>&1 \
     || fail "rc2dly turning qrouter's RC file of $n into SPEF" "$d/rc2dly.log"
   grep -q '^\*D_NET' "$d/$top.spef" || fail "rc2dly wrote no *D_NET into $d/$top.spef" "$d/rc2dly.log"
-  sta_run "$d/$top.v" "$n" sta_unplaced
   sta_run "$d/$top.v" "$n" sta_routed "$d/$top.spef"
   "$py" "$root/tools/asic_report.py" pnr-line --dir "$out" --name "$n" --period "$period" \
     || fail "asic_report.py reading the routed results of $n" "$out/$n.sta_routed.log"

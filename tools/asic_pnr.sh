@@ -9,13 +9,22 @@
 # every net once more to shorten it: on 1 x 8 it took minutes per hundred nets, hours in
 # all); stage 2 has then routed every net or the route fails. ASIC_PNR_CLEANUP=1 keeps it.
 #
-# Usage: asic_pnr.sh [--from route] OUT NAME TOP TECHDIR   (NAME = <top>_BxW, OUT/NAME.ys
-#   must exist; --from route routes again a placement that finished in OUT/pnr_BxW)
+# Usage: asic_pnr.sh [--from route] [--until place] OUT NAME TOP TECHDIR
+#   (NAME = <top>_BxW, OUT/NAME.ys must exist; --from route routes again a placement that
+#   finished in OUT/pnr_BxW; --until place stops after the placement)
 # Environment: ASIC_PNR_DENSITY (GrayWolf's initial_density, default 0.6; qflow's own
 # default packs the cells tighter than qrouter can route).
 set -euo pipefail
 from=synthesize
-if [ "${1:-}" = "--from" ]; then from=$2; shift 2; fi
+until=route
+while [ $# -gt 0 ]; do
+  case $1 in
+    --from) from=$2; shift 2 ;;
+    --until) until=$2; shift 2 ;;
+    *) break ;;
+  esac
+done
+[ "$until" = place ] || [ "$until" = route ] || { echo "asic_pnr.sh: --until place|route" >&2; exit 2; }
 [ "$from" = synthesize ] || [ "$from" = route ] || { echo "asic_pnr.sh: --from synthesize|route" >&2; exit 2; }
 out=$1; name=$2; top=$3; tech=$4
 size=${name##*_}
@@ -86,6 +95,16 @@ if [ "$from" = synthesize ]; then
   run synthesize "$d/synthesis/$top.rtlnopwr.v" "$scripts/synthesize.sh" "$d" "$top"
   run place "$d/layout/$top.def" "$scripts/placement.sh" -d "$d" "$top"
 fi
+# The netlist the layout's nets belong to: after placement (qflow renames and annotates
+# it there), without power pins.
+netlist() {
+  local nl=$d/synthesis/$top.rtlnopwr.v
+  [ -s "$d/layout/$top.rtlnopwr.v" ] && nl=$d/layout/$top.rtlnopwr.v
+  cp "$nl" "$d/$top.v"
+}
+netlist
+echo "$(date -u +%Y-%m-%dT%H:%M:%SZ), $(basename "$out")/$name.ys" > "$d/place.done"
+[ "$until" = route ] || exit 0
 # placement.sh wrote qrouter's script; without the cleanup stage unless asked for
 if [ "${ASIC_PNR_CLEANUP:-0}" != 1 ]; then
   sed -i "s/^qrouter::standard_route \(${top}_route.def\) false\$/qrouter::standard_route \1 false true/" "$d/layout/$top.cfg"
@@ -99,10 +118,6 @@ run route "$d/layout/$top.rc" "$scripts/router.sh" "$d" "$top"
 if grep -Eq "Final: [1-9][0-9]* nets? (failed|unrouted)|failed to route|Failed net" "$log"; then
   echo "asic_pnr.sh: qrouter left nets unrouted (see $log)" >&2; exit 1
 fi
-# The netlist whose nets the RC file names: after placement (qflow may rename or add
-# cells there), without power pins.
-nl=$d/synthesis/$top.rtlnopwr.v
-[ -s "$d/layout/$top.rtlnopwr.v" ] && nl=$d/layout/$top.rtlnopwr.v
-cp "$nl" "$d/$top.v"
+netlist
 echo "$(date -u +%Y-%m-%dT%H:%M:%SZ), $(basename "$out")/$name.ys" > "$d/pnr.done"
 grep -E "^(Final|Total|Number of|Placement|.*[Ww]irelength|Chip area|Core)" "$log" | tail -15 || true

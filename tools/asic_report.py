@@ -146,13 +146,13 @@ def cmd_line(a):
 
 def cmd_pnr_line(a):
     u = sta_results(os.path.join(a.dir, a.name + ".sta_unplaced.log"))
-    r = sta_results(os.path.join(a.dir, a.name + ".sta_routed.log"))
-    fu, fr = fmax_mhz(a.period, u["slack"]), fmax_mhz(a.period, r["slack"])
-    print("%s placed and routed: worst path %.3f ns unplaced, %.3f ns routed (%+.1f %%): Fmax %.1f -> %.1f MHz; "
-          "power %.1f -> %.1f mW" % (a.name, a.period - u["slack"], a.period - r["slack"],
-                                      100 * ((a.period - r["slack"]) / (a.period - u["slack"]) - 1), fu, fr,
-                                      1000 * u["power_total"][3], 1000 * r["power_total"][3]))
-
+    line = f"{a.name}: worst path {a.period - u['slack']:.3f} ns without wires ({fmax_mhz(a.period, u['slack']):.1f} MHz)"
+    for tag, what in (("sta_placed", "placed (wire estimate)"), ("sta_routed", "routed")):
+        f = os.path.join(a.dir, a.name + "." + tag + ".log")
+        if os.path.exists(f):
+            r = sta_results(f)
+            line += f", {a.period - r['slack']:.3f} ns {what} ({fmax_mhz(a.period, r['slack']):.1f} MHz)"
+    print(line)
 
 def lstsq(rows, ys):
     """Least squares by the normal equations (few unknowns, well-conditioned designs)."""
@@ -181,8 +181,9 @@ COLUMNS = ["blocks", "words", "cells", "area_um2", "transistors", "flops", "buff
            "power_comb_mw", "latch_cells", "latch_area_um2", "latch_transistors", "latches", "crit_from", "crit_to"]
 ENERGY_COLUMNS = ["blocks", "words", "class", "cycles", "power_mw", "energy_pj", "internal_mw", "switching_mw",
                   "leakage_mw", "seq_mw", "comb_mw", "mean_activity", "check_agree"]
-PNR_COLUMNS = ["blocks", "words", "cells", "area_um2", "path_unplaced_ns", "fmax_unplaced_mhz", "path_routed_ns",
-               "fmax_routed_mhz", "power_unplaced_mw", "power_routed_mw", "annotated_nets", "routed_from", "routed_to"]
+PNR_COLUMNS = ["blocks", "words", "cells", "area_um2", "path_unplaced_ns", "fmax_unplaced_mhz", "power_unplaced_mw",
+               "path_placed_ns", "fmax_placed_mhz", "power_placed_mw", "placed_nets", "placed_to",
+               "path_routed_ns", "fmax_routed_mhz", "power_routed_mw", "routed_nets", "routed_to"]
 
 
 def totals(cells, areas, trans, where):
@@ -233,20 +234,26 @@ def cmd_collect(a):
         b, w = (int(x) for x in size.split("x"))
         n = os.path.join(a.dir, f"{a.top}_{size}")
         d = os.path.join(a.dir, f"pnr_{size}")
-        u, r = sta_results(n + ".sta_unplaced.log"), sta_results(n + ".sta_routed.log")
+        u = sta_results(n + ".sta_unplaced.log")
         cells = verilog_cells(os.path.join(d, a.top + ".v"))
         area, _ = totals(cells, areas, trans, os.path.join(d, a.top + ".v"))
-        pnrrows.append({"blocks": b, "words": w, "cells": sum(cells.values()), "area_um2": "%.1f" % area,
-                        "path_unplaced_ns": "%.3f" % (a.period - u["slack"]),
-                        "fmax_unplaced_mhz": "%.1f" % fmax_mhz(a.period, u["slack"]),
-                        "path_routed_ns": "%.3f" % (a.period - r["slack"]),
-                        "fmax_routed_mhz": "%.1f" % fmax_mhz(a.period, r["slack"]),
-                        "power_unplaced_mw": "%.2f" % (1000 * u["power_total"][3]),
-                        "power_routed_mw": "%.2f" % (1000 * r["power_total"][3]),
-                        "annotated_nets": spef_net_count(os.path.join(d, a.top + ".spef")) -
-                        len(re.findall(r"^Warning:.*not found", read(n + ".sta_routed.log"), re.M)),
-                        "routed_from": r["from"], "routed_to": r["to"]})
-
+        row = {"blocks": b, "words": w, "cells": sum(cells.values()), "area_um2": "%.1f" % area,
+               "path_unplaced_ns": "%.3f" % (a.period - u["slack"]),
+               "fmax_unplaced_mhz": "%.1f" % fmax_mhz(a.period, u["slack"]),
+               "power_unplaced_mw": "%.2f" % (1000 * u["power_total"][3])}
+        for tag, spef in (("placed", a.top + ".placed.spef"), ("routed", a.top + ".spef")):
+            log = n + f".sta_{tag}.log"
+            if not os.path.exists(log):
+                continue
+            r = sta_results(log)
+            row.update({f"path_{tag}_ns": "%.3f" % (a.period - r["slack"]),
+                        f"fmax_{tag}_mhz": "%.1f" % fmax_mhz(a.period, r["slack"]),
+                        f"power_{tag}_mw": "%.2f" % (1000 * r["power_total"][3]),
+                        f"{tag}_nets": spef_net_count(os.path.join(d, spef)),
+                        f"{tag}_to": r["to"]})
+        if not row.get("placed_nets"):
+            raise ReportError(f"{size}: no placed timing")
+        pnrrows.append(row)
     energyrows = []
     for size in a.energy or []:
         b, w = (int(x) for x in size.split("x"))
@@ -484,16 +491,21 @@ def cmd_fit(a):
         _, prow = read_csv(pp)
         w("### Placed and routed\n")
         w("One netlist (qflow's synthesis of the size: the same yosys mapping, its output buffers, its blifFanout) timed "
-          "twice by OpenSTA: without wires, and with the routed wires' resistance and capacitance from qrouter "
-          "(SPEF). Power at the global activity.\n")
-        w("| blocks x words | cells | cell area (mm^2) | worst path, no wires (ns) | Fmax (MHz) | worst path, routed (ns) | "
-          "Fmax routed (MHz) | routed / unplaced | power no wires (mW) | power routed (mW) | nets with parasitics |")
-        w("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+          "by OpenSTA three ways: without wires; with the placement's wire estimate (every net a star of its pins' "
+          "half-perimeter length on metal2 and metal3, R and C per um from the LEF: `asic_report.py placed-spef`); "
+          "and with the routed wires' resistance and capacitance from qrouter (SPEF by qflow's rc2dly). "
+          "Power at the global activity; cell area without the placement's fill cells.\n")
+        w("| blocks x words | cells | cell area (mm^2) | no wires: path (ns) | Fmax (MHz) | placed: path (ns) | Fmax (MHz) | "
+          "placed / no wires | routed: path (ns) | Fmax (MHz) | routed / no wires | power no wires, placed, routed (mW) |")
+        w("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
         for r in prow:
-            ratio = float(r["path_routed_ns"]) / float(r["path_unplaced_ns"])
+            pu = float(r["path_unplaced_ns"])
+            pl = f"{float(r['path_placed_ns']) / pu:.2f}x" if r.get("path_placed_ns") else "-"
+            rt = f"{float(r['path_routed_ns']) / pu:.2f}x" if r.get("path_routed_ns") else "not routed"
             w(f"| {r['blocks']} x {r['words']} | {fmt(int(r['cells']))} | {float(r['area_um2']) / 1e6:.3f} | "
-              f"{r['path_unplaced_ns']} | {r['fmax_unplaced_mhz']} | {r['path_routed_ns']} | {r['fmax_routed_mhz']} | "
-              f"{ratio:.2f}x | {r['power_unplaced_mw']} | {r['power_routed_mw']} | {fmt(int(r['annotated_nets']))} |")
+              f"{r['path_unplaced_ns']} | {r['fmax_unplaced_mhz']} | {r.get('path_placed_ns') or '-'} | "
+              f"{r.get('fmax_placed_mhz') or '-'} | {pl} | {r.get('path_routed_ns') or '-'} | {r.get('fmax_routed_mhz') or '-'} | "
+              f"{rt} | {r['power_unplaced_mw']}, {r.get('power_placed_mw') or '-'}, {r.get('power_routed_mw') or '-'} |")
         w("")
     ep = os.path.join(d, "energy.csv")
     if os.path.exists(ep):
@@ -622,9 +634,9 @@ def cmd_check(a):
         extra += f", energy of {len(er)} size and class pairs"
     if os.path.exists(os.path.join(d, "pnr.csv")):
         _, pr = read_csv(os.path.join(d, "pnr.csv"))
-        if any(float(r["path_routed_ns"]) <= 0 or int(r["annotated_nets"]) <= 0 for r in pr):
-            raise ReportError("pnr.csv: a routed size without parasitics")
-        extra += f", {len(pr)} routed size(s)"
+        if any(float(r["path_placed_ns"]) <= 0 or int(r["placed_nets"]) <= 0 for r in pr):
+            raise ReportError("pnr.csv: a placed size without its wire estimate")
+        extra += f", {len(pr)} placed size(s)"
     # the whole report renders
     import io
     import contextlib
@@ -673,6 +685,100 @@ def cmd_doc(a):
         os.replace(a.out + ".tmp", a.out)
 
 
+def lef_layers(path):
+    """Routing layer -> (ohm per um, pF per um) of a minimum-width wire (area and both edges)."""
+    text = read(path)
+    out = {}
+    for m in re.finditer(r"^LAYER\s+(\S+)\s*\n(.*?)^END\s+\1", text, re.M | re.S):
+        body = m.group(2)
+        if not re.search(r"TYPE\s+ROUTING", body):
+            continue
+        g = lambda k: float(re.search(k + r"\s+([\d.eE+-]+)", body).group(1))
+        wd = g("WIDTH")
+        out[m.group(1)] = (g("RPERSQ") / wd, g("CPERSQDIST") * wd + 2 * g("EDGECAPACITANCE"))
+    return out
+
+
+def cmd_placed_spef(a):
+    """A wire estimate from the placement alone: every net a star of its pins' half-perimeter
+    wire length, horizontal on metal3 and vertical on metal2 (the routing layers of
+    qflow's OSU018 setup), lumped at the centre; names as qflow's Verilog writes them."""
+    layers = lef_layers(a.lef)
+    sizes = {}
+    macro = None
+    for line in read(a.lef).splitlines():
+        t = line.split()
+        if len(t) >= 2 and t[0] == "MACRO":
+            macro = t[1]
+        elif macro and len(t) >= 4 and t[0] == "SIZE":
+            sizes[macro] = (float(t[1]), float(t[3].rstrip(";")))
+    rh, ch = layers[a.hlayer]
+    rv, cv = layers[a.vlayer]
+    text = read(a.deff)
+    unit = float(re.search(r"UNITS DISTANCE MICRONS (\d+)", text).group(1))
+    pos = {}
+    comp = text[text.index("\nCOMPONENTS"):text.index("END COMPONENTS")]
+    for m in re.finditer(r"^- (\S+) (\S+) \+ (?:PLACED|FIXED) \( (-?\d+) (-?\d+) \)", comp, re.M):
+        w, h = sizes.get(m.group(2), (0.0, 0.0))
+        pos[m.group(1)] = (int(m.group(3)) / unit + w / 2, int(m.group(4)) / unit + h / 2)
+    pins = text[text.index("\nPINS"):text.index("END PINS")]
+    for m in re.finditer(r"^- (\S+) \+ NET.*?PLACED \( (-?\d+) (-?\d+) \)", pins, re.M | re.S):
+        pos["PIN:" + m.group(1)] = (int(m.group(2)) / unit, int(m.group(3)) / unit)
+    nets = text[text.index("\nNETS"):text.index("END NETS")]
+    outputs = ("Y", "Q", "YC", "YS")
+    portdir = {m.group(2): m.group(1) for m in re.finditer(
+        r"^\s*(input|output)\s+(?:\[\d+:\d+\]\s+)?(\S+)\s*;", read(a.verilog), re.M)}
+    ports = set(portdir)
+
+    def vname(n):
+        # a port (or a port's bit) keeps its name; other names as qflow's Verilog writes them
+        m = re.fullmatch(r"(\w+)(\[\d+\])?", n)
+        return n if m and m.group(1) in ports else re.sub(r"[\[\].$]", "_", n)
+    o = ['*SPEF "IEEE 1481-1998"', f'*DESIGN "{a.top}"', '*DATE "' + os.environ.get("SOURCE_DATE", "") + '"',
+         '*VENDOR "FMPP"', '*PROGRAM "tools/asic_report.py placed-spef"', '*VERSION "1"',
+         '*DESIGN_FLOW "PLACED HPWL STAR"', "*DIVIDER /", "*DELIMITER :", "*BUS_DELIMITER [ ]",
+         "*T_UNIT 1 NS", "*C_UNIT 1 PF", "*R_UNIT 1 OHM", "*L_UNIT 1 HENRY", ""]
+    count = 0
+    for m in re.finditer(r"^- (\S+)\s*(.*?);", nets, re.M | re.S):
+        name = m.group(1)
+        if name in ("vdd", "gnd"):
+            continue
+        terms = re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2))
+        pts = [pos["PIN:" + p] if i == "PIN" else pos[i] for i, p in terms if ("PIN:" + p if i == "PIN" else i) in pos]
+        if len(terms) < 2 or len(pts) < 2:
+            continue
+        dx = max(x for x, _ in pts) - min(x for x, _ in pts)
+        dy = max(y for _, y in pts) - min(y for _, y in pts)
+        c, r = dx * ch + dy * cv, dx * rh + dy * rv
+        n = vname(name)
+        o.append(f"*D_NET {n} {c:.6g}")
+        o.append("*CONN")
+        nodes = []
+        for i, p in terms:
+            if i == "PIN":
+                d = "I" if portdir.get(p.split("[", 1)[0]) == "input" else "O"
+                pe = vname(p)
+                o.append(f"*P {pe} {d}")
+                nodes.append((pe, d == "I"))
+            else:
+                d = "O" if p in outputs else "I"
+                o.append(f"*I {i}:{p} {d}")
+                nodes.append((f"{i}:{p}", d == "O"))
+        o.append("*CAP")
+        o.append(f"1 {n}:1 {c:.6g}")
+        o.append("*RES")
+        nd = max(1, len(nodes))
+        for k, (node, drv) in enumerate(nodes):
+            o.append(f"{k + 1} {node} {n}:1 {r / 2 if drv else r / 2 / max(1, nd - 1):.6g}")
+        o.append("*END")
+        o.append("")
+        count += 1
+    with open(a.out, "w") as f:
+        f.write("\n".join(o) + "\n")
+    print(f"placed-spef: {count} nets, {a.hlayer} {ch * 1000:.3f} fF/um {rh:.3f} ohm/um, "
+          f"{a.vlayer} {cv * 1000:.3f} fF/um {rv:.3f} ohm/um")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -714,6 +820,15 @@ def main():
     g.add_argument("--out")
     g.add_argument("--check")
     p.set_defaults(func=cmd_doc)
+    p = sub.add_parser("placed-spef")
+    p.add_argument("--def", dest="deff", required=True)
+    p.add_argument("--lef", required=True)
+    p.add_argument("--verilog", required=True, help="the netlist OpenSTA reads (its port names)")
+    p.add_argument("--top", required=True)
+    p.add_argument("--hlayer", default="metal3")
+    p.add_argument("--vlayer", default="metal2")
+    p.add_argument("--out", required=True)
+    p.set_defaults(func=cmd_placed_spef)
     p = sub.add_parser("check")
     p.add_argument("--dir", required=True)
     p.set_defaults(func=cmd_check)
