@@ -10,8 +10,8 @@
 #   4. latch   the same synthesis with the word storage in LATCH cells instead of
 #              flip-flops (area only: the storage variant of docs/area.md)
 # and, for the sizes of --pnr, placement (graywolf) and routing (qrouter) by qflow, the
-# routed wires' resistance and capacitance (qrouter's RC file, turned into SPEF by qflow's
-# rc2dly) read back into OpenSTA: Fmax unplaced against routed, one netlist; and, for the
+# routed wires' resistance and capacitance (qrouter's RC file, turned into SPEF by
+# tools/asic_report.py rc-spef) read back into OpenSTA: Fmax unplaced against routed, one netlist; and, for the
 # sizes of --energy, power per instruction class from the switching activity of every net
 # during a real frame rendered through the Verilated RTL (ASIC_RENDER, traced to an FST;
 # tools/asic_activity.py evaluates the netlist on the traced register values).
@@ -215,7 +215,7 @@ report_power -digits 4
 EOF
   sta -no_init -no_splash -exit "$tcl" > "$log" 2>&1 || fail "OpenSTA on $n ($tag)" "$log"
   if grep -q "^Error" "$log"; then fail "OpenSTA on $n ($tag) reported an error" "$log"; fi
-  if [ -n "$spef" ] && grep -Eq "^Warning: .*(not found|syntax error)" "$log"; then
+  if [ -n "$spef" ] && grep -Eq "^Warning: [^ ]*\.spef.*(not found|syntax error)" "$log"; then
     fail "OpenSTA on $n ($tag) could not place every net of $spef" "$log"
   fi
   grep -q "^worst slack" "$log" || fail "OpenSTA on $n ($tag) printed no worst slack" "$log"
@@ -264,10 +264,11 @@ for s in "${pnr_sizes[@]}"; do
       || fail "asic_report.py reading the placed results of $n" "$out/$n.sta_placed.log"
     continue
   fi
-  # qrouter's RC trees as SPEF (qflow's rc2dly picks the format by the extension)
-  "$qbin/rc2dly" -r "$d/layout/$top.rc" -l "$lib" -d "$d/$top.spef" > "$d/rc2dly.log" 2>&1 \
-    || fail "rc2dly turning qrouter's RC file of $n into SPEF" "$d/rc2dly.log"
-  grep -q '^\*D_NET' "$d/$top.spef" || fail "rc2dly wrote no *D_NET into $d/$top.spef" "$d/rc2dly.log"
+  # qrouter's RC trees as SPEF (qflow's rc2dly writes SPEF too, but with the DEF's names,
+  # which qflow's Verilog spells differently, and characters OpenSTA's reader refuses)
+  "$py" "$root/tools/asic_report.py" rc-spef --rc "$d/layout/$top.rc" --verilog "$d/$top.v" --top "$top" \
+      --out "$d/$top.spef" > "$d/rc_spef.log" 2>&1 \
+    || fail "turning qrouter's RC file of $n into SPEF (asic_report.py rc-spef)" "$d/rc_spef.log"
   sta_run "$d/$top.v" "$n" sta_routed "$d/$top.spef"
   "$py" "$root/tools/asic_report.py" pnr-line --dir "$out" --name "$n" --period "$period" \
     || fail "asic_report.py reading the routed results of $n" "$out/$n.sta_routed.log"

@@ -235,7 +235,7 @@ def cmd_collect(a):
         n = os.path.join(a.dir, f"{a.top}_{size}")
         d = os.path.join(a.dir, f"pnr_{size}")
         u = sta_results(n + ".sta_unplaced.log")
-        cells = verilog_cells(os.path.join(d, a.top + ".v"))
+        cells = {c: k for c, k in verilog_cells(os.path.join(d, a.top + ".v")).items() if c != "FILL"}
         area, _ = totals(cells, areas, trans, os.path.join(d, a.top + ".v"))
         row = {"blocks": b, "words": w, "cells": sum(cells.values()), "area_um2": "%.1f" % area,
                "path_unplaced_ns": "%.3f" % (a.period - u["slack"]),
@@ -493,7 +493,8 @@ def cmd_fit(a):
         w("One netlist (qflow's synthesis of the size: the same yosys mapping, its output buffers, its blifFanout) timed "
           "by OpenSTA three ways: without wires; with the placement's wire estimate (every net a star of its pins' "
           "half-perimeter length on metal2 and metal3, R and C per um from the LEF: `asic_report.py placed-spef`); "
-          "and with the routed wires' resistance and capacitance from qrouter (SPEF by qflow's rc2dly). "
+          "and with the routed wires' resistance and capacitance, qrouter's RC tree of every net as SPEF "
+          "(`asic_report.py rc-spef`). "
           "Power at the global activity; cell area without the placement's fill cells.\n")
         w("| blocks x words | cells | cell area (mm^2) | no wires: path (ns) | Fmax (MHz) | placed: path (ns) | Fmax (MHz) | "
           "placed / no wires | routed: path (ns) | Fmax (MHz) | routed / no wires | power no wires, placed, routed (mW) |")
@@ -743,7 +744,8 @@ def cmd_placed_spef(a):
         name = m.group(1)
         if name in ("vdd", "gnd"):
             continue
-        terms = re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2))
+        # the connections, before any routed geometry (+ ROUTED ...) of a routed DEF
+        terms = re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2).split("+", 1)[0])
         pts = [pos["PIN:" + p] if i == "PIN" else pos[i] for i, p in terms if ("PIN:" + p if i == "PIN" else i) in pos]
         if len(terms) < 2 or len(pts) < 2:
             continue
@@ -777,6 +779,106 @@ def cmd_placed_spef(a):
         f.write("\n".join(o) + "\n")
     print(f"placed-spef: {count} nets, {a.hlayer} {ch * 1000:.3f} fF/um {rh:.3f} ohm/um, "
           f"{a.vlayer} {cv * 1000:.3f} fF/um {rv:.3f} ohm/um")
+
+
+def qflow_name(n, ports):
+    """A DEF net name as qflow's Verilog writes it: ports keep their bit index, other
+    names have [ ] . $ turned into _."""
+    m = re.fullmatch(r"(\w+)(\[\d+\])?", n)
+    return n if m and m.group(1) in ports else re.sub(r"[\[\].$]", "_", n)
+
+
+def cmd_rc_spef(a):
+    """qrouter's RC file (one line per net: name, driver, then the routed tree as nested
+    '( R C child , child ... )' segments, R in ohm and C in pF, children being segments
+    or the pins at the segment's end) as SPEF for OpenSTA."""
+    portdir = {m.group(2): m.group(1) for m in re.finditer(
+        r"^\s*(input|output)\s+(?:\[\d+:\d+\]\s+)?(\S+)\s*;", read(a.verilog), re.M)}
+    o = ['*SPEF "IEEE 1481-1998"', f'*DESIGN "{a.top}"', '*DATE ""', '*VENDOR "FMPP"',
+         '*PROGRAM "tools/asic_report.py rc-spef"', '*VERSION "1"', '*DESIGN_FLOW "ROUTED qrouter"',
+         "*DIVIDER /", "*DELIMITER :", "*BUS_DELIMITER [ ]", "*T_UNIT 1 NS", "*C_UNIT 1 PF", "*R_UNIT 1 OHM",
+         "*L_UNIT 1 HENRY", ""]
+    nets = 0
+
+    def pin(t):
+        if t.startswith("PIN/"):
+            p = t[4:]
+            return p, "*P", "I" if portdir.get(p.split("[", 1)[0]) == "input" else "O"
+        inst, pn = t.rsplit("/", 1)
+        return f"{inst}:{pn}", "*I", "O" if pn in ("Y", "Q", "YC", "YS") else "I"
+    for lineno, line in enumerate(read(a.rc).splitlines(), 1):
+        toks = line.replace("(", " ( ").replace(")", " ) ").replace(",", " , ").split()
+        if not toks:
+            continue
+        if len(toks) < 4:
+            raise ReportError(f"{a.rc}:{lineno}: not a net line")
+        name = qflow_name(toks[0], portdir)
+        drv = pin(toks[2])
+        conns = [drv]
+        caps, ress = [], []
+        k = 4
+        counter = [0]
+
+        def node():
+            # at toks[k] == "(": R C then items until ")"; returns nothing, appends to lists
+            nonlocal k
+            if toks[k] != "(":
+                raise ReportError(f"{a.rc}:{lineno}: expected '(' at token {k}")
+            k += 1
+            r, c = float(toks[k]), float(toks[k + 1])
+            k += 2
+            counter[0] += 1
+            me = f"{name}:{counter[0]}"
+            caps.append((me, c))
+            return me, r
+
+        def subtree(parent):
+            nonlocal k
+            me, r = node()
+            ress.append((parent, me, r))
+            while True:
+                t = toks[k]
+                if t == "(":
+                    subtree(me)
+                elif t == ",":
+                    k += 1
+                elif t == ")":
+                    k += 1
+                    return
+                else:
+                    p = pin(t)
+                    conns.append(p)
+                    ress.append((me, p[0], 0.001))
+                    k += 1
+        try:
+            while k < len(toks):
+                if toks[k] == "(":
+                    subtree(drv[0])
+                elif toks[k] == ",":
+                    k += 1
+                else:
+                    raise ReportError(f"{a.rc}:{lineno}: unexpected {toks[k]!r}")
+        except (IndexError, ValueError):
+            raise ReportError(f"{a.rc}:{lineno}: cannot read the RC tree of {toks[0]}")
+        o.append(f"*D_NET {name} {sum(c for _, c in caps):.6g}")
+        o.append("*CONN")
+        seen = set()
+        for pn, kind, d in conns:
+            if pn not in seen:
+                seen.add(pn)
+                o.append(f"{kind} {pn} {d}")
+        o.append("*CAP")
+        for i, (nd, c) in enumerate(caps, 1):
+            o.append(f"{i} {nd} {c:.6g}")
+        o.append("*RES")
+        for i, (x, y, r) in enumerate(ress, 1):
+            o.append(f"{i} {x} {y} {r:.6g}")
+        o.append("*END")
+        o.append("")
+        nets += 1
+    with open(a.out, "w") as f:
+        f.write("\n".join(o) + "\n")
+    print(f"rc-spef: {nets} routed nets")
 
 
 def main():
@@ -829,6 +931,12 @@ def main():
     p.add_argument("--vlayer", default="metal2")
     p.add_argument("--out", required=True)
     p.set_defaults(func=cmd_placed_spef)
+    p = sub.add_parser("rc-spef")
+    p.add_argument("--rc", required=True)
+    p.add_argument("--verilog", required=True)
+    p.add_argument("--top", required=True)
+    p.add_argument("--out", required=True)
+    p.set_defaults(func=cmd_rc_spef)
     p = sub.add_parser("check")
     p.add_argument("--dir", required=True)
     p.set_defaults(func=cmd_check)
