@@ -54,15 +54,24 @@ def run(cmd, **kw):
 
 # ------------------------------------------------------------------ generators
 
-def gen_area(build):
-    """docs/generated/area.md: fmpp-report area over the committed synthesis and FPGA results."""
+def area_md(build, out):
+    """fmpp-report area over the committed synthesis and FPGA results, then the standard-cell
+    section tools/asic_report.py makes from docs/asic/ (make asic's committed results)."""
     data = os.path.join(ROOT, "docs", "data")
-    os.makedirs(os.path.join(out_dir(build), "generated"), exist_ok=True)
+    base = out + ".base"
     run([tool(build, "fmpp-report"), "area", "--synth-dir", os.path.join(data, "synth"),
          "--fpga-csv", os.path.join(data, "fpga", "summary.csv"),
          "--baseline-dir", os.path.join(data, "synth", "before_cmp"),
-         "--baseline-label", "the RTL before CMP (commit b28488d)",
-         "--out", os.path.join(out_dir(build), "generated", "area.md")])
+         "--baseline-label", "the RTL before CMP (commit b28488d)", "--out", base])
+    run([sys.executable, os.path.join(ROOT, "tools", "asic_report.py"), "doc", "--area-md", base,
+         "--dir", os.path.join(ROOT, "docs", "asic"), "--out", out])
+    os.remove(base)
+
+
+def gen_area(build):
+    """docs/generated/area.md: the FPGA and gate counts, and the standard cells."""
+    os.makedirs(os.path.join(out_dir(build), "generated"), exist_ok=True)
+    area_md(build, os.path.join(out_dir(build), "generated", "area.md"))
 
 
 def gen_paper(build):
@@ -326,10 +335,7 @@ def check(build):
     try:
         # docs/generated/area.md: the whole file (made from committed data only).
         area = os.path.join(tmp, "area.md")
-        data = os.path.join(ROOT, "docs", "data")
-        run([tool(build, "fmpp-report"), "area", "--synth-dir", os.path.join(data, "synth"), "--fpga-csv",
-             os.path.join(data, "fpga", "summary.csv"), "--baseline-dir", os.path.join(data, "synth", "before_cmp"),
-             "--baseline-label", "the RTL before CMP (commit b28488d)", "--out", area])
+        area_md(build, area)
         c.same("docs/generated/area.md", committed("docs/generated/area.md"), open(area, encoding="utf-8").read())
 
         # docs/debugging.md: the lockstep report and the figures read from it.

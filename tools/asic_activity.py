@@ -1,0 +1,619 @@
+#!/usr/bin/env python3
+"""Switching activity of every net of a gate-level FMPP netlist, from an RTL simulation.
+
+OpenSTA (2019) reads no VCD or SAIF and propagates no activity, so report_power needs
+each pin's activity given with set_power_pin_activity. This tool computes it:
+
+1. The RTL trace (an FST of a Verilated run, e.g. `fmpp-render --backend rtl --trace`)
+   gives, for every clock cycle, the value of every register and every input port
+   (sampled at the end of the cycle, just before the rising edge).
+2. Every flip-flop of the netlist is matched by name to its RTL register bit (yosys keeps
+   register names through synthesis); a flip-flop with no RTL name gets Q(t) = D(t-1),
+   iterated. With --lanes the tile's lane-indexed registers (word storage, flags) of a
+   smaller netlist take lanes 0..B-1 of the traced machine's --trace-lanes lanes.
+3. The combinational cells are evaluated from those values with each cell's Liberty
+   function, all cycles at once (one Python integer per net, bit t = cycle t): a
+   zero-delay, cycle-based simulation (no glitches).
+4. Per net: toggles (value changes between consecutive cycles) and cycles at 1, in all
+   cycles and per instruction class (the opcode executing in the cycle, a window write,
+   or idle), written as OpenSTA Tcl (activity = toggles per clock cycle, duty).
+
+As a check, each matched flip-flop's computed D(t) is compared with its traced Q(t+1):
+the netlist and the RTL agree cycle by cycle where the fraction printed is 1.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+
+class Fail(Exception):
+    pass
+
+
+# --- Liberty: cell pins, functions, sequential cells -----------------------------------
+
+def braces(text, start):
+    """Index just past the block opened by the first '{' at or after start."""
+    i = text.index("{", start)
+    depth = 0
+    for j in range(i, len(text)):
+        if text[j] == "{":
+            depth += 1
+        elif text[j] == "}":
+            depth -= 1
+            if depth == 0:
+                return j + 1
+    raise Fail("unbalanced braces in the Liberty file")
+
+
+def read_liberty(path):
+    text = open(path).read()
+    cells = {}
+    for m in re.finditer(r"\bcell\s*\(\s*\"?(\w+)\"?\s*\)", text):
+        body = text[m.end():braces(text, m.end())]
+        pins = {}
+        for pm in re.finditer(r"\bpin\s*\(\s*\"?(\w+)\"?\s*\)", body):
+            pb = body[pm.end():braces(body, pm.end())]
+            d = re.search(r"direction\s*:\s*(\w+)", pb)
+            f = re.search(r"\bfunction\s*:\s*\"([^\"]*)\"", pb)
+            pins[pm.group(1)] = (d.group(1) if d else "", f.group(1) if f else None)
+        seq = None
+        ff = re.search(r"\bff\s*\(\s*\"?(\w+)\"?\s*,\s*\"?(\w+)\"?\s*\)", body)
+        if ff:
+            nx = re.search(r"next_state\s*:\s*\"([^\"]*)\"", body)
+            ck = re.search(r"clocked_on\s*:\s*\"([^\"]*)\"", body)
+            seq = ("ff", ff.group(1), ff.group(2), nx.group(1) if nx else "", ck.group(1) if ck else "")
+        if re.search(r"\blatch\s*\(", body):
+            seq = ("latch",)
+        cells[m.group(1)] = {"pins": pins, "seq": seq}
+    if not cells:
+        raise Fail(f"{path}: no cells")
+    return cells
+
+
+def compile_function(expr, pins):
+    """A Liberty boolean function as Python source over pin variables (ints) and mask M."""
+    toks = re.findall(r"[A-Za-z_]\w*|[()!'^+|&*]|\S", expr)
+    pos = 0
+
+    def peek():
+        return toks[pos] if pos < len(toks) else None
+
+    def take():
+        nonlocal pos
+        if pos >= len(toks):
+            raise Fail(f"function {expr!r} ends early")
+        pos += 1
+        return toks[pos - 1]
+
+    def primary():
+        t = take()
+        if t == "(":
+            v = orexpr()
+            if take() != ")":
+                raise Fail(f"bad function {expr!r}")
+        elif t == "!":
+            v = f"(M & ~{primary()})"
+        elif t in ("0", "1"):
+            v = "0" if t == "0" else "M"
+        elif re.fullmatch(r"[A-Za-z_]\w*", t):
+            if t not in pins:
+                raise Fail(f"function {expr!r} names unknown pin {t}")
+            v = "p_" + t
+        else:
+            raise Fail(f"bad token {t!r} in function {expr!r}")
+        while peek() == "'":
+            take()
+            v = f"(M & ~{v})"
+        return v
+
+    def andexpr():
+        v = primary()
+        while peek() is not None and peek() not in (")", "+", "|", "^"):
+            if peek() in ("&", "*"):
+                take()
+            v = f"({v} & {primary()})"
+        return v
+
+    def xorexpr():
+        v = andexpr()
+        while peek() == "^":
+            take()
+            v = f"({v} ^ {andexpr()})"
+        return v
+
+    def orexpr():
+        v = xorexpr()
+        while peek() in ("+", "|"):
+            take()
+            v = f"({v} | {xorexpr()})"
+        return v
+
+    src = orexpr()
+    if pos != len(toks):
+        raise Fail(f"bad function {expr!r}")
+    return src
+
+
+# --- the gate-level netlist (yosys write_verilog -noattr -noexpr) -----------------------
+
+NAME = r"(\\\S+\s|[A-Za-z_][\w$]*)"
+
+
+def norm(name):
+    name = name.strip()
+    return name[1:] if name.startswith("\\") else name
+
+
+def read_netlist(path, lib):
+    text = open(path).read()
+    m = re.search(r"\bmodule\s+(\S+)\s*\(", text)
+    if not m:
+        raise Fail(f"{path}: no module")
+    ports = {}
+    for pm in re.finditer(r"^\s*(input|output)\s+(?:\[(\d+):(\d+)\]\s+)?" + NAME + r"\s*;", text, re.M):
+        nm = norm(pm.group(4))
+        if pm.group(2) is None:
+            ports[nm] = (pm.group(1), None)
+        else:
+            hi, lo = int(pm.group(2)), int(pm.group(3))
+            ports[nm] = (pm.group(1), (min(hi, lo), max(hi, lo)))
+    # net references: `\esc name [3]`, `name [3]`, `name[3]`, `name`, constants
+    ref = re.compile(r"\s*(?:(\d+)'h([0-9a-fA-Fx])|(\\\S+)\s*(\[\d+\])?|([A-Za-z_][\w$]*)\s*(\[\d+\])?)\s*")
+
+    def net_of(s):
+        r = ref.fullmatch(s)
+        if not r:
+            raise Fail(f"{path}: cannot read net reference {s!r}")
+        if r.group(1):
+            return "1'b" + r.group(2)
+        base = norm(r.group(3)) if r.group(3) else r.group(5)
+        idx = r.group(4) or r.group(6) or ""
+        return base + idx
+
+    alias = {}
+
+    def find(n):
+        while alias.get(n, n) != n:
+            n = alias[n]
+        return n
+    for am in re.finditer(r"^\s*assign\s+(.+?)\s*=\s*(.+?)\s*;", text, re.M):
+        a, b = net_of(am.group(1)), net_of(am.group(2))
+        ra, rb = find(a), find(b)
+        if ra != rb:
+            # keep a constant or a port as the representative
+            if rb.startswith("1'b") or ra.startswith("1'b"):
+                alias[rb if ra.startswith("1'b") else ra] = ra if ra.startswith("1'b") else rb
+            else:
+                alias[ra] = rb
+    insts = []
+    for im in re.finditer(r"^\s*([A-Z]\w*)\s+(\\\S+\s|[\w$]+)\s*\((.*?)\);", text, re.M | re.S):
+        cell = im.group(1)
+        if cell not in lib:
+            raise Fail(f"{path}: cell {cell} not in the Liberty file")
+        conns = {}
+        for cm in re.finditer(r"\.(\w+)\s*\(\s*([^()]*?)\s*\)", im.group(3)):
+            if cm.group(2):
+                conns[cm.group(1)] = find(net_of(cm.group(2)))
+        insts.append((norm(im.group(2)), cell, conns))
+    if not insts:
+        raise Fail(f"{path}: no cell instances")
+    portbits = {}
+    for nm, (d, rng) in ports.items():
+        bits = [nm] if rng is None else [f"{nm}[{i}]" for i in range(rng[0], rng[1] + 1)]
+        for b in bits:
+            portbits[b] = d
+    return m.group(1), portbits, insts, find
+
+
+# --- the RTL trace ---------------------------------------------------------------------
+
+def vcd_stream(fst):
+    p = subprocess.Popen(["fst2vcd", fst], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, bufsize=1 << 20)
+    return p
+
+
+class Trace:
+    """Values at the end of every cycle of the wanted signals (full names, '.'-joined)."""
+
+    def __init__(self, fst, wanted, clock="TOP.clk_i"):
+        self.proc = vcd_stream(fst)
+        f = self.proc.stdout
+        scope, ids, widths = [], {}, {}
+        clk_id = None
+        for line in f:
+            t = line.split()
+            if not t:
+                continue
+            if t[0] == "$scope":
+                scope.append(t[2])
+            elif t[0] == "$upscope":
+                scope.pop()
+            elif t[0] == "$var":
+                full = ".".join(scope + [t[4]])
+                if full == clock:
+                    clk_id = t[3]
+                if full in wanted:
+                    ids.setdefault(t[3], []).append(full)
+                    widths[full] = int(t[2])
+            elif t[0] == "$enddefinitions":
+                break
+        missing = sorted(set(wanted) - set(widths))
+        if clk_id is None:
+            raise Fail(f"{fst}: no clock {clock}")
+        self.missing, self.widths, self.ids, self.clk = missing, widths, ids, clk_id
+        self.f = f
+        self.cur = {i: 0 for i in ids}
+        self.clkv = 0
+
+    def cycles(self):
+        """Yields {signal: int value} at the end of each cycle (before each rising edge)."""
+        pending = []
+        rose = False
+
+        def flush():
+            nonlocal rose
+            if rose:
+                yield {s: self.cur[i] for i, names in self.ids.items() for s in names}
+            for i, v in pending:
+                self.cur[i] = v
+            pending.clear()
+            rose = False
+        for line in self.f:
+            c = line[0]
+            if c == "#":
+                yield from flush()
+            elif c == "b":
+                val, ident = line[1:].split()
+                if ident == self.clk:
+                    continue
+                if ident in self.cur:
+                    pending.append((ident, int(val.replace("x", "0").replace("z", "0"), 2)))
+            elif c in "01xz":
+                ident = line[1:].strip()
+                if ident == self.clk:
+                    if c == "1" and self.clkv == 0:
+                        rose = True
+                    self.clkv = 1 if c == "1" else 0
+                elif ident in self.cur:
+                    pending.append((ident, 1 if c == "1" else 0))
+        yield from flush()
+        self.proc.wait()
+
+
+# --- evaluation ------------------------------------------------------------------------
+
+def self_test():
+    """The Liberty function compiler against truth tables (every OSU018 function form)."""
+    cases = {
+        "(A B)": lambda a, b, c, d: a & b,
+        "(!((A B)+C))": lambda a, b, c, d: 1 - ((a & b) | c),
+        "(!((A B)+(C D)))": lambda a, b, c, d: 1 - ((a & b) | (c & d)),
+        "(!((A+B) C))": lambda a, b, c, d: 1 - ((a | b) & c),
+        "(A^B)": lambda a, b, c, d: a ^ b,
+        "(!(A^B))": lambda a, b, c, d: 1 - (a ^ b),
+        "A'": lambda a, b, c, d: 1 - a,
+        "(!A)": lambda a, b, c, d: 1 - a,
+        "((A & !B) | (B * C))": lambda a, b, c, d: (a & (1 - b)) | (b & c),
+        "(!(A B C))": lambda a, b, c, d: 1 - (a & b & c),
+        "(!((A+B)+C))": lambda a, b, c, d: 1 - (a | b | c),
+    }
+    # all 16 input combinations at once: bit t of each pin's integer is row t
+    pins = {p: sum(((t >> i) & 1) << t for t in range(16)) for i, p in enumerate("ABCD")}
+    for expr, ref in cases.items():
+        fn = eval("lambda M, p_A, p_B, p_C, p_D: " + compile_function(expr, "ABCD"))
+        got = fn(0xFFFF, pins["A"], pins["B"], pins["C"], pins["D"])
+        want = sum(ref((t >> 0) & 1, (t >> 1) & 1, (t >> 2) & 1, (t >> 3) & 1) << t for t in range(16))
+        if got != want:
+            raise Fail(f"self-test: {expr!r} gives {got:#06x}, not {want:#06x}")
+    for bad in ("(A B", "A +", "(A $ B)"):
+        try:
+            compile_function(bad, "AB")
+        except Fail:
+            continue
+        raise Fail(f"self-test: {bad!r} was accepted")
+    print(f"asic_activity.py self-test: {len(cases)} functions agree with their truth tables")
+    return 0
+
+
+def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
+    global np
+    import numpy as np
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--netlist", required=True, help="gate-level Verilog (tools/asic.sh: <top>_BxW.v)")
+    ap.add_argument("--liberty", required=True)
+    ap.add_argument("--fst", required=True, help="FST of the RTL run")
+    ap.add_argument("--scope", default="TOP.fmpp_top", help="the traced design's top scope")
+    ap.add_argument("--lanes", type=int, default=0, help="blocks of the netlist's tile (when smaller than the trace's)")
+    ap.add_argument("--trace-lanes", type=int, default=64, help="lanes of the traced tile")
+    ap.add_argument("--lane-regs", default=r"\.u_tile\.(mem_q\[\d+\]|flag_q)$", help="lane-indexed registers (regex)")
+    ap.add_argument("--tile-scope", default=r"\.u_tile\.", help="scope of per-tile signals (only --lane-regs are mapped)")
+    ap.add_argument("--pkg", required=True, help="fmpp_pkg.sv (opcode and queue-kind names)")
+    ap.add_argument("--exec", default="u_array.g_tile[0].u_tile.exec_i")
+    ap.add_argument("--kind", default="u_array.g_tile[0].u_tile.kind_i")
+    ap.add_argument("--op", default="u_array.g_tile[0].u_tile.op_i")
+    ap.add_argument("--chunk", type=int, default=4096, help="cycles evaluated at once")
+    ap.add_argument("--max-cycles", type=int, default=0)
+    ap.add_argument("--out", required=True, help="output prefix: <out>.json, <out>.<class>.tcl")
+    ap.add_argument("--classes-min", type=int, default=200, help="fewest cycles of a class to get its own Tcl")
+    a = ap.parse_args()
+
+    lib = read_liberty(a.liberty)
+    top, portbits, insts, find = read_netlist(a.netlist, lib)
+    pkg = open(a.pkg).read()
+    opnames = {int(v): n for n, v in re.findall(r"\bOP_(\w+)\s*=\s*\d+'d(\d+)", pkg)}
+    kinds = {int(v): n for n, v in re.findall(r"\bQE_(\w+)\s*=\s*\d+'d(\d+)", pkg)}
+    if not opnames or "INSTR" not in kinds.values():
+        raise Fail(f"{a.pkg}: no OP_ or QE_INSTR codes")
+
+    # cells: functions compiled once per cell type
+    comb, seqs = [], []
+    fcache = {}
+    drivers = {}
+    for name, cell, conns in insts:
+        info = lib[cell]
+        outs = [p for p, (d, f) in info["pins"].items() if d == "output"]
+        if info["seq"] is not None:
+            if info["seq"][0] != "ff" or info["seq"][4] != "CLK" or info["seq"][3] not in info["pins"]:
+                raise Fail(f"{cell}: only positive-edge D flip-flops are simulated (got {info['seq']})")
+            q = conns.get("Q")
+            d = conns.get(info["seq"][3])
+            if q is None or d is None:
+                raise Fail(f"{name}: flip-flop without D or Q")
+            seqs.append((name, cell, d, q))
+            drivers[q] = (name, "Q")
+            continue
+        for o in outs:
+            f = info["pins"][o][1]
+            if f is None:
+                raise Fail(f"{cell}.{o}: no function")
+            key = (cell, o)
+            if key not in fcache:
+                ins = [p for p, (d, _) in info["pins"].items() if d == "input"]
+                src = compile_function(f, ins)
+                fcache[key] = (ins, eval("lambda M, " + ", ".join("p_" + p for p in ins) + ": " + src))
+            if o in conns:
+                comb.append((name, cell, o, conns[o]))
+                drivers[conns[o]] = (name, o)
+
+    # topological order of the combinational cells
+    inst_conns = {name: conns for name, cell, conns in insts}
+    order, state = [], {}
+    known = set(q for _, _, _, q in seqs) | {find(p) for p, d in portbits.items() if d == "input"}
+    known |= {"1'b0", "1'b1", "1'bx"}
+    by_net = {net: (name, cell, o) for name, cell, o, net in comb}
+    sys.setrecursionlimit(1000000)
+    done = set(known)
+    for net0 in by_net:
+        stack = [net0]
+        while stack:
+            net = stack[-1]
+            if net in done:
+                stack.pop()
+                continue
+            if net not in by_net:
+                raise Fail(f"net {net} has no driver")
+            name, cell, o = by_net[net]
+            ins, _ = fcache[(cell, o)]
+            pend = [inst_conns[name][p] for p in ins if inst_conns[name][p] not in done]
+            if pend:
+                if state.get(net) == 1:
+                    raise Fail(f"combinational loop through {net}")
+                state[net] = 1
+                stack.extend(pend)
+            else:
+                done.add(net)
+                order.append((net, fcache[(cell, o)][1], [inst_conns[name][p] for p in ins]))
+                stack.pop()
+
+    # the flip-flops' RTL names
+    lane_re, tile_re = re.compile(a.lane_regs), re.compile(a.tile_scope)
+    flop_src = {}   # q net -> (trace signal, bit) or None
+    wanted = set()
+    bitname = re.compile(r"^(.*)\[(\d+)\]$")
+    widths_nl = {}
+    for _, _, _, q in seqs:
+        m = bitname.match(q)
+        if m:
+            widths_nl[m.group(1)] = max(widths_nl.get(m.group(1), 0), int(m.group(2)) + 1)
+    for _, _, _, q in seqs:
+        m = bitname.match(q)
+        base, bit = (m.group(1), int(m.group(2))) if m else (q, 0)
+        if base.startswith("_") or "$" in base:
+            flop_src[q] = None
+            continue
+        if tile_re.search(base) and not lane_re.search(base):
+            flop_src[q] = None
+            continue
+        if a.lanes and lane_re.search(base):
+            ln = a.lanes
+            bit = (bit // ln) * a.trace_lanes + (bit % ln)
+        full = a.scope + "." + base
+        flop_src[q] = (full, bit)
+        wanted.add(full)
+    in_src = {}
+    for p, d in portbits.items():
+        if d != "input":
+            continue
+        m = bitname.match(p)
+        base, bit = (m.group(1), int(m.group(2))) if m else (p, 0)
+        in_src[find(p)] = (a.scope + "." + base, bit)
+        wanted.add(a.scope + "." + base)
+    cls_sig = [a.scope + "." + s for s in (a.exec, a.kind, a.op)]
+    wanted |= set(cls_sig)
+
+    tr = Trace(a.fst, wanted)
+    for s in list(flop_src):
+        if flop_src[s] and flop_src[s][0] in tr.missing:
+            flop_src[s] = None
+    miss_in = [s for s in in_src.values() if s[0] in tr.missing]
+    if miss_in or any(s in tr.missing for s in cls_sig):
+        raise Fail(f"trace lacks inputs or class signals: {sorted(set(x[0] for x in miss_in))[:5]} {tr.missing[:5]}")
+    unmapped = [q for q, s in flop_src.items() if s is None]
+    print(f"{top}: {len(insts)} cells, {len(seqs)} flip-flops ({len(seqs) - len(unmapped)} named after RTL registers, "
+          f"{len(unmapped)} simulated from their D input), {len(order)} combinational outputs", file=sys.stderr)
+
+    allnets = [net for net, _, _ in order] + [q for _, _, _, q in seqs] + list(in_src)
+    classes = ["idle"] + [kinds[k] for k in sorted(kinds) if kinds[k] != "INSTR"] + [opnames[k] for k in sorted(opnames)]
+    cidx = {c: i for i, c in enumerate(classes)}
+    tog = {n: [0] * len(classes) for n in allnets}
+    ones = {n: [0] * len(classes) for n in allnets}
+    ccount = [0] * len(classes)
+    check_ok = check_all = 0
+    prev_last = {}
+    prev_cls_last = None
+    total = 0
+    gen = tr.cycles()
+    exhausted = False
+    while not exhausted:
+        rows = []
+        for row in gen:
+            rows.append(row)
+            if len(rows) >= a.chunk:
+                break
+        else:
+            exhausted = True
+        if a.max_cycles and total + len(rows) > a.max_cycles:
+            rows = rows[:max(0, a.max_cycles - total)]
+            exhausted = True
+        T = len(rows)
+        if T == 0:
+            break
+        M = (1 << T) - 1
+
+        def column(sig, bit):
+            w = tr.widths[sig]
+            nb = (w + 7) // 8
+            key = sig
+            if key not in colcache:
+                arr = np.frombuffer(b"".join(r[sig].to_bytes(nb, "little") for r in rows), dtype=np.uint8).reshape(T, nb)
+                colcache[key] = np.unpackbits(arr, axis=1, bitorder="little")
+            col = colcache[key][:, bit]
+            return int.from_bytes(np.packbits(col, bitorder="little").tobytes(), "little")
+        colcache = {}
+        val = {"1'b0": 0, "1'b1": M, "1'bx": 0}
+        for net, (sig, bit) in in_src.items():
+            val[net] = column(sig, bit)
+        for name, cell, d, q in seqs:
+            if flop_src[q] is not None:
+                val[q] = column(*flop_src[q])
+        # classes of the cycles
+        ex, kd, op = (np.array([r[s] for r in rows], dtype=np.int64) for s in cls_sig)
+        cyc_cls = np.where(ex == 0, cidx["idle"],
+                           np.where(kd == [k for k in kinds if kinds[k] == "INSTR"][0],
+                                    np.vectorize(lambda o: cidx.get(opnames.get(int(o), "NOP"), 0))(op),
+                                    np.vectorize(lambda k: cidx.get(kinds.get(int(k), ""), 0))(kd)))
+        masks = []
+        for ci in range(len(classes)):
+            sel = (cyc_cls == ci).astype(np.uint8)
+            masks.append(int.from_bytes(np.packbits(sel, bitorder="little").tobytes(), "little"))
+            ccount[ci] += int(sel.sum())
+        colcache = None
+        # unnamed flip-flops: Q(t) = D(t-1), iterated until they settle
+        unm = [(d, q) for _, _, d, q in seqs if flop_src[q] is None]
+        for q in [q for _, q in unm]:
+            val[q] = prev_last.get(q, 0) * M
+        for it in range(12):
+            for net, fn, ins in order:
+                val[net] = fn(M, *[val[i] for i in ins])
+            changed = 0
+            for d, q in unm:
+                nq = ((val[d] << 1) & M) | prev_last.get(q, 0)
+                if nq != val[q]:
+                    changed += 1
+                    val[q] = nq
+            if not changed:
+                break
+        else:
+            print(f"warning: {changed} unnamed flip-flops still changing after 12 rounds", file=sys.stderr)
+        # check: D(t) of the named flip-flops equals their traced Q(t+1)
+        for _, _, d, q in seqs:
+            if flop_src[q] is not None and T > 1:
+                diff = (val[d] ^ (val[q] >> 1)) & ((1 << (T - 1)) - 1)
+                check_all += T - 1
+                check_ok += T - 1 - diff.bit_count()
+        # toggles: between the previous chunk's last cycle and this one's, and within
+        flops = set(q for _, _, _, q in seqs)
+        for n in allnets:
+            v = val[n]
+            first = prev_last.get(n)
+            t = (v ^ (v >> 1)) & (M >> 1)          # bit t: change from cycle t to t+1
+            if n in flops:
+                mt = t                              # caused by the instruction of cycle t
+            else:
+                mt = t << 1                         # seen in cycle t+1, caused by its instruction
+            tg, on = tog[n], ones[n]
+            for ci, mk in enumerate(masks):
+                tg[ci] += (mt & mk).bit_count()
+                on[ci] += (v & mk).bit_count()
+            if first is not None and (first ^ (v & 1)):
+                ci = int(prev_cls_last) if n in flops else int(cyc_cls[0])
+                tg[ci] += 1
+            prev_last[n] = (v >> (T - 1)) & 1
+        prev_cls_last = cyc_cls[-1]
+        total += T
+        print(f"  {total} cycles", file=sys.stderr)
+    if total < 2:
+        raise Fail("the trace has fewer than two cycles")
+
+    # OpenSTA Tcl: every pin of every net gets its net's activity
+    pins_of = {}
+    for name, cell, conns in insts:
+        for p, n in conns.items():
+            pins_of.setdefault(n, []).append(f"{name}/{p}")
+    summary = {"cycles": total, "classes": {c: ccount[i] for i, c in enumerate(classes) if ccount[i]},
+               "flops": len(seqs), "flops_named": len(seqs) - len(unmapped), "check_bits": check_all,
+               "check_agree": check_ok, "netlist": a.netlist, "fst": a.fst, "lanes": a.lanes or None}
+    inports = {find(p): p for p, d in portbits.items() if d == "input"}
+
+    def write_tcl(path, sel):
+        n_cyc = sum(ccount[i] for i in sel)
+        with open(path, "w") as f:
+            f.write(f"# activity over {n_cyc} cycles ({', '.join(classes[i] for i in sel)}) from {os.path.basename(a.fst)}\n")
+            f.write("proc act {pins a d} { foreach p $pins { sta::set_power_pin_activity [get_pins $p] $a $d } }\n")
+            for n in allnets:
+                tg = sum(tog[n][i] for i in sel)
+                on = sum(ones[n][i] for i in sel)
+                ac, du = tg / n_cyc, on / n_cyc
+                if n in inports:
+                    p = inports[n]
+                    if p != "clk_i":
+                        f.write(f"set_power_activity -input_ports [get_ports {{{p}}}] -activity {ac:.6g} -duty {du:.6g}\n")
+                pl = pins_of.get(n, [])
+                if pl:
+                    f.write(f"act {{{' '.join(pl)}}} {ac:.6g} {du:.6g}\n")
+        return n_cyc
+    # the clock's buffer tree: OpenSTA gives clock nets the clock's own activity
+    clocknets = {find("clk_i")}
+    for net, _, ins in order:
+        if any(i in clocknets for i in ins):
+            clocknets.add(net)
+    allnets = [n for n in allnets if n not in clocknets]
+    summary["clock_nets"] = len(clocknets)
+    allsel = list(range(len(classes)))
+    write_tcl(a.out + ".all.tcl", allsel)
+    summary["tcl"] = {"all": a.out + ".all.tcl"}
+    for i, c in enumerate(classes):
+        if ccount[i] >= a.classes_min:
+            write_tcl(f"{a.out}.{c}.tcl", [i])
+            summary["tcl"][c] = f"{a.out}.{c}.tcl"
+    # mean activity of the nets, for the record
+    nets = [n for n in allnets if n not in inports]
+    summary["mean_activity"] = sum(sum(tog[n]) for n in nets) / len(nets) / total
+    with open(a.out + ".json", "w") as f:
+        json.dump(summary, f, indent=1)
+    print(json.dumps({k: v for k, v in summary.items() if k != "tcl"}), file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except Fail as e:
+        print("asic_activity.py: " + str(e), file=sys.stderr)
+        sys.exit(1)
