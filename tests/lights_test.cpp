@@ -32,7 +32,7 @@ std::string dir() {
 // A scene file of the Cornell box's mesh and materials with the given lights and extra
 // top-level fields.
 std::string cornell_with(const std::string& name, const std::string& lights, const std::string& extra = "") {
-  const std::string path = dir() + "/" + name;
+  const std::string path = dir() + "/lights_test_" + name;
   std::ofstream f(path);
   f << R"({"camera": {"eye": [2.75, 2.75, 7.6], "look_at": [2.75, 2.55, -2.75], "up": [0, 1, 0], "fov_y_deg": 41},
   "max_depth": 3, )"
@@ -249,7 +249,7 @@ TEST_P(LightKinds, GoldenModelMatchesTheReference) {
     fmpp::Device dev(bus);
     FmppIntersector fi(dev, s.triangles, fmpp::isect::KernelOptions{});
     const Image img = render(s, fi, ro, nullptr);
-    EXPECT_EQ(compare(img, want).pixels_over, 0u);
+    EXPECT_LE(compare(img, want).pixels_over, 2u);  // render_test.cpp's bound (measured: 0)
     g = img.to_rgb8();
   }
   EXPECT_EQ(got[0], got[1]);
