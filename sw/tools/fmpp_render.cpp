@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
   uint64_t seed = 0;
   app.add_option("--seed", seed,
                  "seed of the pixel samples and the area lights' samples (default: the scene's seed, else " +
-                     std::to_string(rt::kDefaultSeed) + ")");
+                     std::to_string(rt::kDefaultSeed) + ")")
+      ->check(non_negative());
   app.add_option("--out", out, "output image: .png (8-bit) or .pfm (linear radiance, unclamped)")->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
