@@ -13,6 +13,7 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/rt/plan.h"
 #include "sw/rt/render.h"
 #include "sw/rt/shade.h"
 
@@ -229,6 +230,35 @@ TEST(Spp, OneSampleIsThePixelCentre) {
   render(s, four, ro, nullptr);
   ASSERT_EQ(four.first.size(), 4 * want.size());
   for (const auto& r : four.first) EXPECT_EQ(r.o, s.camera.eye);
+}
+
+// The plan renders its frame sample and models the passes with the scene's samples per
+// pixel (which --spp sets), and gives a scene with area or directional lights the
+// arbitrary-origin kernel's words.
+TEST(Spp, ThePlanSeesTheSamplesAndTheLights) {
+  Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/one_triangle.json");
+  PlanRequest r;
+  r.width = r.height = 16;
+  r.sample_rays = 64;
+  r.sample_pixels = 64;
+  const Plan one = make_plan(s, r);
+  EXPECT_EQ(one.config.words, 14u);
+  s.spp = 4;
+  const Plan four = make_plan(s, r);
+  ASSERT_FALSE(one.pass_sizes.empty());
+  ASSERT_FALSE(four.pass_sizes.empty());
+  EXPECT_GT(four.pass_sizes[0].broadcasts + four.pass_sizes[0].passes, 0u);
+  EXPECT_GE(four.pass_sizes[0].clocks, 2 * one.pass_sizes[0].clocks) << "four times the primary rays, modelled";
+  ASSERT_FALSE(one.candidates.empty());
+  ASSERT_FALSE(four.candidates.empty());
+  ASSERT_EQ(one.candidates.back().n, four.candidates.back().n);
+  EXPECT_GT(four.candidates.back().sample_cycles, one.candidates.back().sample_cycles) << "the frame sample's rays, four per pixel";
+  const Scene lit = load_scene(cornell_with("plan_rect.json", kRect));
+  r.max_depth = 1;  // no mirror or glass rays: the lights alone decide the words
+  r.bits = 24;
+  const Plan area = make_plan(lit, r);
+  EXPECT_EQ(area.config.words, fmpp::isect::kGeneralWords);
+  EXPECT_NE(area.why_words.find("directional or area lights"), std::string::npos);
 }
 
 // Each new kind on the golden model against the exact reference: no pixel off by more
