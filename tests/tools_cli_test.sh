@@ -33,6 +33,15 @@ fails "--report $dir/no/such/r.json: cannot write" \
   "$render" --scene "$scene" --backend reference --out "$dir/x.png" --report "$dir/no/such/r.json"
 test ! -e "$dir/x.png"  # refused before the render
 fails "--out -: the image needs a file name" "$render" --scene "$scene" --backend reference --out -
+fails "--spp: value 0 not in \[1, 1024\]" "$render" --scene "$scene" --backend reference --spp 0
+fails "--spp: value 2000 not in \[1, 1024\]" "$render" --scene "$scene" --backend reference --spp 2000
+fails "--seed: value -1 is negative" "$render" --scene "$scene" --backend reference --seed -1
+# --spp and --seed replace the scene's, and the report says which were used.
+"$render" --scene "$scene" --backend reference --width 4 --height 4 --spp 4 --seed 5 --out "$dir/s.png" --report - \
+  --quiet > "$dir/s.json"
+grep -q '"spp": 4' "$dir/s.json"
+grep -q '"seed": 5' "$dir/s.json"
+grep -q '"primary": 64' "$dir/s.json"
 fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backend reference --out "$dir/x.png"
 "$render" --scene "$scene" --backend reference --width 4 --height 4 --out "$dir/x.png" --report - --quiet > "$dir/r.json"
 grep -q '"backend": "reference"' "$dir/r.json"

@@ -21,7 +21,7 @@ import docblock  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-SCENES = ["cornell", "spheres_1k", "spheres_10k", "one_triangle", "armadillo", "scans"]
+SCENES = ["cornell", "spheres_1k", "spheres_10k", "one_triangle", "armadillo", "scans", "armadillo_soft"]
 # (scene, side): every shipped scene at 128 x 128 (the frames of the culling tables and
 # of the Embree comparison) and at 256 x 256 (the gallery's pictures).
 FRAMES = [(s, 128) for s in SCENES] + [(s, 256) for s in SCENES]
@@ -40,6 +40,7 @@ CAPTION = {
     "one_triangle": "one triangle",
     "armadillo": "scanned armadillo on the stage (mirror wall, glass sphere)",
     "scans": "armadillo and bunny: 127,940 triangles",
+    "armadillo_soft": "the armadillo under area lights (soft shadows), 4 samples per pixel",
 }
 
 
@@ -116,14 +117,16 @@ def provenance():
 
 def readme_block(build):
     scenes = list(PICTURE)
-    rows = [scenes[i:i + 3] for i in range(0, len(scenes), 3)]
-    lines = ["| " + " | ".join(rows[0]) + " |", "| " + " | ".join("---" for _ in rows[0]) + " |"]
-    for i, row in enumerate(rows):
+    ncol = min(3, len(scenes))
+    lines = ["| " + " | ".join(scenes[:ncol]) + " |", "| " + " | ".join("---" for _ in range(ncol)) + " |"]
+    for i in range(0, len(scenes), ncol):
+        row = scenes[i:i + ncol]
+        pad = " |" * (ncol - len(row))  # a short last row keeps the table's columns
         if i > 0:
-            lines.append("| " + " | ".join("**%s**" % s for s in row) + " |")
+            lines.append("| " + " | ".join("**%s**" % s for s in row) + " |" + pad)
         lines.append("| " + " | ".join('<img src="docs/img/gallery/%s.png" width="%d" alt="%s">' % (s, PICTURE[s], CAPTION[s])
-                                       for s in row) + " |")
-        lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |")
+                                       for s in row) + " |" + pad)
+        lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |" + pad)
     lines += ["", "Each picture's command (golden model; n = 24 and 4096 blocks of 32 words fixed, as in the culling "
               "tables, not chosen by the precision plan; `make gallery` runs them all):", ""]
     lines += ["    " + " ".join(command(s, PICTURE[s], "NAME.json", "NAME.png")).replace("NAME", s) for s in scenes]

@@ -81,6 +81,11 @@ Decision<unsigned> decide_words(const Scene& scene, const PlanRequest& req, int 
             "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin kernel, which "
             "needs " + std::to_string(fmpp::isect::kGeneralWords) + " words per block"};
   }
+  if (shadows_need_own_origins(scene)) {
+    return {fmpp::isect::kGeneralWords,
+            "directional or area lights: some shadow rays may take the arbitrary-origin kernel, which needs " +
+                std::to_string(fmpp::isect::kGeneralWords) + " words per block"};
+  }
   const unsigned need = (fmpp::isect::words_needed(req.base) + 1) & ~1u;
   return {need, "all rays share an origin (eye or light): the kernel needs " + std::to_string(need) +
                     " words per block"};

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "sw/isect/reference.h"
+#include "sw/rt/sampling.h"
 #include "sw/rt/shade.h"
 
 namespace rt {
@@ -80,9 +81,10 @@ class PixelRays {
       : eye_(cam.eye), width_(width), height_(height), fwd_(glm::normalize(cam.look_at - cam.eye)),
         right_(glm::normalize(glm::cross(fwd_, cam.up))), up_(glm::cross(right_, fwd_)),
         th_(std::tan(glm::radians(cam.fov_y_deg) / 2)), aspect_(double(width) / height) {}
-  Ray operator()(size_t i) const {
+  // Through the point (x + dx, y + dy) of the pixel's square, (dx, dy) in [0, 1)^2.
+  Ray operator()(size_t i, double dx = 0.5, double dy = 0.5) const {
     const int y = static_cast<int>(i / static_cast<size_t>(width_)), x = static_cast<int>(i % static_cast<size_t>(width_));
-    const double u = (2 * (x + 0.5) / width_ - 1) * th_ * aspect_, v = (1 - 2 * (y + 0.5) / height_) * th_;
+    const double u = (2 * (x + dx) / width_ - 1) * th_ * aspect_, v = (1 - 2 * (y + dy) / height_) * th_;
     return Ray{eye_, fwd_ + u * right_ + v * up_};
   }
 
@@ -108,6 +110,13 @@ std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t f
 
 std::vector<Ray> primary_rays(const Camera& cam, int width, int height) {
   return primary_rays(cam, width, height, 0, static_cast<size_t>(width) * static_cast<size_t>(height));
+}
+
+bool shadows_need_own_origins(const Scene& scene) {
+  for (const Light& l : scene.lights) {
+    if (l.type != LightType::kPoint) return true;
+  }
+  return false;
 }
 
 uint64_t render_memory_estimate(int width, int height) {
@@ -137,7 +146,12 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   const int depth = opt.max_depth > 0 ? opt.max_depth : sc.max_depth;
   // Secondary rays start off the surface by the bound on the hit point's own error plus
   // what the intersector needs to tell a new hit from the surface it leaves.
-  const Shader shader(sc, isect.spawn_margin());
+  const uint64_t seed = opt.seed ? *opt.seed : sc.seed;
+  const Shader shader(sc, isect.spawn_margin(), seed);
+  const int spp = opt.spp > 0 ? opt.spp : sc.spp;
+  if (spp < 1 || spp > kMaxSpp) {
+    throw std::invalid_argument("samples per pixel " + std::to_string(spp) + " outside 1.." + std::to_string(kMaxSpp));
+  }
 
   // Pixels in bands of at most kPrimaryBatch primary rays, each traced to the full
   // depth before the next: the rays, paths and hits in memory stay bounded whatever the
@@ -151,15 +165,30 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   }
   const size_t pixels = opt.pixels.empty() ? frame : opt.pixels.size();
   const PixelRays at(sc.camera, opt.width, opt.height);
+  // A band holds at most kPrimaryBatch primary rays: all the samples of its pixels.
+  const size_t band = std::max<size_t>(1, kPrimaryBatch / static_cast<size_t>(spp));
   uint64_t traced = 0;
-  for (size_t first = 0; first < pixels; first += kPrimaryBatch) {
-    const size_t last = std::min(pixels, first + kPrimaryBatch);
+  for (size_t first = 0; first < pixels; first += band) {
+    const size_t last = std::min(pixels, first + band);
     std::vector<Ray> rays;
     std::vector<Path> paths;
     for (size_t k = first; k < last; ++k) {
       const uint32_t i = opt.pixels.empty() ? static_cast<uint32_t>(k) : opt.pixels[k];
-      rays.push_back(at(i));
-      paths.push_back(Path{i, glm::dvec3(1), RayKind::kPrimary});
+      if (spp == 1) {
+        rays.push_back(at(i));
+        paths.push_back(Path{i, glm::dvec3(1), RayKind::kPrimary, i});
+        continue;
+      }
+      // The pixel's samples share the eye, so they travel with the other primary rays in
+      // the paper's form; each weighs 1 / spp (the box filter).
+      for (int j = 0; j < spp; ++j) {
+        SampleRng rng(seed, kPixelSample, i, static_cast<uint64_t>(j));
+        const double u1 = rng.next(), u2 = rng.next();
+        const glm::dvec2 d = stratified(j, spp, u1, u2);
+        rays.push_back(at(i, d.x, d.y));
+        paths.push_back(Path{i, glm::dvec3(1.0 / spp), RayKind::kPrimary,
+                             static_cast<uint64_t>(i) * static_cast<uint64_t>(spp) + static_cast<uint64_t>(j)});
+      }
     }
 
     std::vector<Hit> ahead;  // this level's hits, found with the last level's last shadows

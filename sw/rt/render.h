@@ -5,7 +5,9 @@
 // Rays travel in batches, one ray type per call, so the FMPP sees what suits it:
 //  - primary rays share the eye as origin (the paper's inverse matrices);
 //  - shadow rays are cast *from* each point light towards the shaded points, so they
-//    share the light as origin too; a point is lit unless something lies between;
+//    share the light as origin too; a point is lit unless something lies between; an
+//    area light's from points of its pool (shade.h), a directional light's from the
+//    shaded points towards it;
 //  - reflection and refraction rays have their own origins (the general formulation)
 //    and exclude the triangle they leave.
 // Each hit is shaded by shade.h's Shader; what a surface does with light is its
@@ -15,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,6 +93,13 @@ struct RenderOptions {
   int width = 64;
   int height = 64;
   int max_depth = -1;  // -1: the scene's
+  // Samples per pixel, 0: the scene's (Scene::spp). With n > 1, pixel (x, y) casts n
+  // primary rays through the cells of strata_grid(n) over its square, each at a point
+  // jittered within its cell, and takes their mean (a box filter over the pixel); with 1,
+  // one ray through the centre.
+  int spp = 0;
+  // The seed of every random choice (jitter, area-light samples); unset: the scene's.
+  std::optional<uint64_t> seed;
   // Empty: every pixel. Otherwise only these pixel indices (y * width + x, each in the
   // frame), traced exactly as in the whole frame; the other pixels stay black.
   std::vector<uint32_t> pixels;
@@ -121,6 +131,12 @@ double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, do
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height);
 // The same rays for pixel indices [first, last) only.
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last);
+
+// True if some of the scene's shadow rays may take the arbitrary-origin form, which needs
+// kGeneralWords per block: a directional light's (cast from their points), or an area
+// light's (a pool point's rays are fewer than a shared-origin group needs on a small
+// frame; without a pool, each ray has its own origin).
+bool shadows_need_own_origins(const Scene& scene);
 
 // Memory bounds of a render: rays travel in bands of at most kPrimaryBatch primary rays
 // (each band traced to the full depth) and shadow rays in batches of at most

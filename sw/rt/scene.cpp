@@ -48,6 +48,17 @@ glm::dvec3 vec3(const json& j, const std::string& file, const std::string& field
   return v;
 }
 
+// A number that must be a whole number in [lo, hi].
+double integer(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
+  const double d = number(j, file, field, lo, hi);
+  if (d != std::floor(d)) {
+    std::ostringstream o;
+    o << "value " << d << " must be an integer";
+    field_error(file, field, o.str());
+  }
+  return d;
+}
+
 // Also the check that `j` is an object at all: a JSON array or scalar has no fields.
 void reject_unknown(const json& j, std::initializer_list<const char*> known, const std::string& file,
                     const std::string& where) {
@@ -349,6 +360,54 @@ void place(const Placement& pl, MeshGroup& g, const std::string& file, const std
   }
 }
 
+// One light of "lights" (docs/raytracer.md, "Lights"): by its "type", point (the default),
+// directional, sphere or rect, each with its own fields only.
+Light light(const json& j, const std::string& f, const std::string& w) {
+  if (!j.is_object()) field_error(f, w, "expected an object");
+  Light l;
+  std::string type = "point";
+  if (j.contains("type")) {
+    if (!j["type"].is_string()) field_error(f, w + ".type", "expected a string");
+    type = j["type"].get<std::string>();
+  }
+  auto area_fields = [&] {
+    l.samples = static_cast<int>(integer(require(j, "samples", f, w), f, w + ".samples", 1, kMaxLightSamples));
+    if (j.contains("pool")) l.pool = static_cast<int>(integer(j["pool"], f, w + ".pool", 0, kMaxLightPool));
+  };
+  if (type == "point") {
+    reject_unknown(j, {"type", "position", "color"}, f, w);
+    l.position = vec3(require(j, "position", f, w), f, w + ".position");
+  } else if (type == "directional") {
+    reject_unknown(j, {"type", "direction", "color"}, f, w);
+    l.type = LightType::kDirectional;
+    const glm::dvec3 d = vec3(require(j, "direction", f, w), f, w + ".direction");
+    const double len = glm::length(d);
+    if (!(len > 1e-9)) field_error(f, w + ".direction", "is the zero vector (or shorter than 1e-9)");
+    l.direction = d / len;
+  } else if (type == "sphere") {
+    reject_unknown(j, {"type", "center", "radius", "color", "samples", "pool"}, f, w);
+    l.type = LightType::kSphere;
+    l.position = vec3(require(j, "center", f, w), f, w + ".center");
+    l.radius = number(require(j, "radius", f, w), f, w + ".radius", 1e-9, 1e9);
+    area_fields();
+  } else if (type == "rect") {
+    reject_unknown(j, {"type", "corner", "edge1", "edge2", "color", "samples", "pool"}, f, w);
+    l.type = LightType::kRect;
+    l.position = vec3(require(j, "corner", f, w), f, w + ".corner");
+    l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1");
+    l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2");
+    const double e1 = glm::length(l.edge1), e2 = glm::length(l.edge2), a = glm::length(glm::cross(l.edge1, l.edge2));
+    if (!(e1 > 1e-9)) field_error(f, w + ".edge1", "is the zero vector (or shorter than 1e-9)");
+    if (!(e2 > 1e-9)) field_error(f, w + ".edge2", "is the zero vector (or shorter than 1e-9)");
+    if (!(a > 1e-6 * e1 * e2)) field_error(f, w + ".edge2", "is parallel to edge1: the rectangle has no area");
+    area_fields();
+  } else {
+    field_error(f, w + ".type", "'" + type + "' is not one of point, directional, sphere, rect");
+  }
+  if (j.contains("color")) l.color = vec3(j["color"], f, w + ".color", 0, 100);
+  return l;
+}
+
 void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
                const std::filesystem::path& dir) {
   const std::string where = "meshes[" + std::to_string(index) + "]";
@@ -418,6 +477,16 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
 
 }  // namespace
 
+const char* to_string(LightType t) {
+  switch (t) {
+    case LightType::kPoint: return "point";
+    case LightType::kDirectional: return "directional";
+    case LightType::kSphere: return "sphere";
+    case LightType::kRect: return "rect";
+  }
+  return "?";
+}
+
 Scene load_scene(const std::string& json_path) {
   std::string text;
   std::string err = fmpp::isect::read_input(json_path, "scene", fmpp::isect::kMaxSceneBytes, &text);
@@ -439,7 +508,8 @@ Scene load_scene(const std::string& json_path) {
   if (!dom.duplicate.empty()) field_error(json_path, dom.duplicate, "given twice");
   const std::string& f = json_path;
   if (!j.is_object()) throw SceneError(f + ": the scene must be a JSON object");
-  reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "lights", "materials", "meshes"}, f, "");
+  reject_unknown(j, {"description", "camera", "background", "ambient", "max_depth", "samples_per_pixel", "seed", "lights",
+                     "materials", "meshes"}, f, "");
   Scene s;
   s.path = json_path;
   s.files.push_back(json_path);
@@ -460,26 +530,14 @@ Scene load_scene(const std::string& json_path) {
   }
   if (j.contains("background")) s.background = vec3(j["background"], f, "background", 0, 100);
   if (j.contains("ambient")) s.ambient = vec3(j["ambient"], f, "ambient", 0, 100);
-  if (j.contains("max_depth")) {
-    const double d = number(j["max_depth"], f, "max_depth", 1, 16);
-    if (d != std::floor(d)) {
-      std::ostringstream o;
-      o << "value " << d << " must be an integer";
-      field_error(f, "max_depth", o.str());
-    }
-    s.max_depth = static_cast<int>(d);
-  }
+  if (j.contains("max_depth")) s.max_depth = static_cast<int>(integer(j["max_depth"], f, "max_depth", 1, 16));
+
+  if (j.contains("samples_per_pixel")) s.spp = integer(j["samples_per_pixel"], f, "samples_per_pixel", 1, kMaxSpp);
+  if (j.contains("seed")) s.seed = static_cast<uint64_t>(integer(j["seed"], f, "seed", 0, 9007199254740991.0));
 
   const json& lights = require(j, "lights", f, "");
   if (!lights.is_array() || lights.empty()) field_error(f, "lights", "expected a non-empty array");
-  for (size_t k = 0; k < lights.size(); ++k) {
-    const std::string w = "lights[" + std::to_string(k) + "]";
-    reject_unknown(lights[k], {"position", "color"}, f, w);
-    Light l;
-    l.position = vec3(require(lights[k], "position", f, w), f, w + ".position");
-    if (lights[k].contains("color")) l.color = vec3(lights[k]["color"], f, w + ".color", 0, 100);
-    s.lights.push_back(l);
-  }
+  for (size_t k = 0; k < lights.size(); ++k) s.lights.push_back(light(lights[k], f, "lights[" + std::to_string(k) + "]"));
 
   std::map<std::string, int> mats;
   // Optional when the mesh files give every face its material.

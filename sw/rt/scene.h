@@ -7,11 +7,13 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "sw/isect/geometry.h"
+#include "sw/rt/sampling.h"
 
 namespace rt {
 
@@ -37,9 +39,24 @@ struct Material {
   double ior = 1.5;
 };
 
+// A light (docs/raytracer.md, "Lights"). Every kind but the point light is given its
+// own fields; none of them is geometry (rays do not hit lights).
+enum class LightType { kPoint, kDirectional, kSphere, kRect };
+const char* to_string(LightType t);
+
 struct Light {
-  glm::dvec3 position;
+  glm::dvec3 position;  // point: the position; sphere: the centre; rect: a corner
   glm::dvec3 color{1, 1, 1};
+  LightType type = LightType::kPoint;
+  glm::dvec3 direction{0, -1, 0};  // directional: unit, the way its light travels
+  double radius = 0;               // sphere
+  glm::dvec3 edge1{0}, edge2{0};   // rect: the corners are position + {0, edge1} + {0, edge2}
+  // Area lights: shadow rays per shading point (one per stratum of the light's surface),
+  // and the pool: that many points per stratum, fixed per render, each shading point
+  // taking one of them per stratum (0: a fresh point for every shadow ray).
+  int samples = 1;
+  int pool = 16;
+  bool area() const { return type == LightType::kSphere || type == LightType::kRect; }
 };
 
 struct Scene {
@@ -50,6 +67,10 @@ struct Scene {
   glm::dvec3 background{0, 0, 0};
   glm::dvec3 ambient{0.1, 0.1, 0.1};
   int max_depth = 3;
+  // Samples per pixel (stratified, jittered; 1: the pixel's centre) and the seed of every
+  // random choice of a render (sampling.h).
+  int spp = 1;
+  uint64_t seed = kDefaultSeed;
   std::vector<Light> lights;
   std::vector<Material> materials;
   // Triangles, with per-triangle material and per-vertex normals (face normal if the
@@ -58,6 +79,11 @@ struct Scene {
   std::vector<int> material_of;
   std::vector<std::array<glm::dvec3, 3>> normals;
 };
+
+// Limits of the sampling fields (scene JSON and fmpp-render's options).
+inline constexpr int kMaxSpp = 1024;
+inline constexpr int kMaxLightSamples = 1024;
+inline constexpr int kMaxLightPool = 4096;
 
 // Loads a JSON scene and its meshes (paths relative to the JSON file). Throws
 // SceneError("<file>:<line>: ..." or "<file>: field 'a.b': ...").

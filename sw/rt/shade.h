@@ -1,7 +1,8 @@
 // Shading for the Whitted renderer (render.cpp): one hit at a time, the shader turns a
 // ray's hit into light added to its pixel (background, ambient), shadow queries toward
-// the point lights, and the secondary rays its material spawns (material.h). The
-// renderer casts the rays in batches; shadow queries resolve once their rays are traced.
+// the lights (point, directional, and area lights sampled at several points), and the
+// secondary rays its material spawns (material.h). The renderer casts the rays in
+// batches; shadow queries resolve once their rays are traced.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "sw/isect/geometry.h"
 #include "sw/rt/image.h"
 #include "sw/rt/material.h"
+#include "sw/rt/sampling.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
@@ -19,13 +21,23 @@ struct Path {
   uint32_t pixel;
   glm::dvec3 weight;
   RayKind kind;
+  // The path's key for its random choices (area-light samples): the primary ray's pixel
+  // and sample (pixel * spp + sample), then child_path_id (sampling.h) per spawn.
+  uint64_t id = 0;
 };
+
+// A shadow ray runs from the light (t = 0) to the shaded point (t = 1); what it meets
+// from here on is the point's own surface as far as the fixed point's error can tell.
+inline constexpr double kShadowEnd = 1 - 1e-4;
 
 // A shadow query: the light's contribution if nothing lies between light and point.
 struct Shadow {
   uint32_t pixel;
   glm::dvec3 contribution;
   int own;  // the shaded triangle: the shadow ray may end on it
+  // A hit at t >= end does not shadow: for rays cast from a light to the point (t = 1 at
+  // the point) 1 - 1e-4; for a directional light's rays, cast from the point, infinity.
+  double end = kShadowEnd;
 };
 
 // What shading a batch of hits produces: the next batch of secondary rays and the
@@ -41,12 +53,15 @@ class Shader {
  public:
   // The scene must outlive the shader. Secondary rays start off the surface by the bound
   // on their hit point's own error (spawn_offset in render.h, from the hit's t_err) plus
-  // `spawn_margin`, for an intersector whose hits carry no bound (Embree).
+  // `spawn_margin`, for an intersector whose hits carry no bound (Embree). `seed` keys
+  // every random choice (area-light samples and pools); by default the scene's.
   Shader(const Scene& scene, double spawn_margin);
+  Shader(const Scene& scene, double spawn_margin, uint64_t seed);
 
   // Shades ray r of `path`, whose nearest hit is h: a miss adds the background to the
-  // pixel; a hit adds the ambient light, appends one shadow query per point light in
-  // front of the surface and, if `spawn`, the rays its material spawns.
+  // pixel; a hit adds the ambient light, appends the shadow queries of every light in
+  // front of the surface (one per point or directional light, one per sample of an area
+  // light) and, if `spawn`, the rays its material spawns.
   void shade(const fmpp::isect::Ray& r, const Path& path, const fmpp::isect::Hit& h, bool spawn, Image& img,
              ShadeOutput& out) const;
 
@@ -56,10 +71,17 @@ class Shader {
 
  private:
   SurfacePoint surface_point(const fmpp::isect::Ray& r, const fmpp::isect::Hit& h) const;
+  // Sample k of area light `li` for the shading point whose stream is `rng`: the point q
+  // on the light and the light's unit outward normal there.
+  void light_sample(size_t li, int k, SampleRng& rng, glm::dvec3* q, glm::dvec3* nq) const;
 
   const Scene& scene_;
   std::vector<Surface> surfaces_;  // one per scene material
   double spawn_margin_;
+  uint64_t seed_;
+  // Per light: its pool (area lights with pool > 0), samples x pool points with their
+  // normals, stratum k's at [k * pool, (k + 1) * pool).
+  std::vector<std::vector<std::pair<glm::dvec3, glm::dvec3>>> pools_;
 };
 
 }  // namespace rt

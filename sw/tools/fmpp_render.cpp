@@ -117,6 +117,16 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(int_range(1, 1 << 24));
   app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
+  int spp = 0;
+  app.add_option("--spp", spp,
+                 "samples per pixel: stratified, jittered, averaged with a box filter over the pixel (default: the "
+                 "scene's samples_per_pixel, else 1, the pixel's centre)")
+      ->check(int_range(1, rt::kMaxSpp));
+  uint64_t seed = 0;
+  app.add_option("--seed", seed,
+                 "seed of the pixel samples and the area lights' samples (default: the scene's seed, else " +
+                     std::to_string(rt::kDefaultSeed) + ")")
+      ->check(non_negative());
   app.add_option("--out", out,
                  "output image: .png (8-bit) or .pfm (linear radiance, unclamped); by default in the current directory")
       ->capture_default_str();
@@ -178,7 +188,11 @@ int main(int argc, char** argv) {
     if (leader) check_writable("--out", out, false);
     if (leader && !report_file.empty()) check_writable("--report", report_file);
     stage = "loading " + scene_file;
-    const rt::Scene scene = rt::load_scene(scene_file);
+    rt::Scene loaded = rt::load_scene(scene_file);
+    // --spp and --seed replace the scene's, for the plan's sample as for the frame.
+    if (app.count("--spp")) loaded.spp = spp;
+    if (app.count("--seed")) loaded.seed = seed;
+    const rt::Scene& scene = loaded;
     {
       std::vector<NamedPath> inputs;
       for (const auto& f : scene.files) inputs.push_back({f == scene_file ? "--scene" : "mesh of --scene", f});
@@ -189,6 +203,16 @@ int main(int argc, char** argv) {
     rep["triangles"] = scene.triangles.size();
     rep["resolution"] = {width, height};
     rep["backend"] = backend;
+    rep["spp"] = scene.spp;
+    rep["seed"] = scene.seed;
+    for (const rt::Light& l : scene.lights) {
+      nlohmann::json jl = {{"type", rt::to_string(l.type)}};
+      if (l.area()) {
+        jl["samples"] = l.samples;
+        jl["pool"] = l.pool;
+      }
+      rep["lights"].push_back(jl);
+    }
     Progress progress(quiet);
     rt::RenderOptions ro;
     ro.width = width;
