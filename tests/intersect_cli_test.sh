@@ -111,7 +111,8 @@ grep -q -- "--config tiny (10 words) is too few: with --origins general" "$dir/e
 # Option values checked at the command line.
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 3 2> "$dir/err.txt"; then exit 1; fi
 grep -q -- "--words: value 3 is not an even number in \[2, 64\]" "$dir/err.txt"
-"$bin" --help | grep -q "words per block, even"
+"$bin" --help > "$dir/help.txt"
+grep -q "words per block, even" "$dir/help.txt"
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --backend foo 2> "$dir/err.txt"; then exit 1; fi
 grep -q -- "--backend: foo not in {reference,cmodel,rtl,lockstep" "$dir/err.txt"
 # '-' is stdout for --report as for --out (not both); outputs are checked before the work.

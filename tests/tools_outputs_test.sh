@@ -28,7 +28,10 @@ mkdir "$dir/run" && cd "$dir/run"
 "$render" --backend reference --width 8 --height 8 --quiet
 test -s render.png                       # the picture: render.png in the current directory
 test "$(ls -A)" = "render.png"           # and nothing else
-"$render" --help | grep -qF -- "--scene TEXT=$src/scenes/cornell.json"
+# (help into a file first: grep -q exits at its match, and under pipefail the writer's
+# SIGPIPE would fail the line)
+"$render" --help > "$dir/help.txt"
+grep -qF -- "--scene TEXT=$src/scenes/cornell.json" "$dir/help.txt"
 rm render.png
 
 # ------------------------------------------------------------ fmpp-report
@@ -38,7 +41,8 @@ rm render.png
 grep -qF -- "--out TEXT=$build/docs/generated/paper-reproduction.md" "$dir/help.txt"
 grep -qF -- "--img-dir TEXT=$build/docs/img" "$dir/help.txt"
 grep -qF -- "--data-dir TEXT=$build/docs/data" "$dir/help.txt"
-"$report" precision --help | grep -qF -- "--out TEXT=$build/docs/generated/precision.md"
+"$report" precision --help > "$dir/help.txt"
+grep -qF -- "--out TEXT=$build/docs/generated/precision.md" "$dir/help.txt"
 rm -f "$build/precision-quick.md"
 "$report" precision --quick --no-plots 2> /dev/null
 test -s "$build/precision-quick.md" && test -s "$build/precision-quick/precision_data.json"
@@ -82,8 +86,12 @@ for bad in 1 33; do
   fails "--bits: value $bad not in [2, 32]" "$intersect" --triangles "$none" --rays "$none" --bits $bad
   fails "--bits: value $bad not in [2, 32]" "$report" paper --quick --bits $bad
 done
-for t in "$render" "$intersect"; do "$t" --help | grep -qF -- "--bits UINT:INT in [2 - 32]"; done
-"$report" paper --help | grep -qF -- "--bits UINT:INT in [2 - 32]"
+for t in "$render" "$intersect"; do
+  "$t" --help > "$dir/help.txt"
+  grep -qF -- "--bits UINT:INT in [2 - 32]" "$dir/help.txt"
+done
+"$report" paper --help > "$dir/help.txt"
+grep -qF -- "--bits UINT:INT in [2 - 32]" "$dir/help.txt"
 # The smallest n renders (the plan's candidates start at 8; a given n may be lower).
 printf '0 0 5  1 0 5  0 1 5\n' > "$dir/t.txt"
 printf '0.2 0.2 0  0 0 1\n' > "$dir/r.txt"
