@@ -132,4 +132,9 @@ test ! -e "$dir/x.jpg" && test ! -e "$dir/x"
 # 8 x 8 RGB floats after a three-line header.
 test "$(head -c 12 "$dir/ok.PFM")" = "$(printf 'PF\n8 8\n-1.0\n')"
 test "$(stat -c %s "$dir/ok.PFM")" -eq $((12 + 8 * 8 * 3 * 4))
+# A reader library opens it: ImageMagick (a package make deps installs) reads an 8 x 8 PFM.
+if command -v identify > /dev/null; then
+  identify "$dir/ok.PFM" > "$dir/identify.txt"
+  grep -q "PFM 8x8" "$dir/identify.txt"
+fi
 echo "tools CLI: OK"
