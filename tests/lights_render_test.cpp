@@ -12,6 +12,7 @@
 
 #include "tb/backend.h"
 #include "sw/rt/render.h"
+#include "tests/test_files.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -59,15 +60,7 @@ TEST(LightsRender, GallerySceneModelEqualsRtl) {
 Scene cornell(const std::string& name, const std::string& lights, const std::string& extra) {
   const std::string path = ::testing::TempDir() + "/lights_render_" + name + ".json";
   std::ofstream f(path);
-  f << R"({"camera": {"eye": [2.75, 2.75, 7.6], "look_at": [2.75, 2.55, -2.75], "up": [0, 1, 0], "fov_y_deg": 41},
-  "max_depth": 3, )"
-    << extra << R"("lights": )" << lights << R"(,
-  "materials": {"white": {"diffuse": [0.76, 0.75, 0.72]}, "red": {"diffuse": [0.72, 0.13, 0.10]},
-    "mirror": {"diffuse": [0.03, 0.03, 0.03], "reflectivity": 0.9},
-    "glass": {"diffuse": [0, 0, 0], "reflectivity": 0.08, "transparency": 0.88, "ior": 1.5}},
-  "meshes": [{"file": ")"
-    << FMPP_SOURCE_DIR << R"(/scenes/cornell.obj", "material": "white",
-    "groups": {"red_wall": "red", "mirror": "mirror", "glass_sphere": "glass"}}]})";
+  f << test_files::cornell_scene_text(FMPP_SOURCE_DIR, lights, extra);
   f.close();
   return load_scene(path);
 }

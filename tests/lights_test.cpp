@@ -15,6 +15,7 @@
 #include "sw/fmpp/device.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/render.h"
+#include "tests/test_files.h"
 #include "sw/rt/shade.h"
 
 #ifndef FMPP_SOURCE_DIR
@@ -35,15 +36,7 @@ std::string dir() {
 std::string cornell_with(const std::string& name, const std::string& lights, const std::string& extra = "") {
   const std::string path = dir() + "/lights_test_" + name;
   std::ofstream f(path);
-  f << R"({"camera": {"eye": [2.75, 2.75, 7.6], "look_at": [2.75, 2.55, -2.75], "up": [0, 1, 0], "fov_y_deg": 41},
-  "max_depth": 3, )"
-    << extra << R"("lights": )" << lights << R"(,
-  "materials": {"white": {"diffuse": [0.76, 0.75, 0.72]}, "red": {"diffuse": [0.72, 0.13, 0.10]},
-    "mirror": {"diffuse": [0.03, 0.03, 0.03], "reflectivity": 0.9},
-    "glass": {"diffuse": [0, 0, 0], "reflectivity": 0.08, "transparency": 0.88, "ior": 1.5}},
-  "meshes": [{"file": ")"
-    << FMPP_SOURCE_DIR << R"(/scenes/cornell.obj", "material": "white",
-    "groups": {"red_wall": "red", "mirror": "mirror", "glass_sphere": "glass"}}]})";
+  f << test_files::cornell_scene_text(FMPP_SOURCE_DIR, lights, extra);
   return path;
 }
 

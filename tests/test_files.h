@@ -52,6 +52,19 @@ inline std::string error_of(const std::function<void()>& f) {
   return "no error";
 }
 
+// A scene file's text: the Cornell box's mesh (cornell.obj under source_dir/scenes) and
+// materials, with the given lights and extra top-level fields.
+inline std::string cornell_scene_text(const std::string& source_dir, const std::string& lights,
+                                      const std::string& extra) {
+  return R"({"camera": {"eye": [2.75, 2.75, 7.6], "look_at": [2.75, 2.55, -2.75], "up": [0, 1, 0], "fov_y_deg": 41},
+  "max_depth": 3, )" + extra + R"("lights": )" + lights + R"(,
+  "materials": {"white": {"diffuse": [0.76, 0.75, 0.72]}, "red": {"diffuse": [0.72, 0.13, 0.10]},
+    "mirror": {"diffuse": [0.03, 0.03, 0.03], "reflectivity": 0.9},
+    "glass": {"diffuse": [0, 0, 0], "reflectivity": 0.08, "transparency": 0.88, "ior": 1.5}},
+  "meshes": [{"file": ")" + source_dir + R"(/scenes/cornell.obj", "material": "white",
+    "groups": {"red_wall": "red", "mirror": "mirror", "glass_sphere": "glass"}}]})";
+}
+
 // Base64 of the bytes (the data URIs of glTF buffers).
 inline std::string base64(const std::string& in) {
   static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
