@@ -21,6 +21,8 @@ class IsolationError : public std::runtime_error {
 // returned. An exception of work() comes back as IsolationError(what()) unless its
 // message starts with '!', in which case that text (without the '!') is the message
 // thrown. Only for code that touches no threads or open streams of the parent.
+// Exception: in an AddressSanitizer build with other threads running, work() runs
+// in-process without the limits (that sanitizer's fork() is not safe with threads).
 std::string run_isolated(const std::function<std::string()>& work, const std::string& label, double seconds,
                          unsigned long long max_bytes);
 
