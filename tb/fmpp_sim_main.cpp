@@ -7,7 +7,7 @@
 // (a shorter run reports what it missed on stderr but does not fail for it).
 //
 // --backend systemc sends the RTL side's accesses through the SystemC TLM-2.0
-// platform (tb/sc/: initiator socket -> b_transport -> target -> RTL) instead of
+// platform (backends/systemc/: initiator socket -> b_transport -> target -> RTL) instead of
 // driving the RTL directly; the golden model stays the reference.
 // --inject-at N demonstrates a mismatch: before access N it writes a wrong value
 // into one word of the RTL only (the model gets the word's current value, so both
@@ -30,7 +30,7 @@
 #include <memory>
 
 #include "fmpp/config.h"
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 #include "tb/sim_jobs.h"
 
 using namespace fmpp;
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
 
   if (list) {
     if (session->leader()) {
-      for (const auto& n : tb::rtl_configs()) std::printf("%s %s\n", n.c_str(), named_config(n).str().c_str());
+      for (const auto& n : backends::rtl_configs()) std::printf("%s %s\n", n.c_str(), named_config(n).str().c_str());
     }
     return 0;
   }

@@ -6,8 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "sw/mpi/pass_share.h"
-#include "sw/mpi/work_queue.h"
+#include "common/mpi/work_queue.h"
 
 namespace fmpp::tb {
 namespace {
@@ -41,7 +40,7 @@ JobOutcome from_json(const nlohmann::json& j) {
 }  // namespace
 
 std::vector<JobOutcome> run_jobs(const mpi::Session& s, const std::vector<SimOptions>& jobs) {
-  const mpi::Fault fault = mpi::Fault::from_env();  // test-only (pass_share.h): a run stands for a pass
+  const mpi::Fault fault = mpi::Fault::from_env();  // test-only (common/mpi/work_queue.h): a run stands for a pass
   nlohmann::json mine = nlohmann::json::array();
   {
     mpi::WorkQueue q(s);

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/mpi/session.h"
+#include "common/mpi/session.h"
 #include "tb/sim_run.h"
 
 namespace fmpp::tb {

@@ -5,13 +5,14 @@
 #include <cstdio>
 #include <random>
 
-#include "sw/util/cli_checks.h"
-#include "tb/lockstep.h"
+#include "common/util/cli_checks.h"
+#include "backends/lockstep.h"
 #include "tb/progen.h"
-#include "tb/rtl_bus.h"
-#include "tb/sc/systemc_bus.h"
+#include "backends/rtl/rtl_bus.h"
+#include "backends/systemc/systemc_bus.h"
 
 namespace fmpp::tb {
+using namespace backends;
 namespace {
 
 // The RTL side of the lockstep: the Verilated model, directly or behind SystemC.
@@ -183,7 +184,7 @@ SimResult run_sim(const SimOptions& o) {
       static_cast<unsigned long long>(lock.resets()), static_cast<unsigned long long>(res.mismatches), res.seconds);
   res.line = line;
   if (res.mismatches && !o.trace.empty()) {
-    // The harness dumps clock low at 10c and the rising edge at 10c + 5 (tb/rtl_bus_impl.h),
+    // The harness dumps clock low at 10c and the rising edge at 10c + 5 (backends/rtl/rtl_bus_impl.h),
     // so the state after the edge that made cycles() = c is visible from 10c - 5.
     const uint64_t c = lock.last_entry_cycle();
     res.waveform = "waveform: " + o.trace + ", the entry executed at the clock edge at t = " +

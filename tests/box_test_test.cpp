@@ -16,7 +16,7 @@
 #include "sw/isect/box_test.h"
 #include "sw/isect/fixed_point.h"
 #include "sw/isect/layout.h"
-#include "tb/backend.h"
+#include "backends/backend.h"
 
 namespace fmpp::isect {
 namespace {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cull.h"
 #include "sw/isect/kernels.h"

@@ -3,7 +3,7 @@
 // a run on the rtl and systemc backends instead of scrolling past.
 #include <gtest/gtest.h>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/fmpp/device.h"
 
 namespace fmpp {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "sw/rt/render.h"
-#include "tb/backend.h"
+#include "backends/backend.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

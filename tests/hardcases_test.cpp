@@ -16,7 +16,7 @@
 #include <set>
 #include <sstream>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/meshes.h"

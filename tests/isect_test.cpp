@@ -7,7 +7,7 @@
 #include <functional>
 #include <random>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/io.h"

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/rt/render.h"
 #include "tests/test_files.h"
 

@@ -2,14 +2,15 @@
 // random program (also under random bus stalls) must run clean.
 #include <gtest/gtest.h>
 
-#include "tb/lockstep.h"
+#include "backends/lockstep.h"
 #include "tb/progen.h"
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 namespace {
 
 using namespace ins;
+using tb::ProgramGenerator;
 
 struct Rig {
   explicit Rig(const std::string& name, LockstepOptions lo = {}, RtlOptions ro = {})
@@ -126,4 +127,4 @@ TEST(Lockstep, ConfigurationsMustMatch) {
 }
 
 }  // namespace
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

@@ -11,8 +11,8 @@
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "tb/lockstep.h"
-#include "tb/rtl_bus.h"
+#include "backends/lockstep.h"
+#include "backends/rtl/rtl_bus.h"
 
 namespace fmpp {
 namespace {
@@ -24,8 +24,8 @@ constexpr unsigned kSel = 0, kTmp = 3;
 struct Rig {
   explicit Rig(const std::string& backend, const std::string& config = "small") : cfg(named_config(config)), model(cfg) {
     if (backend == "rtl") {
-      rtl = tb::make_rtl_bus(config);
-      lock = std::make_unique<tb::Lockstep>(*rtl, model, tb::LockstepOptions{});
+      rtl = backends::make_rtl_bus(config);
+      lock = std::make_unique<backends::Lockstep>(*rtl, model, backends::LockstepOptions{});
       dev = std::make_unique<Device>(*lock);
     } else {
       dev = std::make_unique<Device>(model);
@@ -36,8 +36,8 @@ struct Rig {
   }
   Config cfg;
   ModelBus model;
-  std::unique_ptr<tb::RtlBus> rtl;
-  std::unique_ptr<tb::Lockstep> lock;
+  std::unique_ptr<backends::RtlBus> rtl;
+  std::unique_ptr<backends::Lockstep> lock;
   std::unique_ptr<Device> dev;
 };
 

@@ -8,8 +8,8 @@
 #include <functional>
 #include <fstream>
 
-#include "sw/util/output_file.h"
-#include "sw/util/process.h"
+#include "common/util/output_file.h"
+#include "common/util/process.h"
 #include "sw/rt/image.h"
 
 namespace fmpp {

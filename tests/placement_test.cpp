@@ -17,7 +17,7 @@
 #include "sw/isect/kernels.h"
 #include "sw/isect/policy.h"
 #include "sw/isect/reference.h"
-#include "tb/backend.h"
+#include "backends/backend.h"
 
 namespace fmpp::isect {
 namespace {

@@ -3,7 +3,7 @@
 // reference in at most a few pixels (bound and reason in docs/raytracer.md).
 #include <gtest/gtest.h>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/rt/render.h"
 
 #ifndef FMPP_SOURCE_DIR

@@ -5,10 +5,10 @@
 
 #include <climits>
 
-#include "tb/lockstep.h"
-#include "tb/rtl_bus.h"
+#include "backends/lockstep.h"
+#include "backends/rtl/rtl_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 namespace {
 
 using namespace ins;
@@ -206,4 +206,4 @@ INSTANTIATE_TEST_SUITE_P(Configs, RtlDirected, ::testing::Values("tiny", "odd", 
                          [](const auto& info) { return info.param; });
 
 }  // namespace
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

@@ -1,4 +1,4 @@
-// The SystemC TLM-2.0 platform (tb/sc/) over the golden model: the target's mapping
+// The SystemC TLM-2.0 platform (backends/systemc/) over the golden model: the target's mapping
 // of generic payloads onto AXI beats, its refusal of every payload the AXI port cannot
 // express, its delay annotation, and SystemCBus running host code unchanged.
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 
 #include "fmpp/model_bus.h"
 #include "tb/progen.h"
-#include "tb/sc/kernel.h"
-#include "tb/sc/systemc_bus.h"
-#include "tb/sc/tlm_target.h"
+#include "backends/systemc/kernel.h"
+#include "backends/systemc/systemc_bus.h"
+#include "backends/systemc/tlm_target.h"
 
 namespace fmpp::sc {
 namespace {

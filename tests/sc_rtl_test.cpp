@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "fmpp/model_bus.h"
-#include "tb/lockstep.h"
+#include "backends/lockstep.h"
 #include "tb/progen.h"
-#include "tb/sc/systemc_bus.h"
+#include "backends/systemc/systemc_bus.h"
 
 namespace fmpp::sc {
 namespace {
@@ -14,11 +14,11 @@ namespace {
 using namespace ins;
 
 TEST(SystemCRtl, RandomProgramInLockstepWithTheModel) {
-  for (auto mode : {tb::LockstepOptions::Mode::kCheck, tb::LockstepOptions::Mode::kFast}) {
-    auto rtl = make_systemc_rtl_bus(tb::make_rtl_bus("tiny"));
+  for (auto mode : {backends::LockstepOptions::Mode::kCheck, backends::LockstepOptions::Mode::kFast}) {
+    auto rtl = make_systemc_rtl_bus(backends::make_rtl_bus("tiny"));
     EXPECT_EQ(rtl->name(), "systemc");
     ModelBus model(rtl->config());
-    tb::Lockstep lock(*rtl, model, tb::LockstepOptions{mode, 64});
+    backends::Lockstep lock(*rtl, model, backends::LockstepOptions{mode, 64});
     tb::ProgramGenerator gen(rtl->config(), 17);
     for (int k = 0; k < 4000; ++k) gen.step(lock);
     lock.final_check();
@@ -28,14 +28,14 @@ TEST(SystemCRtl, RandomProgramInLockstepWithTheModel) {
 }
 
 TEST(SystemCRtl, RandomProgramUnderBusStalls) {
-  tb::RtlOptions ro;
+  backends::RtlOptions ro;
   ro.stress = true;
   ro.stress_seed = 9;
-  auto rtl = make_systemc_rtl_bus(tb::make_rtl_bus("small", ro));
+  auto rtl = make_systemc_rtl_bus(backends::make_rtl_bus("small", ro));
   ModelBus model(rtl->config());
-  tb::LockstepOptions lo;
+  backends::LockstepOptions lo;
   lo.compare_cycles = false;
-  tb::Lockstep lock(*rtl, model, lo);
+  backends::Lockstep lock(*rtl, model, lo);
   tb::ProgramGenerator gen(rtl->config(), 4);
   for (int k = 0; k < 3000; ++k) gen.step(lock);
   lock.final_check();
@@ -43,7 +43,7 @@ TEST(SystemCRtl, RandomProgramUnderBusStalls) {
 }
 
 TEST(SystemCRtl, IdleClocksAndTheBackDoorStayConsistent) {
-  auto rtl = make_systemc_rtl_bus(tb::make_rtl_bus("tiny"));
+  auto rtl = make_systemc_rtl_bus(backends::make_rtl_bus("tiny"));
   const Config cfg = rtl->config();
   ASSERT_EQ(rtl->write(map::kWinWordsBase + (1u << 3), 0x1234, 0x0F), Resp::kOkay);
   rtl->idle(7);  // not a bus access: the SystemC side is told of the clocks
@@ -53,7 +53,7 @@ TEST(SystemCRtl, IdleClocksAndTheBackDoorStayConsistent) {
   ASSERT_EQ(rtl->read(map::kRegCycles, &cycles), Resp::kOkay);
   EXPECT_GE(rtl->cycles(), 10u);
   EXPECT_LE(rtl->cycles() - cycles, 1u);
-  const tb::ArchState st = rtl->state();
+  const backends::ArchState st = rtl->state();
   EXPECT_EQ(st.word(0, 1), 0x1234u);
   EXPECT_EQ(st.word(0, 2), 0x2468u);
   EXPECT_EQ(st.cfg.blocks, cfg.blocks);

@@ -26,8 +26,8 @@
 #include "sw/embree/hit_check.h"
 #include "sw/rt/render.h"
 #include "sw/rt/scene.h"
-#include "sw/util/cli_checks.h"
-#include "sw/util/files.h"
+#include "common/util/cli_checks.h"
+#include "common/util/files.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "sw/util/output_file.h"
+#include "common/util/output_file.h"
 
 namespace fmpp::isect {
 namespace {

@@ -44,34 +44,6 @@ static_assert(std::is_trivially_copyable_v<Record> && sizeof(Record) == 32, "Rec
 
 }  // namespace
 
-Fault Fault::from_env() {
-  Fault f;
-  const char* v = std::getenv("FMPP_TEST_FAULT");
-  if (v == nullptr || *v == 0) return f;
-  const std::string s(v);
-  const size_t a = s.find(':'), b = a == std::string::npos ? a : s.find(':', a + 1);
-  try {
-    if (b == std::string::npos) throw std::invalid_argument("form");
-    f.rank = std::stoi(s.substr(0, a));
-    f.passes = std::stoull(s.substr(a + 1, b - a - 1));
-    f.how = s.substr(b + 1);
-  } catch (const std::exception&) {
-    throw std::invalid_argument("FMPP_TEST_FAULT='" + s + "': expected rank:passes:kill|exit|throw");
-  }
-  if (f.how != "kill" && f.how != "exit" && f.how != "throw") {
-    throw std::invalid_argument("FMPP_TEST_FAULT='" + s + "': '" + f.how + "' is not one of kill, exit, throw");
-  }
-  return f;
-}
-
-void Fault::maybe(int my_rank, uint64_t done) const {
-  if (my_rank != rank || done != passes) return;
-  if (how == "kill") std::raise(SIGKILL);
-  if (how == "exit") std::_Exit(3);
-  throw std::runtime_error("FMPP_TEST_FAULT: injected backend error after " + std::to_string(done) +
-                           " passes of this rank");
-}
-
 SharedPasses::SharedPasses(const Session& s, WorkQueue& q, const Device& dev, bool leader_works)
     : s_(s), q_(q), dev_(dev), fault_(Fault::from_env()), idle_(s.leader() && !leader_works && s.size() > 1),
       last_clocks_(dev.cycles()) {}

@@ -15,24 +15,10 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/pass.h"
-#include "sw/mpi/session.h"
-#include "sw/mpi/work_queue.h"
+#include "common/mpi/session.h"
+#include "common/mpi/work_queue.h"
 
 namespace fmpp::mpi {
-
-// Test-only fault injection, FMPP_TEST_FAULT=rank:passes:how (how: kill, exit, throw):
-// that rank, when it has run `passes` passes (or fmpp-sim runs) and asks the queue for
-// more, kills itself with SIGKILL, exits with status 3 without a word, or throws (as a
-// backend reporting an error would). Every rank asks at least once per pass loop, so
-// `passes` = 0 always fires. Parsed from the environment; an ill-formed value is an error.
-struct Fault {
-  int rank = -1;
-  uint64_t passes = 0;
-  std::string how;
-  static Fault from_env();
-  // Called before each of this rank's passes with the passes it has run.
-  void maybe(int my_rank, uint64_t done) const;
-};
 
 class SharedPasses : public isect::PassShare {
  public:

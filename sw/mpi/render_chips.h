@@ -17,8 +17,8 @@
 #include "sw/isect/kernels.h"
 #include "sw/rt/render.h"
 #include "sw/mpi/pass_share.h"
-#include "sw/mpi/session.h"
-#include "sw/mpi/work_queue.h"
+#include "common/mpi/session.h"
+#include "common/mpi/work_queue.h"
 
 namespace fmpp::mpi {
 

@@ -12,7 +12,7 @@
 #include "sw/report/area.h"
 #include "sw/report/fpga.h"
 #include "sw/report/report.h"
-#include "sw/util/files.h"
+#include "common/util/files.h"
 
 namespace fmpp::report {
 

@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "sw/util/files.h"
-#include "sw/util/output_file.h"
-#include "sw/util/process.h"
+#include "common/util/files.h"
+#include "common/util/output_file.h"
+#include "common/util/process.h"
 
 
 #ifndef FMPP_SOURCE_DIR

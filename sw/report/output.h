@@ -62,7 +62,7 @@ void prepare_outputs(ReportOutput& o);
 // Writes `markdown` to o.out and `data` to o.data_dir/o.data_name (creating the
 // directories), then, unless --no-plots, runs
 // python3 FMPP_SOURCE_DIR/tools/<plot_script> <data file> <img_dir> (fmpp::run_program,
-// sw/util/process.h: no shell).
+// common/util/process.h: no shell).
 // Throws std::runtime_error naming the file or command that failed.
 void write_report(const ReportOutput& o, const std::string& markdown, const nlohmann::json& data);
 

@@ -12,7 +12,7 @@
 #include "sw/isect/cpu_baseline.h"
 #include "sw/isect/policy.h"
 #include "sw/report/paper.h"
-#include "tb/backend.h"
+#include "backends/backend.h"
 
 namespace fmpp::report::paper {
 namespace {

@@ -14,7 +14,7 @@
 #include "sw/isect/reference.h"
 #include "sw/report/precision.h"
 #include "sw/rt/render.h"
-#include "tb/backend.h"
+#include "backends/backend.h"
 
 namespace fmpp::report::precision {
 namespace {

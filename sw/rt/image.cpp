@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "sw/util/output_file.h"
+#include "common/util/output_file.h"
 
 namespace rt {
 

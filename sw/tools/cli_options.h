@@ -1,6 +1,6 @@
 // Command-line options the tools share that know the backends (fmpp-intersect,
-// fmpp-render, fmpp-report). The generic checks are in sw/util/cli_checks.h and the
-// output-file helpers in sw/util/files.h.
+// fmpp-render, fmpp-report). The generic checks are in common/util/cli_checks.h and the
+// output-file helpers in common/util/files.h.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "sw/util/cli_checks.h"
-#include "sw/util/files.h"
-#include "tb/backend.h"
-#include "tb/rtl_bus.h"
+#include "common/util/cli_checks.h"
+#include "common/util/files.h"
+#include "backends/backend.h"
+#include "backends/rtl/rtl_bus.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -59,11 +59,11 @@ inline void check_config_name(const std::string& backend, const std::string& con
   if (config.empty()) return;
   (void)named_config(config);  // throws naming the known ones
   if (backend == "cmodel" || backend == "reference") return;
-  for (const std::string& name : tb::rtl_configs()) {
+  for (const std::string& name : backends::rtl_configs()) {
     if (name == config) return;
   }
   throw std::invalid_argument("--config " + config + ": no Verilated FMPP of that configuration is built (built: " +
-                              join(tb::rtl_configs(), ", ") + "); use --backend cmodel for any size");
+                              join(backends::rtl_configs(), ", ") + "); use --backend cmodel for any size");
 }
 
 // --backend: "reference" (the host's double-precision reference, no machine) and the

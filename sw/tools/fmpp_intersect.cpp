@@ -13,14 +13,14 @@
 #include <chrono>
 #include <cstdio>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/io.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/reference.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
       if (config.empty() && !words && backend != "cmodel") {
         // The RTL exists in its built sizes only: the default words are the fewest of a
         // built configuration with these blocks that holds what the kernel needs.
-        for (const std::string& name : tb::rtl_configs()) {
+        for (const std::string& name : backends::rtl_configs()) {
           const Config c = named_config(name);
           if (c.blocks == cfg.blocks && c.words >= need && (cfg.words == need || c.words < cfg.words)) cfg = c;
         }

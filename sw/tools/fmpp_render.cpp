@@ -23,7 +23,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "tb/backend.h"
+#include "backends/backend.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
 #include "sw/rt/plan.h"
@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
       pr.max_depth = depth;
       pr.target_wrong_rate = target;
       pr.sample_pixels = sample_pixels;
-      if (backend != "cmodel") pr.rtl_configs = tb::rtl_configs();
+      if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
       pr.base.mapping = isect::parse_mapping(mapping);
       pr.base.mul = isect::parse_mul_mode(mul);
       pr.base.watertight = watertight;

@@ -11,9 +11,9 @@
 
 #include "fmpp/machine.h"
 #include "fmpp/model_bus.h"
-#include "tb/lockstep.h"
+#include "backends/lockstep.h"
 #include "tb/progen.h"
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 #include "tests/bench/kernel_mix.h"
 
 namespace {
@@ -55,7 +55,7 @@ BENCHMARK(BM_ModelBusMix)->Arg(1024)->Arg(4096)->Arg(65536);
 
 // The Verilated RTL running the kernel mix, one push per clock.
 void BM_RtlMix(benchmark::State& state, const char* config) {
-  auto rtl = tb::make_rtl_bus(config);
+  auto rtl = backends::make_rtl_bus(config);
   const Config cfg = rtl->config();
   const auto prog = kernel_mix(cfg.words, 4096, 1);
   size_t i = 0;
@@ -73,15 +73,15 @@ BENCHMARK_CAPTURE(BM_RtlMix, large, "large")->Unit(benchmark::kMicrosecond);
 
 // Random regression programs: unchecked RTL, then lockstep in each mode.
 void BM_Regression(benchmark::State& state, const char* config, int mode) {
-  auto rtl = tb::make_rtl_bus(config);
+  auto rtl = backends::make_rtl_bus(config);
   const Config cfg = rtl->config();
   ModelBus model(cfg);
-  std::unique_ptr<tb::Lockstep> lock;
+  std::unique_ptr<backends::Lockstep> lock;
   if (mode >= 0) {
-    tb::LockstepOptions lo;
-    lo.mode = static_cast<tb::LockstepOptions::Mode>(mode);
+    backends::LockstepOptions lo;
+    lo.mode = static_cast<backends::LockstepOptions::Mode>(mode);
     lo.hash_interval = 4096;
-    lock = std::make_unique<tb::Lockstep>(*rtl, model, lo);
+    lock = std::make_unique<backends::Lockstep>(*rtl, model, lo);
   }
   Bus& bus = lock ? static_cast<Bus&>(*lock) : static_cast<Bus&>(*rtl);
   tb::ProgramGenerator gen(cfg, 1);

@@ -1,4 +1,4 @@
-// Benchmarks of the SystemC TLM-2.0 platform (tb/sc/) against the direct drivers
+// Benchmarks of the SystemC TLM-2.0 platform (backends/systemc/) against the direct drivers
 // (figures go to docs/perf.md, never asserted). Each pair runs the same access
 // sequence on the same configuration, once on the direct Bus and once through
 // initiator socket -> b_transport -> target -> the same kind of Bus:
@@ -17,8 +17,8 @@
 
 #include "fmpp/model_bus.h"
 #include "tb/progen.h"
-#include "tb/rtl_bus.h"
-#include "tb/sc/systemc_bus.h"
+#include "backends/rtl/rtl_bus.h"
+#include "backends/systemc/systemc_bus.h"
 #include "tests/bench/kernel_mix.h"
 
 namespace {
@@ -31,8 +31,8 @@ enum class Backend { kRtl, kSystemCRtl, kModel, kSystemCModel, kSystemCModelSync
 
 std::unique_ptr<Bus> make(Backend b, const std::string& config) {
   switch (b) {
-    case Backend::kRtl: return tb::make_rtl_bus(config);
-    case Backend::kSystemCRtl: return sc::make_systemc_bus(tb::make_rtl_bus(config));
+    case Backend::kRtl: return backends::make_rtl_bus(config);
+    case Backend::kSystemCRtl: return sc::make_systemc_bus(backends::make_rtl_bus(config));
     case Backend::kModel: return std::make_unique<ModelBus>(named_config(config));
     case Backend::kSystemCModel: return sc::make_systemc_bus(std::make_unique<ModelBus>(named_config(config)));
     case Backend::kSystemCModelSync: {

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The map is the single source of the encoding: move the fields and see everything follow.
 
-Copies the parts of the repository that carry the encoding (rtl/, cmodel/, tb/, the host
-driver sw/fmpp/, tools/, docs/) to a scratch directory and edits the copy's map: every
+Copies the parts of the repository that carry the encoding (rtl/, cmodel/, backends/, tb/,
+the host driver sw/fmpp/, tools/, docs/) to a scratch directory and edits the copy's map: every
 instruction field moves, most sub-fields move, REF_FN/REF_PART/FUNC_FN get other codes,
 opcodes, error causes and flag indices are renumbered, and most register fields move.
 Then it
@@ -28,7 +28,7 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-COPIED = ["rtl", "cmodel", "tb", "tools", "docs", os.path.join("sw", "fmpp"), os.path.join("tests", "map")]
+COPIED = ["rtl", "cmodel", "backends", "tb", "tools", "docs", os.path.join("sw", "fmpp"), os.path.join("tests", "map")]
 
 # New positions: instruction fields (a permutation filling all 64 bits), sub-fields
 # (lsb within their field), register fields, and new codes.
@@ -139,8 +139,8 @@ def build_and_run(scratch, accesses):
         if f.endswith(".sv") and f != "fmpp_pkg.sv")
     model = sorted(os.path.join("cmodel", "src", f) for f in os.listdir(os.path.join(scratch, "cmodel", "src"))
                    if f.endswith(".cpp"))
-    cpp = [os.path.join("tests", "map", "moved_lockstep_main.cpp")] + model + [os.path.join("tb", "arch_state.cpp"),
-           os.path.join("tb", "lockstep.cpp"), os.path.join("tb", "progen.cpp"),
+    cpp = [os.path.join("tests", "map", "moved_lockstep_main.cpp")] + model + [os.path.join("backends", "rtl", "arch_state.cpp"),
+           os.path.join("backends", "lockstep.cpp"), os.path.join("tb", "progen.cpp"),
            os.path.join("sw", "fmpp", "device.cpp"), os.path.join("sw", "fmpp", "program.cpp")]
     # Unoptimised: the run is short, the compile is what takes the time.
     cflags = f"-std=c++17 -O0 -I{scratch} -I{os.path.join(scratch, 'cmodel', 'include')}"

@@ -13,9 +13,9 @@
 #include "Vfmpp_tiny.h"
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "tb/lockstep.h"
+#include "backends/lockstep.h"
 #include "tb/progen.h"
-#include "tb/rtl_bus_impl.h"
+#include "backends/rtl/rtl_bus_impl.h"
 
 namespace {
 
@@ -88,9 +88,9 @@ int main(int argc, char** argv) {
   const unsigned long seed = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 1;
   try {
     const Config cfg = named_config("tiny");
-    tb::RtlBusImpl<Vfmpp_tiny> rtl(cfg, tb::RtlOptions{});
+    backends::RtlBusImpl<Vfmpp_tiny> rtl(cfg, backends::RtlOptions{});
     ModelBus model(cfg);
-    tb::Lockstep ls(rtl, model, tb::LockstepOptions{});
+    backends::Lockstep ls(rtl, model, backends::LockstepOptions{});
     Device dev(ls);
     directed(dev);
     tb::ProgramGenerator gen(cfg, seed);

@@ -7,7 +7,7 @@
 // the first edge with room in the queue; every other access at the first edge
 // with the queue empty. cycles() counts edges since reset, as the RTL's CYCLES does,
 // for a bus master that holds BREADY/RREADY high and starts each access as soon as
-// the previous one is accepted (tb/rtl_bus.h drives the RTL that way).
+// the previous one is accepted (backends/rtl/rtl_bus.h drives the RTL that way).
 #pragma once
 
 #include <cstdint>

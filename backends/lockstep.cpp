@@ -1,9 +1,9 @@
 // Lockstep cross-check of the Verilated RTL against the golden model.
-#include "tb/lockstep.h"
+#include "backends/lockstep.h"
 
 #include <cstdio>
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 
 LockstepOptions::Mode parse_lockstep_mode(const std::string& s) {
   if (s == "check") return LockstepOptions::Mode::kCheck;
@@ -33,7 +33,7 @@ std::string describe(const QueueEntry& e) {
 
 Lockstep::Lockstep(RtlBus& rtl, ModelBus& model, const LockstepOptions& opt) : rtl_(rtl), model_(model), opt_(opt) {
   if (rtl_.config().blocks != model_.config().blocks || rtl_.config().words != model_.config().words) {
-    throw std::invalid_argument("fmpp::tb::Lockstep: RTL is " + rtl_.config().str() + " but the model is " +
+    throw std::invalid_argument("fmpp::backends::Lockstep: RTL is " + rtl_.config().str() + " but the model is " +
                                 model_.config().str());
   }
   const bool check = opt_.mode == LockstepOptions::Mode::kCheck;
@@ -174,4 +174,4 @@ void Lockstep::final_check() {
   ++state_checks_;
 }
 
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

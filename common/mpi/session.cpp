@@ -1,5 +1,5 @@
 // Open MPI's lifetime and the collectives of the tools (see session.h).
-#include "sw/mpi/session.h"
+#include "common/mpi/session.h"
 
 #include <cstdio>
 #include <cstdlib>

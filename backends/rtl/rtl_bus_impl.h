@@ -1,5 +1,5 @@
 // RtlBus for one Verilated configuration (V = the generated class, e.g. Vfmpp_small).
-// Included only by the generated per-configuration file (tb/rtl_config.cpp.in), once per configuration.
+// Included only by the generated per-configuration file (backends/rtl/rtl_config.cpp.in), once per configuration.
 #pragma once
 
 #include <verilated.h>
@@ -13,9 +13,9 @@
 #include <string>
 #include <stdexcept>
 
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 
 // A public_flat_rd RTL variable located by scope and name; bits read little-endian.
 class VarView {
@@ -352,4 +352,4 @@ class RtlBusImpl final : public RtlBus {
   std::string failure_;
 };
 
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

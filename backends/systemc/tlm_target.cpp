@@ -1,5 +1,5 @@
 // The FMPP TLM-2.0 target (see tlm_target.h).
-#include "tb/sc/tlm_target.h"
+#include "backends/systemc/tlm_target.h"
 
 #include <cstring>
 #include <stdexcept>

@@ -1,11 +1,11 @@
 // The FMPP over SystemC TLM-2.0: initiator, Bus adapter and factories (see systemc_bus.h).
-#include "tb/sc/systemc_bus.h"
+#include "backends/systemc/systemc_bus.h"
 
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
-#include "tb/sc/kernel.h"
+#include "backends/systemc/kernel.h"
 
 namespace fmpp::sc {
 
@@ -154,9 +154,9 @@ std::unique_ptr<SystemCBus> make_systemc_bus(std::unique_ptr<Bus> device, const 
 
 namespace {
 
-class SystemCRtlBus final : public tb::RtlBus {
+class SystemCRtlBus final : public backends::RtlBus {
  public:
-  SystemCRtlBus(std::unique_ptr<tb::RtlBus> rtl, const ScOptions& opt) : rtl_(rtl.get()), bus_(std::move(rtl), opt) {}
+  SystemCRtlBus(std::unique_ptr<backends::RtlBus> rtl, const ScOptions& opt) : rtl_(rtl.get()), bus_(std::move(rtl), opt) {}
 
   Resp write(uint32_t addr, uint64_t data, uint8_t strb) override { return bus_.write(addr, data, strb); }
   Resp read(uint32_t addr, uint64_t* data) override { return bus_.read(addr, data); }
@@ -164,7 +164,7 @@ class SystemCRtlBus final : public tb::RtlBus {
   std::string name() const override { return "systemc"; }
 
   const Config& config() const override { return rtl_->config(); }
-  tb::ArchState state() const override { return rtl_->state(); }
+  backends::ArchState state() const override { return rtl_->state(); }
   ErrorState error_state() const override { return rtl_->error_state(); }
   uint8_t gap() const override { return rtl_->gap(); }
   void set_exec_hook(ExecHook h) override { rtl_->set_exec_hook(std::move(h)); }
@@ -181,13 +181,13 @@ class SystemCRtlBus final : public tb::RtlBus {
   }
 
  private:
-  tb::RtlBus* rtl_;  // owned by bus_ (initialized first: declared first)
+  backends::RtlBus* rtl_;  // owned by bus_ (initialized first: declared first)
   SystemCBus bus_;
 };
 
 }  // namespace
 
-std::unique_ptr<tb::RtlBus> make_systemc_rtl_bus(std::unique_ptr<tb::RtlBus> rtl, const ScOptions& opt) {
+std::unique_ptr<backends::RtlBus> make_systemc_rtl_bus(std::unique_ptr<backends::RtlBus> rtl, const ScOptions& opt) {
   if (!rtl) throw std::invalid_argument("fmpp::sc::make_systemc_rtl_bus: no RTL bus");
   return std::make_unique<SystemCRtlBus>(std::move(rtl), opt);
 }

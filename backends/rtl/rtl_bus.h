@@ -19,7 +19,7 @@
 #include "fmpp/machine.h"
 #include "fmpp/model_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 
 // The RTL's architectural state, in the golden model's layout.
 struct ArchState {
@@ -87,7 +87,7 @@ class RtlBus : public Bus {
 };
 
 // The Verilated configurations linked into this binary (generated per binary from
-// tb/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
+// backends/rtl/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
 std::vector<std::string> rtl_configs();
 // The version of the Verilator that built them ("5.006 2023-01-22"; defined beside
 // rtl_configs(), so a binary without RTL configurations has none).
@@ -96,4 +96,4 @@ std::string verilator_version();
 // naming the configurations this binary has.
 std::unique_ptr<RtlBus> make_rtl_bus(const std::string& name, const RtlOptions& opt = {});
 
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

@@ -6,7 +6,7 @@
 //
 // Host code written against fmpp::Bus (the ray tracer, fmpp-sim's random programs)
 // runs unchanged: make_systemc_bus() wraps any device, make_systemc_rtl_bus() wraps
-// a Verilated RTL bus and keeps its checker interface, so the lockstep (tb/lockstep.h)
+// a Verilated RTL bus and keeps its checker interface, so the lockstep (backends/lockstep.h)
 // can drive the RTL through SystemC while the golden model stays the reference.
 //
 // Time is loosely timed. The host is not a SystemC process: it calls b_transport
@@ -26,8 +26,8 @@
 #include <string>
 
 #include "fmpp/bus.h"
-#include "tb/rtl_bus.h"
-#include "tb/sc/tlm_target.h"
+#include "backends/rtl/rtl_bus.h"
+#include "backends/systemc/tlm_target.h"
 
 namespace fmpp::sc {
 
@@ -100,13 +100,13 @@ class SystemCBus : public Bus {
 };
 
 // The factory host programs use (a later `fmpp-render --backend systemc` too):
-//   auto bus = fmpp::sc::make_systemc_bus(fmpp::tb::make_rtl_bus(blocks, words));
+//   auto bus = fmpp::sc::make_systemc_bus(fmpp::backends::make_rtl_bus(blocks, words));
 //   auto bus = fmpp::sc::make_systemc_bus(std::make_unique<fmpp::ModelBus>(cfg));
 std::unique_ptr<SystemCBus> make_systemc_bus(std::unique_ptr<Bus> device, const ScOptions& opt = {});
 
 // The Verilated RTL behind SystemC, still an RtlBus: bus accesses go through TLM,
 // while the checker's back door (state(), exec hook, idle(), failure()) reaches the
 // RTL directly. fmpp-sim --backend systemc puts this on the RTL side of the lockstep.
-std::unique_ptr<tb::RtlBus> make_systemc_rtl_bus(std::unique_ptr<tb::RtlBus> rtl, const ScOptions& opt = {});
+std::unique_ptr<backends::RtlBus> make_systemc_rtl_bus(std::unique_ptr<backends::RtlBus> rtl, const ScOptions& opt = {});
 
 }  // namespace fmpp::sc

@@ -16,9 +16,9 @@
 #include <string>
 
 #include "fmpp/model_bus.h"
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 
 class LockstepMismatch : public std::runtime_error {
  public:
@@ -79,4 +79,4 @@ class Lockstep : public Bus {
   uint64_t resets_ = 0;
 };
 
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

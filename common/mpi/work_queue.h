@@ -7,11 +7,12 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <map>
 #include <mutex>
 #include <thread>
 
-#include "sw/mpi/session.h"
+#include "common/mpi/session.h"
 
 namespace fmpp::mpi {
 
@@ -44,6 +45,20 @@ class WorkQueue {
   std::map<uint64_t, Job> jobs_;
   std::atomic<bool> stop_{false};
   std::thread server_;
+};
+
+// Test-only fault injection, FMPP_TEST_FAULT=rank:passes:how (how: kill, exit, throw):
+// that rank, when it has run `passes` passes (or fmpp-sim runs) and asks the queue for
+// more, kills itself with SIGKILL, exits with status 3 without a word, or throws (as a
+// backend reporting an error would). Every rank asks at least once per pass loop, so
+// `passes` = 0 always fires. Parsed from the environment; an ill-formed value is an error.
+struct Fault {
+  int rank = -1;
+  uint64_t passes = 0;
+  std::string how;
+  static Fault from_env();
+  // Called before each of this rank's passes with the passes it has run.
+  void maybe(int my_rank, uint64_t done) const;
 };
 
 }  // namespace fmpp::mpi

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include "tb/rtl_bus.h"
+#include "backends/rtl/rtl_bus.h"
 
-namespace fmpp::tb {
+namespace fmpp::backends {
 
 uint64_t ArchState::hash() const {
   return state_digest(
@@ -76,4 +76,4 @@ std::string diff_states(const ArchState& rtl, const ArchState& model, unsigned m
   return o.str();
 }
 
-}  // namespace fmpp::tb
+}  // namespace fmpp::backends

@@ -1,8 +1,10 @@
 // Items handed out on demand by rank 0 (see work_queue.h).
-#include "sw/mpi/work_queue.h"
+#include "common/mpi/work_queue.h"
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -82,6 +84,34 @@ void WorkQueue::serve() {
     MPI_Send(&give, 1, MPI_INT64_T, st.MPI_SOURCE, kTagGive, MPI_COMM_WORLD);
   }
 #endif
+}
+
+Fault Fault::from_env() {
+  Fault f;
+  const char* v = std::getenv("FMPP_TEST_FAULT");
+  if (v == nullptr || *v == 0) return f;
+  const std::string s(v);
+  const size_t a = s.find(':'), b = a == std::string::npos ? a : s.find(':', a + 1);
+  try {
+    if (b == std::string::npos) throw std::invalid_argument("form");
+    f.rank = std::stoi(s.substr(0, a));
+    f.passes = std::stoull(s.substr(a + 1, b - a - 1));
+    f.how = s.substr(b + 1);
+  } catch (const std::exception&) {
+    throw std::invalid_argument("FMPP_TEST_FAULT='" + s + "': expected rank:passes:kill|exit|throw");
+  }
+  if (f.how != "kill" && f.how != "exit" && f.how != "throw") {
+    throw std::invalid_argument("FMPP_TEST_FAULT='" + s + "': '" + f.how + "' is not one of kill, exit, throw");
+  }
+  return f;
+}
+
+void Fault::maybe(int my_rank, uint64_t done) const {
+  if (my_rank != rank || done != passes) return;
+  if (how == "kill") std::raise(SIGKILL);
+  if (how == "exit") std::_Exit(3);
+  throw std::runtime_error("FMPP_TEST_FAULT: injected backend error after " + std::to_string(done) +
+                           " passes of this rank");
 }
 
 }  // namespace fmpp::mpi

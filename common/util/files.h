@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sw/util/output_file.h"
+#include "common/util/output_file.h"
 
 namespace fmpp {
 
@@ -38,7 +38,7 @@ inline void check_writable(const std::string& option, const std::string& path, b
 }
 
 // Writes `text` to `path`, or to stdout for "-": checked, and atomic for a file
-// (write_output, sw/util/output_file.h).
+// (write_output, common/util/output_file.h).
 inline void write_text(const std::string& path, const std::string& text) { write_output(path, text); }
 
 }  // namespace fmpp

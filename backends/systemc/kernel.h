@@ -1,4 +1,4 @@
-// The SystemC kernel's life cycle, for the FMPP's TLM platforms (tb/sc/).
+// The SystemC kernel's life cycle, for the FMPP's TLM platforms (backends/systemc/).
 //
 // The SystemC kernel (one per process) accepts new modules only until elaboration
 // ends, and elaboration ends at the first use of a platform. A program that builds

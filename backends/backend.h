@@ -2,16 +2,18 @@
 //   cmodel    the golden model
 //   rtl       the Verilated RTL (a configuration built into this binary)
 //   lockstep  the RTL and the golden model together, every access cross-checked
-//   systemc   the Verilated RTL behind the SystemC TLM-2.0 platform (when SystemC is built)
+//   systemc   the Verilated RTL behind the SystemC TLM-2.0 platform, in binaries that link
+//             the fmpp_backend_systemc object library (only those link SystemC)
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "fmpp/model_bus.h"
-#include "tb/lockstep.h"
-#include "tb/rtl_bus.h"
+#include "backends/lockstep.h"
+#include "backends/rtl/rtl_bus.h"
 
 namespace fmpp {
 
@@ -28,8 +30,8 @@ class Backend {
   const std::string& name() const { return name_; }
   const Config& config() const { return cfg_; }
   // The Verilated model behind rtl, lockstep and systemc (nullptr for cmodel).
-  tb::RtlBus* rtl_bus() { return rtl_view_; }
-  // Lockstep: compares the final state (throws tb::LockstepMismatch). rtl, systemc:
+  backends::RtlBus* rtl_bus() { return rtl_view_; }
+  // Lockstep: compares the final state (throws backends::LockstepMismatch). rtl, systemc:
   // throws std::runtime_error if an RTL assertion failed (every access checks it too).
   void finish();
 
@@ -39,16 +41,21 @@ class Backend {
   std::string name_;
   Config cfg_;
   std::unique_ptr<ModelBus> model_;
-  std::unique_ptr<tb::RtlBus> rtl_;
-  std::unique_ptr<tb::Lockstep> lock_;
+  std::unique_ptr<backends::RtlBus> rtl_;
+  std::unique_ptr<backends::Lockstep> lock_;
   std::unique_ptr<Bus> owned_;  // other wrappers (SystemC)
   std::unique_ptr<Bus> checked_;  // rtl, systemc: the bus that stops at an RTL assertion failure
-  tb::RtlBus* rtl_view_ = nullptr;  // the Verilated model behind any of them
+  backends::RtlBus* rtl_view_ = nullptr;  // the Verilated model behind any of them
   Bus* bus_ = nullptr;
 };
 
-// Names accepted by make_backend.
+// Names accepted by make_backend in this binary.
 std::vector<std::string> backend_names();
+
+// The systemc backend's maker: wraps a Verilated model in the SystemC platform. Set once,
+// before main, by the fmpp_backend_systemc object library (backends/systemc/register.cpp).
+using SystemcWrapper = std::function<std::unique_ptr<Bus>(std::unique_ptr<backends::RtlBus>)>;
+bool register_systemc_backend(SystemcWrapper wrap);
 
 // Builds the named backend with exactly `cfg` blocks and words. For rtl and lockstep the
 // configuration must be one of the built ones; the error lists them.

@@ -1,5 +1,5 @@
 // The SystemC kernel's life cycle (see kernel.h).
-#include "tb/sc/kernel.h"
+#include "backends/systemc/kernel.h"
 
 #include <systemc>
 
