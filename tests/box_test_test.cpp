@@ -1,4 +1,4 @@
-// The FMPP's ray-box test (sw/isect/box_test.h) on the golden model: for random boxes,
+// The FMPP's ray-box test (sw/isect/cull/box_test.h) on the golden model: for random boxes,
 // directions and current bests, every block whose ray meets the box before its best
 // (evaluated on the host from the block's own words; a block flagged uncertain has no
 // bound from its best) ends with SEL = 1; blocks beyond
@@ -13,10 +13,11 @@
 #include <vector>
 
 #include "sw/fmpp/device.h"
-#include "sw/isect/box_test.h"
-#include "sw/isect/fixed_point.h"
-#include "sw/isect/layout.h"
+#include "sw/isect/cull/box_test.h"
+#include "sw/isect/pass/fixed_point.h"
+#include "sw/isect/pass/layout.h"
 #include "backends/backend.h"
+#include "sw/isect/forms/shared_origin_layout.h"
 
 namespace fmpp::isect {
 namespace {

@@ -1,8 +1,8 @@
-// Culling and coherent passes of the ray-parallel mapping (sw/isect/cull.h, order.h,
-// oracle.h): the packet-box test never rejects a box a ray of the packet enters, the
-// coherent order is a permutation that tiles an image, and culling and the order change
-// no result of intersect_fmpp (golden model) on shared-origin, shadow and
-// arbitrary-origin rays, including edge and vertex rays of a closed mesh.
+// Culling and coherent passes of the ray-parallel mapping (sw/isect/cull/): culling and
+// the order change no result of intersect_fmpp (golden model) on shared-origin, shadow
+// and arbitrary-origin rays, including edge and vertex rays of a closed mesh; the hints,
+// the shared passes' order and the oracles. (The packet-box test and the order itself:
+// cull_order_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,100 +10,17 @@
 
 #include "backends/backend.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/cull.h"
+#include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/meshes.h"
-#include "sw/isect/oracle.h"
-#include "sw/isect/order.h"
-#include "sw/isect/pass.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/report/meshes.h"
+#include "sw/isect/cull/oracle.h"
+#include "sw/isect/cull/order.h"
+#include "sw/isect/pass/pass.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 
 namespace fmpp::isect {
 namespace {
-
-// Does the segment o + t d, t in [t0, t1], meet the box? (slab test, double)
-bool ray_enters(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1, const Box& b) {
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (o[a] < b.lo[a] || o[a] > b.hi[a]) return false;
-      continue;
-    }
-    double ta = (b.lo[a] - o[a]) / d[a], tb = (b.hi[a] - o[a]) / d[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  return t0 <= t1;
-}
-
-TEST(CullBox, PacketTestNeverRejectsAnEnteredBox) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-1, 1);
-  size_t entered = 0;
-  for (int trial = 0; trial < 300; ++trial) {
-    std::vector<Ray> rays;
-    const glm::dvec3 o0(u(rng) * 3, u(rng) * 3, u(rng) * 3), d0(u(rng), u(rng), u(rng));
-    for (int k = 0; k < 8; ++k) {
-      Ray r{o0 + 0.2 * glm::dvec3(u(rng), u(rng), u(rng)), d0 + 0.3 * glm::dvec3(u(rng), u(rng), u(rng))};
-      r.tmax = trial % 2 ? 2 + u(rng) : std::numeric_limits<double>::infinity();
-      rays.push_back(r);
-    }
-    std::vector<size_t> idx(rays.size());
-    for (size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    const RayPacket p = make_packets(rays, idx, 0, idx.size(), idx.size(), 0)[0];
-    for (int j = 0; j < 50; ++j) {
-      Box b;
-      b.grow(glm::dvec3(u(rng), u(rng), u(rng)) * 3.0);
-      b.grow(b.lo + 0.5 * glm::dvec3(u(rng) + 1, u(rng) + 1, u(rng) + 1));
-      bool any = false;
-      for (const Ray& r : rays) any = any || ray_enters(r.o, r.d, 0, r.tmax, b);
-      entered += any;
-      if (any) {
-        EXPECT_TRUE(may_enter(p, b)) << "trial " << trial << " box " << j;
-      }
-    }
-  }
-  EXPECT_GT(entered, 150u) << "the test must exercise boxes the rays enter";
-  // A box behind every ray, and one beyond the rays' reach, are rejected.
-  Ray r{{0, 0, 0}, {0, 0, 1}};
-  r.tmax = 1;
-  const std::vector<size_t> one{0};
-  const RayPacket p = make_packets({r}, one, 0, 1, 1, 0)[0];
-  Box behind, beyond, hit;
-  behind.grow({-1, -1, -3});
-  behind.grow({1, 1, -2});
-  beyond.grow({-1, -1, 2});
-  beyond.grow({1, 1, 3});
-  hit.grow({-1, -1, 0.5});
-  hit.grow({1, 1, 3});
-  EXPECT_FALSE(may_enter(p, behind));
-  EXPECT_FALSE(may_enter(p, beyond));
-  EXPECT_TRUE(may_enter(p, hit));
-}
-
-TEST(CoherentOrder, PermutesAndTilesAnImage) {
-  // 32 x 32 primary rays, row by row: the first 64 of the order are one 8 x 8 tile.
-  std::vector<Ray> rays;
-  for (int y = 0; y < 32; ++y) {
-    for (int x = 0; x < 32; ++x) rays.push_back(Ray{{1, 2, 3}, {(x - 15.5) / 40, (15.5 - y) / 40, -1}});
-  }
-  std::vector<size_t> idx(rays.size());
-  for (size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-  const std::vector<size_t> order = coherent_order(rays, idx);
-  std::vector<size_t> sorted = order;
-  std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(sorted, idx);
-  int xmin = 99, xmax = -1, ymin = 99, ymax = -1;
-  for (size_t k = 0; k < 64; ++k) {
-    const int x = static_cast<int>(order[k] % 32), y = static_cast<int>(order[k] / 32);
-    xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
-  }
-  EXPECT_EQ(xmax - xmin, 7);
-  EXPECT_EQ(ymax - ymin, 7);
-  EXPECT_EQ(morton2(3, 0), 5u);
-  EXPECT_EQ(morton3(1, 1, 1), 7u);
-}
 
 // A cloud of random triangles around a closed sphere mesh.
 std::vector<Triangle> test_scene() {

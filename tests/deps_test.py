@@ -6,9 +6,11 @@ Reads two graphs from the source tree:
             repository root; "fmpp/x.h" is the golden model's cmodel/include/fmpp/),
   links     the folder of a target (that of its first source file, or of the headers it
             publishes) -> the folder of each first-party target it links,
-and checks, at two levels (top-level folders; sub-folders of sw/ and backends/), that
-neither graph nor their union has a cycle, so no pair of folders depends on each other
-both ways. It also checks that no CMake target puts the repository root on its include
+and checks, at three levels (top-level folders; sub-folders of sw/ and backends/; the
+concerns of sw/isect and its forms), that neither graph nor their union has a cycle, so
+no pair of folders depends on each other both ways. A form is known to the rest of the
+host software through the form table only: no file of sw/ outside sw/isect/forms/
+includes a header of one form's folder or names a form's own identifiers. It also checks that no CMake target puts the repository root on its include
 path, and that the programs that do not offer the systemc backend do not link SystemC.
 The fuzz targets (tests/fuzz/) are a separate clang build and are read for includes only.
 Exit status 0 when all hold; otherwise each violation is printed with an example.
@@ -24,13 +26,45 @@ SKIP = {"build", ".git"}
 
 
 def unit(path, level):
-    """The unit a repository path belongs to at `level` (1: top-level, 2: sub-folders)."""
+    """The unit a repository path belongs to at `level` (1: top-level, 2: sub-folders,
+    3: sw/isect's concerns and its forms' folders)."""
     parts = path.split("/")
     if parts[0] not in UNITS:
         return None
-    if level == 2 and parts[0] in SUBDIVIDED and len(parts) > 2:
+    if level == 3 and parts[:2] == ["sw", "isect"]:
+        if len(parts) == 3:
+            return "sw/isect"
+        if parts[2] == "forms" and len(parts) > 4:
+            return "/".join(parts[:4])
+        return "/".join(parts[:3])
+    if level >= 2 and parts[0] in SUBDIVIDED and len(parts) > 2:
         return parts[0] + "/" + parts[1]
     return parts[0]
+
+
+# A form's own identifiers (its factory, class, layout and certification), which only its
+# folder, the forms' shared base (sw/isect/forms/) and the form table
+# (sw/isect/form_table.cpp) may name.
+FORM_NAMES = re.compile(r"\b(kForm(Paper|Watertight|General|PaperObject)|make_(paper|watertight|general)_form|"
+                        r"run_object_parallel|(Paper|Watertight|General)Form|layout::(general|object)|"
+                        r"paper_inverse|paper_object_program|paper_bounds|certified_inverse)\b")
+
+
+def form_violations():
+    out = []
+    for rel in source_files():
+        if not rel.startswith("sw/") or rel.startswith("sw/isect/forms/") or rel == "sw/isect/form_table.cpp":
+            continue
+        with open(os.path.join(ROOT, rel), errors="replace") as fh:
+            for no, line in enumerate(fh, 1):
+                code = line.split("//")[0]
+                m = re.match(r'\s*#\s*include\s+"(sw/isect/forms/[^/"]+/[^"]+)"', code)
+                if m:
+                    out.append(f"{rel}:{no}: includes {m.group(1)}, a form's own header")
+                m = FORM_NAMES.search(code)
+                if m:
+                    out.append(f"{rel}:{no}: names {m.group(0)}, a form's own identifier")
+    return out
 
 
 def source_files():
@@ -164,7 +198,7 @@ def main():
         a, b = where(target), where(dep)
         if a and b:
             link_paths.append((a, b))
-    for level in (1, 2):
+    for level in (1, 2, 3):
         graphs = {"include": [], "link": []}
         examples = {}
         for kind, pairs in (("include", inc), ("link", link_paths)):
@@ -177,6 +211,7 @@ def main():
             for comp in cycles(edges):
                 detail = [examples[k] for k in sorted(examples) if k[1] in comp and k[2] in comp]
                 failures.append(f"level {level} {kind} cycle among {', '.join(comp)}: " + "; ".join(detail[:6]))
+    failures += form_violations()
     for cm, args in include_dirs:
         for a in args:
             if re.fullmatch(r"\$\{(PROJECT_SOURCE_DIR|CMAKE_SOURCE_DIR)\}/?", a):

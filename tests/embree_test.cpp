@@ -5,7 +5,7 @@
 
 #include "sw/embree/embree_intersector.h"
 #include "sw/embree/hit_check.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 #include "sw/rt/render.h"
 
 #ifndef FMPP_SOURCE_DIR

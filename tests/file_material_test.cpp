@@ -1,4 +1,4 @@
-// Materials from the mesh file (issue 27): OBJ usemtl with its MTL library, and glTF
+// Materials from the mesh file: OBJ usemtl with its MTL library, and glTF
 // metallic-roughness, mapped onto the renderer's materials; the scene file overrides
 // any of them by name. An OBJ + MTL and a glTF render on the golden model byte-identical
 // to scenes that spell the same materials in JSON.

@@ -1,4 +1,4 @@
-// Hostile input (issue 14): each test here failed on the loaders before the fixes -
+// Hostile input: each test here failed on the loaders before the fixes -
 // a crash or garbage triangle, an endless read, a hang on a FIFO, a silently truncated
 // number or path, a quoted secret - and now gets an error naming the input and the cause.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "sw/isect/io.h"
+#include "sw/isect/geometry/io.h"
 #include "sw/rt/mesh.h"
 #include "sw/rt/scene.h"
 
@@ -79,7 +79,7 @@ TEST(HostileInput, ObjCommentsByteOrderMarksAndRepeatedCorners) {
 
 TEST(HostileInput, MaterialLibrariesAreReadOnlyBesideTheMesh) {
   // A FIFO as material library would block any reader that opens it; /dev/zero never
-  // ends. Libraries are read (issue 27) only as regular .mtl files in the mesh's own
+  // ends. Libraries are read only as regular .mtl files in the mesh's own
   // directory, within the limits; anything else is an error naming the OBJ line.
   const std::string fifo = dir() + "/block.mtl";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);

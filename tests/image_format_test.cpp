@@ -1,4 +1,4 @@
-// Output formats (issue 27): the extension chooses PNG (8-bit) or PFM (linear radiance,
+// Output formats: the extension chooses PNG (8-bit) or PFM (linear radiance,
 // unclamped); any other is refused by name. The PFM is read back here by a reader
 // written from the format's definition, independent of the writer.
 #include <gtest/gtest.h>

@@ -250,7 +250,7 @@ TEST(Spp, ThePlanSeesTheSamplesAndTheLights) {
   r.max_depth = 1;  // no mirror or glass rays: the lights alone decide the words
   r.bits = 24;
   const Plan area = make_plan(lit, r);
-  EXPECT_EQ(area.config.words, fmpp::isect::kGeneralWords);
+  EXPECT_EQ(area.config.words, fmpp::isect::own_origin_words({}));
   EXPECT_NE(area.why_words.find("directional or area lights"), std::string::npos);
 }
 

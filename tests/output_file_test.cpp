@@ -1,4 +1,4 @@
-// Outputs (issue 14): a failed write is an error (never "wrote" and exit 0), a file is
+// Outputs: a failed write is an error (never "wrote" and exit 0), a file is
 // replaced atomically, outputs may not alias inputs or each other, and helper programs
 // get their arguments without a shell.
 #include <gtest/gtest.h>

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "sw/fmpp/device.h"
-#include "sw/isect/exact.h"
+#include "sw/isect/exact/exact.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "backends/backend.h"
 
 namespace fmpp::isect {

@@ -25,7 +25,7 @@ TEST(Plan, WordsFollowTheMaterials) {
   r.width = r.height = 32;
   r.sample_rays = 256;
   const Plan glassy = make_plan(scene("cornell"), r);
-  EXPECT_EQ(glassy.config.words, fmpp::isect::kGeneralWords);
+  EXPECT_EQ(glassy.config.words, fmpp::isect::own_origin_words({}));
   EXPECT_NE(glassy.why_words.find("mirrors or glass"), std::string::npos);
   const Plan plain = make_plan(scene("one_triangle"), r);
   EXPECT_EQ(plain.config.words, 14u);

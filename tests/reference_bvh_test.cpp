@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "sw/isect/reference.h"
-#include "sw/isect/reference_bvh.h"
+#include "sw/isect/exact/reference.h"
+#include "sw/isect/exact/reference_bvh.h"
 
 namespace fmpp::isect {
 namespace {

@@ -1,4 +1,4 @@
-// Documented-legal geometry that broke the renderer or the machine (issue 14): triangles
+// Documented-legal geometry that broke the renderer or the machine: triangles
 // near the coordinate limit, a lone triangle with two equal vertices, and a far, tiny,
 // invisible triangle that changed the secondary-ray offset of the whole scene.
 #include <gtest/gtest.h>

@@ -94,7 +94,7 @@ fails "$dir/none.csv: cannot open" "$report" paper --quick --fpga-csv "$dir/none
 grep -q "^# FMPP area" "$dir/area.md"
 # The reports' default paths (the build directory, never docs/) are tested in
 # tests/tools_outputs_test.sh.
-# ------------------------------------------------ hostile input and outputs (issue 14)
+# ------------------------------------------------ hostile input and outputs
 r8=(--backend reference --width 8 --height 8 --quiet)
 # A device has no image extension, so it is refused before the render (a failed write
 # of an image is tested in tests/output_file_test.cpp and with fmpp-intersect).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Where the tools write by default, and which options they refuse before any work
-# (issue 26): every tool run from an empty directory writes there or under the build
+#: every tool run from an empty directory writes there or under the build
 # directory only, never into the source tree (docs/, README.md: only `make
 # docs-update` writes those); the default scene is found wherever the tool starts;
 # refusals of options and combinations come before the scene is read or the plan runs

@@ -1,4 +1,4 @@
-// Transforms (issue 27): the scene file's full transform (scale per axis, rotations
+// Transforms: the scene file's full transform (scale per axis, rotations
 // about any axis, translation, or a 4x4 matrix) and glTF node hierarchies (TRS and
 // matrices, nested, a mesh instanced twice). Each renders on the golden model
 // byte-identical to the same geometry transformed in advance and saved as OBJ.

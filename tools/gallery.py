@@ -31,7 +31,7 @@ BENCH_FRAMES = [(s, 128) for s in SCENES] + [("scans", 256)]
 # The frame each scene shows in the gallery.
 PICTURE = {s: 256 for s in SCENES}
 # The machine of every frame: the golden model, n = 24, 4096 blocks of 32 words (the
-# frame of issue 13's culling measurements), culled, with the oracles.
+# frame of the culling measurements in docs/perf.md), culled, with the oracles.
 FMPP_ARGS = ["--backend", "cmodel", "--bits", "24", "--blocks", "4096", "--words", "32"]
 CAPTION = {
     "cornell": "Cornell box: mirror panel, glass sphere",

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/rt/render.h"
 
 // Embree's handles, declared here so that its headers stay out of the callers'.

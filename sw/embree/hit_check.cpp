@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 
 namespace rt {
 

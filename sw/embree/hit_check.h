@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/rt/render.h"
 
 namespace rt {

@@ -1,7 +1,8 @@
 // The entry point of the intersection kernels (see kernels.h, docs/intersection.md):
-// option parsing and checks, the routing of rays to forms, and intersect_fmpp, which
-// runs each group of rays through its form and mapping. The forms are in form_*.cpp,
-// the mappings in ray_parallel.cpp and object_parallel.cpp, the pass loop in pass.cpp.
+// the routing of rays to forms, and intersect_fmpp, which
+// runs each group of rays through the form the table (forms/forms.h) gives it. The
+// forms are in forms/<form>/, the ray-parallel passes in ray_parallel.cpp, the pass loop
+// in pass/pass.cpp.
 #include "sw/isect/kernels.h"
 
 #include <algorithm>
@@ -9,112 +10,14 @@
 #include <limits>
 #include <stdexcept>
 
-#include "sw/isect/forms.h"
-#include "sw/isect/layout.h"
-#include "sw/isect/object_parallel.h"
-#include "sw/isect/pass.h"
-#include "sw/isect/policy.h"
+#include "sw/isect/forms/forms.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/pass/pass.h"
+#include "sw/isect/pass/policy.h"
 #include "sw/isect/ray_parallel.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 
 namespace fmpp::isect {
-
-Mapping parse_mapping(const std::string& s) {
-  if (s == "ray") return Mapping::kRay;
-  if (s == "object") return Mapping::kObject;
-  throw std::invalid_argument("mapping '" + s + "' is not one of ray, object");
-}
-MulMode parse_mul_mode(const std::string& s) {
-  if (s == "generic") return MulMode::kGeneric;
-  if (s == "const") return MulMode::kConst;
-  throw std::invalid_argument("multiply '" + s + "' is not one of generic, const");
-}
-Origins parse_origins(const std::string& s) {
-  if (s == "auto") return Origins::kAuto;
-  if (s == "group") return Origins::kGroup;
-  if (s == "general") return Origins::kGeneral;
-  throw std::invalid_argument("origins '" + s + "' is not one of auto, group, general");
-}
-const char* to_string(Origins o) { return o == Origins::kAuto ? "auto" : o == Origins::kGroup ? "group" : "general"; }
-const char* to_string(Mapping m) { return m == Mapping::kRay ? "ray" : "object"; }
-const char* to_string(MulMode m) { return m == MulMode::kGeneric ? "generic" : "const"; }
-
-void KernelStats::add(const KernelStats& o) {
-  cycles += o.cycles;
-  load_cycles += o.load_cycles;
-  compute_cycles += o.compute_cycles;
-  readback_cycles += o.readback_cycles;
-  instructions += o.instructions;
-  broadcasts += o.broadcasts;
-  passes += o.passes;
-  groups += o.groups;
-  general_rays += o.general_rays;
-  broadcast_steps += o.broadcast_steps;
-  test_steps += o.test_steps;
-  overflow_rays += o.overflow_rays;
-  overflow_triangles += o.overflow_triangles;
-  host_triangles += o.host_triangles;
-  degenerate_triangles += o.degenerate_triangles;
-  host_tests += o.host_tests;
-  culled += o.culled;
-  box_tests += o.box_tests;
-  fmpp_box_tests += o.fmpp_box_tests;
-  box_cycles += o.box_cycles;
-  oracle_any += o.oracle_any;
-  oracle_nearest += o.oracle_nearest;
-  oracle_any_steps += o.oracle_any_steps;
-  oracle_nearest_steps += o.oracle_nearest_steps;
-  oracle_box += o.oracle_box;
-  oracle_box_steps += o.oracle_box_steps;
-  for (int f = 0; f < kForms; ++f) {
-    form_rays[f] += o.form_rays[f];
-    flagged_rays[f] += o.flagged_rays[f];
-    t_bound_rays[f] += o.t_bound_rays[f];
-    certify_tests[f] += o.certify_tests[f];
-  }
-  uncertified_rays += o.uncertified_rays;
-}
-
-const char* form_stat_name(int f) {
-  static const char* const names[KernelStats::kForms] = {"paper", "watertight", "arbitrary-origin", "paper-object"};
-  return f >= 0 && f < KernelStats::kForms ? names[f] : "?";
-}
-
-void KernelOptions::validate(const Config& cfg) const {
-  if (n < 2 || n > 32) throw std::invalid_argument("multiplier bits n = " + std::to_string(n) + " outside [2, 32]");
-  if (vbits < 2 || vbits > 28) throw std::invalid_argument("vbits = " + std::to_string(vbits) + " outside [2, 28]");
-  if (mbits < 2 || mbits > 28) throw std::invalid_argument("mbits = " + std::to_string(mbits) + " outside [2, 28]");
-  if (cull_packet < 1) throw std::invalid_argument("cull_packet = 0: a culling packet needs at least one ray");
-  if (!(t_accuracy >= 0 && t_accuracy < 1)) {
-    throw std::invalid_argument("t accuracy " + std::to_string(t_accuracy) + " outside [0, 1)");
-  }
-  // Options a mapping would ignore are errors, not silently dropped: the object-parallel
-  // mapping has the paper's form only, and takes rays grouped by origin.
-  if (mapping == Mapping::kObject && watertight) {
-    throw std::invalid_argument("the watertight form exists in the ray-parallel mapping only (--mapping ray)");
-  }
-  if (watertight && mapping == Mapping::kRay && origins == Origins::kGeneral) {
-    throw std::invalid_argument("the watertight form takes rays sharing an origin; origins general sends every ray "
-                                "to the arbitrary-origin form, so it would never run");
-  }
-  if (mapping == Mapping::kObject && origins == Origins::kGeneral) {
-    throw std::invalid_argument("origins general (the arbitrary-origin form) exists in the ray-parallel mapping only; "
-                                "the object-parallel mapping groups rays by origin");
-  }
-  if (cond_bits > 60) throw std::invalid_argument("cond_bits = " + std::to_string(cond_bits) + " above 60");
-  if (cfg.words < words_needed(*this)) {
-    throw std::invalid_argument(std::string(to_string(mapping)) + "-parallel " + to_string(mul) + " needs " +
-                                std::to_string(words_needed(*this)) + " words per block; the FMPP has " +
-                                std::to_string(cfg.words));
-  }
-}
-
-unsigned words_needed(const KernelOptions& opt) {
-  if (opt.mapping == Mapping::kRay) {
-    return opt.mul == MulMode::kGeneric ? layout::ray::kWordsGeneric : layout::ray::kWordsConst;
-  }
-  return opt.mul == MulMode::kGeneric ? layout::object::kWordsGeneric : layout::object::kWordsConst;
-}
 
 RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks) {
   RayRoutes rr;
@@ -220,16 +123,17 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   for (const auto& [key, idx] : groups) {
     ++st.groups;
     const glm::dvec3 origin(std::get<0>(key), std::get<1>(key), std::get<2>(key));
-    if (opt.mapping == Mapping::kObject) {
-      run_object_parallel(dev, rays, idx, tris, origin, opt, out, &st);
+    const FormInfo& f = form_for(opt, true);
+    if (f.run_object) {
+      f.run_object(dev, rays, idx, tris, origin, opt, out, &st);
     } else {
-      const std::unique_ptr<RayForm> form = form_for(opt, true).make(FormInputs{opt, tris, rays, idx, origin, &st});
+      const std::unique_ptr<RayForm> form = f.make(FormInputs{opt, tris, rays, idx, origin, &st});
       run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);
     }
   }
   if (!general.empty()) {
-    if (dev.config().words < kGeneralWords) {
-      throw std::invalid_argument("rays with their own origins need " + std::to_string(kGeneralWords) +
+    if (dev.config().words < own_origin_words(opt)) {
+      throw std::invalid_argument("rays with their own origins need " + std::to_string(own_origin_words(opt)) +
                                   " words per block; the FMPP has " + std::to_string(dev.config().words));
     }
     const std::unique_ptr<RayForm> form =

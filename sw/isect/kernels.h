@@ -19,148 +19,15 @@
 // the host; so are triangles too ill-conditioned for the format. All are counted.
 #pragma once
 
-#include <cstdint>
-#include <functional>
 #include <map>
-#include <string>
 #include <tuple>
 #include <vector>
 
 #include "sw/fmpp/device.h"
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/options.h"
 
 namespace fmpp::isect {
-
-class PassShare;  // pass.h
-
-enum class Mapping { kRay, kObject };
-enum class MulMode { kGeneric, kConst };
-// How rays with different origins are handled in the ray-parallel mapping:
-//   group:   one set of inverse matrices per distinct origin (the paper's method);
-//   general: every ray through the arbitrary-origin (Pluecker) formulation;
-//   auto:    the paper's method for origins shared by many rays, general for the rest,
-//            and general for rays with tmin > 0 or an excluded triangle.
-enum class Origins { kAuto, kGroup, kGeneral };
-
-Mapping parse_mapping(const std::string& s);    // "ray" | "object"
-MulMode parse_mul_mode(const std::string& s);   // "generic" | "const"
-Origins parse_origins(const std::string& s);    // "auto" | "group" | "general"
-const char* to_string(Mapping m);
-const char* to_string(MulMode m);
-const char* to_string(Origins o);
-
-struct KernelOptions {
-  Mapping mapping = Mapping::kRay;
-  MulMode mul = MulMode::kConst;
-  unsigned n = 24;      // multiplier bits: matrix mantissas (ray-parallel), ray components (object-parallel)
-  unsigned vbits = 28;  // ray-parallel: |V| components quantized to at most 2^vbits
-  unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
-  unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
-  Origins origins = Origins::kAuto;
-  // Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach
-  // (cull.h: a hierarchy over the triangles against packets of cull_packet consecutive
-  // rays, padded by the fixed point's error). Culling can only drop triangles for which
-  // the FMPP would report no hit, so results are the same with and without it.
-  bool cull = true;
-  unsigned cull_packet = 1;
-  // Culling, front to back: each pass first broadcasts the nearest leaves of every ray
-  // (a probe), reads the distances found, and then broadcasts, from a fresh start, only
-  // the triangles that may lie as near as those (ray_parallel.cpp).
-  bool cull_probe = true;
-  // Culling on the FMPP (box_test.h): for rays sharing an origin (the paper's form), the
-  // host walks its hierarchy front to back per pass, tests each node against the pass's
-  // packets itself and then on the FMPP (every block its own ray, against its current
-  // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
-  // place of the per-ray walk and the probe for those rays.
-  bool fmpp_boxes = true;
-  // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
-  // square image tiles for primary rays, octant and origin for the others) rather than
-  // in the caller's order. Results come back in the caller's order either way.
-  bool coherent = true;
-  // Count, per pass, the broadcasts the any-hit and nearest-hit oracles would make
-  // (oracle.h; KernelStats::oracle_*): host work with the exact reference, for reports.
-  bool oracle = false;
-  // Watertight test for rays sharing an origin (ray-parallel): edge functions
-  // ((P_j - O) x (P_k - O)) . V on the scene's own vertices, certified: a ray whose
-  // decision is not certain (a ray through a shared edge included) is redone exactly,
-  // so no ray slips between two triangles and no vertex moves.
-  bool watertight = false;
-  // Called after each pass with (passes done, passes planned in this call).
-  std::function<void(uint64_t, uint64_t)> progress;
-  // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
-  // intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),
-  // min(n, mbits) - 3 (object-parallel). The arbitrary-origin kernel compares its own
-  // edge-test condition (docs/intersection.md) with 2^cond_bits, by default 2^(n - 4).
-  int cond_bits = -1;
-  // Certified forms: the relative accuracy a returned t must have (its certified bound);
-  // a hit whose bound is looser gets its t computed exactly on the host. 0: the default
-  // policy::t_accuracy = 2^-12.
-  double t_accuracy = 0;
-  // Several FMPPs: the passes of each call handed out among them (pass.h; nullptr: all here).
-  PassShare* share = nullptr;
-  // Checks every option against the device; throws std::invalid_argument naming it.
-  void validate(const Config& cfg) const;
-};
-
-struct KernelStats {
-  uint64_t cycles = 0;           // FMPP bus clocks for the whole call
-  uint64_t load_cycles = 0;      // writing rays or triangles into blocks, selecting blocks
-  uint64_t compute_cycles = 0;   // broadcasts
-  uint64_t readback_cycles = 0;  // reading results, flags and responders
-  uint64_t instructions = 0;
-  uint64_t broadcasts = 0;       // triangles (ray-parallel) or rays (object-parallel) sent
-  uint64_t passes = 0;
-  uint64_t groups = 0;           // distinct ray origins run with the paper's method
-  uint64_t general_rays = 0;     // rays run with the arbitrary-origin formulation
-  uint64_t broadcast_steps = 0;  // instructions in all broadcasts (for steps per broadcast)
-  uint64_t test_steps = 0;       // of those, the ones up to the T >= 0 test (the paper's count)
-  uint64_t overflow_rays = 0;    // rays redone on the host after an overflow
-  uint64_t overflow_triangles = 0;
-  uint64_t host_triangles = 0;   // triangles intersected on the host (ill-conditioned, singular as rounded)
-  uint64_t degenerate_triangles = 0;  // exactly degenerate (collinear vertices): no ray meets them, skipped
-  uint64_t host_tests = 0;       // ray-triangle tests the host did instead of the FMPP
-  uint64_t culled = 0;           // broadcasts skipped by culling
-  uint64_t box_tests = 0;        // culling: node-packet box tests on the host
-  uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
-  uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
-  // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass
-  // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
-  // (box: the triangles whose box some ray crosses before its nearest hit, oracle.h).
-  uint64_t oracle_any = 0, oracle_nearest = 0, oracle_box = 0;
-  uint64_t oracle_any_steps = 0, oracle_nearest_steps = 0, oracle_box_steps = 0;
-  // Certification (docs/intersection.md, "Certified results"), per form: index
-  // FormStat (paper ray-parallel, watertight, arbitrary-origin, paper object-parallel).
-  static constexpr int kForms = 4;
-  uint64_t form_rays[kForms] = {};       // rays each form answered
-  uint64_t flagged_rays[kForms] = {};    // rays the kernel marked uncertain: redone exactly on the host
-  uint64_t t_bound_rays[kForms] = {};    // certified hits whose t bound exceeded t_accuracy: t computed exactly
-  uint64_t certify_tests[kForms] = {};   // host ray-triangle tests of those redos (also in host_tests)
-  uint64_t uncertified_rays = 0;         // rays answered by a form that does not certify its results
-  uint64_t flagged_total() const { return flagged_rays[0] + flagged_rays[1] + flagged_rays[2] + flagged_rays[3]; }
-  double steps_per_broadcast() const {
-    return broadcasts ? static_cast<double>(broadcast_steps) / static_cast<double>(broadcasts) : 0;
-  }
-  // The clocks the oracle's broadcasts would take in the same passes: load and read back
-  // as measured, broadcasts at the measured clocks per instruction, no box tests.
-  double oracle_cycles(uint64_t steps) const {
-    const double per_step = broadcast_steps ? static_cast<double>(compute_cycles) / static_cast<double>(broadcast_steps) : 1;
-    return static_cast<double>(cycles - compute_cycles - box_cycles) + per_step * static_cast<double>(steps);
-  }
-  double test_steps_per_broadcast() const {
-    return broadcasts ? static_cast<double>(test_steps) / static_cast<double>(broadcasts) : 0;
-  }
-  void add(const KernelStats& o);
-};
-
-// Which form a ray went through, for the per-form counters of KernelStats.
-enum FormStat { kStatPaper = 0, kStatWatertight = 1, kStatGeneral = 2, kStatObject = 3 };
-const char* form_stat_name(int f);
-
-// Words each mapping needs per block.
-unsigned words_needed(const KernelOptions& opt);
-
-// Words per block the arbitrary-origin kernel needs (rays with their own origins).
-inline constexpr unsigned kGeneralWords = 26;  // = layout::general::kWords (asserted in form_general.cpp)
 
 // Which kernel takes each ray: groups of rays sharing an origin (the paper's inverse
 // matrices, by origin), and the rest (the arbitrary-origin kernel, ray-parallel):

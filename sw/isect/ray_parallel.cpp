@@ -8,16 +8,17 @@
 #include <memory>
 #include <optional>
 
-#include "sw/isect/box_test.h"
-#include "sw/isect/cull.h"
-#include "sw/isect/cull_bounds.h"
-#include "sw/isect/forms.h"
-#include "sw/isect/layout.h"
-#include "sw/isect/oracle.h"
-#include "sw/isect/order.h"
-#include "sw/isect/pass_hints.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/cull/box_test.h"
+#include "sw/isect/geometry/hierarchy.h"
+#include "sw/isect/cull/cull_bounds.h"
+#include "sw/isect/forms/forms.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/cull/oracle.h"
+#include "sw/isect/cull/order.h"
+#include "sw/isect/cull/pass_hints.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
+#include "sw/isect/forms/shared_origin_layout.h"
 
 namespace fmpp::isect {
 namespace {
@@ -47,10 +48,10 @@ class RayParallelPlan : public PassPlan {
                   const glm::dvec3* origin, unsigned words)
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
     if (opt_.cull) {
-      bounds_ = cull_bounds(tris, form, opt, origin);
+      bounds_ = cull_bounds(tris, form, opt);
       bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
-      if (opt_.fmpp_boxes && origin && shared && form_.stat() == kStatPaper) {
+      if (opt_.fmpp_boxes && origin && shared && form_.fmpp_box_test()) {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         shared_ = shared;
         const layout::ray::CullWords cw = layout::ray::cull_words(opt_.mul == MulMode::kGeneric);
@@ -106,12 +107,12 @@ class RayParallelPlan : public PassPlan {
         number_of_[k] = static_cast<uint32_t>(all.size());
       }
     }
-    // The probe (not for the watertight form, whose distance error is not bounded here).
-    if (!opt_.cull || !opt_.cull_probe || bounds_.distance == CullBounds::Distance::kNone) {
+    // The probe (not for a form whose distance error is not bounded: CullDistance::kNone).
+    if (!opt_.cull || !opt_.cull_probe || bounds_.distance == CullDistance::kNone) {
       st_->culled += nb - all.size();
       return all;
     }
-    const bool general = bounds_.distance == CullBounds::Distance::kGeneral;
+    const bool general = bounds_.distance == CullDistance::kGeneral;
     std::vector<char> probe(nb, 0);
     for (const RayPacket& p : packets(base, count, 1)) {
       int leaves = 0;
@@ -142,7 +143,7 @@ class RayParallelPlan : public PassPlan {
                              bool* appended) override {
     if (phase_ != Phase::kProbe) return {};
     phase_ = Phase::kFinal;
-    const bool general = bounds_.distance == CullBounds::Distance::kGeneral;
+    const bool general = bounds_.distance == CullDistance::kGeneral;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     std::vector<double> best(count, kInf);
     std::vector<size_t> winner(count, SIZE_MAX);
@@ -181,7 +182,7 @@ class RayParallelPlan : public PassPlan {
       // sums is in its relative bound).
       const double len = glm::length(r.d);
       const double quantum =
-          bounds_.distance == CullBounds::Distance::kGeneral ? std::abs(form_.t_of(1, r) - form_.t_of(0, r)) * len : 0;
+          bounds_.distance == CullDistance::kGeneral ? std::abs(form_.t_of(1, r) - form_.t_of(0, r)) * len : 0;
       const glm::dvec3 u = r.d / len;
       if (winner[b] != SIZE_MAX) keep[winner[b]] = 1;
       bvh_.visit(one[b], [&](uint32_t k) {
@@ -322,7 +323,7 @@ class RayParallelPlan : public PassPlan {
   // Overflowed rays are redone against every triangle, uncertain ones against the pass's
   // triangles, loose t exactly; the others get the host's share.
   void host(size_t base, unsigned count) override {
-    const int f = form_.stat();
+    const int f = form_.id();
     for (unsigned b = 0; b < count; ++b) {
       const size_t i = idx_[base + b];
       const Ray& r = rays_[i];

@@ -3,13 +3,15 @@
 
 #include <cmath>
 
+#include "sw/isect/forms/forms.h"
+
 namespace fmpp::isect {
 
 nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
   nlohmann::json forms = nlohmann::json::object();
   for (int f = 0; f < KernelStats::kForms; ++f) {
     if (!st.form_rays[f]) continue;
-    forms[form_stat_name(f)] = {{"rays", st.form_rays[f]},
+    forms[form_name(f)] = {{"rays", st.form_rays[f]},
                                 {"flagged_rays", st.flagged_rays[f]},
                                 {"t_bound_rays", st.t_bound_rays[f]},
                                 {"certify_host_tests", st.certify_tests[f]}};

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sw/isect/kernels.h"
+#include "sw/isect/pass/options.h"
 
 namespace fmpp::isect {
 

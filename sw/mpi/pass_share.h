@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "sw/fmpp/device.h"
-#include "sw/isect/pass.h"
+#include "sw/isect/pass/pass.h"
 #include "common/mpi/session.h"
 #include "common/mpi/work_queue.h"
 

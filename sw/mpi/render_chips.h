@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/isect/kernels.h"
 #include "sw/rt/render.h"
 #include "sw/mpi/pass_share.h"

@@ -9,8 +9,8 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "sw/isect/cpu_baseline.h"
-#include "sw/isect/policy.h"
+#include "sw/report/cpu_baseline.h"
+#include "sw/isect/pass/policy.h"
 #include "sw/report/paper.h"
 #include "backends/backend.h"
 

@@ -251,7 +251,7 @@ void scene_table(std::ostream& md, const SceneTable& t) {
 
 void leak_table(std::ostream& md, const Leaks& leaks) {
   md << "## Leak rate on a closed mesh around the eye\n\n";
-  md << "The closed, perturbed sphere of `sw/isect/meshes.h` (" << leaks.sphere_triangles
+  md << "The closed, perturbed sphere of `sw/report/meshes.h` (" << leaks.sphere_triangles
      << " triangles, every edge shared by two) around the eye: **edge rays** are aimed exactly at its "
      << leaks.edge_rays << " vertex and edge points (`edge_and_vertex_rays`), **uniform rays** are "
      << leaks.uniform_rays

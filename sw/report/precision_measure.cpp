@@ -9,9 +9,9 @@
 #include <limits>
 
 #include "sw/fmpp/device.h"
-#include "sw/isect/meshes.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/report/meshes.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "sw/report/precision.h"
 #include "sw/rt/render.h"
 #include "backends/backend.h"

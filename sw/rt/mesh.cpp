@@ -20,93 +20,20 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "sw/isect/io.h"
+#include "sw/isect/geometry/io.h"
 
 #include <nlohmann/json.hpp>
 #include "sw/rt/isolate.h"
+#include "sw/rt/mesh_parts.h"
 #include "sw/rt/obj_text.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
 namespace {
 
+using namespace mesh_parts;
+
 namespace fs = std::filesystem;
-
-// A file held in memory, as assimp reads it.
-class MemoryStream : public Assimp::IOStream {
- public:
-  explicit MemoryStream(std::string data) : data_(std::move(data)) {}
-  size_t Read(void* buf, size_t size, size_t count) override {
-    if (size == 0 || pos_ >= data_.size()) return 0;
-    const size_t n = std::min(count, (data_.size() - pos_) / size);
-    std::memcpy(buf, data_.data() + pos_, n * size);
-    pos_ += n * size;
-    return n;
-  }
-  size_t Write(const void*, size_t, size_t) override { return 0; }
-  aiReturn Seek(size_t offset, aiOrigin origin) override {
-    const size_t base = origin == aiOrigin_SET ? 0 : origin == aiOrigin_CUR ? pos_ : data_.size();
-    if (offset > data_.size() - std::min(base, data_.size()) && origin != aiOrigin_END) return aiReturn_FAILURE;
-    const size_t to = origin == aiOrigin_END ? (offset > data_.size() ? data_.size() + 1 : data_.size() - offset)
-                                             : base + offset;
-    if (to > data_.size()) return aiReturn_FAILURE;
-    pos_ = to;
-    return aiReturn_SUCCESS;
-  }
-  size_t Tell() const override { return pos_; }
-  size_t FileSize() const override { return data_.size(); }
-  void Flush() override {}
-
- private:
-  std::string data_;
-  size_t pos_ = 0;
-};
-
-std::string lower_extension(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
-fs::path normal_path(const std::string& p) { return fs::absolute(fs::path(p)).lexically_normal(); }
-
-// The only files assimp may open: the mesh itself (from memory, already read within the
-// limits), and for .gltf its buffers in the same directory (regular files, size-limited).
-// Anything else - an OBJ's mtllib, a path out of the directory - does not exist for it.
-class ConfinedIo : public Assimp::IOSystem {
- public:
-  ConfinedIo(const std::string& path, std::string data)
-      : self_(normal_path(path)), dir_(self_.parent_path()), data_(std::move(data)),
-        siblings_(lower_extension(path) == ".gltf") {}
-
-  bool Exists(const char* file) const override { return allowed(file); }
-  char getOsSeparator() const override { return '/'; }
-  Assimp::IOStream* Open(const char* file, const char* mode) override {
-    if (!file || !mode || std::strchr(mode, 'w') || std::strchr(mode, 'a') || !allowed(file)) return nullptr;
-    if (normal_path(file) == self_) return new MemoryStream(data_);
-    std::string text;
-    const std::string err = fmpp::isect::read_input(file, "mesh buffer", fmpp::isect::kMaxMeshBytes, &text);
-    if (!err.empty()) {
-      opened_error_ = err;
-      return nullptr;
-    }
-    return new MemoryStream(std::move(text));
-  }
-  void Close(Assimp::IOStream* s) override { delete s; }
-  const std::string& opened_error() const { return opened_error_; }
-
- private:
-  bool allowed(const char* file) const {
-    if (!file) return false;
-    const fs::path p = normal_path(file);
-    if (p == self_) return true;
-    return siblings_ && p.parent_path() == dir_ && lower_extension(p.string()) != ".gltf";
-  }
-  fs::path self_, dir_;
-  std::string data_;
-  bool siblings_;
-  std::string opened_error_;
-};
 
 // Face normal, scaled before normalizing so that neither overflow nor underflow hides it;
 // (0, 0, 1) for a triangle without area (kept: no ray hits it).
@@ -315,15 +242,6 @@ namespace {
 
 double g_mesh_seconds = 60;
 
-// A value the library read in single precision, as the decimal number the file most
-// likely wrote: the shortest decimal that reads back as the same float, read in double
-// (0.8f -> 0.8, not 0.800000011920929), as the scene file's numbers are read.
-double file_decimal(float f) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf - 1, f);
-  *r.ptr = 0;
-  return std::strtod(buf, nullptr);
-}
 
 // The MTL libraries an OBJ file names (mtllib): each in the mesh's own directory, a
 // .mtl file, read within the limits of a mesh file; a library that cannot be read is an
@@ -350,76 +268,6 @@ std::map<std::string, MtlMaterial> read_mtl_libraries(const std::string& path, c
   return mtl;
 }
 
-// Two glTF material extensions the mesh library does not read, taken from the file's
-// JSON (a .glb's first chunk): KHR_materials_transmission's transmissionFactor and
-// KHR_materials_ior's ior, per material index (NaN where absent). The library has
-// parsed the same JSON already; anything unexpected here is simply absent.
-struct GltfExtras {
-  double transmission = std::nan(""), ior = std::nan("");
-};
-std::vector<GltfExtras> gltf_extras(const std::string& data, const std::string& ext) {
-  std::string text = data;
-  if (ext == ".glb") {
-    uint32_t len = 0, type = 0;
-    if (data.size() < 20) return {};
-    std::memcpy(&len, data.data() + 12, 4);
-    std::memcpy(&type, data.data() + 16, 4);
-    if (type != 0x4E4F534Au || len > data.size() - 20) return {};  // "JSON"
-    text = data.substr(20, len);
-  }
-  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  std::vector<GltfExtras> out;
-  if (!j.is_object() || !j.contains("materials") || !j["materials"].is_array()) return out;
-  for (const auto& m : j["materials"]) {
-    GltfExtras e;
-    auto number = [&](const char* extension, const char* key, double* v) {
-      if (!m.is_object() || !m.contains("extensions") || !m["extensions"].is_object()) return;
-      const auto& x = m["extensions"];
-      if (x.contains(extension) && x[extension].is_object() && x[extension].contains(key) &&
-          x[extension][key].is_number()) {
-        *v = x[extension][key].get<double>();
-      }
-    };
-    number("KHR_materials_transmission", "transmissionFactor", &e.transmission);
-    number("KHR_materials_ior", "ior", &e.ior);
-    out.push_back(e);
-  }
-  return out;
-}
-
-// glTF metallic-roughness onto the Whitted materials (docs/raytracer.md, "Materials from
-// the mesh file").
-FileMaterial gltf_material(const aiMaterial& a, const std::string& name, const std::string& path, const GltfExtras& x) {
-  FileMaterial fm;
-  fm.m.name = name;
-  fm.where = path;
-  aiColor4D base(1, 1, 1, 1);
-  if (a.Get(AI_MATKEY_BASE_COLOR, base) != AI_SUCCESS) {
-    aiColor3D d(1, 1, 1);
-    if (a.Get(AI_MATKEY_COLOR_DIFFUSE, d) == AI_SUCCESS) base = aiColor4D(d.r, d.g, d.b, 1);
-  }
-  float metallic = 1, roughness = 1, transmission = 0, ior = 1.5f;  // the format's defaults
-  a.Get(AI_MATKEY_METALLIC_FACTOR, metallic);
-  a.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
-  a.Get(AI_MATKEY_TRANSMISSION_FACTOR, transmission);
-  a.Get(AI_MATKEY_REFRACTI, ior);
-  const float all[] = {base.r, base.g, base.b, metallic, roughness, transmission, ior};
-  for (float v : all) {
-    if (!std::isfinite(v)) throw SceneError(path + ": material '" + name + "': a factor is not finite");
-  }
-  fm.m.diffuse = glm::clamp(glm::dvec3(file_decimal(base.r), file_decimal(base.g), file_decimal(base.b)), 0.0, 1.0);
-  const double r = std::clamp(file_decimal(roughness), 0.0, 1.0), mt = std::clamp(file_decimal(metallic), 0.0, 1.0);
-  fm.m.specular = 1 - r;
-  const double r4 = r * r * r * r;  // Blinn-Phong exponent of the GGX width alpha = r^2: 2 / alpha^2 - 2
-  fm.m.shininess = r4 > 0 ? std::clamp(2 / r4 - 2, 1.0, 10000.0) : 10000.0;
-  fm.m.reflectivity = mt * (1 - r);
-  const double tr = std::isnan(x.transmission) ? file_decimal(transmission) : x.transmission;
-  const double eta = std::isnan(x.ior) ? file_decimal(ior) : x.ior;
-  if (!std::isfinite(tr) || !std::isfinite(eta)) throw SceneError(path + ": material '" + name + "': a factor is not finite");
-  fm.m.transparency = std::min(std::clamp(tr, 0.0, 1.0), 1 - fm.m.reflectivity);
-  fm.m.ior = std::clamp(eta, 1.0, 4.0);
-  return fm;
-}
 
 // The file's materials: Mesh::materials, and for each of the library's materials its
 // index there (-1: the library's default, given to faces without a material).
@@ -492,94 +340,6 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
   return m;
 }
 
-// A Mesh as bytes, to come back from the reader process.
-template <class T>
-void put(std::string& s, const T& v) {
-  s.append(reinterpret_cast<const char*>(&v), sizeof v);
-}
-template <class T>
-T get(const std::string& s, size_t& pos) {
-  T v{};
-  if (pos + sizeof v > s.size()) throw SceneError("mesh reader: short result");
-  std::memcpy(&v, s.data() + pos, sizeof v);
-  pos += sizeof v;
-  return v;
-}
-void put_string(std::string& s, const std::string& v) {
-  put<uint64_t>(s, v.size());
-  s += v;
-}
-std::string get_string(const std::string& s, size_t& pos) {
-  const uint64_t len = get<uint64_t>(s, pos);
-  if (len > s.size() - pos) throw SceneError("mesh reader: short result");
-  std::string v = s.substr(pos, len);
-  pos += len;
-  return v;
-}
-std::string serialize(const Mesh& m) {
-  std::string s;
-  put<uint64_t>(s, m.materials.size());
-  for (const FileMaterial& f : m.materials) {
-    put_string(s, f.m.name);
-    put_string(s, f.where);
-    put<uint8_t>(s, f.defined);
-    put(s, f.m.diffuse);
-    for (double v : {f.m.specular, f.m.shininess, f.m.reflectivity, f.m.transparency, f.m.ior}) put(s, v);
-  }
-  put<uint64_t>(s, m.skipped_primitives);
-  put<uint64_t>(s, m.groups.size());
-  for (const MeshGroup& g : m.groups) {
-    put<uint64_t>(s, g.name.size());
-    s += g.name;
-    put<uint64_t>(s, g.triangles.size());
-    for (size_t i = 0; i < g.triangles.size(); ++i) {
-      for (int c = 0; c < 3; ++c) put(s, g.triangles[i].p[c]);
-      for (int c = 0; c < 3; ++c) put(s, g.normals[i][c]);
-      put<int32_t>(s, g.material[i]);
-    }
-  }
-  return s;
-}
-Mesh deserialize(const std::string& s) {
-  Mesh m;
-  size_t pos = 0;
-  const uint64_t materials = get<uint64_t>(s, pos);
-  if (materials > s.size()) throw SceneError("mesh reader: short result");
-  for (uint64_t k = 0; k < materials; ++k) {
-    FileMaterial f;
-    f.m.name = get_string(s, pos);
-    f.where = get_string(s, pos);
-    f.defined = get<uint8_t>(s, pos) != 0;
-    f.m.diffuse = get<glm::dvec3>(s, pos);
-    f.m.specular = get<double>(s, pos);
-    f.m.shininess = get<double>(s, pos);
-    f.m.reflectivity = get<double>(s, pos);
-    f.m.transparency = get<double>(s, pos);
-    f.m.ior = get<double>(s, pos);
-    m.materials.push_back(f);
-  }
-  m.skipped_primitives = get<uint64_t>(s, pos);
-  const uint64_t groups = get<uint64_t>(s, pos);
-  for (uint64_t k = 0; k < groups; ++k) {
-    MeshGroup g;
-    g.name = get_string(s, pos);
-    const uint64_t n = get<uint64_t>(s, pos);
-    if (n > (s.size() - pos) / (6 * sizeof(glm::dvec3) + sizeof(int32_t))) throw SceneError("mesh reader: short result");
-    g.triangles.resize(n);
-    g.normals.resize(n);
-    g.material.resize(n);
-    for (uint64_t i = 0; i < n; ++i) {
-      for (int c = 0; c < 3; ++c) g.triangles[i].p[c] = get<glm::dvec3>(s, pos);
-      for (int c = 0; c < 3; ++c) g.normals[i][c] = get<glm::dvec3>(s, pos);
-      const int32_t mi = get<int32_t>(s, pos);
-      if (mi < -1 || mi >= static_cast<int64_t>(m.materials.size())) throw SceneError("mesh reader: bad material index");
-      g.material[i] = mi;
-    }
-    m.triangles += n;
-    m.groups.push_back(std::move(g));
-  }
-  return m;
-}
 
 }  // namespace
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/rt/scene.h"
 
 namespace rt {

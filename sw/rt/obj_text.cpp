@@ -7,7 +7,7 @@
 #include <cctype>
 #include <sstream>
 
-#include "sw/isect/io.h"
+#include "sw/isect/geometry/io.h"
 #include "sw/rt/scene.h"
 
 namespace rt {

@@ -8,9 +8,9 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/cull.h"
-#include "sw/isect/oracle.h"
-#include "sw/isect/order.h"
+#include "sw/isect/geometry/hierarchy.h"
+#include "sw/isect/cull/oracle.h"
+#include "sw/isect/cull/order.h"
 #include "sw/rt/render.h"
 
 namespace rt {
@@ -54,7 +54,7 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
   std::vector<Ray> sample;
   for (size_t i = 0; i < rays.size(); i += step) sample.push_back(rays[i]);
   if (sample.empty()) return {0, 0};
-  const unsigned words = std::max(fmpp::isect::kGeneralWords, (fmpp::isect::words_needed(opt) + 1) & ~1u);
+  const unsigned words = std::max(fmpp::isect::own_origin_words(opt), (fmpp::isect::words_needed(opt) + 1) & ~1u);
   fmpp::ModelBus bus(fmpp::Config{static_cast<unsigned>(sample.size()), words});
   fmpp::Device dev(bus);
   fmpp::isect::KernelOptions o = opt;

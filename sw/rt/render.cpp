@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 #include "sw/rt/sampling.h"
 #include "sw/rt/shade.h"
 

@@ -24,7 +24,7 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/reference_bvh.h"
+#include "sw/isect/exact/reference_bvh.h"
 #include "sw/rt/image.h"
 #include "sw/rt/ray_kind.h"
 #include "sw/rt/scene.h"
@@ -133,7 +133,7 @@ std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int hei
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last);
 
 // True if some of the scene's shadow rays may take the arbitrary-origin form, which needs
-// kGeneralWords per block: a directional light's (cast from their points), or an area
+// own_origin_words() per block: a directional light's (cast from their points), or an area
 // light's (a pool point's rays are fewer than a shared-origin group needs on a small
 // frame; without a pool, each ray has its own origin).
 bool shadows_need_own_origins(const Scene& scene);

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/rt/sampling.h"
 
 namespace rt {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 #include "sw/rt/render.h"
 
 namespace rt {

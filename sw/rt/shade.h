@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sw/isect/geometry.h"
+#include "sw/isect/geometry/geometry.h"
 #include "sw/rt/image.h"
 #include "sw/rt/material.h"
 #include "sw/rt/sampling.h"

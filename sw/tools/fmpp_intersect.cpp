@@ -15,9 +15,9 @@
 
 #include "backends/backend.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/io.h"
+#include "sw/isect/geometry/io.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/reference.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
 #include "backends/rtl/rtl_bus.h"
@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
       opt.qbits = qbits;
       opt.watertight = watertight;
       const size_t general = route_rays(rays, opt, config.empty() ? blocks : named_config(config).blocks).general.size();
-      const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? kGeneralWords : 0u);
+      const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? own_origin_words(opt) : 0u);
       Config cfg{blocks, words ? words : need};
       if (!config.empty()) cfg = named_config(config);
       if (config.empty() && !words && backend != "cmodel") {
@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
           if (c.blocks == cfg.blocks && c.words >= need && (cfg.words == need || c.words < cfg.words)) cfg = c;
         }
       }
-      if (general && cfg.words < kGeneralWords) {
+      if (general && cfg.words < own_origin_words(opt)) {
         const std::string given = config.empty() ? "--words " + std::to_string(cfg.words)
                                                  : "--config " + config + " (" + std::to_string(cfg.words) + " words)";
         const std::string why = opt.origins == Origins::kGeneral
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
                                     : std::to_string(general) + " of the " + std::to_string(rays.size()) +
                                           " rays have origins shared by too few rays and take the arbitrary-origin "
                                           "kernel (--origins auto)";
-        const std::string k = std::to_string(kGeneralWords);
+        const std::string k = std::to_string(own_origin_words(opt));
         const std::string fix = config.empty() ? "give --words " + k + " or more (or leave --words out)"
                                                : "use a --config with " + k + " words or more, or --blocks and --words";
         throw std::invalid_argument(given + " is too few: " + why + ", which needs " + k + " words per block; " + fix +

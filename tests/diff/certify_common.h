@@ -14,8 +14,9 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
+#include "sw/isect/forms/forms.h"
 #include "backends/backend.h"
 
 namespace fmpp::isect::certify_test {
@@ -72,7 +73,7 @@ inline Outcome run_fmpp(const std::vector<Ray>& rays, const std::vector<Triangle
 }
 
 // Every answer is the exact reference's triangle, every t within the default accuracy,
-// and every ray was answered by a certifying form (by `form`, a FormStat, if >= 0).
+// and every ray was answered by a certifying form (by `form`, a FormId, if >= 0).
 inline void expect_exact(const Outcome& r, const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
                          unsigned n, int form = -1) {
   const std::vector<Hit> ref = nearest_reference(rays, tris);

@@ -1,4 +1,4 @@
-// Certified results of the arbitrary-origin form (sw/isect/certify_general.h, issue 12
+// Certified results of the arbitrary-origin form (sw/isect/forms/general/certify_general.h
 // item 2): the row bounds and the t bound hold against exact rational arithmetic on hard
 // placements, replaying the form's own host arithmetic; and on the machine, a ray whose
 // decision lies inside the bounds is flagged and redone, so every answer is the exact
@@ -12,11 +12,11 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "sw/isect/certify_general.h"
-#include "sw/isect/fixed_point.h"
+#include "sw/isect/forms/general/certify_general.h"
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "backends/backend.h"
 #include "tests/diff/certify_common.h"
 
@@ -189,14 +189,14 @@ TEST(CertifyGeneralKernel, JustInsideTheBoundIsFlagged) {
       middle.push_back(Ray{o, dvec3(0.05 * k, -0.3, 5) - o});
     }
     const Outcome edge = run(rays, tris, n);
-    expect_exact(edge, rays, tris, n, kStatGeneral);
-    EXPECT_EQ(edge.st.flagged_rays[kStatGeneral], rays.size()) << "n " << n;
+    expect_exact(edge, rays, tris, n, kFormGeneral);
+    EXPECT_EQ(edge.st.flagged_rays[kFormGeneral], rays.size()) << "n " << n;
     for (size_t i = 0; i < rays.size(); i += 2) {
       EXPECT_EQ(edge.hits[i].tri, 1) << "just outside: the triangle behind";
       EXPECT_EQ(edge.hits[i + 1].tri, 0) << "just inside";
     }
     const Outcome mid = run(middle, tris, n);
-    expect_exact(mid, middle, tris, n, kStatGeneral);
+    expect_exact(mid, middle, tris, n, kFormGeneral);
     EXPECT_EQ(mid.st.flagged_total(), 0u) << "n " << n;
   }
 }
@@ -222,12 +222,12 @@ TEST(CertifyGeneralKernel, TiesPlanesAndFlatSurfaces) {
   }
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n, kStatGeneral);
+    expect_exact(r, rays, tris, n, kFormGeneral);
     EXPECT_EQ(r.hits[0].tri, 1);
     EXPECT_EQ(r.hits[1].tri, 0) << "the plane is a miss: the wall behind";
-    EXPECT_GE(r.st.flagged_rays[kStatGeneral], 1u) << "the tie";
+    EXPECT_GE(r.st.flagged_rays[kFormGeneral], 1u) << "the tie";
     for (size_t i = first_floor; i < rays.size(); ++i) EXPECT_NE(r.hits[i].tri, 7 - rays[i].exclude);
-    EXPECT_LE(r.st.flagged_rays[kStatGeneral], 3u) << "rays leaving the floor are certain, n " << n;
+    EXPECT_LE(r.st.flagged_rays[kFormGeneral], 3u) << "rays leaving the floor are certain, n " << n;
   }
 }
 
@@ -244,15 +244,15 @@ TEST(CertifyGeneralKernel, NearTiesAreFlagged) {
   for (unsigned n : {16u, 24u, 32u}) {
     for (bool cull : {false, true}) {
       const Outcome r = run(rays, tris, n, cull);
-      expect_exact(r, rays, tris, n, kStatGeneral);
+      expect_exact(r, rays, tris, n, kFormGeneral);
       EXPECT_EQ(r.hits[0].tri, 1) << "the nearer, n " << n;
-      EXPECT_EQ(r.st.flagged_rays[kStatGeneral], 1u) << "n " << n;
+      EXPECT_EQ(r.st.flagged_rays[kFormGeneral], 1u) << "n " << n;
     }
     const std::vector<Triangle> copies = {far, far};
     const Outcome c = run(rays, copies, n, false);
-    expect_exact(c, rays, copies, n, kStatGeneral);
+    expect_exact(c, rays, copies, n, kFormGeneral);
     EXPECT_EQ(c.hits[0].tri, 0);
-    EXPECT_EQ(c.st.flagged_rays[kStatGeneral], 1u) << "an exact tie, n " << n;
+    EXPECT_EQ(c.st.flagged_rays[kFormGeneral], 1u) << "an exact tie, n " << n;
   }
 }
 
@@ -270,7 +270,7 @@ TEST(CertifyGeneralKernel, RandomScenesAgreeWithTheExactReference) {
   for (int i = 0; i < 300; ++i) rays.push_back(Ray{dvec3(10 * u(g), 10 * u(g), 10 * u(g)), dvec3(u(g), u(g), u(g))});
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n, kStatGeneral);
+    expect_exact(r, rays, tris, n, kFormGeneral);
     if (n >= 24) {
       EXPECT_LE(r.st.flagged_total(), rays.size() / 50) << "n " << n;
     }

@@ -1,4 +1,4 @@
-// Certified results of the object-parallel mapping (sw/isect/certify_object.h, issue 12
+// Certified results of the object-parallel mapping (sw/isect/forms/paper/certify_object.h
 // item 2): each block's bounds hold against exact rational arithmetic on numerically
 // hard placements, and a ray whose decision lies inside them - near an edge, an exact
 // tie within a pass or across passes - is flagged and answered exactly.
@@ -12,12 +12,12 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "sw/isect/certify.h"
-#include "sw/isect/certify_object.h"
-#include "sw/isect/fixed_point.h"
+#include "sw/isect/forms/certify.h"
+#include "sw/isect/forms/paper/certify_object.h"
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "backends/backend.h"
 #include "tests/diff/certify_common.h"
 
@@ -150,15 +150,15 @@ TEST(CertifyObjectKernel, RaysAtAnEdgeAreFlaggedTheMiddleIsNot) {
       std::vector<Ray> rays;
       for (double s : {-1.0, 1.0}) rays.push_back(Ray{dvec3(0), dvec3(0.1, -1 + s * std::ldexp(1.0, -40), 5)});
       const Outcome edge = run(rays, tris, n, mul);
-      expect_exact(edge, rays, tris, n, kStatObject);
-      EXPECT_EQ(edge.st.flagged_rays[kStatObject], 2u) << "n " << n;
+      expect_exact(edge, rays, tris, n, kFormPaperObject);
+      EXPECT_EQ(edge.st.flagged_rays[kFormPaperObject], 2u) << "n " << n;
       EXPECT_EQ(edge.hits[0].tri, 1) << "just outside: the triangle behind";
       EXPECT_EQ(edge.hits[1].tri, 0) << "just inside";
       EXPECT_EQ(edge.hits[0].redo, HostRedo::kFlagged);
 
       const std::vector<Ray> middle = {Ray{dvec3(0), dvec3(0, -0.3, 5)}};
       const Outcome mid = run(middle, tris, n, mul);
-      expect_exact(mid, middle, tris, n, kStatObject);
+      expect_exact(mid, middle, tris, n, kFormPaperObject);
       EXPECT_EQ(mid.st.flagged_total(), 0u) << "n " << n;
       EXPECT_EQ(mid.hits[0].tri, 0);
       EXPECT_EQ(mid.hits[0].redo, HostRedo::kNone);
@@ -188,12 +188,12 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
                                  Ray{dvec3(0), dvec3(0, 2.5, 7)}};      // c2 and its copy only
   for (unsigned n : {16u, 24u, 32u}) {
     const Outcome r = run(rays, tris, n);
-    expect_exact(r, rays, tris, n, kStatObject);
+    expect_exact(r, rays, tris, n, kFormPaperObject);
     EXPECT_GE(r.st.passes, 2u);
     EXPECT_EQ(r.hits[0].tri, 0);
     EXPECT_EQ(r.hits[1].tri, 1);
     EXPECT_EQ(r.hits[3].tri, 4) << "a tie across passes goes to the lower index";
-    EXPECT_GE(r.st.flagged_rays[kStatObject], 3u) << "n " << n;
+    EXPECT_GE(r.st.flagged_rays[kFormPaperObject], 3u) << "n " << n;
     EXPECT_EQ(r.hits[3].redo, HostRedo::kFlagged);
   }
   // The RTL, in lockstep with the golden model, takes the same clocks for the questions
@@ -208,7 +208,7 @@ TEST(CertifyObjectKernel, ExactTiesGoToTheLowestIndexAcrossPasses) {
 TEST(CertifyObjectKernel, RandomScenesAgreeWithTheExactReference) {
   expect_random_eye_scene_exact([](const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
                                    unsigned n) { return run(rays, tris, n); },
-                                90, 300, kStatObject);
+                                90, 300, kFormPaperObject);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Certified results of the paper's form (sw/isect/certify.h, issue 12 item 2): the
+// Certified results of the paper's form (sw/isect/forms/certify.h): the
 // bounds hold against exact rational arithmetic on numerically hard placements, and a
 // ray whose decision lies inside them is flagged and redone, so the answers equal the
 // exact reference's.
@@ -11,11 +11,11 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "sw/isect/certify.h"
-#include "sw/isect/fixed_point.h"
+#include "sw/isect/forms/certify.h"
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "backends/backend.h"
 #include "tests/diff/certify_common.h"
 
@@ -148,7 +148,7 @@ TEST(CertifyKernel, JustInsideTheBoundIsFlagged) {
       }
       const Outcome edge = run(rays, tris, n, mul);
       expect_exact(edge, rays, tris, n);
-      EXPECT_EQ(edge.st.flagged_rays[kStatPaper], 2u) << "n " << n;
+      EXPECT_EQ(edge.st.flagged_rays[kFormPaper], 2u) << "n " << n;
       EXPECT_EQ(edge.hits[0].tri, 1) << "just outside: the triangle behind";
       EXPECT_EQ(edge.hits[1].tri, 0) << "just inside";
 
@@ -156,7 +156,7 @@ TEST(CertifyKernel, JustInsideTheBoundIsFlagged) {
       const Outcome mid = run(middle, tris, n, mul);
       expect_exact(mid, middle, tris, n);
       EXPECT_EQ(mid.st.flagged_total(), 0u) << "n " << n;
-      EXPECT_EQ(mid.st.form_rays[kStatPaper], 1u);
+      EXPECT_EQ(mid.st.form_rays[kFormPaper], 1u);
       EXPECT_EQ(mid.st.uncertified_rays, 0u);
     }
   }
@@ -178,7 +178,7 @@ TEST(CertifyKernel, TiesAndRaysInThePlaneAreFlagged) {
     expect_exact(r, rays, tris, n);
     EXPECT_EQ(r.hits[0].tri, 0);
     EXPECT_EQ(r.hits[1].tri, 1);
-    EXPECT_GE(r.st.flagged_rays[kStatPaper], 2u) << "n " << n;
+    EXPECT_GE(r.st.flagged_rays[kFormPaper], 2u) << "n " << n;
   }
 }
 

@@ -1,4 +1,4 @@
-// The certified watertight form (sw/isect/certify_watertight.h, form_watertight.cpp):
+// The certified watertight form (sw/isect/forms/watertight/certify_watertight.h, form_watertight.cpp):
 // its constants and the bounds of what a block computes hold against exact rational
 // arithmetic on numerically hard placements, and on the golden model rays through a
 // shared edge never leak, rays 2^-40 beside an edge are flagged and answered exactly,
@@ -12,12 +12,12 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
-#include "sw/isect/certify.h"
-#include "sw/isect/certify_watertight.h"
-#include "sw/isect/fixed_point.h"
+#include "sw/isect/forms/certify.h"
+#include "sw/isect/forms/watertight/certify_watertight.h"
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/kernels.h"
-#include "sw/isect/policy.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/exact/reference.h"
 #include "backends/backend.h"
 #include "tests/diff/certify_common.h"
 
@@ -158,7 +158,7 @@ TEST(WatertightKernel, RaysOnASharedEdgeNeverLeak) {
     const Outcome r = run(rays, tris, n);
     expect_exact(r, rays, tris, n);
     for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(r.hits[i].tri, 1) << "ray " << i << " n " << n;
-    EXPECT_EQ(r.st.flagged_rays[kStatWatertight], rays.size()) << "n " << n;
+    EXPECT_EQ(r.st.flagged_rays[kFormWatertight], rays.size()) << "n " << n;
   }
 }
 
@@ -172,7 +172,7 @@ TEST(WatertightKernel, JustInsideAndOutsideAnEdgeAreFlagged) {
     for (double s : {-1.0, 1.0}) rays.push_back(Ray{dvec3(0), dvec3(0.1, -1 + s * std::ldexp(1.0, -40), 5)});
     const Outcome edge = run(rays, tris, n);
     expect_exact(edge, rays, tris, n);
-    EXPECT_EQ(edge.st.flagged_rays[kStatWatertight], 2u) << "n " << n;
+    EXPECT_EQ(edge.st.flagged_rays[kFormWatertight], 2u) << "n " << n;
     EXPECT_EQ(edge.hits[0].tri, 1) << "just outside: the triangle behind";
     EXPECT_EQ(edge.hits[1].tri, 0) << "just inside";
 
@@ -180,7 +180,7 @@ TEST(WatertightKernel, JustInsideAndOutsideAnEdgeAreFlagged) {
     const Outcome mid = run(middle, tris, n);
     expect_exact(mid, middle, tris, n);
     EXPECT_EQ(mid.st.flagged_total(), 0u) << "n " << n;
-    EXPECT_EQ(mid.st.form_rays[kStatWatertight], 1u);
+    EXPECT_EQ(mid.st.form_rays[kFormWatertight], 1u);
   }
 }
 

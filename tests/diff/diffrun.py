@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Randomized differential testing against exact arithmetic (issue 12, item 4).
+"""Randomized differential testing against exact arithmetic.
 
 Generates the hard families of hardgen.py (seeded), evaluates every ray exactly
 (oracle.py), and checks against it:

@@ -1,4 +1,4 @@
-"""Seeded generator of numerically hard ray-triangle instances (issue 12, item 4).
+"""Seeded generator of numerically hard ray-triangle instances.
 
 Every coordinate is an integer multiple of a power of two g (the grid), below 2^40 g,
 so every input is exactly a double and the exact rational evaluation (oracle.py) is

@@ -1,4 +1,4 @@
-"""Exact rational ray-triangle oracle for the differential tests (issue 12, item 4).
+"""Exact rational ray-triangle oracle for the differential tests.
 
 Independent of the C++ reference on purpose: other arithmetic (Python integers), other
 algebra (Moeller-Trumbore's Cramer's rule instead of the reference's triple products

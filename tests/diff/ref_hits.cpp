@@ -10,8 +10,8 @@
 #include <cstring>
 #include <exception>
 
-#include "sw/isect/io.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/geometry/io.h"
+#include "sw/isect/exact/reference.h"
 
 int main(int argc, char** argv) {
   using namespace fmpp::isect;

@@ -12,8 +12,8 @@
 #include <random>
 #include <vector>
 
-#include "sw/isect/meshes.h"
-#include "sw/isect/reference.h"
+#include "sw/report/meshes.h"
+#include "sw/isect/exact/reference.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The exact reference (sw/isect/reference.h, exact.h): its semantics on hand-made cases
+// The exact reference (sw/isect/exact/reference.h, exact.h): its semantics on hand-made cases
 // whose answer exact arithmetic settles and double precision does not, the filter
 // against the filter-free exact evaluation, and invariance under exact scalings.
 // The randomized comparison with the rational oracle is tests/diff/diffrun.py.
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "sw/isect/exact.h"
-#include "sw/isect/meshes.h"
-#include "sw/isect/reference.h"
+#include "sw/isect/exact/exact.h"
+#include "sw/report/meshes.h"
+#include "sw/isect/exact/reference.h"
 
 namespace fmpp::isect {
 namespace {

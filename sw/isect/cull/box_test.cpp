@@ -1,0 +1,229 @@
+// The FMPP's ray-box test for rays sharing an origin (see box_test.h).
+#include "sw/isect/cull/box_test.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "sw/isect/pass/fixed_point.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/forms/shared_origin_layout.h"
+
+namespace fmpp::isect {
+namespace {
+
+using namespace ins;
+using namespace layout::ray;
+using layout::kHit;
+using layout::kSel;
+using layout::kTmp;
+using layout::kWin;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Constants c stay within +-2^29 (directions 2^vbits <= 2^28; distance cuts below the
+// limit). Each compare is one CMP, a signed compare with the immediate that forms no
+// difference and so cannot overflow whatever the word holds: V >= c is CMP GE c; V <= c
+// and a reach <= c are CMP LT c + 1, and since c < 2^29, c + 1 fits in 32 bits. The one
+// difference the test forms, the best's reach best - BB (word D, free between
+// broadcasts), stays within +-2^30 (S_c below 2^30, a flagged block's reach -2^30).
+constexpr double kWordLimit = 0x1p29;
+
+// One compare of a class: V_word >= c (lo), V_word <= c (hi), or a reach <= c (dist:
+// the best's, word kD holding best - BB, or the ray's own, its cull word). |c| < 2^29.
+struct Compare {
+  enum Kind { kLo, kHi, kDist } kind;
+  unsigned word;
+  int64_t c;
+};
+
+// A box's slopes seen from the origin overstate those of a triangle inside it that lies
+// across the view (a box has 8 corners; the triangle covers 3 of its points). x / u is
+// linear-fractional, so over a convex set with u > 0 its extremes are at the set's
+// vertices: for the triangle grown by a cube of half-side e (the error pad and the
+// directions' widening; every point the FMPP may report a hit at), the 24 points
+// vertex +- e per axis. tri is relative to the origin; s u is the class axis i.
+void narrow_to_triangle(const Triangle& tri, double e, int i, double s, int j, double* smin, double* smax) {
+  double a = kInf, b = -kInf;
+  for (const glm::dvec3& v : tri.p) {
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 q = v + e * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+      const double u = s * q[i];
+      if (!(u > 0)) return;  // the set reaches u <= 0: the box's range stands
+      a = std::min(a, q[j] / u);
+      b = std::max(b, q[j] / u);
+    }
+  }
+  *smin = std::max(*smin, a);
+  *smax = std::min(*smax, b);
+}
+
+}  // namespace
+
+SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle)
+    : origin_(origin), unit_(std::ldexp(1.0, static_cast<int>(vbits))), t_scale_(t_scale),
+      angle_(angle) {}
+
+void SharedBoxTest::clear() {
+  classes_ = 0;
+  for (unsigned c = 0; c < 6; ++c) {
+    for (int j = 0; j < 3; ++j) {
+      vmin_[c][j] = std::numeric_limits<int64_t>::max();
+      vmax_[c][j] = std::numeric_limits<int64_t>::min();
+    }
+  }
+}
+
+void SharedBoxTest::add_ray(const glm::dvec3& d) {
+  const double sv = max_component(d) / unit_;
+  int64_t v[3];
+  for (int j = 0; j < 3; ++j) {  // as load_ray quantizes it
+    v[j] = quantize(d[j], sv, static_cast<int64_t>(unit_), "ray component");
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(static_cast<double>(v[i])) < unit_) continue;
+    const unsigned c = static_cast<unsigned>(2 * i + (v[i] < 0 ? 1 : 0));
+    classes_ |= 1u << c;
+    for (int j = 0; j < 3; ++j) {
+      vmin_[c][j] = std::min(vmin_[c][j], v[j]);
+      vmax_[c][j] = std::max(vmax_[c][j], v[j]);
+    }
+  }
+}
+
+SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
+                                             double pad) const {
+  // The box relative to the origin, widened by the directions' rounding (a point at
+  // distance D moves by at most angle D) and by the rounding of this arithmetic.
+  glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
+  Triangle rel;
+  const Triangle* tri = nullptr;
+  if (leaf) {
+    for (int k = 0; k < 3; ++k) rel.p[k] = leaf->p[k] - origin_;
+    tri = &rel;
+  }
+  const double far = glm::length(glm::max(glm::abs(lo), glm::abs(hi)));
+  if (!std::isfinite(far)) return Verdict::kSome;  // cannot bound it: every ray may meet it
+  const double widen = (2 * angle_ + 0x1p-40) * far;
+  lo -= widen;
+  hi += widen;
+
+  std::vector<std::vector<Compare>> classes;
+  std::vector<unsigned> class_id;
+  for (unsigned c = 0; c < 6; ++c) {
+    if (!(classes_ >> c & 1)) continue;
+    const int i = static_cast<int>(c / 2);
+    const double s = (c & 1) ? -1.0 : 1.0;
+    // The box's range along the class axis, u = s (p - O)_i; a ray of the class has u > 0.
+    const double u0 = s > 0 ? lo[i] : -hi[i], u1 = s > 0 ? hi[i] : -lo[i];
+    if (!(u1 > 0)) continue;  // behind every ray of the class
+    std::vector<Compare> cmps;
+    bool possible = true;
+    for (int j = 0; j < 3; ++j) {
+      if (j == i) continue;
+      // Slopes x / u over the part of the box with u > 0, in units of 2^-vbits.
+      const double x0 = lo[j], x1 = hi[j];
+      double smin = x0 >= 0 ? x0 / u1 : (u0 > 0 ? x0 / u0 : -kInf);
+      double smax = x1 <= 0 ? x1 / u1 : (u0 > 0 ? x1 / u0 : kInf);
+      if (tri) narrow_to_triangle(*tri, pad + widen, i, s, j, &smin, &smax);
+      const double cmin = std::floor(smin * unit_) - 2, cmax = std::ceil(smax * unit_) + 2;
+      // Decided on the host: no ray of the pass inside, or every one.
+      const double lo_v = static_cast<double>(vmin_[c][j]), hi_v = static_cast<double>(vmax_[c][j]);
+      if (cmin > hi_v || cmax < lo_v) {
+        possible = false;
+        break;
+      }
+      // Both now lie within the pass's components (|c| < 2^29): exact as integers.
+      if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
+      if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
+    }
+    if (!possible) continue;
+    if (u0 > 0) {
+      // Any point of the box on the ray has S_c <= 2^vbits / (u0 t_scale).
+      const double thr = std::ceil(unit_ / (u0 * t_scale_) * (1 + 0x1p-40)) + 1;
+      if (thr < kWordLimit) {
+        cmps.push_back({Compare::kDist, kD, static_cast<int64_t>(thr)});
+        // And the ray's own reach (its tmax as a compared sum, 0 for none): hits in the box
+        // have S_c <= thr, so none of them lies before tmax if thr < the reach.
+        if (reach_) cmps.push_back({Compare::kDist, cull_.reach, static_cast<int64_t>(thr)});
+      }
+    }
+    // A ray of the pass is of this class and passes (unless it is a hinted one: then the
+    // blocks decide, with the class test alone).
+    if (cmps.empty() && hint < 0) return Verdict::kSome;
+    classes.push_back(std::move(cmps));
+    class_id.push_back(c);
+  }
+  if (classes.empty()) return Verdict::kNone;
+
+  p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
+  bool dist = false;
+  for (const std::vector<Compare>& cmps : classes) {
+    for (const Compare& k : cmps) dist = dist || (k.kind == Compare::kDist && k.word == kD);
+  }
+  if (dist) {
+    p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
+    // A flagged block's best may not be a hit at all (an uncertain inside test): its
+    // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
+    p.mask(0);
+    p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
+  }
+  // With one class left, a ray of another class cannot meet the box at all (its class
+  // was ruled out above), so whatever the compares say for it is safe: no class test.
+  const bool one = classes.size() == 1;
+  for (size_t n = 0; n < classes.size(); ++n) {
+    const unsigned c = class_id[n];
+    bool first = true;  // kWin not yet written for this class
+    if (!one) {
+      const int64_t key = (c & 1) ? -static_cast<int64_t>(unit_) : static_cast<int64_t>(unit_);
+      p.mask(0);
+      p << ref(RefFn::kThrough, RefPart::kData, kV + c / 2, static_cast<uint32_t>(key), kWin);
+      first = false;
+    }
+    // One CMP per compare, folded into kWin (it acts in every block; the mask plays no part).
+    for (const Compare& k : classes[n]) {
+      const CmpFn fn = first ? CmpFn::kThrough : CmpFn::kAnd;
+      if (k.kind == Compare::kLo) {
+        p << cmp(fn, CmpLt::kGe, k.word, static_cast<int32_t>(k.c), kWin, kWin);  // V >= c
+      } else {
+        p << cmp(fn, CmpLt::kLt, k.word, static_cast<int32_t>(k.c + 1), kWin, kWin);  // V <= c, D <= c, reach <= c
+      }
+      first = false;
+    }
+    if (first) p << flagop(kWin, kTmp, kTmp, lut::kA);  // one class, no compare: every ray
+    if (!one) p << flagop(kHit, n == 0 ? kWin : kHit, kWin, n == 0 ? lut::kA : lut::kOr);
+  }
+  if (hint >= 0) {
+    if (!has_cull_) throw std::logic_error("SharedBoxTest: a hint without the words to hold it");
+    // The blocks whose ray's hint is this leaf's triangle leave it out (Ray::hint); C is
+    // free between broadcasts.
+    constexpr unsigned kC = map::kFlagC;
+    p.mask(0);  // every bit compared (kDataMask would leave only the sign)
+    p << ref(RefFn::kThrough, RefPart::kData, cull_.hint, static_cast<uint32_t>(hint), kC, kC);
+    p << flagop(kC, kTmp, kC, lut::kAndNotB);
+    p << flagop(kSel, one ? kWin : kHit, kC, lut::kAnd);
+  } else {
+    p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
+  }
+  p.mask(layout::kDataMask);
+  return Verdict::kTest;
+}
+
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,
+                        double pad) const {
+  Program p;
+  p.assume_mask(layout::kDataMask);
+  const Verdict v = append(b, p, hint, leaf, pad);
+  if (v != Verdict::kTest) return v == Verdict::kSome;
+  const uint64_t c0 = dev.cycles();
+  dev.push(p.code());
+  const bool hit = dev.responders().any;
+  dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
+  st->instructions += p.size() + 1;
+  ++st->fmpp_box_tests;
+  st->box_cycles += dev.cycles() - c0;
+  return hit;
+}
+
+}  // namespace fmpp::isect

@@ -1,0 +1,82 @@
+// The FMPP's own ray-box test, for the rays of a pass that share an origin (ray-parallel,
+// the paper's form; docs/intersection.md, "Culling on the FMPP"). Every block tests its
+// own ray against a box the host broadcasts as a few constants, and the ANY responder
+// tells the host whether some ray of the pass may meet the box before its current
+// nearest hit. The host walks its hierarchy front to back with it, so the triangles a
+// pass broadcasts early shorten what later boxes have to reach.
+//
+// The test needs no multiply. A block's direction V has its largest component exactly
+// +-2^vbits (forms.h), so along that axis ("the ray's class": axis and sign) the ray's
+// slopes are its other two components over 2^vbits, and the point of the ray with
+// compared sum S_c lies at u = 2^vbits / (S_c t_scale) along that axis. So:
+//  - direction: the ray meets the box only if each slope lies between the box's smallest
+//    and largest slope seen from the origin (two compares per axis, against constants);
+//  - distance: the box's nearest coordinate u0 along the class axis bounds the compared
+//    sum of any hit in it by 2^vbits / (u0 t_scale); the box cannot hold a hit nearer
+//    than the block's best S_c (certified within the bound BB) when best - BB exceeds it.
+//    Only in a block not flagged uncertain: a flagged block's best may be no hit at all,
+//    and the host's exact redo of the ray must see every triangle it may hit.
+// Both only widen: constants are rounded outward, the box is widened for the rounding of
+// the directions, and the distance cut is strict (a pruned box's hits are farther in
+// truth than the best's), so the results are those without culling.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+#include "sw/fmpp/device.h"
+#include "sw/fmpp/program.h"
+#include "sw/isect/geometry/hierarchy.h"
+#include "sw/isect/pass/options.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/forms/shared_origin_layout.h"
+
+namespace fmpp::isect {
+
+class SharedBoxTest {
+ public:
+  // origin: the rays' shared origin; vbits: a block's largest direction component is
+  // 2^vbits; t_scale: 1/t = S_c t_scale sv (forms.h); angle: radians by which a block's
+  // quantized direction may differ from the ray's (the boxes are widened by it).
+  SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle);
+
+  // Forgets the pass's rays; add_ray then adds each ray of the next pass, as its block
+  // holds it: its classes (bit 2 axis + 1 for a negative component: every axis whose
+  // quantized component is +-2^vbits) and the range of its other components per class.
+  // A compare every ray of the pass passes, or a class no ray has, is left out.
+  void clear();
+  void add_ray(const glm::dvec3& d);
+  // The words that hold each block's reach and hint (layout::ray::cull_words), where the
+  // FMPP has them; set_reach: whether the blocks of this pass hold their ray's reach (a
+  // finite tmax: a box beyond it is cut too).
+  void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
+  void set_reach(bool on) { reach_ = on && has_cull_; }
+
+  // Appends the test of box b: SEL <- the block's ray may meet b before its best
+  // (unselected blocks: 0), the selection saved in flag kTmp. Unless the host decides
+  // alone (nothing appended): no ray of the pass can meet b, or some ray surely may.
+  // hint >= 0: b is the box of that one triangle, and the blocks holding it as their
+  // ray's hint (word cull_words().hint; Ray::hint) leave it out (needs set_cull_words).
+  // leaf: b is the box of that one triangle, padded by pad (every point where the FMPP
+  // may report a hit of it lies within pad of it): the directions are tested against the
+  // triangle's own slopes, narrower than the box's.
+  enum class Verdict { kNone, kSome, kTest };
+  Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0) const;
+  // Runs the test on the device and reads the ANY responder; SEL is restored after it.
+  // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
+  bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
+           double pad = 0) const;
+
+ private:
+  glm::dvec3 origin_;
+  double unit_;     // 2^vbits
+  double t_scale_;  // 1/t = S_c t_scale sv
+  double angle_;
+  unsigned classes_ = 0;
+  layout::ray::CullWords cull_{0, 0, 0};
+  bool has_cull_ = false, reach_ = false;
+  int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
+};
+
+}  // namespace fmpp::isect

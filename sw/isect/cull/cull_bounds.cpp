@@ -1,0 +1,58 @@
+// Error bounds for culling (see cull_bounds.h).
+#include "sw/isect/cull/cull_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+
+namespace fmpp::isect {
+
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt) {
+  constexpr double kMaxPad = 1e200;  // above any coordinate, below overflow of the box arithmetic
+  CullBounds cb;
+  const CullModel m = form.cull_model(tris);
+  cb.use_tmax = m.use_tmax;
+  cb.distance = m.distance;
+  cb.sum_floor = m.sum_floor;
+  cb.reach = m.reach;
+  cb.step = std::ldexp(1.0, 1 - static_cast<int>(opt.n));
+  // Directions are rounded to vbits (shared origin) or kGeneralRayBits (own origins)
+  // relative to their largest component: 2^-20 is far above either.
+  cb.angle = std::ldexp(1.0, -20);
+  for (const Broadcast& b : form.broadcasts) {
+    const Triangle& t = tris[static_cast<size_t>(b.tri)];
+    const CullPad p = form.cull_pad(t, b, m);
+    const double pad = p.pad + 1e-9 * (extent(t) + p.far);  // the box test's own rounding
+    cb.pad.push_back(std::isfinite(pad) ? std::min(pad, kMaxPad) : kMaxPad);
+    cb.boxes.push_back(padded_box(t, cb.pad.back()));
+    cb.rel.push_back(p.rel);
+    const glm::dvec3 nrm = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+    cb.normal.push_back(glm::length(nrm) > 0 ? glm::normalize(nrm) : glm::dvec3(0));
+  }
+  return cb;
+}
+
+double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!(t_best < kInf)) return kInf;
+  switch (distance) {
+    case CullDistance::kRelative:
+      // A triangle reported at least as near as t_best lies, in truth, within its own
+      // relative error of it (twice the bound), plus the rounding of the compared sum.
+      return t_best * (1 + 2 * rel[k] + 8 * t_best / sum_floor) + quantum;  // rel: as for tmax
+    case CullDistance::kGeneral: {
+      // t = det / nv, each rounded to about 2^-(n-1) of |n| reach and |n| |V|: the error
+      // of t (length units) is below 2^-(n-1) (2 reach + t) / cos(angle to the normal);
+      // four times that, plus two quotient steps.
+      const double c = std::abs(glm::dot(normal[k], u));
+      if (!(c > 0)) return kInf;
+      return t_best + 2 * quantum + 8 * step * (2 * reach + 3 * t_best) / c;
+    }
+    case CullDistance::kNone: break;
+  }
+  return kInf;
+}
+
+
+}  // namespace fmpp::isect

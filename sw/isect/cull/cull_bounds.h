@@ -1,0 +1,44 @@
+// How far the fixed point of each ray-parallel form can move a hit, as culling needs it
+// (docs/intersection.md, "Culling"): per broadcast triangle, its box padded by the
+// distance from the triangle at which the FMPP may still report a hit, and a bound on
+// how much nearer a reported distance can be than the true one. Culling drops a triangle
+// for a ray only outside these bounds, so the FMPP's answers do not change.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "sw/isect/geometry/hierarchy.h"
+#include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/options.h"
+#include "sw/isect/pass/ray_form.h"
+
+namespace fmpp::isect {
+
+struct CullBounds {
+  std::vector<Box> boxes;          // per broadcast: the triangle's padded box
+  std::vector<double> pad;         // per broadcast: that pad
+  std::vector<double> rel;         // kRelative: relative distance error bound, per broadcast (else 0)
+  std::vector<glm::dvec3> normal;  // unit normal, per broadcast (kGeneral)
+  bool use_tmax = false;           // the rays' tmax may cut their reach
+  CullDistance distance = CullDistance::kNone;  // the form's (pass/ray_form.h: CullModel)
+  double reach = 0;      // kGeneral: farthest vertex or origin from the scene's centre
+  double step = 0;       // kGeneral: 2^-(n-1)
+  double sum_floor = 1;  // kRelative: 2^kSumBits times the nearest distance of the scale
+  // Radians by which every ray direction is widened (and factor 1 + angle on tmax): the
+  // rounding of the rays' own data, which the triangles' pads do not cover.
+  double angle = 0;
+
+  // The farthest distance (length units, along unit direction u) at which broadcast k can
+  // lie in truth if the FMPP reports it at least as near as t_best, the distance it
+  // reported for another triangle (+infinity: no bound). quantum: one step of the
+  // reported distance.
+  double reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const;
+};
+
+// The bounds of form's broadcasts (prepared for its batch of rays), from what the form
+// says of its hits (RayForm::cull_model, cull_pad).
+CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt);
+
+}  // namespace fmpp::isect

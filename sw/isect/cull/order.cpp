@@ -1,0 +1,123 @@
+// Coherent ray order for the ray-parallel passes (see order.h).
+#include "sw/isect/cull/order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fmpp::isect {
+namespace {
+
+uint64_t spread2(uint32_t v) {  // 16 bits to the even bits of 32
+  uint64_t x = v & 0xFFFFu;
+  x = (x | (x << 8)) & 0x00FF00FFu;
+  x = (x | (x << 4)) & 0x0F0F0F0Fu;
+  x = (x | (x << 2)) & 0x33333333u;
+  x = (x | (x << 1)) & 0x55555555u;
+  return x;
+}
+
+uint64_t spread3(uint32_t v) {  // 10 bits to every third bit of 30
+  uint64_t x = v & 0x3FFu;
+  x = (x | (x << 16)) & 0x030000FFu;
+  x = (x | (x << 8)) & 0x0300F00Fu;
+  x = (x | (x << 4)) & 0x030C30C3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
+// Quantizes v in [lo, lo + span] to [0, 2^bits - 1].
+uint32_t quantize_unit(double v, double lo, double span, unsigned bits) {
+  const double top = std::ldexp(1.0, static_cast<int>(bits)) - 1;
+  if (!(span > 0)) return 0;
+  return static_cast<uint32_t>(std::clamp((v - lo) / span * top, 0.0, top));
+}
+
+// 2-D coordinates of each unit direction, near for near directions (see order.h).
+std::vector<glm::dvec2> direction_coords(const std::vector<glm::dvec3>& u) {
+  glm::dvec3 sum(0);
+  for (const glm::dvec3& d : u) sum += d;
+  std::vector<glm::dvec2> out(u.size());
+  bool gnomonic = glm::length(sum) > 0;
+  const glm::dvec3 axis = gnomonic ? glm::normalize(sum) : glm::dvec3(0, 0, 1);
+  for (const glm::dvec3& d : u) gnomonic = gnomonic && glm::dot(d, axis) >= 0.5;
+  if (gnomonic) {
+    const glm::dvec3 helper = std::abs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 e1 = glm::normalize(glm::cross(axis, helper)), e2 = glm::cross(axis, e1);
+    for (size_t i = 0; i < u.size(); ++i) {
+      const double z = glm::dot(u[i], axis);
+      out[i] = glm::dvec2(glm::dot(u[i], e1) / z, glm::dot(u[i], e2) / z);
+    }
+    return out;
+  }
+  for (size_t i = 0; i < u.size(); ++i) {  // octahedral map
+    const glm::dvec3& d = u[i];
+    const double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+    glm::dvec2 p(d.x / l1, d.y / l1);
+    if (d.z < 0) {
+      p = glm::dvec2((1 - std::abs(p.y)) * (p.x >= 0 ? 1 : -1), (1 - std::abs(p.x)) * (p.y >= 0 ? 1 : -1));
+    }
+    out[i] = p;
+  }
+  return out;
+}
+
+// Morton codes of 2-D points, one scale for both axes (tiles stay square).
+std::vector<uint32_t> morton_of(const std::vector<glm::dvec2>& p) {
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec2& q : p) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  const double span = std::max(hi.x - lo.x, hi.y - lo.y);
+  std::vector<uint32_t> out(p.size());
+  for (size_t i = 0; i < p.size(); ++i) {
+    out[i] = morton2(quantize_unit(p[i].x, lo.x, span, 16), quantize_unit(p[i].y, lo.y, span, 16));
+  }
+  return out;
+}
+
+}  // namespace
+
+uint32_t morton2(uint32_t x, uint32_t y) { return static_cast<uint32_t>(spread2(x) | (spread2(y) << 1)); }
+
+uint32_t morton3(uint32_t x, uint32_t y, uint32_t z) {
+  return static_cast<uint32_t>(spread3(x) | (spread3(y) << 1) | (spread3(z) << 2));
+}
+
+std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vector<size_t>& idx) {
+  const size_t n = idx.size();
+  if (n < 2) return idx;
+  std::vector<glm::dvec3> u(n);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  bool shared = true;
+  for (size_t i = 0; i < n; ++i) {
+    const Ray& r = rays[idx[i]];
+    u[i] = glm::normalize(r.d);
+    lo = glm::min(lo, r.o);
+    hi = glm::max(hi, r.o);
+    shared = shared && r.o == rays[idx[0]].o;
+  }
+  const std::vector<uint32_t> dir = morton_of(direction_coords(u));
+  std::vector<uint64_t> key(n);
+  const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  for (size_t i = 0; i < n; ++i) {
+    if (shared) {
+      key[i] = dir[i];
+      continue;
+    }
+    const Ray& r = rays[idx[i]];
+    const uint64_t octant = (r.d.x < 0 ? 1u : 0u) | (r.d.y < 0 ? 2u : 0u) | (r.d.z < 0 ? 4u : 0u);
+    const uint64_t at = morton3(quantize_unit(r.o.x, lo.x, span, 10), quantize_unit(r.o.y, lo.y, span, 10),
+                                quantize_unit(r.o.z, lo.z, span, 10));
+    key[i] = (octant << 61) | (at << 31) | (dir[i] >> 1);  // 3 + 30 + 31 bits
+  }
+  std::vector<size_t> pos(n);
+  for (size_t i = 0; i < n; ++i) pos[i] = i;
+  std::stable_sort(pos.begin(), pos.end(), [&](size_t a, size_t b) { return key[a] < key[b]; });
+  std::vector<size_t> out(n);
+  for (size_t i = 0; i < n; ++i) out[i] = idx[pos[i]];
+  return out;
+}
+
+}  // namespace fmpp::isect

@@ -1,0 +1,32 @@
+// The order in which the ray-parallel mapping loads a batch's rays into passes
+// (docs/intersection.md, "Coherent passes"). A pass is a run of consecutive rays, and
+// its culling (cull.h) bounds packets of consecutive rays, so rays that are near in this
+// order should share a small bounding volume. The order only regroups the rays: every
+// ray's result is its own (per-block state), and the scales of the fixed point are
+// taken over the whole batch, so it changes no result.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "sw/isect/geometry/geometry.h"
+
+namespace fmpp::isect {
+
+// Morton code of two 16-bit coordinates (bits interleaved, x in the even bits).
+uint32_t morton2(uint32_t x, uint32_t y);
+// Morton code of three 10-bit coordinates.
+uint32_t morton3(uint32_t x, uint32_t y, uint32_t z);
+
+// idx reordered so that passes and packets are spatially coherent:
+//  - rays sharing one origin: by direction, in Morton order of their projection onto
+//    the plane across the batch's mean direction when every direction lies within 60
+//    degrees of it (primary rays: square image tiles), else of the octahedral map of
+//    the unit sphere;
+//  - rays with several origins: by the octant of the direction, then in Morton order of
+//    the origin within the batch's bounding box, then by direction as above.
+// Ties keep the order of idx, so the result is deterministic.
+std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vector<size_t>& idx);
+
+}  // namespace fmpp::isect

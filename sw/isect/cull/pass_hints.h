@@ -1,0 +1,52 @@
+// What the FMPP's box test knows of each ray beyond its direction and best (docs/
+// intersection.md, "Culling on the FMPP"), written into two words of each block where
+// the FMPP has them (layout::ray::cull_words): the ray's reach (its tmax as a compared
+// sum: a box beyond it is cut whatever the block's best) and its hint (Ray::hint, where
+// plane_beyond_reach proves it; kNoHint for none), whose leaf the block leaves out.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/isect/cull/box_test.h"
+#include "sw/isect/forms/forms.h"
+#include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/forms/shared_origin_layout.h"
+
+namespace fmpp::isect {
+
+class PassHints {
+ public:
+  explicit PassHints(size_t triangles) : hinted_(triangles, 0) {}
+
+  // Writes the words of rays[idx[base .. base + count)] into blocks 0 .. count - 1 and
+  // tells `boxes` whether the reach is there. Nothing is written (and nothing hinted)
+  // where the pass's proven hints are few different triangles: see kHintShare.
+  void write(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base, unsigned count,
+             const std::vector<Triangle>& tris, const SharedOriginForm& form, const layout::ray::CullWords& words,
+             SharedBoxTest& boxes);
+  // Forgets the pass's hints (a pass without the words).
+  void clear();
+  // The hint to test the leaf of triangle `tri` with: tri if some block of the pass holds
+  // it, else -1.
+  int hint_for(int tri) const { return hinted_[static_cast<size_t>(tri)] ? tri : -1; }
+
+  // The two words cost two bus writes a ray; they are written only where the proven hints
+  // are many different triangles (one in kHintShare rays or more): a triangle that is the
+  // hint of many rays (a large wall) is broadcast for the rays that do not end on it
+  // anyway, and the reach matters little without the hints (a ray's own triangle, sent,
+  // cuts the boxes beyond it). Measured at 128 x 128 (4096 blocks, n = 24; clocks of the
+  // frame): without the words, in every pass, and with kHintShare 8, 16, 32, 64: the
+  // Cornell box 1,571,313, 1,606,334, 1,554,779, 1,568,069, 1,568,069, 1,578,101;
+  // armadillo 5,985,452, 5,768,022, 5,806,729, 5,755,695, 5,750,122, 5,759,830; scans
+  // 8,174,883, 7,662,250, 7,790,352, then 7,662,250 from 16 on.
+  static constexpr unsigned kHintShare = 32;
+
+ private:
+  std::vector<char> hinted_;  // per triangle: some block of the pass holds it as its hint
+  std::vector<int> list_;     // those triangles
+};
+
+}  // namespace fmpp::isect

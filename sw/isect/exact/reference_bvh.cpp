@@ -1,0 +1,79 @@
+// The exact reference through a hierarchy (see reference_bvh.h).
+//
+// The walk only chooses candidates; the answer is nearest_reference_among's exact
+// comparisons among them, so it can differ from nearest_reference only if the walk left
+// out a triangle that the exact nearest hit needs: one the ray meets at a distance no
+// greater than the best candidate's. It cannot, because (1) every box is padded by 2^-30
+// of its triangle's extent and largest coordinate, far beyond the rounding of the box
+// and of the packet test (a few ulps of the coordinates), so a box the ray meets is
+// entered; and (2) a leaf is left only when its entry distance exceeds the best hit's
+// distance, taken one ulp up (the exact t is within one ulp below the returned one),
+// times 1 + 2^-30, plus 2^-30 of the origin's largest coordinate: the rounding of the
+// entry distance is far below that margin. tests/reference_bvh_test.cpp compares it with
+// nearest_reference on hard placements.
+#include "sw/isect/exact/reference_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sw/isect/exact/reference.h"
+
+namespace fmpp::isect {
+namespace {
+
+constexpr double kRel = 0x1p-30;
+
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+std::vector<Box> padded_boxes(const std::vector<Triangle>& tris) {
+  std::vector<Box> boxes;
+  boxes.reserve(tris.size());
+  for (const Triangle& t : tris) {
+    const double big = std::max({max_abs(t.p[0]), max_abs(t.p[1]), max_abs(t.p[2])});
+    boxes.push_back(padded_box(t, kRel * (extent(t) + big) + std::numeric_limits<double>::min()));
+  }
+  return boxes;
+}
+
+}  // namespace
+
+ReferenceBvh::ReferenceBvh(const std::vector<Triangle>& tris) : tris_(tris) {
+  validate_input({}, tris);
+  bvh_ = Bvh(padded_boxes(tris));
+}
+
+Hit ReferenceBvh::nearest(const Ray& r) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const std::vector<Ray> one{r};
+  const std::vector<size_t> idx{0};
+  RayPacket p = make_packets(one, idx, 0, 1, 1, kRel)[0];
+  p.t1 = kInf;
+  const double len = glm::length(r.d) * (1 + kRel);
+  const double slack = kRel * max_abs(r.o);
+  double best = kInf;  // an upper bound on the best candidate's distance (length units)
+  std::vector<int> candidates;
+  bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
+    if (entry > best) return true;  // leaves come in order of entry: none further is nearer
+    for (uint32_t i = 0; i < n; ++i) {
+      const int tri = static_cast<int>(items[i]);
+      if (tri == r.exclude) continue;
+      const double t = intersect_reference(r, tris_[items[i]]);
+      if (!(t < kInf)) continue;
+      candidates.push_back(tri);
+      best = std::min(best, std::nextafter(t, kInf) * len * (1 + kRel) + slack);
+    }
+    return false;
+  });
+  return candidates.empty() ? Hit{} : nearest_reference_among(r, tris_, candidates);
+}
+
+std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
+  validate_input(rays, {});
+  std::vector<Hit> out;
+  out.reserve(rays.size());
+  for (const Ray& r : rays) out.push_back(nearest(r));
+  return out;
+}
+
+}  // namespace fmpp::isect

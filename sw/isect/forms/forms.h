@@ -1,0 +1,131 @@
+// The intersection forms and the one table that names them (docs/intersection.md),
+// each form in its own folder:
+//   paper/       the paper's T = P^-1 V for rays sharing an origin: ray-parallel, and
+//                its object-parallel mapping
+//   watertight/  exact integer edge functions for rays sharing an origin
+//   general/     Pluecker edge tests and a division, for rays with their own origins
+// The rest of the kernels know a form only through this table and the RayForm
+// interface (pass/ray_form.h). Adding a form: one folder with its factory, one line in
+// the table (sw/isect/form_table.cpp), and the rule in form_for() that picks it.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/isect/forms/shared_origin_layout.h"
+#include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/pass/options.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/isect/pass/ray_form.h"
+
+namespace fmpp::isect {
+
+// What a form is prepared from: the batch of rays it will take and the triangles.
+struct FormInputs {
+  const KernelOptions& opt;
+  const std::vector<Triangle>& tris;
+  const std::vector<Ray>& rays;
+  const std::vector<size_t>& idx;  // the batch: rays[idx[..]]
+  glm::dvec3 origin;               // the shared origin (shared-origin forms)
+  KernelStats* st;
+};
+
+// Every form, by one identifier: the index of KernelStats' per-form counters and of the
+// table.
+enum FormId : int { kFormPaper, kFormWatertight, kFormGeneral, kFormPaperObject, kFormCount };
+static_assert(kFormCount == KernelStats::kForms, "KernelStats counts every form of the table");
+
+// The object-parallel mapping: one group of rays[idx[..]] sharing `origin` against
+// `tris`, writing out[idx[..]].
+using ObjectRunner = void (*)(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
+                              const std::vector<Triangle>& tris, const glm::dvec3& origin, const KernelOptions& opt,
+                              std::vector<Hit>& out, KernelStats* st);
+
+struct FormInfo {
+  FormId id;
+  const char* name;  // in reports and the JSON counters
+  Mapping mapping;
+  bool shared_origin;  // takes a group of rays with one origin (else: rays with their own)
+  unsigned (*words)(const KernelOptions& opt);  // words per block it needs
+  std::unique_ptr<RayForm> (*make)(const FormInputs&);  // ray-parallel: prepares a batch
+  ObjectRunner run_object;                               // object-parallel: runs a group
+};
+
+// The table, in FormId order (sw/isect/form_table.cpp, with the three below).
+const std::vector<FormInfo>& all_forms();
+// A form's name ("?" for an id outside the table).
+const char* form_name(int id);
+// The form that takes a group of rays sharing an origin (shared = true) or rays with
+// their own origins, under `opt` (mapping, watertight).
+const FormInfo& form_for(const KernelOptions& opt, bool shared);
+
+// The forms' entries (each in its folder).
+std::unique_ptr<RayForm> make_paper_form(const FormInputs& in);
+std::unique_ptr<RayForm> make_watertight_form(const FormInputs& in);
+std::unique_ptr<RayForm> make_general_form(const FormInputs& in);
+void run_object_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
+                         const std::vector<Triangle>& tris, const glm::dvec3& origin, const KernelOptions& opt,
+                         std::vector<Hit>& out, KernelStats* st);
+unsigned shared_origin_words(const KernelOptions& opt);  // the paper's and the watertight form
+unsigned general_words(const KernelOptions& opt);
+unsigned paper_object_words(const KernelOptions& opt);
+
+// Rays sharing an origin (the paper's and the watertight form): each block holds the
+// ray's direction V, quantized with its own scale sv (largest component = 2^vbits); a
+// block's best is the largest compared sum S_c (0: no hit), and 1/t = S_c t_scale sv.
+// Both forms certify their results: each broadcast's sum_bound bounds its S_c, and the
+// pass's init clears the best's bound kBB and the flag kUnc.
+class SharedOriginForm : public RayForm {
+ public:
+  SharedOriginForm(const KernelOptions& opt, const glm::dvec3& origin) : opt_(opt), origin_(origin) {}
+  BestWords best_words() const override { return {layout::ray::kBest, layout::ray::kIdx, 0}; }
+  void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override;
+  void init(Program& p) const override;
+  double t_of(uint32_t best, const Ray& r) const override;
+  bool certified() const override { return true; }
+  double t_rel_bound(uint32_t best, size_t k) const override;
+  double t_scale() const { return t_scale_; }
+  // The ray's reach as a compared sum: at most the S_c of any hit with t < tmax (0: no
+  // cut), for the FMPP's box test (word kReach).
+  uint32_t reach_word(const Ray& r) const;
+
+ protected:
+  // The scale of a direction's components: its largest becomes 2^vbits.
+  double ray_scale(const glm::dvec3& d) const;
+  // The common exponent E of the compared sums S_c = S / 2^(E+1) of the batch in.idx:
+  // the nearest possible hit (policy::nearest_for_exponent) keeps S_c below
+  // 2^kSumBits. Sets t_scale_ = 2^(E+1).
+  int sum_exponent(const FormInputs& in);
+
+  // The farthest vertex of t from the rays' origin.
+  double farthest(const Triangle& t) const;
+  // The start of every broadcast of a shared-origin form: under the pass's data mask
+  // (set by its init, kept by every broadcast), the broadcast counter counts it.
+  static Program begin_broadcast();
+  // Prepares every triangle of the batch: one too ill-conditioned for the format (the
+  // paper form's measure, policy::paper_cond_limit) goes to the host, as does one that
+  // prepare(triangle, &broadcast) refuses (returns false); the others are broadcast.
+  template <class Prepare>
+  void prepare_all(const FormInputs& in, Prepare&& prepare) {
+    const double cond_limit = policy::paper_cond_limit(opt_);
+    for (size_t k = 0; k < in.tris.size(); ++k) {
+      Broadcast b;
+      if (!(policy::condition(in.tris[k], in.origin) <= cond_limit) || !prepare(in.tris[k], &b)) {
+        host.push_back(static_cast<int>(k));
+        continue;
+      }
+      b.tri = static_cast<int>(k);
+      broadcasts.push_back(std::move(b));
+    }
+  }
+
+  const KernelOptions& opt_;
+  glm::dvec3 origin_;   // the rays' shared origin
+  double t_scale_ = 1;  // 1/t = S_c t_scale sv
+};
+
+}  // namespace fmpp::isect

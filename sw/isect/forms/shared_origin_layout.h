@@ -1,0 +1,32 @@
+// The words of a block in the forms for rays sharing an origin (the paper's and the
+// watertight form, forms.h: SharedOriginForm), which culling's box test reads too.
+#pragma once
+
+#include <cstdint>
+
+namespace fmpp::isect::layout {
+
+// Ray-parallel, rays sharing an origin (the paper's form and the watertight form):
+// the ray's direction, T_1..3, the compared sum S, the best S and its broadcast number,
+// scratch, the broadcast counter (the best's number is copied from it, so no WRITES per
+// broadcast), the constant 1, the error bound of the best's S and of this broadcast's S
+// (certified paper form), and (generic multiply only) the 9 multiplier words. Where the
+// FMPP has two words more (kCullWords), its box test also uses the ray's tmax as a
+// compared sum (reach) and the triangle its culling may leave out (hint: Ray::hint;
+// kNoHint for none), in the two words after the others (cull_words).
+namespace ray {
+inline constexpr unsigned kV = 0, kT = 3, kS = 6, kBest = 7, kIdx = 8, kD = 9, kCnt = 10, kOne = 11, kBB = 12,
+                          kBN = 13, kX = 14;
+inline constexpr unsigned kWordsConst = kX, kWordsGeneric = kX + 9;
+// Above every triangle index (they are below 2^31 - 1); compared under mask 0.
+inline constexpr uint32_t kNoHint = 0x7FFFFFFFu;
+struct CullWords {
+  unsigned reach, hint, words;  // words: the words a block needs to hold them
+};
+inline constexpr CullWords cull_words(bool generic) {
+  const unsigned first = generic ? kWordsGeneric : kWordsConst;
+  return {first, first + 1, first + 2};
+}
+}  // namespace ray
+
+}  // namespace fmpp::isect::layout

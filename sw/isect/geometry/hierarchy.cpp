@@ -1,0 +1,179 @@
+// Culling for the ray-parallel mapping (see cull.h).
+#include "sw/isect/geometry/hierarchy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace fmpp::isect {
+
+std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin,
+                                    size_t end, size_t size, double margin) {
+  if (size == 0) throw std::invalid_argument("fmpp::isect::make_packets: packet size 0");
+  std::vector<RayPacket> out;
+  for (size_t b = begin; b < end; b += size) {
+    RayPacket p;
+    p.t1 = 0;
+    for (size_t k = b; k < std::min(end, b + size); ++k) {
+      const Ray& r = rays[order[k]];
+      const double len = glm::length(r.d);
+      p.o.grow(r.o);
+      p.d.grow(r.d / len);
+      p.t1 = std::max(p.t1, r.tmax * len * (1 + margin));  // inf stays inf
+    }
+    p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
+    p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+    out.push_back(p);
+  }
+  return out;
+}
+
+bool may_enter(const RayPacket& p, const Box& b) { return entry_distance(p, b) < std::numeric_limits<double>::infinity(); }
+
+double entry_distance(const RayPacket& p, const Box& b) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double lo = p.t0, hi = p.t1;
+  for (int a = 0; a < 3; ++a) {
+    // The packet's points at t span [o.lo + t d.lo, o.hi + t d.hi] on this axis (t >= 0).
+    const double below = b.hi[a] - p.o.lo[a];  // need t d.lo <= below
+    if (p.d.lo[a] > 0) {
+      hi = std::min(hi, below / p.d.lo[a]);
+    } else if (p.d.lo[a] < 0) {
+      lo = std::max(lo, below / p.d.lo[a]);
+    } else if (below < 0) {
+      return kInf;
+    }
+    const double above = b.lo[a] - p.o.hi[a];  // need t d.hi >= above
+    if (p.d.hi[a] > 0) {
+      lo = std::max(lo, above / p.d.hi[a]);
+    } else if (p.d.hi[a] < 0) {
+      hi = std::min(hi, above / p.d.hi[a]);
+    } else if (above > 0) {
+      return kInf;
+    }
+  }
+  // The quotients are rounded: a relative slack of 1e-9 keeps a grazing packet in.
+  return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
+}
+
+bool plane_beyond_reach(const Ray& r, const Triangle& t) {
+  const glm::dvec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], w = t.p[0] - r.o;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double nd = glm::dot(n, r.d), dl = glm::length(r.d), nl = glm::length(n);
+  // Rounding: each component of n is within 2^-50 |e1| |e2| of the exact cross product,
+  // each dot product within 2^-50 of its terms' magnitudes; 1e-12 is far above both.
+  const double eps = 1e-12 * glm::length(e1) * glm::length(e2);
+  const double num_err = eps * glm::length(w), den_err = eps * dl;
+  // Far from parallel (the hit's own angle of incidence is then not tiny either), and the
+  // denominator's sign certain.
+  if (!(std::abs(nd) >= 1e-6 * nl * dl) || !(std::abs(nd) > 2 * den_err)) return false;
+  const double tp = glm::dot(n, w) / nd;
+  const double dt = (num_err + std::abs(tp) * den_err) / (std::abs(nd) - den_err) + 1e-12 * std::abs(tp);
+  if (!std::isfinite(tp) || !std::isfinite(dt)) return false;
+  return tp - dt >= r.tmax || tp + dt < r.tmin;
+}
+
+int proven_hint(const Ray& r, const std::vector<Triangle>& tris) {
+  if (r.hint < 0 || static_cast<size_t>(r.hint) >= tris.size()) return -1;
+  return plane_beyond_reach(r, tris[static_cast<size_t>(r.hint)]) ? r.hint : -1;
+}
+
+Box padded_box(const Triangle& t, double pad) {
+  Box b;
+  for (const glm::dvec3& p : t.p) b.grow(p);
+  b.lo -= glm::dvec3(pad);
+  b.hi += glm::dvec3(pad);
+  return b;
+}
+
+double extent(const Triangle& t) {
+  Box b;
+  for (const glm::dvec3& p : t.p) b.grow(p);
+  const glm::dvec3 s = b.hi - b.lo;
+  return std::max({s.x, s.y, s.z});
+}
+
+Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack, unsigned leaf_items)
+    : leaf_items_(std::max(1u, leaf_items)) {
+  std::vector<uint32_t> ids;
+  std::vector<glm::dvec3> centre(boxes.size());
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    if (boxes[i].empty()) continue;
+    ids.push_back(static_cast<uint32_t>(i));
+    centre[i] = 0.5 * boxes[i].lo + 0.5 * boxes[i].hi;
+  }
+  if (ids.empty()) return;
+  nodes_.reserve(2 * ids.size() / leaf_items_ + 2);
+  nodes_.emplace_back();
+  build(0, ids, 0, ids.size(), boxes, centre, slack);
+}
+
+// Fills node `self` with the subtree of ids[begin, end); an inner node's children are
+// appended as a pair. Every split halves the items, so the depth stays below 40.
+void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
+                const std::vector<glm::dvec3>& centre, const std::vector<double>& slack) {
+  Box box, cb;
+  double most = 0;
+  for (size_t i = begin; i < end; ++i) {
+    box.grow(boxes[ids[i]]);
+    cb.grow(centre[ids[i]]);
+    if (!slack.empty()) most = std::max(most, slack[ids[i]]);
+  }
+  nodes_[self].box = box;
+  nodes_[self].slack = most;
+  if (end - begin <= leaf_items_) {
+    nodes_[self].first = static_cast<uint32_t>(items_.size());
+    nodes_[self].count = static_cast<uint32_t>(end - begin);
+    items_.insert(items_.end(), ids.begin() + static_cast<std::ptrdiff_t>(begin),
+                  ids.begin() + static_cast<std::ptrdiff_t>(end));
+    return;
+  }
+  const glm::dvec3 span = cb.hi - cb.lo;
+  const int axis = span.x >= span.y && span.x >= span.z ? 0 : span.y >= span.z ? 1 : 2;
+  const size_t mid = begin + (end - begin) / 2;
+  std::nth_element(ids.begin() + static_cast<std::ptrdiff_t>(begin), ids.begin() + static_cast<std::ptrdiff_t>(mid),
+                   ids.begin() + static_cast<std::ptrdiff_t>(end), [&](uint32_t a, uint32_t b) {
+                     return centre[a][axis] < centre[b][axis] || (centre[a][axis] == centre[b][axis] && a < b);
+                   });
+  const uint32_t left = static_cast<uint32_t>(nodes_.size());
+  nodes_[self].first = left;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  build(left, ids, begin, mid, boxes, centre, slack);
+  build(left + 1, ids, mid, end, boxes, centre, slack);
+}
+
+void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {
+  if (nodes_.empty() || packets.empty()) return;
+  // Depth-first; each entry carries the packets that entered its parent.
+  struct Entry {
+    uint32_t node;
+    std::vector<uint32_t> live;
+  };
+  std::vector<Entry> stack;
+  std::vector<uint32_t> all(packets.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<uint32_t>(i);
+  stack.push_back({0, std::move(all)});
+  uint64_t n_tests = 0;
+  while (!stack.empty()) {
+    Entry e = std::move(stack.back());
+    stack.pop_back();
+    const Node& n = nodes_[e.node];
+    std::vector<uint32_t> live;
+    for (uint32_t p : e.live) {
+      ++n_tests;
+      if (enters(packets[p], n)) live.push_back(p);
+    }
+    if (live.empty()) continue;
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) reach[items_[i]] = 1;
+    } else {
+      stack.push_back({n.first + 1, live});
+      stack.push_back({n.first, std::move(live)});
+    }
+  }
+  if (tests) *tests += n_tests;
+}
+
+}  // namespace fmpp::isect

@@ -1,0 +1,33 @@
+// Quantization helpers of the intersection kernels (see fixed_point.h).
+#include "sw/isect/pass/fixed_point.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace fmpp::isect {
+
+int mantissas(const double* v, int count, unsigned bits, int64_t* out) {
+  double m = 0;
+  for (int k = 0; k < count; ++k) m = std::max(m, std::abs(v[k]));
+  int e = (m > 0) ? static_cast<int>(std::floor(std::log2(m))) + 1 : 0;
+  const int64_t lim = (int64_t{1} << bits) - 1;
+  for (;;) {
+    bool ok = true;
+    for (int k = 0; k < count; ++k) {
+      out[k] = std::llround(std::ldexp(v[k], static_cast<int>(bits) - e));
+      ok = ok && std::llabs(out[k]) <= lim;
+    }
+    if (ok) return e;
+    ++e;
+  }
+}
+
+int32_t quantize(double v, double scale, int64_t limit, const char* what) {
+  const double q = std::nearbyint(v / scale);
+  if (!(std::abs(q) <= static_cast<double>(limit))) {
+    throw std::logic_error(std::string("fmpp::isect: ") + what + " out of range after scaling");
+  }
+  return static_cast<int32_t>(q);
+}
+
+}  // namespace fmpp::isect

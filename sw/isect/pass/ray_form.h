@@ -1,0 +1,105 @@
+// What an intersection form of the ray-parallel mapping gives the passes that run it
+// (ray_parallel.h): its triangles' broadcasts, the words a ray occupies, how a block's
+// best becomes a distance and how certain it is.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "sw/fmpp/device.h"
+#include "sw/fmpp/program.h"
+#include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/options.h"
+#include "sw/isect/pass/pass.h"
+
+namespace fmpp::isect {
+
+// One triangle's broadcast. Its program is built on first use: a culled batch sends a
+// small share of its triangles (spheres_10k's frame builds about a third of them), and
+// a scanned mesh's programs would take hundreds of megabytes.
+struct Broadcast {
+  int tri = -1;          // the triangle
+  double sum_bound = 0;  // certified forms: the bound on the compared value of its hits
+  double edge_cond = 0;  // the arbitrary-origin form: its edge-test condition (culling pads)
+  // Builds the program; *test_steps gets its instructions up to the inside test, *mark
+  // an instruction the form patches per pass (the arbitrary-origin form's exclusion).
+  std::function<Program(size_t* test_steps, size_t* mark)> build;
+
+  const Program& program() const {
+    if (!built_) {
+      program_ = build(&test_steps_, &mark_);
+      built_ = true;
+    }
+    return program_;
+  }
+  size_t test_steps() const { return program(), test_steps_; }
+  size_t mark() const { return program(), mark_; }
+
+ private:
+  mutable Program program_;
+  mutable size_t test_steps_ = 0, mark_ = 0;
+  mutable bool built_ = false;
+};
+
+// How a form's reported distance relates to the true one, for culling: within a
+// relative error per triangle (kRelative), within an absolute error set by the angle of
+// incidence (kGeneral), or not bounded (kNone: no distance cut).
+enum class CullDistance { kRelative, kGeneral, kNone };
+struct CullModel {
+  CullDistance distance = CullDistance::kNone;
+  bool use_tmax = false;  // the rays' tmax may cut their reach
+  double sum_floor = 1;   // kRelative: 2^kSumBits times the nearest distance of the scale
+  double reach = 0;       // kGeneral: the farthest vertex or origin from the form's frame centre
+};
+struct CullPad {
+  double pad = 0;  // how far outside the triangle the FMPP may report a hit
+  double rel = 0;  // kRelative: the bound on the relative error of its distance
+  double far = 0;  // the farthest vertex from the rays' shared origin (0 without one)
+};
+
+// An intersection form of the ray-parallel mapping, prepared for one batch of rays.
+class RayForm {
+ public:
+  virtual ~RayForm() = default;
+  // The triangles on the FMPP, and those every ray tests on the host instead.
+  std::vector<Broadcast> broadcasts;
+  std::vector<int> host;
+
+  // Where each block keeps its best and the number of the broadcast that set it.
+  virtual BestWords best_words() const = 0;
+  // Writes one ray into block b. number_of[k] is broadcast k's number in this pass
+  // (0: culled).
+  virtual void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const = 0;
+  // The per-pass WRITES of the selected blocks (run with mask 0; kDataMask follows).
+  virtual void init(Program& p) const = 0;
+  // Broadcast k's code, sent as number `number` (a form may patch it in).
+  virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program().code(); }
+  // The distance of a block's best.
+  virtual double t_of(uint32_t best, const Ray& r) const = 0;
+  // Which form this is: its FormId in the registry (forms/forms.h), the index of
+  // KernelStats' per-form counters.
+  virtual int id() const = 0;
+  // Whether the FMPP's box test (cull/box_test.h) can cull this form's passes: it needs
+  // the shared-origin words and a reach that is a compared sum.
+  virtual bool fmpp_box_test() const { return false; }
+  // Certified forms set flag layout::kUnc in a block whose decisions were not certain
+  // (the host then redoes the ray exactly), and bound the relative error of every t.
+  virtual bool certified() const { return false; }
+  // The certified relative bound on t_of(best) for a best set by broadcast k.
+  virtual double t_rel_bound(uint32_t /*best*/, size_t /*k*/) const { return std::numeric_limits<double>::infinity(); }
+  // The same for block b's best, where the bound needs more of the block than its best
+  // (the arbitrary-origin form reads the best's det and n . V): reads them from dev.
+  virtual double t_rel_bound_at(Device& /*dev*/, unsigned /*b*/, uint32_t best, size_t k) const {
+    return t_rel_bound(best, k);
+  }
+  // What culling may assume of this form's hits (cull/cull_bounds.h): for the batch, how
+  // a reported distance relates to the true one; per broadcast triangle, how far outside
+  // it the FMPP may report a hit.
+  virtual CullModel cull_model(const std::vector<Triangle>& tris) const = 0;
+  virtual CullPad cull_pad(const Triangle& t, const Broadcast& b, const CullModel& m) const = 0;
+};
+
+}  // namespace fmpp::isect

@@ -1,0 +1,219 @@
+// The plan's choice of the multiplier bits (see plan_parts.h, plan.h).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <sstream>
+
+#include "fmpp/model_bus.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/exact/reference.h"
+#include "sw/isect/pass/policy.h"
+#include "sw/rt/plan_parts.h"
+#include "sw/rt/render.h"
+
+namespace rt::plan_parts {
+namespace {
+
+using fmpp::isect::Hit;
+using fmpp::isect::Ray;
+
+// `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed, sorted.
+std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
+  std::mt19937_64 rng(0x5eed);
+  std::vector<uint32_t> all(pixels);
+  std::iota(all.begin(), all.end(), 0u);
+  for (size_t k = 0; k < count; ++k) {  // a partial Fisher-Yates shuffle
+    std::uniform_int_distribution<size_t> pick(k, pixels - 1);
+    std::swap(all[k], all[pick(rng)]);
+  }
+  all.resize(count);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+}  // namespace
+
+// Precision: the smallest candidate n whose sampled primary rays and sampled frame
+// meet the target (see plan.h). Fills plan.candidates.
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan) {
+  if (req.bits) return {*req.bits, "set by the user"};
+  Steps steps(req);
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+  // Sample: every k-th primary ray of the frame.
+  const std::vector<Ray> all = primary_rays(scene.camera, req.width, req.height);
+  const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
+  std::vector<Ray> sample;
+  for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
+  ReferenceIntersector ri(scene.triangles);
+  const std::vector<Hit> ref = ri.intersect(sample);
+  std::vector<double> cond;
+  for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
+  steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays");
+  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
+  // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
+  // plan is deterministic), in frame order, rendered whole (shadow, reflection and
+  // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
+  RenderOptions frame;
+  frame.width = req.width;
+  frame.height = req.height;
+  frame.max_depth = depth;
+  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
+  if (want < pixels) frame.pixels = sample_pixels(pixels, want);
+  const size_t sampled = frame.pixels.empty() ? pixels : frame.pixels.size();
+  // The sample is rendered in chunks of kChunk pixels, in its random order's prefix, so
+  // that a candidate is decided as soon as its answer is certain: accepted once the
+  // bound on the prefix keeps the target (with no pixel off, 1,497 pixels show 0.2 %),
+  // refused once no outcome of the rest could keep it. The reference's chunks are kept
+  // for the next candidate. A frame sampled whole is decided on the whole.
+  constexpr size_t kChunk = 500;
+  std::vector<std::vector<uint32_t>> chunks;
+  if (frame.pixels.empty()) {
+    chunks.emplace_back();  // the whole frame
+  } else {
+    std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
+    std::mt19937_64 rng(0x5eed + 1);
+    std::shuffle(order.begin(), order.end(), rng);
+    for (size_t b = 0; b < order.size(); b += kChunk) {
+      std::vector<uint32_t> c(order.begin() + static_cast<std::ptrdiff_t>(b),
+                              order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b + kChunk)));
+      std::sort(c.begin(), c.end());  // frame order: coherent passes
+      chunks.push_back(std::move(c));
+    }
+  }
+  std::vector<Image> ref_chunks;
+  // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
+  // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
+  const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
+  auto options = [&](unsigned n) {
+    fmpp::isect::KernelOptions o = req.base;
+    o.n = n;
+    o.progress = nullptr;
+    return o;
+  };
+  // The frame sample at n: what the rays the primary sample does not see (shadow rays
+  // ending on a neighbour's edge, secondary rays) do to the picture.
+  auto render_frame = [&](PlanCandidate& c) {
+    fmpp::isect::KernelStats st;
+    size_t done = 0, over = 0;
+    for (size_t k = 0; k < chunks.size(); ++k) {
+      RenderOptions part = frame;
+      part.pixels = chunks[k];
+      const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
+      if (ref_chunks.size() <= k) {
+        ref_chunks.push_back(render(scene, ri, part, nullptr));
+        steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
+      }
+      fmpp::ModelBus fbus(frame_cfg);
+      fmpp::Device fdev(fbus);
+      FmppIntersector fi(fdev, scene.triangles, options(c.n));
+      // Pixels outside the chunk are black in both renders: they count as equal.
+      over += compare(render(scene, fi, part, nullptr), ref_chunks[k]).pixels_over;
+      st.add(fi.stats());
+      done += count;
+      c.pixels_sampled = done;
+      c.pixel_rate = static_cast<double>(over) / static_cast<double>(done);
+      c.pixel_bound = done == pixels ? c.pixel_rate : upper_confidence_bound(over, done, req.confidence);
+      c.flagged_share = flagged_share(st);
+      steps.say("n = " + std::to_string(c.n) + ": " + std::to_string(done) + " of " + std::to_string(sampled) +
+                " sampled pixels on the FMPP, " + pct(c.pixel_rate) + " off the reference (bound " +
+                pct(c.pixel_bound) + "), " + pct(c.flagged_share) + " of their rays redone");
+      if (done == sampled) break;
+      const bool keeps = c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share;
+      // Even a clean rest of the sample would not bring the bound within the target, or
+      // the redone rays so far exceed the allowance for the whole sample, or (a cost, not
+      // the target: an estimate will do) 1,000 pixels or more redo half as many again as
+      // allowed.
+      const bool fails = upper_confidence_bound(over, sampled, req.confidence) > req.target_wrong_rate ||
+                         c.flagged_share * static_cast<double>(done) >
+                             req.max_flagged_share * static_cast<double>(sampled) ||
+                         (done >= 2 * kChunk && c.flagged_share > 1.5 * req.max_flagged_share);
+      if (keeps || fails) break;
+    }
+    c.sample_cycles += st.cycles;
+  };
+  auto frame_figure = [&](const PlanCandidate& c) {
+    std::ostringstream f;
+    if (c.pixels_sampled == pixels) {
+      f << "in the whole " << frame.width << " x " << frame.height << " frame " << pct(c.pixel_rate);
+    } else {
+      f << "on " << c.pixels_sampled << " pixels drawn from the " << frame.width << " x " << frame.height << " frame "
+        << pct(c.pixel_rate) << " (" << pct(req.confidence) << " upper bound for the frame " << pct(c.pixel_bound)
+        << ")";
+    }
+    f << " of pixels off the reference by more than 8 levels";
+    return f.str();
+  };
+  for (unsigned n : {8u, 10u, 12u, 16u, 20u, 24u, 28u, 32u}) {
+    PlanCandidate c;
+    c.n = n;
+    size_t over = 0;
+    const double limit = fmpp::isect::policy::paper_cond_limit(options(n));  // the kernel's own limit
+    for (double k : cond) over += !(k <= limit);
+    c.host_share = static_cast<double>(over) / static_cast<double>(cond.size());
+    if (c.host_share > req.max_host_share && n != 32) {
+      // Decided by the conditioning alone: the sample would only cost (on a scanned mesh
+      // nearly every triangle would be tested on the host for every sampled ray).
+      c.wrong_rate = -1;
+      c.sample_cycles = 0;
+      plan.candidates.push_back(c);
+      steps.say("n = " + std::to_string(n) + ": " + pct(c.host_share) + " of triangles ill-conditioned: too many");
+      continue;
+    }
+    fmpp::ModelBus bus(sample_cfg);
+    fmpp::Device dev(bus);
+    fmpp::isect::KernelOptions o = options(n);
+    o.cond_bits = fmpp::isect::policy::kRawCondBits;  // the machine's own answers, no host fallback
+    fmpp::isect::KernelStats st;
+    const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
+    size_t wrong = 0;
+    for (size_t i = 0; i < got.size(); ++i) wrong += got[i].tri != ref[i].tri;
+    c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
+    c.sample_cycles = st.cycles;
+    const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share;
+    steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
+              " of triangles ill-conditioned" + (primary_ok ? "" : ": too many"));
+    if (primary_ok) render_frame(c);  // only then the frame: it costs more
+    plan.candidates.push_back(c);
+    if (primary_ok && c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
+      std::ostringstream why;
+      why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
+          << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
+          << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and "
+          << frame_figure(c) << " <= " << pct(req.target_wrong_rate) << ", "
+          << pct(c.flagged_share) << " of the sample's rays redone on the host <= " << pct(req.max_flagged_share);
+      if (plan.candidates.size() > 1) {
+        const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
+        why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned";
+        if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the sampled pixels off";
+        if (p.flagged_share >= 0) why << ", " << pct(p.flagged_share) << " of its rays redone";
+        why << ")";
+      }
+      return {n, why.str()};
+    }
+  }
+  // No n met every criterion. The frame's pixels are the target itself; the others
+  // (the machine's own wrong answers on primary rays, triangles for the host, rays
+  // redone) are costs, which the certified kernels pay on the host without error. So
+  // the widest format is taken if its frame keeps the target, and otherwise the plan
+  // says it missed (fmpp-render then stops unless asked to render anyway).
+  PlanCandidate& w = plan.candidates.back();
+  if (w.pixel_bound < 0) render_frame(w);
+  std::ostringstream why;
+  if (w.pixel_bound <= req.target_wrong_rate) {
+    why << "no n met every criterion; the widest, n = 32, keeps the error target: " << frame_figure(w) << " <= "
+        << pct(req.target_wrong_rate) << ", at a cost: machine's own wrong triangles on primary rays "
+        << pct(w.wrong_rate) << ", " << pct(w.host_share) << " of triangles beyond the conditioning limit, "
+        << pct(w.flagged_share) << " of the sample's rays redone on the host";
+    return {32, why.str()};
+  }
+  plan.met_target = false;
+  why << "no n meets the error target " << pct(req.target_wrong_rate) << ": the widest, n = 32, leaves "
+      << frame_figure(w);
+  return {32, why.str()};
+}
+
+}  // namespace rt::plan_parts

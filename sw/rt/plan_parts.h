@@ -1,0 +1,65 @@
+// What the plan's decisions share (plan.cpp, plan_bits.cpp): a decision with its reason,
+// the progress lines, and the choice of the multiplier bits.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sw/isect/pass/options.h"
+#include "sw/rt/plan.h"
+#include "sw/rt/scene.h"
+
+namespace rt::plan_parts {
+
+template <class T>
+struct Decision {
+  T value;
+  std::string why;
+};
+
+// Rays the host redid to certify them (uncertain decisions, t beyond its accuracy), per
+// ray the kernels answered.
+inline double flagged_share(const fmpp::isect::KernelStats& st) {
+  uint64_t rays = 0, redone = 0;
+  for (int f = 0; f < fmpp::isect::KernelStats::kForms; ++f) {
+    rays += st.form_rays[f];
+    redone += st.flagged_rays[f] + st.t_bound_rays[f];
+  }
+  return rays ? static_cast<double>(redone) / static_cast<double>(rays) : 0;
+}
+
+// Progress lines with the seconds each step took.
+class Steps {
+ public:
+  explicit Steps(const PlanRequest& req) : progress_(req.progress) {}
+  void say(const std::string& what) {
+    if (!progress_) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::ostringstream o;
+    o.precision(2);
+    o << std::fixed << "plan: " << what << " (" << std::chrono::duration<double>(now - t0_).count() << " s)";
+    progress_(o.str());
+    t0_ = now;
+  }
+
+ private:
+  std::function<void(const std::string&)> progress_;
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
+inline std::string pct(double v) {
+  std::ostringstream o;
+  o.precision(3);
+  o << 100 * v << " %";
+  return o.str();
+}
+
+// The multiplier bits n: the narrowest candidate whose sampled wrong-pixel rate meets the
+// target (plan_bits.cpp; docs/raytracer.md, "The precision plan").
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan);
+
+}  // namespace rt::plan_parts

@@ -1,0 +1,80 @@
+// What the scene loader's parts share (scene.cpp, scene_parts.cpp): the checked JSON
+// fields; the lights and the meshes (with their placement), read from their fields.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "sw/rt/mesh.h"
+#include "sw/rt/scene.h"
+
+namespace rt::scene_parts {
+
+using json = nlohmann::json;
+
+[[noreturn]] inline void field_error(const std::string& file, const std::string& field, const std::string& what) {
+  throw SceneError(file + ": field '" + field + "': " + what);
+}
+
+inline const json& require(const json& j, const char* key, const std::string& file, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) field_error(file, where.empty() ? key : where + "." + key, "missing");
+  return j.at(key);
+}
+
+inline double number(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
+  if (!j.is_number()) field_error(file, field, "expected a number");
+  const double v = j.get<double>();
+  if (!std::isfinite(v) || v < lo || v > hi) {
+    std::ostringstream o;
+    o << "value " << v << " outside [" << lo << ", " << hi << "]";
+    field_error(file, field, o.str());
+  }
+  return v;
+}
+
+inline glm::dvec3 vec3(const json& j, const std::string& file, const std::string& field, double lo = -1e9, double hi = 1e9) {
+  if (!j.is_array() || j.size() != 3) field_error(file, field, "expected an array of 3 numbers");
+  glm::dvec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = number(j[k], file, field + "[" + std::to_string(k) + "]", lo, hi);
+  return v;
+}
+
+// A number that must be a whole number in [lo, hi].
+inline double integer(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
+  const double d = number(j, file, field, lo, hi);
+  if (d != std::floor(d)) {
+    std::ostringstream o;
+    o << "value " << d << " must be an integer";
+    field_error(file, field, o.str());
+  }
+  return d;
+}
+
+// Also the check that `j` is an object at all: a JSON array or scalar has no fields.
+inline void reject_unknown(const json& j, std::initializer_list<const char*> known, const std::string& file,
+                    const std::string& where) {
+  if (!j.is_object()) field_error(file, where, "expected an object");
+  for (const auto& [key, value] : j.items()) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || key == k;
+    if (!ok) field_error(file, where.empty() ? key : where + "." + key, "unknown field");
+  }
+}
+
+// One light of "lights" at field w.
+Light light(const json& j, const std::string& f, const std::string& w);
+// meshes[index]: reads its file (relative to dir), places it, gives its groups their
+// materials (mats: the scene's materials by name) and appends its triangles to s.
+void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string, int>& mats, const std::string& file,
+              const std::filesystem::path& dir);
+
+}  // namespace rt::scene_parts
