@@ -8,6 +8,9 @@ passes, k-induction. The result per property is
   proved            BMC and k-induction both passed (holds at every depth),
   bounded to N      BMC passed to depth N, induction did not close at the tried k,
   failed at step S  a counterexample: a VCD trace (open it in GTKWave) is written.
+Every job reads the whole RTL of rtl/fmpp.f (tools/rtl_files.py), the reference generated
+from the map and its harness; yosys keeps the harness's hierarchy once per job (design.il)
+and each property's run starts from that.
 Jobs marked joint (the FIFO's scoreboard) need their invariants together: their
 k-induction runs once over all of the job's assertions, which proves them all if it
 passes. The cover statements (c_*) of each job are run too (each must be reached).
@@ -22,32 +25,34 @@ import sys
 import time
 
 SOLVER = "z3"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+import rtl_files  # noqa: E402  (tools/rtl_files.py: the one RTL file list)
 
 
 def jobs(root, out, quick):
-    rtl = lambda n: os.path.join(root, "rtl", n)
     frm = lambda n: os.path.join(root, "formal", n)
-    ref = os.path.join(out, "fmpp_instr_ref.sv")
-    pkg = rtl("fmpp_pkg.sv")
-    slave_src = [pkg, rtl("fmpp_addr_decode.sv"), rtl("fmpp_instr_check.sv"), rtl("fmpp_axil_slave.sv"), ref,
-                 frm("fmpp_axil_slave_formal.sv")]
+    rtl = rtl_files.files(root=root) + [os.path.join(out, "fmpp_instr_ref.sv")]
     js = []
     for words in ([10, 32] if quick else [2, 10, 16, 32, 64]):
         js.append(dict(name=f"instr_check_w{words}", top="fmpp_instr_check_formal",
-                       src=[pkg, rtl("fmpp_instr_check.sv"), ref, frm("fmpp_instr_check_formal.sv")],
+                       src=rtl + [frm("fmpp_instr_check_formal.sv")],
                        params={"NumWords": words}, depth=1, kind=0, comb=True))
-    js.append(dict(name="fifo_w8", top="fmpp_fifo_formal", src=[pkg, rtl("fmpp_fifo.sv"), frm("fmpp_fifo_formal.sv")],
+    js.append(dict(name="fifo_w8", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
                    params={"Width": 8}, depth=12 if quick else 24, kind=3, joint=True))
-    js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=[pkg, rtl("fmpp_fifo.sv"), frm("fmpp_fifo_formal.sv")],
+    js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
                    params={"Width": 92}, depth=4 if quick else 8, kind=3, joint=True))
     for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
-        js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal", src=slave_src,
+        js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal",
+                       src=rtl + [frm("fmpp_axil_slave_formal.sv")],
                        params={"NumBlocks": blocks, "NumWords": words}, depth=6 if quick else 12, kind=4))
     return js
 
 
 def yosys(job, keep, mode, smt2, log):
-    """Writes smt2 with only assertion `keep` (mode 'assert') or only the covers ('cover')."""
+    """Mode 'list': reads the sources, keeps the job's flattened hierarchy in job['il'] and
+    lists its assertions and covers into smt2. The other modes start from job['il'] and
+    write smt2 with only assertion `keep` ('assert'), only the covers ('cover') or every
+    assertion ('all')."""
     chp = "".join(f"chparam -set {k} {v} {job['top']}; " for k, v in job["params"].items())
     if mode == "assert":
         sel = f"chformal -assert -remove t:$assert n:{keep} %d; chformal -cover -remove; "
@@ -57,11 +62,10 @@ def yosys(job, keep, mode, smt2, log):
         sel = "chformal -cover -remove; "
     else:
         sel = ""
-    script = (f"read_verilog -DSYNTHESIS -sv -formal {' '.join(job['src'])}; {chp}prep -top {job['top']}; "
-              f"flatten; {sel}opt -fast; dffunmap; write_smt2 -wires {smt2}")
+    script = f"read_rtlil {job['il']}; {sel}opt -fast; dffunmap; write_smt2 -wires {smt2}"
     if mode == "list":
         script = (f"read_verilog -DSYNTHESIS -sv -formal {' '.join(job['src'])}; {chp}prep -top {job['top']}; "
-                  f"flatten; tee -q -o {smt2} select -list t:$assert t:$cover")
+                  f"flatten; write_rtlil {job['il']}; tee -q -o {smt2} select -list t:$assert t:$cover")
     r = subprocess.run(["yosys", "-q", "-l", log, "-p", script], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"run_formal.py: yosys failed for job {job['name']} (log: {log}):\n{r.stderr[-2000:]}")
@@ -131,6 +135,7 @@ def main():
         jdir = os.path.join(a.out, job["name"])
         os.makedirs(jdir, exist_ok=True)
         lst = os.path.join(jdir, "list.txt")
+        job["il"] = os.path.join(jdir, "design.il")
         yosys(job, None, "list", lst, os.path.join(jdir, "list.log"))
         names = [l.strip().split("/")[-1] for l in open(lst) if l.strip()]
         # Flattened cells keep their instance path (u_fifo.p_level_bound).

@@ -17,7 +17,8 @@
 # tools/asic_activity.py evaluates the netlist on the traced register values).
 #
 # The RTL (top module, source files, the word storage's register names) comes from
-# rtl/synth_sources.txt alone. The timing constraints are written down once, below
+# rtl/fmpp.f alone (tools/rtl_files.py: its synthesizable files, `top` and `storage`).
+# The timing constraints are written down once, below
 # (ASIC_* variables), and copied into every report.
 #
 # Writes under $ASIC_OUT (default build/asic):
@@ -97,14 +98,15 @@ for f in "$lib" "$lef" "$spice"; do
   [ -f "$f" ] || { echo "asic.sh: $f not found (make asic-deps installs qflow-tech-osu018)" >&2; exit 2; }
 done
 
-# The RTL: rtl/synth_sources.txt names the top, the files and the storage registers.
-srclist=$root/rtl/synth_sources.txt
-top=$(awk '$1 == "top" {print $2}' "$srclist")
-storage=$(awk '$1 == "storage" {print $2}' "$srclist")
-sources=$(awk '!/^#/ && NF == 1 {printf "%s/rtl/%s ", r, $1}' r="$root" "$srclist")
-[ -n "$top" ] && [ -n "$sources" ] || { echo "asic.sh: $srclist names no top or no files" >&2; exit 2; }
-for f in $sources; do [ -f "$f" ] || { echo "asic.sh: $f (from $srclist) not found" >&2; exit 2; }; done
-[ $latch -eq 0 ] || [ -n "$storage" ] || { echo "asic.sh: $srclist has no 'storage' line (needed by the latch variant; --no-latch skips it)" >&2; exit 2; }
+# The RTL: rtl/fmpp.f names the top, the files and the storage registers (tools/rtl_files.py
+# checks that every listed file exists and exits 2 if not).
+rtl_files() { "$py" "$root/tools/rtl_files.py" --root "$root" "$@"; }
+top=$(rtl_files --top) || exit 2
+sources=$(rtl_files --synth --sep ' ') || exit 2
+storage=""
+if [ $latch -eq 1 ]; then
+  storage=$(rtl_files --storage) || { echo "asic.sh: the latch variant needs the storage line (--no-latch skips it)" >&2; exit 2; }
+fi
 
 mkdir -p "$out"
 stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)

@@ -5,7 +5,9 @@
 # clock frequency (nextpnr's timing analysis after routing), the logic cells, LUTs,
 # flip-flops, block RAMs and I/Os used, and the critical path.
 #
-# Writes under $FPGA_OUT (default build/fpga):
+# The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth).
+#
+# Writes under $FPGA_OUT (default $BUILD/fpga, BUILD defaulting to build):
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
 #   summary.csv   device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
 #   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing
@@ -20,14 +22,16 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 runs=("$@")
 [ ${#runs[@]} -gt 0 ] || runs=(hx8k:ct256:1x8 hx8k:ct256:2x8 hx8k:ct256:3x8 up5k:sg48:1x8 up5k:sg48:2x8)
-out=${FPGA_OUT:-$root/build/fpga}
+build=${BUILD:-$root/build}
+case $build in /*) ;; *) build=$root/$build ;; esac
+out=${FPGA_OUT:-$build/fpga}
 freq=${FPGA_FREQ:-50}
 seed=${FPGA_SEED:-1}
 for tool in yosys nextpnr-ice40 python3; do
   command -v "$tool" >/dev/null || { echo "fpga.sh: $tool not found (make deps installs yosys and nextpnr-ice40)" >&2; exit 2; }
 done
 mkdir -p "$out"
-sources="$root/rtl/fmpp_pkg.sv $(ls "$root"/rtl/*.sv | grep -v _pkg.sv | tr '\n' ' ') $root/fpga/fmpp_fpga_top.sv"
+sources="$("$root/tools/rtl_files.py" --root "$root" --synth --sep ' ') $root/fpga/fmpp_fpga_top.sv"
 stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
 machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"

@@ -9,7 +9,9 @@
 # knows plain flip-flops, and with enable/reset flops left in, the estimate silently
 # left out every stored bit (it printed "N+", a lower bound).
 #
-# Writes under $SYNTH_OUT (default build/synth):
+# The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth) and its top.
+#
+# Writes under $SYNTH_OUT (default $BUILD/synth, BUILD defaulting to build):
 #   fmpp_BxW.log, fmpp_BxW.stat   yosys log and statistics of each size
 #   summary.csv                   blocks,words,cells,transistors,flops (one row per size)
 #   cells.csv                     blocks,words,cell,count (one row per size and cell type)
@@ -20,9 +22,15 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 sizes=("$@")
 [ ${#sizes[@]} -gt 0 ] || sizes=(1x8 2x8 4x8 8x8 16x8 32x8 64x8 8x16 8x32 16x32)
-out=${SYNTH_OUT:-$root/build/synth}
+build=${BUILD:-$root/build}
+case $build in /*) ;; *) build=$root/$build ;; esac
+out=${SYNTH_OUT:-$build/synth}
+for tool in yosys python3; do
+  command -v "$tool" >/dev/null || { echo "synth.sh: $tool not found (make deps installs yosys)" >&2; exit 2; }
+done
+sources=$("$root/tools/rtl_files.py" --root "$root" --synth --sep ' ')
+top=$("$root/tools/rtl_files.py" --root "$root" --top)
 mkdir -p "$out"
-sources="$root/rtl/fmpp_pkg.sv $(ls "$root"/rtl/*.sv | grep -v _pkg.sv | tr '\n' ' ')"
 version=$(yosys -V | head -1)
 stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
@@ -49,7 +57,7 @@ for s in "${sizes[@]}"; do
   t0=$(date +%s)
   # (yosys's warnings about array ports turned into registers are expected; see the log.)
   if ! yosys -q -l "$out/fmpp_${b}x${w}.log" -p "read_verilog -sv $sources; \
-      chparam -set NumBlocks $b -set NumWords $w fmpp_top; synth -top fmpp_top -flatten; \
+      chparam -set NumBlocks $b -set NumWords $w $top; synth -top $top -flatten; \
       dfflegalize -cell \$_DFF_P_ x; opt_clean; tee -o $stat stat -tech cmos" >/dev/null 2>&1; then
     echo "synth.sh: yosys failed for ${b}x${w}:" >&2
     tail -20 "$out/fmpp_${b}x${w}.log" >&2

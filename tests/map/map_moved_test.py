@@ -134,9 +134,9 @@ def build_and_run(scratch, accesses):
     """(b): Verilate the scratch RTL with the scratch model and run them in lockstep."""
     cfg = next(c for c in json.loads(read(os.path.join(scratch, "rtl", "fmpp_map.json")))["configs"]
                if c["name"] == "tiny")
-    rtl = [os.path.join("rtl", "fmpp_pkg.sv")] + sorted(
-        os.path.join("rtl", f) for f in os.listdir(os.path.join(scratch, "rtl"))
-        if f.endswith(".sv") and f != "fmpp_pkg.sv")
+    # The RTL of the scratch copy's one file list (rtl/fmpp.f).
+    rtl = subprocess.run([sys.executable, os.path.join("tools", "rtl_files.py"), "--root", ".", "--relative"],
+                         cwd=scratch, stdout=subprocess.PIPE, text=True, check=True).stdout.split()
     model = sorted(os.path.join("cmodel", "src", f) for f in os.listdir(os.path.join(scratch, "cmodel", "src"))
                    if f.endswith(".cpp"))
     cpp = [os.path.join("tests", "map", "moved_lockstep_main.cpp")] + model + [os.path.join("backends", "rtl", "arch_state.cpp"),
