@@ -10,11 +10,20 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 bdir=${COV_BUILD:-$root/build-cov}
 jobs=${JOBS:-2}
 out=$bdir/coverage
-for tool in verilator_coverage genhtml; do
-  command -v "$tool" >/dev/null || { echo "coverage.sh: $tool not found (make deps installs lcov)" >&2; exit 2; }
+for tool in cmake verilator verilator_coverage genhtml python3; do
+  command -v "$tool" >/dev/null || { echo "coverage.sh: $tool not found (make deps installs verilator and lcov)" >&2; exit 2; }
 done
-cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DFMPP_COVERAGE=ON -DFMPP_RTL_CONFIGS="tiny;odd" >/dev/null || exit 1
-cmake --build "$bdir" -j"$jobs" --target fmpp-sim >/dev/null || cmake --build "$bdir" -j"$jobs" --target fmpp-sim || exit 1
+mkdir -p "$bdir"
+# The configure and build logs stay in $bdir; a failure prints the end of its log.
+step() {  # name log command...
+  local name=$1 log=$2; shift 2
+  if ! "$@" > "$log" 2>&1; then
+    echo "coverage.sh: FAILED: $name (log: $log)" >&2; tail -40 "$log" >&2; exit 1
+  fi
+}
+step configure "$bdir/configure.log" \
+  cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DFMPP_COVERAGE=ON -DFMPP_RTL_CONFIGS="tiny;odd"
+step build "$bdir/build.log" cmake --build "$bdir" -j"$jobs" --target fmpp-sim
 rm -rf "$out" && mkdir -p "$out"
 sim=$bdir/fmpp-sim
 status=0

@@ -57,11 +57,23 @@ for r in "${runs[@]}"; do
       synth_ice40 -top fmpp_fpga_top -json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
     echo "fpga.sh: yosys failed for $r:" >&2; tail -20 "$out/$name.yosys.log" >&2; exit 1
   fi
-  # nextpnr exits non-zero when the design does not fit; that is a result, not an error.
+  # nextpnr exits non-zero when the design does not fit the device: that is a result
+  # (placed=0, "no fit"), told by its utilisation table (a cell type used beyond what the
+  # device has). Any other failure of nextpnr fails the flow.
   placed=1
   if ! nextpnr-ice40 "--$dev" --package "$pkg" --json "$out/$name.json" --pcf-allow-unconstrained \
       --freq "$freq" --timing-allow-fail --seed "$seed" --report "$out/$name.report.json" \
       -l "$out/$name.pnr.log" -q >/dev/null 2>&1; then
+    over=$(awk '/Device utilisation:/ {u = 1; next}
+                u && match($0, /[A-Za-z0-9_]+: *[0-9]+\/ *[0-9]+/) {
+                  split(substr($0, RSTART, RLENGTH), f, /[:\/]/); if (f[2] + 0 > f[3] + 0) print f[1] " " f[2] + 0 "/" f[3] + 0 }
+                u && !/^Info:/ {u = 0}' "$out/$name.pnr.log" 2>/dev/null | tr '\n' ' ')
+    if [ -z "$over" ]; then
+      echo "fpga.sh: FAILED: nextpnr for $r (the design fits the device's cells, so this is no capacity result):" >&2
+      tail -20 "$out/$name.pnr.log" >&2 2>/dev/null || true
+      exit 1
+    fi
+    echo "$r does not fit: $over" > "$out/$name.nofit.txt"
     placed=0
   fi
   secs=$(( $(date +%s) - t0 ))
