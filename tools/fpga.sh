@@ -11,6 +11,9 @@
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
 #   summary.csv   device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
 #   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing
+#   <dev>_<B>x<W>.nofit.txt     for a run that does not fit: the cell types it overfills
+# A run that does not fit the device is a result ("no fit", placed=0); any other failure of
+# yosys or nextpnr stops the flow with its name and the end of its log.
 # `cp build/fpga/summary.csv build/fpga/critical_*.txt docs/data/fpga/` keeps a run's figures
 # with the docs (docs/generated/area.md reads them through fmpp-report area).
 #
