@@ -7,11 +7,13 @@ synthesis, the iCE40 and standard-cell flows, formal and the moved-map test.
 Usage: rtl_files.py [--root DIR] [--list FILE] [--synth] [--relative] [--sep SEP]
        rtl_files.py [--root DIR] --top | --storage
        rtl_files.py [--root DIR] --check
+       rtl_files.py --self-test
   (default)   every file, absolute paths, one a line (--sep ';' for CMake, ' ' for a shell)
   --synth     without the simulation-only files (marked '// sim')
   --relative  paths relative to the repository root
   --top       the synthesizable top module;  --storage  the word-storage register pattern
   --check     fails if a .sv file beside the list is not in it
+  --self-test the reader on lists written to a scratch folder (a ctest)
 Exit status 2 when the list is malformed or names a file that does not exist.
 """
 import argparse
@@ -70,7 +72,55 @@ def unlisted(path=None, root=None):
                   if n.endswith(".sv") and os.path.join(base, n) not in listed)
 
 
+def self_test():
+    """The reader's rules on small lists in a scratch folder; returns the failures."""
+    import tempfile
+    bad = []
+    with tempfile.TemporaryDirectory() as d:
+        for n in ("p_pkg.sv", "a.sv", "chk.sv", "extra.sv"):
+            open(os.path.join(d, n), "w").close()
+
+        def lst(text):
+            path = os.path.join(d, "t.f")
+            with open(path, "w") as f:
+                f.write(text)
+            return path
+
+        def expect_error(text, words):
+            try:
+                read(lst(text))
+                bad.append(f"no error for {text!r}")
+            except ListError as e:
+                if words not in str(e):
+                    bad.append(f"error for {text!r} is '{e}', not about '{words}'")
+
+        good = lst("// a comment\n// top: t_top\n// storage: *.mem_q*\np_pkg.sv\n\na.sv  // sim\nchk.sv\n")
+        got = read(good)
+        names = [(os.path.basename(f), sim) for f, sim in got["files"]]
+        if names != [("p_pkg.sv", False), ("a.sv", True), ("chk.sv", False)]:
+            bad.append(f"files in order with their marks: {names}")
+        if (got["top"], got["storage"]) != ("t_top", "*.mem_q*"):
+            bad.append(f"directives: top {got['top']!r}, storage {got['storage']!r}")
+        if [os.path.basename(f) for f in files(good, synth=True)] != ["p_pkg.sv", "chk.sv"]:
+            bad.append("synth leaves out the '// sim' file only")
+        if [os.path.basename(f) for f in unlisted(good)] != ["extra.sv"]:
+            bad.append(f"unlisted: {unlisted(good)}")
+        expect_error("p_pkg.sv\nmissing.sv\n", "does not exist")
+        expect_error("p_pkg.sv\np_pkg.sv\n", "listed twice")
+        expect_error("-Wall\n", "no options")
+        expect_error("p_pkg.sv a.sv\n", "one file name a line")
+        expect_error("a.sv // synth\n", "'// sim'")
+        expect_error("// only comments\n", "no file listed")
+    return bad
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        bad = self_test()
+        for b in bad:
+            print(f"rtl_files.py self-test: FAIL: {b}", file=sys.stderr)
+        print(f"rtl_files.py self-test: {'FAILED' if bad else 'passed'}")
+        return 1 if bad else 0
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--root", default=ROOT, help="repository root (default: this script's)")
     ap.add_argument("--list", help="the list (default: ROOT/rtl/fmpp.f)")
