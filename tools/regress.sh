@@ -56,7 +56,7 @@ while IFS= read -r line || [ -n "$line" ]; do
 done < "$jobs"
 if [ ${#missing[@]} -gt 0 ]; then
   echo "regress.sh: configurations not built into $sim: $(printf '%s\n' "${missing[@]}" | sort -u | tr '\n' ' ')(built:$built)" >&2
-  echo "regress.sh: build them (cmake -DFMPP_RTL_CONFIGS=all, as make sim does) or name the runs to keep with --configs" >&2
+  echo "regress.sh: build them (cmake -DFMPP_RTL_CONFIGS=all, the default) or keep the runs of some with --configs" >&2
   echo "RTL regression: FAILED"
   exit 1
 fi
