@@ -1,0 +1,263 @@
+"""The netlist side of tools/asic_activity.py: the Liberty cells' logic functions
+compiled to Python, the yosys netlist, and the simulation's trace of register values.
+"""
+import re
+import subprocess
+
+
+class Fail(Exception):
+    pass
+
+
+# --- Liberty: cell pins, functions, sequential cells -----------------------------------
+
+def braces(text, start):
+    """Index just past the block opened by the first '{' at or after start."""
+    i = text.index("{", start)
+    depth = 0
+    for j in range(i, len(text)):
+        if text[j] == "{":
+            depth += 1
+        elif text[j] == "}":
+            depth -= 1
+            if depth == 0:
+                return j + 1
+    raise Fail("unbalanced braces in the Liberty file")
+
+
+def read_liberty(path):
+    text = open(path).read()
+    cells = {}
+    for m in re.finditer(r"\bcell\s*\(\s*\"?(\w+)\"?\s*\)", text):
+        body = text[m.end():braces(text, m.end())]
+        pins = {}
+        for pm in re.finditer(r"\bpin\s*\(\s*\"?(\w+)\"?\s*\)", body):
+            pb = body[pm.end():braces(body, pm.end())]
+            d = re.search(r"direction\s*:\s*(\w+)", pb)
+            f = re.search(r"\bfunction\s*:\s*\"([^\"]*)\"", pb)
+            pins[pm.group(1)] = (d.group(1) if d else "", f.group(1) if f else None)
+        seq = None
+        ff = re.search(r"\bff\s*\(\s*\"?(\w+)\"?\s*,\s*\"?(\w+)\"?\s*\)", body)
+        if ff:
+            nx = re.search(r"next_state\s*:\s*\"([^\"]*)\"", body)
+            ck = re.search(r"clocked_on\s*:\s*\"([^\"]*)\"", body)
+            seq = ("ff", ff.group(1), ff.group(2), nx.group(1) if nx else "", ck.group(1) if ck else "")
+        if re.search(r"\blatch\s*\(", body):
+            seq = ("latch",)
+        cells[m.group(1)] = {"pins": pins, "seq": seq}
+    if not cells:
+        raise Fail(f"{path}: no cells")
+    return cells
+
+
+def compile_function(expr, pins):
+    """A Liberty boolean function as Python source over pin variables (ints) and mask M."""
+    toks = re.findall(r"[A-Za-z_]\w*|[()!'^+|&*]|\S", expr)
+    pos = 0
+
+    def peek():
+        return toks[pos] if pos < len(toks) else None
+
+    def take():
+        nonlocal pos
+        if pos >= len(toks):
+            raise Fail(f"function {expr!r} ends early")
+        pos += 1
+        return toks[pos - 1]
+
+    def primary():
+        t = take()
+        if t == "(":
+            v = orexpr()
+            if take() != ")":
+                raise Fail(f"bad function {expr!r}")
+        elif t == "!":
+            v = f"(M & ~{primary()})"
+        elif t in ("0", "1"):
+            v = "0" if t == "0" else "M"
+        elif re.fullmatch(r"[A-Za-z_]\w*", t):
+            if t not in pins:
+                raise Fail(f"function {expr!r} names unknown pin {t}")
+            v = "p_" + t
+        else:
+            raise Fail(f"bad token {t!r} in function {expr!r}")
+        while peek() == "'":
+            take()
+            v = f"(M & ~{v})"
+        return v
+
+    def andexpr():
+        v = primary()
+        while peek() is not None and peek() not in (")", "+", "|", "^"):
+            if peek() in ("&", "*"):
+                take()
+            v = f"({v} & {primary()})"
+        return v
+
+    def xorexpr():
+        v = andexpr()
+        while peek() == "^":
+            take()
+            v = f"({v} ^ {andexpr()})"
+        return v
+
+    def orexpr():
+        v = xorexpr()
+        while peek() in ("+", "|"):
+            take()
+            v = f"({v} | {xorexpr()})"
+        return v
+
+    src = orexpr()
+    if pos != len(toks):
+        raise Fail(f"bad function {expr!r}")
+    return src
+
+
+# --- the gate-level netlist (yosys write_verilog -noattr -noexpr) -----------------------
+
+NAME = r"(\\\S+\s|[A-Za-z_][\w$]*)"
+
+
+def norm(name):
+    name = name.strip()
+    return name[1:] if name.startswith("\\") else name
+
+
+def read_netlist(path, lib):
+    text = open(path).read()
+    m = re.search(r"\bmodule\s+(\S+)\s*\(", text)
+    if not m:
+        raise Fail(f"{path}: no module")
+    ports = {}
+    for pm in re.finditer(r"^\s*(input|output)\s+(?:\[(\d+):(\d+)\]\s+)?" + NAME + r"\s*;", text, re.M):
+        nm = norm(pm.group(4))
+        if pm.group(2) is None:
+            ports[nm] = (pm.group(1), None)
+        else:
+            hi, lo = int(pm.group(2)), int(pm.group(3))
+            ports[nm] = (pm.group(1), (min(hi, lo), max(hi, lo)))
+    # net references: `\esc name [3]`, `name [3]`, `name[3]`, `name`, constants
+    ref = re.compile(r"\s*(?:(\d+)'h([0-9a-fA-Fx])|(\\\S+)\s*(\[\d+\])?|([A-Za-z_][\w$]*)\s*(\[\d+\])?)\s*")
+
+    def net_of(s):
+        r = ref.fullmatch(s)
+        if not r:
+            raise Fail(f"{path}: cannot read net reference {s!r}")
+        if r.group(1):
+            return "1'b" + r.group(2)
+        base = norm(r.group(3)) if r.group(3) else r.group(5)
+        idx = r.group(4) or r.group(6) or ""
+        return base + idx
+
+    alias = {}
+
+    def find(n):
+        while alias.get(n, n) != n:
+            n = alias[n]
+        return n
+    for am in re.finditer(r"^\s*assign\s+(.+?)\s*=\s*(.+?)\s*;", text, re.M):
+        a, b = net_of(am.group(1)), net_of(am.group(2))
+        ra, rb = find(a), find(b)
+        if ra != rb:
+            # keep a constant or a port as the representative
+            if rb.startswith("1'b") or ra.startswith("1'b"):
+                alias[rb if ra.startswith("1'b") else ra] = ra if ra.startswith("1'b") else rb
+            else:
+                alias[ra] = rb
+    insts = []
+    for im in re.finditer(r"^\s*([A-Z]\w*)\s+(\\\S+\s|[\w$]+)\s*\((.*?)\);", text, re.M | re.S):
+        cell = im.group(1)
+        if cell not in lib:
+            raise Fail(f"{path}: cell {cell} not in the Liberty file")
+        conns = {}
+        for cm in re.finditer(r"\.(\w+)\s*\(\s*([^()]*?)\s*\)", im.group(3)):
+            if cm.group(2):
+                conns[cm.group(1)] = find(net_of(cm.group(2)))
+        insts.append((norm(im.group(2)), cell, conns))
+    if not insts:
+        raise Fail(f"{path}: no cell instances")
+    portbits = {}
+    for nm, (d, rng) in ports.items():
+        bits = [nm] if rng is None else [f"{nm}[{i}]" for i in range(rng[0], rng[1] + 1)]
+        for b in bits:
+            portbits[b] = d
+    return m.group(1), portbits, insts, find
+
+
+# --- the RTL trace ---------------------------------------------------------------------
+
+def vcd_stream(fst):
+    p = subprocess.Popen(["fst2vcd", fst], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, bufsize=1 << 20)
+    return p
+
+
+class Trace:
+    """Values at the end of every cycle of the wanted signals (full names, '.'-joined)."""
+
+    def __init__(self, fst, wanted, clock="TOP.clk_i"):
+        self.proc = vcd_stream(fst)
+        f = self.proc.stdout
+        scope, ids, widths = [], {}, {}
+        clk_id = None
+        for line in f:
+            t = line.split()
+            if not t:
+                continue
+            if t[0] == "$scope":
+                scope.append(t[2])
+            elif t[0] == "$upscope":
+                scope.pop()
+            elif t[0] == "$var":
+                full = ".".join(scope + [t[4]])
+                if full == clock:
+                    clk_id = t[3]
+                if full in wanted:
+                    ids.setdefault(t[3], []).append(full)
+                    widths[full] = int(t[2])
+            elif t[0] == "$enddefinitions":
+                break
+        missing = sorted(set(wanted) - set(widths))
+        if clk_id is None:
+            raise Fail(f"{fst}: no clock {clock}")
+        self.missing, self.widths, self.ids, self.clk = missing, widths, ids, clk_id
+        self.f = f
+        self.cur = {i: 0 for i in ids}
+        self.clkv = 0
+
+    def cycles(self):
+        """Yields {signal: int value} at the end of each cycle (before each rising edge)."""
+        pending = []
+        rose = False
+
+        def flush():
+            nonlocal rose
+            if rose:
+                yield {s: self.cur[i] for i, names in self.ids.items() for s in names}
+            for i, v in pending:
+                self.cur[i] = v
+            pending.clear()
+            rose = False
+        for line in self.f:
+            c = line[0]
+            if c == "#":
+                yield from flush()
+            elif c == "b":
+                val, ident = line[1:].split()
+                if ident == self.clk:
+                    continue
+                if ident in self.cur:
+                    pending.append((ident, int(val.replace("x", "0").replace("z", "0"), 2)))
+            elif c in "01xz":
+                ident = line[1:].strip()
+                if ident == self.clk:
+                    if c == "1" and self.clkv == 0:
+                        rose = True
+                    self.clkv = 1 if c == "1" else 0
+                elif ident in self.cur:
+                    pending.append((ident, 1 if c == "1" else 0))
+        yield from flush()
+        self.proc.wait()
+
+
+# --- evaluation ------------------------------------------------------------------------
