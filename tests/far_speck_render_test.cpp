@@ -9,6 +9,7 @@
 
 #include "sw/rt/render.h"
 #include "backends/backend.h"
+#include "tests/render_backend.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -26,14 +27,9 @@ Scene with_speck(Scene s) {
 }
 
 Image render_fmpp(const std::string& backend, const Scene& s, int size, uint64_t* cycles) {
-  auto be = fmpp::make_backend(backend, fmpp::Config{1024, 32});
-  fmpp::Device dev(be->bus());
-  FmppIntersector fi(dev, s.triangles, fmpp::isect::KernelOptions{});
-  RenderOptions ro;
-  ro.width = ro.height = size;
-  Image img = render(s, fi, ro, nullptr);
-  be->finish();
-  if (cycles) *cycles = fi.stats().cycles;
+  fmpp::isect::KernelStats st;
+  Image img = test_render::render_through(backend, s, size, &st);
+  if (cycles) *cycles = st.cycles;
   return img;
 }
 

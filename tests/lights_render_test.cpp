@@ -12,6 +12,7 @@
 
 #include "backends/backend.h"
 #include "sw/rt/render.h"
+#include "tests/render_backend.h"
 #include "tests/test_files.h"
 
 #ifndef FMPP_SOURCE_DIR
@@ -22,15 +23,7 @@ namespace rt {
 namespace {
 
 Image render_on(const std::string& backend, const Scene& s, int size, fmpp::isect::KernelStats* st) {
-  auto be = fmpp::make_backend(backend, fmpp::Config{1024, 32});
-  fmpp::Device dev(be->bus());
-  FmppIntersector fi(dev, s.triangles, fmpp::isect::KernelOptions{});
-  RenderOptions ro;
-  ro.width = ro.height = size;
-  Image img = render(s, fi, ro, nullptr);
-  be->finish();
-  *st = fi.stats();
-  return img;
+  return test_render::render_through(backend, s, size, st);
 }
 
 void model_equals_rtl_and_reference(const Scene& s, int size) {

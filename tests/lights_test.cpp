@@ -25,11 +25,7 @@
 namespace rt {
 namespace {
 
-std::string dir() {
-  std::string d = ::testing::TempDir();
-  while (d.size() > 1 && d.back() == '/') d.pop_back();
-  return d;
-}
+std::string dir() { return test_files::temp_dir(); }
 
 // A scene file of the Cornell box's mesh and materials with the given lights and extra
 // top-level fields.

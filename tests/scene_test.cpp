@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "sw/rt/scene.h"
+#include "tests/test_files.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -15,11 +16,7 @@
 namespace rt {
 namespace {
 
-std::string dir() {
-  std::string d = ::testing::TempDir();
-  while (d.size() > 1 && d.back() == '/') d.pop_back();
-  return d;
-}
+std::string dir() { return test_files::temp_dir(); }
 
 void write(const std::string& name, const std::string& text) {
   std::ofstream f(dir() + "/" + name);

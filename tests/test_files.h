@@ -20,10 +20,16 @@
 
 namespace test_files {
 
-// TempDir()/<prefix><test name>, created if missing.
-inline std::string own_dir(const std::string& prefix) {
+// GoogleTest's TempDir() without its trailing '/'.
+inline std::string temp_dir() {
   std::string d = ::testing::TempDir();
   while (d.size() > 1 && d.back() == '/') d.pop_back();
+  return d;
+}
+
+// TempDir()/<prefix><test name>, created if missing.
+inline std::string own_dir(const std::string& prefix) {
+  std::string d = temp_dir();
   const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
   d += "/" + prefix + t->name();
   ::mkdir(d.c_str(), 0700);

@@ -11,6 +11,7 @@
 #include "sw/isect/cull/box_test.h"
 #include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/cull/cull_bounds.h"
+#include "sw/isect/cull/tuning.h"
 #include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/cull/oracle.h"
@@ -22,24 +23,6 @@
 
 namespace fmpp::isect {
 namespace {
-
-// The front-to-back probe: how many leaves of each ray's front it broadcasts, and the
-// share of the pass's triangles below which it runs (it pays only when the triangles
-// behind the rays' first hits are many). Measured at 128 x 128, 4096 blocks: for rays of
-// their own origins on spheres_10k, 2 leaves gave 1.58 M clocks, 3 leaves 1.53 M, 5
-// leaves 2.12 M (no probe 2.44 M); for shared-origin rays one leaf, and only where it is
-// under a quarter of the pass's triangles (on spheres_10k the probes are 35 to 45 % and
-// cost 2 %; on armadillo the large passes' are 13 to 18 %, and the primary clocks halve).
-constexpr int kProbeLeavesOwn = 3, kProbeLeavesShared = 1;
-constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
-// Culling: one triangle per leaf of the hierarchy, so that a ray keeps only the triangles
-// whose own (padded) boxes it crosses, and the FMPP tests each one before it is broadcast.
-// Measured at 128 x 128, 4096 blocks, spheres_10k (docs/perf.md): with the FMPP's box
-// tests, leaves of 1, 2, 4 triangles gave 3.83, 3.94, 4.11 M clocks for the frame, and
-// testing inner nodes too cost more than it saved (90 % of them had some ray that needed
-// them, after the host's walk); for rays of their own origins leaves of 1, 2, 4 gave
-// 1.13, 1.33, 1.52 M clocks.
-constexpr unsigned kCullLeafItems = 1;
 
 class RayParallelPlan : public PassPlan {
  public:
