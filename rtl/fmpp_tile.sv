@@ -3,7 +3,10 @@
 // Each block has NumWords data words of 32 bits, 8 flags and its read-only index
 // (base_i + lane: the paper's ROM address part). The tile stores its words in
 // bit-plane form (see fmpp_alu) so that one instruction is a handful of wide
-// bitwise operations, and executes the instruction broadcast by fmpp_array:
+// bitwise operations, and executes the instruction broadcast by fmpp_array in the
+// array's pipeline: in stage 2 it reads words A and B into its operand registers
+// (forwarding the word stage 3 writes in the same clock), in stage 3 it executes on them
+// with the flags and word D as they are then, and writes back at the clock edge:
 //   - masked match (REF, SETSADR) of a word or of the block index into a flag,
 //   - masked parallel write (WRITES) and the block ALU, predicated on a flag,
 //   - signed compare of a word with the immediate (CMP) into a flag,
@@ -32,14 +35,16 @@ module fmpp_tile #(
   // variable instead of folding each tile's constant into its own copy of the code.
   input  logic [31:0]                  base_i /*verilator public_flat_rd*/,
 
-  // Execute bus: the queue entry popped this cycle (state changes at the clock edge)
+  // Operand read (pipeline stage 2): the entry's words A and B
+  input  logic                         opr_en_i,    // an entry is in stage 2
+  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
+  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
+  // Execute bus (stage 3): the entry that executes this cycle (state changes at the clock edge)
   input  logic                         exec_i,      // an entry executes this cycle
   input  fmpp_pkg::qkind_e             kind_i,
   input  logic [fmpp_pkg::F_OP_W-1:0]  op_i,        // fmpp_pkg::opcode_e
   input  logic [fmpp_pkg::F_F_W-1:0]   f_i,
   input  logic [fmpp_pkg::F_D_W-1:0]   d_i,
-  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
-  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
   input  logic [fmpp_pkg::F_X_W-1:0]   x_i,         // sub-fields by opcode (fmpp_pkg::REF_FN_LSB, ...)
   input  logic [fmpp_pkg::F_IMM_W-1:0] imm_i,
   input  logic [31:0]                  mask_i,
@@ -87,16 +92,31 @@ module fmpp_tile #(
   flags_t flag_q /*verilator public_flat_rd*/;
   flags_t flag_d;
 
+  // Operand registers (stage 2 -> 3). Word D, the flags and the mask are read in stage 3
+  // itself: every earlier entry has written them by then, so they need no forwarding.
+  word_t opa_q, opb_q;
   word_t opa, opb, opd;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
   word_t wr_data;
   logic  wr_en;
+  logic  fwd_a, fwd_b;
 
-  assign opa = mem_q[a_i[WIdxW-1:0]];
-  assign opb = mem_q[b_i[WIdxW-1:0]];
+  assign opa = opa_q;
+  assign opb = opb_q;
   assign opd = mem_q[d_i[WIdxW-1:0]];
+
+  // Stage 2: the word the entry in stage 3 writes at this edge is taken from its write
+  // data, not from the memory (forwarding), so an entry may use its predecessor's result.
+  assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+  assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+  always_ff @(posedge clk_i) begin
+    if (opr_en_i) begin
+      opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      opb_q <= fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+    end
+  end
   if (WIdxW < 6) begin : g_unused_hi
     logic unused_hi;
     assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
@@ -307,9 +327,14 @@ module fmpp_tile #(
     end
   end
 
+  // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
   always_ff @(posedge clk_i) begin
-    if (wr_en) mem_q[d_i[WIdxW-1:0]] <= wr_data;
+    if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
+`ifdef FORMAL
+  // Formal runs (formal/fmpp_pipe_formal.sv) start with every word 0, as simulation does.
+  initial for (int w = 0; w < NumWords; w++) mem_q[w] = '0;
+`endif
 
   // Host read port: the addressed lane's word (or flags) gathered through a one-hot
   // lane select, or a whole flag plane.
