@@ -147,13 +147,12 @@ module fmpp_tile #(
   lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
   lane_t flag_b;       // FLAGOP: flag FLAG_FB
   lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
-  lane_t rd_lane_sel;  // one-hot lane of a window read
-  lane_t rd_plane;     // flag rd_flag_i of every lane
   logic  hw_sel;       // the window write is for this tile
   logic  rd_sel;       // the window read is for this tile
   logic [5:0] hw_lane, rd_lane;
   assign hw_sel  = hw_block_i[15:6] == base_i[15:6];
   assign hw_lane = hw_block_i[5:0];
+  assign hw_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << hw_lane;
   assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
                                                               : rd_block_i[15:6] == base_i[15:6]);
   assign rd_lane = rd_block_i[5:0];
@@ -169,16 +168,10 @@ module fmpp_tile #(
     pred = '0;
     flag_a = '0;
     flag_b = '0;
-    rd_plane = '0;
     for (int k = 0; k < NF; k++) begin
-      if (f_i == 3'(k))       pred     = flag_q[k*Lanes +: Lanes];
-      if (fa_idx == 3'(k))    flag_a   = flag_q[k*Lanes +: Lanes];
-      if (fb_idx == 3'(k))    flag_b   = flag_q[k*Lanes +: Lanes];
-      if (rd_flag_i == 3'(k)) rd_plane = flag_q[k*Lanes +: Lanes];
-    end
-    for (int l = 0; l < Lanes; l++) begin
-      hw_lane_sel[l] = hw_lane == 6'(l);
-      rd_lane_sel[l] = rd_lane == 6'(l);
+      if (f_i == 3'(k))    pred   = flag_q[k*Lanes +: Lanes];
+      if (fa_idx == 3'(k)) flag_a = flag_q[k*Lanes +: Lanes];
+      if (fb_idx == 3'(k)) flag_b = flag_q[k*Lanes +: Lanes];
     end
   end
 
@@ -331,13 +324,11 @@ module fmpp_tile #(
   always_ff @(posedge clk_i) begin
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
-`ifdef FORMAL
-  // Formal runs (formal/fmpp_pipe_formal.sv) start with every word 0, as simulation does.
-  initial for (int w = 0; w < NumWords; w++) mem_q[w] = '0;
-`endif
 
-  // Host read port: the addressed lane's word (or flags) gathered through a one-hot
-  // lane select, or a whole flag plane.
+  // Host read port: the addressed lane's bit of each plane of a word (or of the flags), or
+  // a whole flag plane. Everything but the tile select sits inside it, so a tile that is
+  // not addressed does no work for it: the port follows the bus inputs combinationally,
+  // and the simulator evaluates it whenever they change.
   always_comb begin
     word_t w;
     rd_data_o = '0;
@@ -346,12 +337,16 @@ module fmpp_tile #(
       case (rd_kind_i)
         fmpp_pkg::RK_WORD: begin
           w = mem_q[rd_word_i[WIdxW-1:0]];
-          for (int k = 0; k < W; k++) rd_data_o[k] = |(w[k*Lanes +: Lanes] & rd_lane_sel);
+          for (int k = 0; k < W; k++) rd_data_o[k] = w[k*Lanes + 32'(rd_lane)];
         end
         fmpp_pkg::RK_FLAGS: begin
-          for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
+          for (int f = 0; f < NF; f++) rd_data_o[f] = flag_q[f*Lanes + 32'(rd_lane)];
         end
-        default: rd_data_o[Lanes-1:0] = rd_plane;  // RK_PLANE
+        default: begin  // RK_PLANE
+          for (int f = 0; f < NF; f++) begin
+            if (rd_flag_i == 3'(f)) rd_data_o[Lanes-1:0] = flag_q[f*Lanes +: Lanes];
+          end
+        end
       endcase
     end
   end
