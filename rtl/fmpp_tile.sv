@@ -325,22 +325,25 @@ module fmpp_tile #(
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
 
-  // Host read port: the addressed lane's bit of each plane of a word (or of the flags), or
-  // a whole flag plane. Everything but the tile select sits inside it, so a tile that is
-  // not addressed does no work for it: the port follows the bus inputs combinationally,
-  // and the simulator evaluates it whenever they change.
+  // Host read port: the addressed lane's word (or flags) gathered through a one-hot
+  // lane select, or a whole flag plane. Everything but the tile select sits inside it, so
+  // a tile that is not addressed does no work for it: the port follows the bus inputs
+  // combinationally, and the simulator evaluates it whenever they change.
   always_comb begin
     word_t w;
+    lane_t rd_lane_sel;
     rd_data_o = '0;
     w = '0;
+    rd_lane_sel = '0;
     if (rd_sel) begin
+      rd_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << rd_lane;
       case (rd_kind_i)
         fmpp_pkg::RK_WORD: begin
           w = mem_q[rd_word_i[WIdxW-1:0]];
-          for (int k = 0; k < W; k++) rd_data_o[k] = w[k*Lanes + 32'(rd_lane)];
+          for (int k = 0; k < W; k++) rd_data_o[k] = |(w[k*Lanes +: Lanes] & rd_lane_sel);
         end
         fmpp_pkg::RK_FLAGS: begin
-          for (int f = 0; f < NF; f++) rd_data_o[f] = flag_q[f*Lanes + 32'(rd_lane)];
+          for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
         end
         default: begin  // RK_PLANE
           for (int f = 0; f < NF; f++) begin
