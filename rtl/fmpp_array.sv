@@ -2,9 +2,19 @@
 //
 // Holds NumBlocks blocks in ceil(NumBlocks / 64) tiles (fmpp_tile), the mask
 // register and the INSTRET counter. Each clock it may pop the head of the
-// instruction queue and execute it in every tile at once (one entry per clock,
-// then CTRL.GAP idle clocks). It combines the tiles' responders (ANY, COUNT,
-// FIRST over SEL), the FLAGOP "if any" condition and the host read port.
+// instruction queue (one entry per clock, then CTRL.GAP idle clocks) into a
+// three-stage pipeline that every tile runs in step:
+//   1. queue read and decode: the head is decoded into the stage-2 register at the pop;
+//   2. operand read: each tile reads words A and B into its operand registers, taking
+//      the value stage 3 writes in the same clock when it writes that word (forwarding);
+//   3. execute and write back: ALU, match, compare and flag logic on the operand
+//      registers, the flags and word D read as they are now; the word, the flags,
+//      MASK and INSTRET change at the clock edge that ends this stage (the entry retires).
+// An entry therefore retires two clocks after its pop, and entries still issue one per
+// clock whatever they read: there is no stall. busy_o says that an entry is in stages
+// 2-3; the slave lets reads through only when the queue is empty and busy_o is low.
+// It combines the tiles' responders (ANY, COUNT, FIRST over SEL), the FLAGOP "if any"
+// condition and the host read port.
 module fmpp_array #(
   parameter int unsigned NumBlocks = 64,
   parameter int unsigned NumWords  = 32
@@ -17,6 +27,7 @@ module fmpp_array #(
   input  logic                 head_valid_i,
   output logic                 pop_o,
   input  logic [7:0]           gap_i,        // CTRL.GAP
+  output logic                 busy_o,       // entries popped but not yet retired
 
   // Host read port (combinational; reads are only accepted while the queue is empty)
   input  logic                 rd_en_i,
@@ -51,11 +62,76 @@ module fmpp_array #(
 
   // No entry executes while rst_ni is low: the queue's level resets at the same edge,
   // and an entry executed then would write a word (words have no reset) that the reset
-  // was meant to drop (found by the soak's resets in the middle of programs).
+  // was meant to drop (found by the soak's resets in the middle of programs). The
+  // pipeline's valid bits reset with it, and the tiles gate their word write with rst_ni.
   assign pop      = rst_ni && head_valid_i && gap_q == '0;
   assign pop_o    = pop;
   assign is_instr = head_i.kind == fmpp_pkg::QE_INSTR;
   assign instr    = head_i.data;
+
+  // Stage 1: decode of the queue head. Window writes reuse D for the word; an entry
+  // that is not an instruction carries OP_NOP, so no opcode test needs its kind.
+  logic [fmpp_pkg::F_OP_W-1:0]  dc_op;
+  logic [fmpp_pkg::F_D_W-1:0]   dc_d;
+  logic [fmpp_pkg::F_IMM_W-1:0] dc_imm;  // IMM, or the data of a window write
+  assign dc_op = is_instr ? instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] : fmpp_pkg::OP_NOP;
+  assign dc_d  = is_instr ? instr[fmpp_pkg::F_D_LSB +: fmpp_pkg::F_D_W] : head_i.word;
+  assign dc_imm = is_instr ? instr[fmpp_pkg::F_IMM_LSB +: fmpp_pkg::F_IMM_W] : head_i.data[31:0];
+
+  // Stage registers: s2_* holds the entry in operand read, s3_* the entry executing.
+  // s3_valid_q is the retire signal: the entry's effects land at the next clock edge
+  // (public: the lockstep checker snapshots the state after every retire).
+  logic                         s2_valid_q, s3_valid_q;
+  logic                         retire /*verilator public_flat_rd*/;
+  fmpp_pkg::qkind_e             s2_kind_q, s3_kind_q;
+  logic [fmpp_pkg::F_OP_W-1:0]  s2_op_q, s3_op_q;
+  logic [fmpp_pkg::F_F_W-1:0]   s2_f_q, s3_f_q;
+  logic [fmpp_pkg::F_D_W-1:0]   s2_d_q, s3_d_q;
+  logic [fmpp_pkg::F_A_W-1:0]   s2_a_q;
+  logic [fmpp_pkg::F_B_W-1:0]   s2_b_q;
+  logic [fmpp_pkg::F_X_W-1:0]   s2_x_q, s3_x_q;
+  logic [fmpp_pkg::F_IMM_W-1:0] s2_imm_q, s3_imm_q;
+  logic [15:0]                  s2_block_q, s3_block_q;
+  logic [3:0]                   s2_strb_q, s3_strb_q;
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      s2_valid_q <= 1'b0;
+      s3_valid_q <= 1'b0;
+    end else begin
+      s2_valid_q <= pop;
+      s3_valid_q <= s2_valid_q;
+    end
+  end
+
+  // The payload moves only with an entry (no reset: its valid bit says whether it counts).
+  always_ff @(posedge clk_i) begin
+    if (pop) begin
+      s2_kind_q  <= head_i.kind;
+      s2_op_q    <= dc_op;
+      s2_f_q     <= instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W];
+      s2_d_q     <= dc_d;
+      s2_a_q     <= instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W];
+      s2_b_q     <= instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
+      s2_x_q     <= instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W];
+      s2_imm_q   <= dc_imm;
+      s2_block_q <= head_i.block;
+      s2_strb_q  <= head_i.strb;
+    end
+    if (s2_valid_q) begin
+      s3_kind_q  <= s2_kind_q;
+      s3_op_q    <= s2_op_q;
+      s3_f_q     <= s2_f_q;
+      s3_d_q     <= s2_d_q;
+      s3_x_q     <= s2_x_q;
+      s3_imm_q   <= s2_imm_q;
+      s3_block_q <= s2_block_q;
+      s3_strb_q  <= s2_strb_q;
+    end
+  end
+
+  assign retire = s3_valid_q;
+  assign busy_o = s2_valid_q || s3_valid_q;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -68,11 +144,9 @@ module fmpp_array #(
       end else if (gap_q != '0) begin
         gap_q <= gap_q - 1'b1;
       end
-      if (pop && is_instr) begin
+      if (retire && s3_kind_q == fmpp_pkg::QE_INSTR) begin
         instret_q <= instret_q + 1'b1;
-        if (instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] == fmpp_pkg::OP_MASKSET) begin
-          mask_q <= instr[fmpp_pkg::F_IMM_LSB +: fmpp_pkg::F_IMM_W];
-        end
+        if (s3_op_q == fmpp_pkg::OP_MASKSET) mask_q <= s3_imm_q;
       end
     end
   end
@@ -80,22 +154,13 @@ module fmpp_array #(
   assign mask_o    = mask_q;
   assign instret_o = instret_q;
 
-  // Decoded execute bus, shared by every tile. Window writes reuse D for the word.
+  // The executing entry's fields, shared by every tile (IMM carries a window write's data).
   logic [fmpp_pkg::F_OP_W-1:0]  op;
-  logic [fmpp_pkg::F_F_W-1:0]   f;
-  logic [fmpp_pkg::F_D_W-1:0]   d;
-  logic [fmpp_pkg::F_A_W-1:0]   a;
-  logic [fmpp_pkg::F_B_W-1:0]   b;
   logic [fmpp_pkg::F_X_W-1:0]   x;
   logic [fmpp_pkg::F_IMM_W-1:0] imm;
-
-  assign op  = is_instr ? instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] : fmpp_pkg::OP_NOP;
-  assign f   = instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W];
-  assign d   = is_instr ? instr[fmpp_pkg::F_D_LSB +: fmpp_pkg::F_D_W] : head_i.word;
-  assign a   = instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W];
-  assign b   = instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
-  assign x   = instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W];
-  assign imm = instr[fmpp_pkg::F_IMM_LSB +: fmpp_pkg::F_IMM_W];
+  assign op  = s3_op_q;
+  assign x   = s3_x_q;
+  assign imm = s3_imm_q;
 
   // Tiles
   logic        t_flagop_any [NumTiles];
@@ -112,19 +177,20 @@ module fmpp_array #(
       .clk_i,
       .rst_ni,
       .base_i       (t * LaneW),
-      .exec_i       (pop),
-      .kind_i       (head_i.kind),
+      .opr_en_i     (s2_valid_q),
+      .a_i          (s2_a_q),
+      .b_i          (s2_b_q),
+      .exec_i       (s3_valid_q),
+      .kind_i       (s3_kind_q),
       .op_i         (op),
-      .f_i          (f),
-      .d_i          (d),
-      .a_i          (a),
-      .b_i          (b),
+      .f_i          (s3_f_q),
+      .d_i          (s3_d_q),
       .x_i          (x),
       .imm_i        (imm),
       .mask_i       (mask_q),
-      .hw_block_i   (head_i.block),
-      .hw_strb_i    (head_i.strb),
-      .hw_data_i    (head_i.data[31:0]),
+      .hw_block_i   (s3_block_q),
+      .hw_strb_i    (s3_strb_q),
+      .hw_data_i    (imm),
       .flagop_any_i (flagop_any),
       .flagop_any_o (t_flagop_any[t]),
       .rd_en_i      (rd_en_i),
@@ -179,41 +245,101 @@ module fmpp_array #(
 `endif
 
   // Coverage (make coverage): every opcode executed, every REF function on the data and
-  // on the address part, every CMP function with >= and <, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP.
+  // on the address part, every CMP function with >= and <, FLAGOP "if any" taken and not taken, the sequencer stalled by GAP;
+  // and the pipeline's cases: each forwarding path (A, B, both, from each kind of word
+  // write), the dependencies that need none (a flag or MASK written by the entry ahead),
+  // bubbles, a full pipeline, a read or register access waiting for the drain, a reset
+  // dropping entries in flight.
 `ifdef FMPP_COVERAGE
+  // Executed at this edge: an instruction (ex_instr); which word the entry in stage 3
+  // writes and which words the instruction in stage 2 reads.
+  logic ex_instr, s3_wr_word, s2_rd_a, s2_rd_b, s2_instr, s3_wr_flag, s2_rd_flag, s2_rd_mask;
+  assign ex_instr = retire && s3_kind_q == fmpp_pkg::QE_INSTR;
+  assign s2_instr = s2_valid_q && s2_kind_q == fmpp_pkg::QE_INSTR;
+  always_comb begin
+    s3_wr_word = 1'b0;
+    s3_wr_flag = 1'b0;
+    s2_rd_a    = 1'b0;
+    s2_rd_b    = 1'b0;
+    s2_rd_flag = 1'b0;
+    s2_rd_mask = 1'b0;
+    if (retire && s3_kind_q == fmpp_pkg::QE_WORD) s3_wr_word = 1'b1;
+    if (retire && s3_kind_q == fmpp_pkg::QE_FLAGS) s3_wr_flag = 1'b1;
+    if (ex_instr) begin
+      case (s3_op_q)
+        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT,
+        fmpp_pkg::OP_RSHIFT, fmpp_pkg::OP_WRITES: s3_wr_word = 1'b1;
+        fmpp_pkg::OP_REF, fmpp_pkg::OP_CMP, fmpp_pkg::OP_SETS, fmpp_pkg::OP_RESETS, fmpp_pkg::OP_SETSADR,
+        fmpp_pkg::OP_FLAGOP: s3_wr_flag = 1'b1;
+        default: ;
+      endcase
+    end
+    if (s2_instr) begin
+      case (s2_op_q)
+        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB: begin
+          s2_rd_a = 1'b1;
+          s2_rd_b = 1'b1;
+        end
+        fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT, fmpp_pkg::OP_CMP: s2_rd_a = 1'b1;
+        fmpp_pkg::OP_REF: s2_rd_a = s2_x_q[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA;
+        default: ;
+      endcase
+      // Every opcode but NOP and MASKSET reads a flag (the predicate or a source flag);
+      // REF and WRITES read MASK.
+      s2_rd_flag = s2_op_q != fmpp_pkg::OP_NOP && s2_op_q != fmpp_pkg::OP_MASKSET;
+      s2_rd_mask = s2_op_q == fmpp_pkg::OP_REF || s2_op_q == fmpp_pkg::OP_WRITES;
+    end
+  end
+  c_fwd_a: cover property (@(posedge clk_i) s3_wr_word && s2_rd_a && s2_a_q == s3_d_q && !(s2_rd_b && s2_b_q == s3_d_q));
+  c_fwd_b: cover property (@(posedge clk_i) s3_wr_word && s2_rd_b && s2_b_q == s3_d_q && s2_a_q != s3_d_q);
+  c_fwd_ab: cover property (@(posedge clk_i) s3_wr_word && s2_rd_a && s2_rd_b && s2_a_q == s3_d_q && s2_b_q == s3_d_q);
+  c_fwd_from_alu: cover property (@(posedge clk_i) s3_wr_word && ex_instr && s3_op_q == fmpp_pkg::OP_ADD && s2_rd_a && s2_a_q == s3_d_q);
+  c_fwd_from_writes: cover property (@(posedge clk_i) s3_wr_word && ex_instr && s3_op_q == fmpp_pkg::OP_WRITES && s2_rd_a && s2_a_q == s3_d_q);
+  c_fwd_from_bitcopy: cover property (@(posedge clk_i) s3_wr_word && ex_instr && s3_op_q == fmpp_pkg::OP_BITCOPY && s2_rd_a && s2_a_q == s3_d_q);
+  c_fwd_from_window: cover property (@(posedge clk_i) s3_wr_word && !ex_instr && s2_rd_a && s2_a_q == s3_d_q);
+  c_fwd_none: cover property (@(posedge clk_i) s3_wr_word && s2_rd_a && s2_a_q != s3_d_q && !(s2_rd_b && s2_b_q == s3_d_q));
+  c_dep_flag: cover property (@(posedge clk_i) s3_wr_flag && s2_rd_flag);
+  c_dep_flags_window: cover property (@(posedge clk_i) s3_wr_flag && !ex_instr && s2_rd_flag);
+  c_dep_mask: cover property (@(posedge clk_i) ex_instr && s3_op_q == fmpp_pkg::OP_MASKSET && s2_rd_mask);
+  c_pipe_full: cover property (@(posedge clk_i) pop && s2_valid_q && s3_valid_q);
+  c_bubble_s2: cover property (@(posedge clk_i) rst_ni && pop && !s2_valid_q && s3_valid_q);
+  c_bubble_s3: cover property (@(posedge clk_i) rst_ni && s2_valid_q && !s3_valid_q);
+  c_gap_in_flight: cover property (@(posedge clk_i) head_valid_i && gap_q != '0 && busy_o);
+  c_drain_wait: cover property (@(posedge clk_i) rst_ni && !head_valid_i && busy_o && (rd_en_i || resp_en_i));
+  c_reset_in_flight: cover property (@(posedge clk_i) !rst_ni && busy_o);
   // One line per point: Verilator 5.006 merges the iterations of a generate loop into one
   // cover point, so a loop would not tell the opcodes apart.
-  c_op_nop: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_NOP);
-  c_op_maskset: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_MASKSET);
-  c_op_ref: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF);
-  c_op_func: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FUNC);
-  c_op_add: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_ADD);
-  c_op_sub: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SUB);
-  c_op_bitcopy: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_BITCOPY);
-  c_op_lshift: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_LSHIFT);
-  c_op_rshift: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_RSHIFT);
-  c_op_writes: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_WRITES);
-  c_op_sets: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SETS);
-  c_op_resets: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_RESETS);
-  c_op_setsadr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_SETSADR);
-  c_op_flagop: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP);
-  c_op_cmp: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP);
-  c_ref_through_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b0);
-  c_ref_through_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b1);
-  c_ref_and_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b0);
-  c_ref_and_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b1);
-  c_ref_or_data: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b0);
-  c_ref_or_addr: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b1);
-  c_cmp_through_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
-  c_cmp_through_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
-  c_cmp_and_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
-  c_cmp_and_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
-  c_cmp_or_ge: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
-  c_cmp_or_lt: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
-  c_flagop_any_taken: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
-  c_flagop_any_skipped: cover property (@(posedge clk_i) pop && is_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
-  c_word_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_WORD);
-  c_flags_write: cover property (@(posedge clk_i) pop && head_i.kind == fmpp_pkg::QE_FLAGS);
+  c_op_nop: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_NOP);
+  c_op_maskset: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_MASKSET);
+  c_op_ref: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF);
+  c_op_func: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FUNC);
+  c_op_add: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_ADD);
+  c_op_sub: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SUB);
+  c_op_bitcopy: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_BITCOPY);
+  c_op_lshift: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_LSHIFT);
+  c_op_rshift: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_RSHIFT);
+  c_op_writes: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_WRITES);
+  c_op_sets: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SETS);
+  c_op_resets: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_RESETS);
+  c_op_setsadr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SETSADR);
+  c_op_flagop: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP);
+  c_op_cmp: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP);
+  c_ref_through_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b0);
+  c_ref_through_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b1);
+  c_ref_and_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b0);
+  c_ref_and_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b1);
+  c_ref_or_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b0);
+  c_ref_or_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b1);
+  c_cmp_through_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_through_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
+  c_cmp_and_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_and_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
+  c_cmp_or_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
+  c_cmp_or_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
+  c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
+  c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
+  c_word_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_WORD);
+  c_flags_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_FLAGS);
   c_gap_stall: cover property (@(posedge clk_i) head_valid_i && gap_q != '0);
 `endif
 

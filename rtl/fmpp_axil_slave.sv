@@ -2,8 +2,8 @@
 //
 // Writes to QUEUE and to the WORDS/FLAGS windows are pushes: they are checked
 // here and, if legal, queued for the array in bus order. Every other access
-// (all reads, CTRL and ERROR writes) waits until the queue is empty, so reads see
-// every earlier push. A bad access answers SLVERR, has no other effect, and is
+// (all reads, CTRL and ERROR writes) waits until the queue is empty and the array's
+// pipeline has drained (q_empty_i), so reads see every earlier push. A bad access answers SLVERR, has no other effect, and is
 // recorded in the sticky ERROR register. Rules and timing: docs/memory-map.md.
 //
 // A write is accepted when AWVALID and WVALID are both high (AWREADY = WREADY),
@@ -41,7 +41,7 @@ module fmpp_axil_slave #(
   output logic                         push_o,
   output fmpp_pkg::qentry_t            push_entry_o,
   input  logic                         q_full_i,
-  input  logic                         q_empty_i,
+  input  logic                         q_empty_i,   // queue empty and every entry executed
 
   // Array read port, responders and state shown in registers
   output logic                         rd_en_o,

@@ -3,7 +3,10 @@
 // Each block has NumWords data words of 32 bits, 8 flags and its read-only index
 // (base_i + lane: the paper's ROM address part). The tile stores its words in
 // bit-plane form (see fmpp_alu) so that one instruction is a handful of wide
-// bitwise operations, and executes the instruction broadcast by fmpp_array:
+// bitwise operations, and executes the instruction broadcast by fmpp_array in the
+// array's pipeline: in stage 2 it reads words A and B into its operand registers
+// (forwarding the word stage 3 writes in the same clock), in stage 3 it executes on them
+// with the flags and word D as they are then, and writes back at the clock edge:
 //   - masked match (REF, SETSADR) of a word or of the block index into a flag,
 //   - masked parallel write (WRITES) and the block ALU, predicated on a flag,
 //   - signed compare of a word with the immediate (CMP) into a flag,
@@ -32,14 +35,16 @@ module fmpp_tile #(
   // variable instead of folding each tile's constant into its own copy of the code.
   input  logic [31:0]                  base_i /*verilator public_flat_rd*/,
 
-  // Execute bus: the queue entry popped this cycle (state changes at the clock edge)
+  // Operand read (pipeline stage 2): the entry's words A and B
+  input  logic                         opr_en_i,    // an entry is in stage 2
+  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
+  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
+  // Execute bus (stage 3): the entry that executes this cycle (state changes at the clock edge)
   input  logic                         exec_i,      // an entry executes this cycle
   input  fmpp_pkg::qkind_e             kind_i,
   input  logic [fmpp_pkg::F_OP_W-1:0]  op_i,        // fmpp_pkg::opcode_e
   input  logic [fmpp_pkg::F_F_W-1:0]   f_i,
   input  logic [fmpp_pkg::F_D_W-1:0]   d_i,
-  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
-  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
   input  logic [fmpp_pkg::F_X_W-1:0]   x_i,         // sub-fields by opcode (fmpp_pkg::REF_FN_LSB, ...)
   input  logic [fmpp_pkg::F_IMM_W-1:0] imm_i,
   input  logic [31:0]                  mask_i,
@@ -87,16 +92,31 @@ module fmpp_tile #(
   flags_t flag_q /*verilator public_flat_rd*/;
   flags_t flag_d;
 
+  // Operand registers (stage 2 -> 3). Word D, the flags and the mask are read in stage 3
+  // itself: every earlier entry has written them by then, so they need no forwarding.
+  word_t opa_q, opb_q;
   word_t opa, opb, opd;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
   word_t wr_data;
   logic  wr_en;
+  logic  fwd_a, fwd_b;
 
-  assign opa = mem_q[a_i[WIdxW-1:0]];
-  assign opb = mem_q[b_i[WIdxW-1:0]];
+  assign opa = opa_q;
+  assign opb = opb_q;
   assign opd = mem_q[d_i[WIdxW-1:0]];
+
+  // Stage 2: the word the entry in stage 3 writes at this edge is taken from its write
+  // data, not from the memory (forwarding), so an entry may use its predecessor's result.
+  assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+  assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+  always_ff @(posedge clk_i) begin
+    if (opr_en_i) begin
+      opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      opb_q <= fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+    end
+  end
   if (WIdxW < 6) begin : g_unused_hi
     logic unused_hi;
     assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
@@ -127,13 +147,12 @@ module fmpp_tile #(
   lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
   lane_t flag_b;       // FLAGOP: flag FLAG_FB
   lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
-  lane_t rd_lane_sel;  // one-hot lane of a window read
-  lane_t rd_plane;     // flag rd_flag_i of every lane
   logic  hw_sel;       // the window write is for this tile
   logic  rd_sel;       // the window read is for this tile
   logic [5:0] hw_lane, rd_lane;
   assign hw_sel  = hw_block_i[15:6] == base_i[15:6];
   assign hw_lane = hw_block_i[5:0];
+  assign hw_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << hw_lane;
   assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
                                                               : rd_block_i[15:6] == base_i[15:6]);
   assign rd_lane = rd_block_i[5:0];
@@ -149,16 +168,10 @@ module fmpp_tile #(
     pred = '0;
     flag_a = '0;
     flag_b = '0;
-    rd_plane = '0;
     for (int k = 0; k < NF; k++) begin
-      if (f_i == 3'(k))       pred     = flag_q[k*Lanes +: Lanes];
-      if (fa_idx == 3'(k))    flag_a   = flag_q[k*Lanes +: Lanes];
-      if (fb_idx == 3'(k))    flag_b   = flag_q[k*Lanes +: Lanes];
-      if (rd_flag_i == 3'(k)) rd_plane = flag_q[k*Lanes +: Lanes];
-    end
-    for (int l = 0; l < Lanes; l++) begin
-      hw_lane_sel[l] = hw_lane == 6'(l);
-      rd_lane_sel[l] = rd_lane == 6'(l);
+      if (f_i == 3'(k))    pred   = flag_q[k*Lanes +: Lanes];
+      if (fa_idx == 3'(k)) flag_a = flag_q[k*Lanes +: Lanes];
+      if (fb_idx == 3'(k)) flag_b = flag_q[k*Lanes +: Lanes];
     end
   end
 
@@ -307,17 +320,23 @@ module fmpp_tile #(
     end
   end
 
+  // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
   always_ff @(posedge clk_i) begin
-    if (wr_en) mem_q[d_i[WIdxW-1:0]] <= wr_data;
+    if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
 
   // Host read port: the addressed lane's word (or flags) gathered through a one-hot
-  // lane select, or a whole flag plane.
+  // lane select, or a whole flag plane. Everything but the tile select sits inside it, so
+  // a tile that is not addressed does no work for it: the port follows the bus inputs
+  // combinationally, and the simulator evaluates it whenever they change.
   always_comb begin
     word_t w;
+    lane_t rd_lane_sel;
     rd_data_o = '0;
     w = '0;
+    rd_lane_sel = '0;
     if (rd_sel) begin
+      rd_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << rd_lane;
       case (rd_kind_i)
         fmpp_pkg::RK_WORD: begin
           w = mem_q[rd_word_i[WIdxW-1:0]];
@@ -326,7 +345,11 @@ module fmpp_tile #(
         fmpp_pkg::RK_FLAGS: begin
           for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
         end
-        default: rd_data_o[Lanes-1:0] = rd_plane;  // RK_PLANE
+        default: begin  // RK_PLANE
+          for (int f = 0; f < NF; f++) begin
+            if (rd_flag_i == 3'(f)) rd_data_o[Lanes-1:0] = flag_q[f*Lanes +: Lanes];
+          end
+        end
       endcase
     end
   end

@@ -1,7 +1,8 @@
 // fmpp_top: the FMPP, a SIMD processor-in-memory of NumBlocks blocks (each
 // NumWords 32-bit words, 8 flags and one ALU), seen by the host as an AXI4-Lite
 // slave. Host writes of instructions and data pass through the instruction queue
-// (fmpp_fifo) to the array (fmpp_array), which executes one entry per clock.
+// (fmpp_fifo) to the array (fmpp_array), whose three-stage pipeline executes one entry
+// per clock. Reads wait until the queue is empty and the pipeline has drained.
 module fmpp_top #(
   parameter int unsigned NumBlocks = 64,
   parameter int unsigned NumWords  = 32
@@ -35,7 +36,7 @@ module fmpp_top #(
 );
   localparam int unsigned QDepth = fmpp_pkg::QueueDepth;
 
-  logic                 push, pop, q_full, q_empty;
+  logic                 push, pop, q_full, q_empty, busy;
   fmpp_pkg::qentry_t    push_entry, head;
   logic [$clog2(QDepth+1)-1:0] q_level;
 
@@ -76,7 +77,7 @@ module fmpp_top #(
     .push_o       (push),
     .push_entry_o (push_entry),
     .q_full_i     (q_full),
-    .q_empty_i    (q_empty),
+    .q_empty_i    (q_empty && !busy),  // every push executed
     .rd_en_o      (rd_en),
     .rd_kind_o    (rd_kind),
     .rd_block_o   (rd_block),
@@ -112,6 +113,7 @@ module fmpp_top #(
     .head_valid_i (!q_empty),
     .pop_o        (pop),
     .gap_i        (gap),
+    .busy_o       (busy),
     .rd_en_i      (rd_en),
     .rd_kind_i    (rd_kind),
     .rd_block_i   (rd_block),

@@ -60,7 +60,13 @@ TEST(Lockstep, CatchesReadDataAndClockDifferences) {
     ASSERT_EQ(r.model.write(map::kRegQueue, sets().encode()), Resp::kOkay);
     ASSERT_EQ(r.rtl->write(map::kWinWordsBase, 7, 0x0F), Resp::kOkay);  // RTL only
     ASSERT_EQ(r.model.write(map::kRegQueue, nop().encode()), Resp::kOkay);
-    EXPECT_THROW(r.lock.write(map::kRegQueue, nop().encode()), LockstepMismatch);
+    // The differing entries take effect kPipeLatency clocks after their pop: the hash
+    // differs once the second of them has executed, at the third push from here.
+    EXPECT_THROW(
+        {
+          for (unsigned k = 0; k <= ModelBus::kPipeLatency; ++k) r.lock.write(map::kRegQueue, nop().encode());
+        },
+        LockstepMismatch);
   }
 }
 

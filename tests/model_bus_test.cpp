@@ -132,12 +132,17 @@ TEST(ModelBus, ErrorKeepsTheFirstCauseCountsAndClears) {
 
 TEST(ModelBus, PushesTakeOneClockAndReadsDrain) {
   ModelBus bus(Config{4, 8});
+  constexpr unsigned kLat = ModelBus::kPipeLatency;
   for (int k = 0; k < 10; ++k) EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);
   EXPECT_EQ(bus.cycles(), 10u);
-  EXPECT_EQ(bus.machine().instret(), 9u) << "the last push is still queued";
-  // The read waits one clock for the queue to drain, then is accepted.
-  EXPECT_EQ(rd(bus, map::kRegCycles), 11u);
-  EXPECT_EQ(bus.cycles(), 12u);
+  // Push k lands at edge k, is popped at edge k + 1 and executes kLat edges later: after
+  // edge 10 the last push is still queued and the kLat before it are in the pipeline.
+  EXPECT_EQ(bus.machine().instret(), 9u - kLat) << "the last entries are queued or in flight";
+  EXPECT_EQ(bus.in_flight(), kLat);
+  // The read waits one clock for the queue to drain and kLat for the pipeline, then is accepted.
+  EXPECT_EQ(rd(bus, map::kRegCycles), 11u + kLat);
+  EXPECT_EQ(bus.cycles(), 12u + kLat);
+  EXPECT_EQ(bus.in_flight(), 0u);
   EXPECT_EQ(rd(bus, map::kRegInstret), 10u);
 }
 
@@ -152,11 +157,15 @@ TEST(ModelBus, GapFillsTheQueueAndBackPressures) {
   for (int k = 0; k < 40; ++k) bus.write(map::kRegQueue, nop().encode());
   EXPECT_EQ(bus.cycles(), 1u + 95u);
   EXPECT_EQ(bus.queue_level(), map::kQueueDepth) << "full when the last push lands";
-  EXPECT_EQ(bus.machine().instret(), 40u - map::kQueueDepth);
+  // 24 pops so far: pop j at clock 4 j - 1, so pop 24 came at clock 95, with push 40, and
+  // executes kPipeLatency clocks later; the 23 before it have executed.
+  EXPECT_EQ(bus.in_flight(), 1u);
+  EXPECT_EQ(bus.machine().instret(), 40u - map::kQueueDepth - 1u);
   const uint64_t before = bus.cycles();
   EXPECT_EQ(rd(bus, map::kRegInstret), 40u);
-  // Drain: 2 clocks left of the current gap, 16 pops 4 clocks apart, then the read.
-  EXPECT_EQ(bus.cycles() - before, 2u + 1u + 4u * 15 + 1u);
+  // Drain: 2 clocks left of the current gap, 16 pops 4 clocks apart, the last entry's
+  // kPipeLatency clocks in the pipeline, then the read.
+  EXPECT_EQ(bus.cycles() - before, 2u + 1u + 4u * 15 + ModelBus::kPipeLatency + 1u);
 }
 
 }  // namespace

@@ -119,21 +119,25 @@ def build(cfg_name, blocks, words, lane_w, qentry, dumpfile, closed, size, shown
         s.trace(TOP + ".push", BIN)
         s.trace(TOP + ".pop", BIN)
         s.trace(TOP + ".q_full", BIN)
-        # The head entry (fmpp_pkg::qentry_t, fields MSB first as in the map); its kind
-        # through a tile port, which carries the enum's names.
-        s.trace(ARR + ".g_tile[0].u_tile.kind_i[1:0]", ENUM)
+        # The head entry (fmpp_pkg::qentry_t, fields MSB first as in the map).
         head = TOP + ".head"
         width = sum(f["width"] for f in qentry)
         msb = width - 1
         for f in qentry:
-            if f["name"] != "kind":
-                s.combined("head_" + f["name"], head, width, range(msb, msb - f["width"], -1),
-                           DEC if f["name"] in ("block", "word") else HEX)
+            s.combined("head_" + f["name"], head, width, range(msb, msb - f["width"], -1),
+                       DEC if f["name"] in ("kind", "block", "word") else HEX)
             msb -= f["width"]
 
     def decoded():
+        # The pipeline: the entry in operand read (stage 2) and the one executing (stage 3,
+        # its kind through a tile port, which carries the enum's names); `retire` is high
+        # in the clock before the edge at which the executing entry's effects land.
+        s.trace(ARR + ".s2_valid_q", BIN)
+        s.trace(ARR + ".s3_valid_q", BIN)
+        s.trace(ARR + ".retire", BIN)
+        s.trace(ARR + ".g_tile[0].u_tile.kind_i[1:0]", ENUM)
         s.trace(ARR + ".dbg_op[4:0]", ENUM)
-        for sig, f in [("f[2:0]", DEC), ("d[5:0]", DEC), ("a[5:0]", DEC), ("b[5:0]", DEC),
+        for sig, f in [("s3_f_q[2:0]", DEC), ("s3_d_q[5:0]", DEC), ("s2_a_q[5:0]", DEC), ("s2_b_q[5:0]", DEC),
                        ("x[5:0]", HEX), ("imm[31:0]", HEX), ("instr[63:0]", HEX),
                        ("mask_q[31:0]", HEX), ("gap_q[7:0]", DEC), ("instret_q[63:0]", DEC)]:
             s.trace("%s.%s" % (ARR, sig), f)

@@ -87,7 +87,7 @@ class RtlBusImpl final : public RtlBus {
     }
     mask_ = VarView(ctx_.get(), arr, "mask_q");
     instret_ = VarView(ctx_.get(), arr, "instret_q");
-    pop_ = VarView(ctx_.get(), arr, "pop");
+    pop_ = VarView(ctx_.get(), arr, "retire");  // an entry executes at the next edge
     gap_ = VarView(ctx_.get(), slv, "gap_q");
     err_sticky_ = VarView(ctx_.get(), slv, "err_sticky_q");
     err_cause_ = VarView(ctx_.get(), slv, "err_cause_q");

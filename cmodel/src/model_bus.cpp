@@ -1,6 +1,6 @@
-// Golden model of the FMPP bus interface and instruction queue (twin of
-// rtl/fmpp_axil_slave.sv, fmpp_addr_decode.sv, fmpp_fifo.sv and the sequencer in
-// fmpp_array.sv), clock-exact for the bus master described in model_bus.h.
+// Golden model of the FMPP bus interface, instruction queue and pipeline (twin of
+// rtl/fmpp_axil_slave.sv, fmpp_addr_decode.sv, fmpp_fifo.sv and the sequencer and
+// pipeline of fmpp_array.sv), clock-exact for the bus master described in model_bus.h.
 #include "fmpp/model_bus.h"
 
 #include <stdexcept>
@@ -68,6 +68,8 @@ void ModelBus::reset() {
   m_.reset();
   head_ = 0;
   count_ = 0;
+  for (bool& v : pipe_valid_) v = false;
+  pipe_count_ = 0;
   cycle_ = 0;
   gap_ = 0;
   gap_cnt_ = 0;
@@ -135,15 +137,27 @@ void ModelBus::execute(const QueueEntry& e) {
 }
 
 void ModelBus::tick(const QueueEntry* push) {
-  bool popped = false;
-  QueueEntry e;
+  // The last stage executes: its effects land at this edge.
+  constexpr size_t kLast = kPipeLatency - 1;
+  const bool retired = pipe_valid_[kLast];
+  const QueueEntry done = pipe_[kLast];
+  if (retired) {
+    execute(done);
+    --pipe_count_;
+  }
+  // The pipeline advances, and the queue head enters it.
+  for (size_t k = kLast; k > 0; --k) {
+    pipe_[k] = pipe_[k - 1];
+    pipe_valid_[k] = pipe_valid_[k - 1];
+  }
+  pipe_valid_[0] = false;
   if (count_ > 0 && gap_cnt_ == 0) {
-    e = ring_[head_];
+    pipe_[0] = ring_[head_];
+    pipe_valid_[0] = true;
+    ++pipe_count_;
     head_ = (head_ + 1) % ring_.size();
     --count_;
     gap_cnt_ = gap_;
-    execute(e);
-    popped = true;
   } else if (gap_cnt_ > 0) {
     --gap_cnt_;
   }
@@ -154,11 +168,11 @@ void ModelBus::tick(const QueueEntry* push) {
   }
   ++cycle_;
   // The hook sees the state after the whole edge, as the RTL's observer does.
-  if (popped && exec_hook_) exec_hook_(e);
+  if (retired && exec_hook_) exec_hook_(done);
 }
 
 void ModelBus::drain() {
-  while (count_ > 0) tick(nullptr);
+  while (count_ > 0 || pipe_count_ > 0) tick(nullptr);
 }
 
 Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {

@@ -121,14 +121,16 @@ def gen_md(m):
              f"room ({m['params']['QueueDepth']['value']} entries), so a full queue back-pressures the "
              "bus; an invalid one is answered SLVERR only once the queue has drained, like a register "
              "access, so its error is ordered after every earlier push.")
-    o.append("- The array pops and executes one entry per clock (then idles `CTRL.GAP` clocks).")
+    o.append("- The array pops one entry per clock (then idles `CTRL.GAP` clocks) into its three-stage "
+             "pipeline (decode, operand read, execute); an entry takes effect two clocks after its pop, "
+             "and the next entry may use its result at once.")
     o.append("- Every other access (every read, and writes to `CTRL` and `ERROR`) waits until the queue "
-             "is empty, so a read always sees the effect of every earlier push.")
+             "is empty and the pipeline has drained, so a read always sees the effect of every earlier push.")
     o.append("- Register bits outside the fields listed above are reserved: a write ignores them and a "
              "read returns 0 in them (a write of 0x1FF to `CTRL` sets GAP to 0xFF). Instructions are "
              "stricter: a reserved instruction bit that is not 0 makes the push ILLEGAL.")
     o.append("- With the bus master keeping BREADY/RREADY high, a push costs one clock and a read costs "
-             "the clocks needed to drain the queue plus one. The golden model counts clocks by the "
+             "the clocks needed to drain the queue and the pipeline (two clocks after the last pop) plus one. The golden model counts clocks by the "
              "same rules, so `CYCLES` agrees between model and RTL.")
     o.append("")
     o.extend(_how_generated())

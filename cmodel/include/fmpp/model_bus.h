@@ -2,12 +2,16 @@
 // ERROR/CTRL registers, and the instruction queue with the RTL's exact timing.
 //
 // Timing contract (docs/memory-map.md, "Ordering and timing"), clock by clock:
-// at each rising edge the array pops and executes the queue head if there is one
-// and its GAP counter is zero, then the bus may push. A legal push is accepted at
-// the first edge with room in the queue; every other access at the first edge
-// with the queue empty. cycles() counts edges since reset, as the RTL's CYCLES does,
-// for a bus master that holds BREADY/RREADY high and starts each access as soon as
-// the previous one is accepted (backends/rtl/rtl_bus.h drives the RTL that way).
+// at each rising edge the entry at the end of the array's pipeline executes (it
+// retires), the pipeline advances, the array pops the queue head into the pipeline
+// if there is one and its GAP counter is zero, then the bus may push. An entry popped
+// at one edge retires kPipeLatency edges later (rtl/fmpp_array.sv: decode, operand
+// read, execute; its forwarding makes the order of effects that of the entries). A
+// legal push is accepted at the first edge with room in the queue; every other access
+// at the first edge with the queue empty and the pipeline drained. cycles() counts
+// edges since reset, as the RTL's CYCLES does, for a bus master that holds
+// BREADY/RREADY high and starts each access as soon as the previous one is accepted
+// (backends/rtl/rtl_bus.h drives the RTL that way).
 #pragma once
 
 #include <cstdint>
@@ -54,6 +58,10 @@ struct ErrorState {
 
 class ModelBus : public Bus {
  public:
+  // Clock edges from an entry's pop to the edge at which it executes (the RTL array's
+  // stages after the queue read: operand read, execute and write back).
+  static constexpr unsigned kPipeLatency = 2;
+
   explicit ModelBus(const Config& cfg);
 
   Resp write(uint32_t addr, uint64_t data, uint8_t strb = 0xFF) override;
@@ -65,15 +73,17 @@ class ModelBus : public Bus {
   // Sets one word before the run, as the RTL's memory powered up (soak with random
   // initial state). Not a bus access: no clock, no queue.
   void preload_word(unsigned block, unsigned word, uint32_t value) { m_.write_word(block, word, value); }
-  // The RTL's reset (rst_ni low): the queue is emptied without executing, CYCLES,
+  // The RTL's reset (rst_ni low): the queue and the pipeline are emptied without executing, CYCLES,
   // CTRL and ERROR restart from zero, the machine resets (Machine::reset: words kept).
   void reset();
   const Config& config() const { return m_.config(); }
   const ErrorState& error() const { return err_; }
   uint8_t gap() const { return gap_; }
   size_t queue_level() const { return count_; }
+  // Entries popped from the queue that have not executed yet (0 .. kPipeLatency).
+  size_t in_flight() const { return pipe_count_; }
 
-  // Called after every queue entry executes (lockstep checking hooks in here).
+  // Called after every queue entry executes, at the edge it retires (lockstep checking hooks in here).
   using ExecHook = std::function<void(const QueueEntry&)>;
   void set_exec_hook(ExecHook h) { exec_hook_ = std::move(h); }
 
@@ -90,6 +100,12 @@ class ModelBus : public Bus {
   Machine m_;
   std::vector<QueueEntry> ring_;
   size_t head_ = 0, count_ = 0;
+  // The pipeline after the queue: pipe_[0] holds the entry popped at the last edge,
+  // pipe_[kPipeLatency - 1] the one that executes at the next; pipe_valid_ marks the
+  // stages that hold an entry and pipe_count_ counts them.
+  QueueEntry pipe_[kPipeLatency];
+  bool pipe_valid_[kPipeLatency] = {};
+  size_t pipe_count_ = 0;
   uint64_t cycle_ = 0;
   uint8_t gap_ = 0;       // CTRL.GAP
   uint8_t gap_cnt_ = 0;   // idle clocks left before the next pop
