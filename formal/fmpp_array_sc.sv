@@ -3,7 +3,8 @@
 // pipeline, when the queue head was decoded, read, executed and written back in the
 // clock of its pop. Millions of lockstep instructions checked it against the golden
 // model. Only its coverage points, assertions and Verilator pragmas are left out; it
-// shares fmpp_alu with the pipelined array.
+// shares the ALU with the pipelined array (fmpp_alu: the addend and the execute part that
+// the pipelined tile uses in stages 2 and 3, here in one clock).
 module fmpp_array_sc #(
   parameter int unsigned NumBlocks = 64,
   parameter int unsigned NumWords  = 32

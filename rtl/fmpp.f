@@ -9,15 +9,18 @@
 //   // storage: PATTERN  a yosys wire pattern matching the registers that hold the blocks'
 //                        words (the standard-cell flow maps them to latches in its storage
 //                        variant)
-//   FILE // sim          a simulation-only file (a checker, bound assertions): Verilated,
-//                        linted and read by formal, left out of synthesis (yosys, iCE40,
-//                        standard cells)
+//   FILE // sim          a simulation-only file (a checker, bound assertions, a
+//                        composition only tests instantiate): Verilated, linted and read
+//                        by formal, left out of synthesis (yosys, iCE40, standard cells)
 // A new .sv file in rtl/ goes here; the lint fails while one is missing.
 //
 // top: fmpp_top
 // storage: *.u_tile.mem_q*
 fmpp_pkg.sv
-fmpp_alu.sv
+fmpp_carry_level.sv
+fmpp_alu_addend.sv
+fmpp_alu_exec.sv
+fmpp_alu.sv // sim
 fmpp_tile.sv
 fmpp_fifo.sv
 fmpp_instr_check.sv

@@ -1,21 +1,9 @@
-// fmpp_alu: the block ALU of the FMPP (logic unit, ripple-carry adder/subtracter,
-// one-bit shifter, bit copy, signed compare with the immediate), written once and
-// applied to the Lanes blocks of a tile.
-//
-// Layout: every operand is a word in bit-plane form. Bit k of the word of block
-// (tile base + l) is bit l of plane k, and plane k is a[k*Lanes +: Lanes]. Each
-// expression below therefore reads as the logic of one block's ALU (for Lanes = 1
-// it is exactly that), while computing all Lanes blocks at once. No signal ever
-// crosses lanes: blocks are independent, as in the paper's BPBP organisation.
-//
-// Purely combinational; the tile applies the predicate and writes the result.
-// CMP reuses the subtracter: A + not IMM + 1 on the same carry chain (IMM is broadcast,
-// so operand B's bit k is one shared constant per instruction; a 2:1 multiplexer per bit
-// selects it), and ge_o is the sign of A - IMM corrected by its overflow: A >= IMM signed.
-// CMP writes no word and neither C nor V: wr_c_o and wr_v_o stay 0, and the tile takes
-// only ge_o.
-// Plain `case` (distinct constant items, with default) for the reason given in
-// fmpp_tile.sv: every tile must compile to the same C++ body.
+// fmpp_alu: the block ALU of the FMPP in one clock, for the Lanes blocks of a tile:
+// fmpp_alu_addend (the second operand as the adder takes it) feeding fmpp_alu_exec (the
+// operations). The pipelined tile uses the two parts in consecutive stages; this
+// composition is the ALU's unit under test (tests/rtl_units) and the single-cycle
+// reference's (formal/fmpp_array_sc.sv). Operands and results are in bit-plane form: bit k
+// of the word of lane l is bit l of plane k, a[k*Lanes +: Lanes].
 module fmpp_alu #(
   parameter int unsigned Lanes = 64
 ) (
@@ -34,74 +22,13 @@ module fmpp_alu #(
   output logic                              wr_v_o,    // this op may set V
   output logic [Lanes-1:0]                  ge_o       // CMP: word A >= IMM (signed)
 );
-  localparam int unsigned W = fmpp_pkg::WordW;
+  logic [fmpp_pkg::WordW*Lanes-1:0] y;
+  logic cin;
 
-  always_comb begin
-    logic [Lanes-1:0] c;        // carry into the current bit
-    logic [Lanes-1:0] x, y;     // current bit of the two addends
-    r_o     = '0;
-    carry_o = '0;
-    ovf_o   = '0;
-    wr_c_o  = 1'b0;
-    wr_v_o  = 1'b0;
-    ge_o    = '0;
-    c = '0;
-    x = '0;
-    y = '0;
-    case (op_i)
-      fmpp_pkg::OP_FUNC: begin
-        case (fn_i)
-          fmpp_pkg::FUNC_FN_AND: r_o = a_i & b_i;
-          fmpp_pkg::FUNC_FN_OR:  r_o = a_i | b_i;
-          default:               r_o = a_i ^ b_i;  // FUNC_FN_XOR; undefined codes never get here (ILLEGAL at push)
-        endcase
-      end
-      fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_CMP: begin
-        // Ripple carry, one full adder per bit. SUB adds the complement of B with carry-in 1;
-        // CMP the complement of IMM (the same in every lane) with carry-in 1.
-        c = (op_i != fmpp_pkg::OP_ADD) ? {Lanes{1'b1}} : '0;
-        for (int k = 0; k < W; k++) begin
-          x = a_i[k*Lanes +: Lanes];
-          if (op_i == fmpp_pkg::OP_CMP) y = {Lanes{~imm_i[k]}};
-          else y = (op_i == fmpp_pkg::OP_SUB) ? ~b_i[k*Lanes +: Lanes] : b_i[k*Lanes +: Lanes];
-          r_o[k*Lanes +: Lanes] = x ^ y ^ c;
-          if (k == W - 1) ovf_o = c;  // carry into the sign bit ...
-          c = (x & y) | (c & (x ^ y));
-        end
-        ovf_o   = ovf_o ^ c;          // ... differs from the carry out: signed overflow
-        carry_o = c;                  // SUB: 1 = no borrow (A >= B unsigned)
-        if (op_i == fmpp_pkg::OP_CMP) begin
-          // A - IMM >= 0 unless its sign is set without overflow or clear with it.
-          // (r_o, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
-          ge_o    = ~(r_o[(W-1)*Lanes +: Lanes] ^ ovf_o);
-        end else begin
-          wr_c_o  = 1'b1;
-          wr_v_o  = 1'b1;
-        end
-      end
-      fmpp_pkg::OP_BITCOPY: begin
-        // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder).
-        for (int k = 0; k < W; k++) begin
-          if (bit_i_i == 5'(k)) x = a_i[k*Lanes +: Lanes];
-        end
-        for (int k = 0; k < W; k++) begin
-          r_o[k*Lanes +: Lanes] = (bit_j_i == 5'(k)) ? x : d_i[k*Lanes +: Lanes];
-        end
-      end
-      fmpp_pkg::OP_LSHIFT: begin
-        r_o     = {a_i[(W-1)*Lanes-1:0], {Lanes{1'b0}}};
-        carry_o = a_i[(W-1)*Lanes +: Lanes];
-        ovf_o   = a_i[(W-1)*Lanes +: Lanes] ^ a_i[(W-2)*Lanes +: Lanes];
-        wr_c_o  = 1'b1;
-        wr_v_o  = 1'b1;
-      end
-      fmpp_pkg::OP_RSHIFT: begin
-        r_o     = {a_i[(W-1)*Lanes +: Lanes], a_i[W*Lanes-1:Lanes]};
-        carry_o = a_i[0 +: Lanes];
-        wr_c_o  = 1'b1;
-      end
-      default: ;  // not an ALU operation
-    endcase
-  end
+  fmpp_alu_addend #(.Lanes(Lanes)) u_addend (.op_i(op_i), .imm_i(imm_i), .b_i(b_i), .y_o(y), .cin_o(cin));
+  fmpp_alu_exec #(.Lanes(Lanes)) u_exec (
+    .op_i(op_i), .fn_i(fn_i), .bit_i_i(bit_i_i), .bit_j_i(bit_j_i), .a_i(a_i), .y_i(y), .cin_i(cin),
+    .d_i(d_i), .r_o(r_o), .carry_o(carry_o), .ovf_o(ovf_o), .wr_c_o(wr_c_o), .wr_v_o(wr_v_o), .ge_o(ge_o)
+  );
 
 endmodule

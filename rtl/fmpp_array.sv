@@ -180,6 +180,8 @@ module fmpp_array #(
       .opr_en_i     (s2_valid_q),
       .a_i          (s2_a_q),
       .b_i          (s2_b_q),
+      .opr_op_i     (s2_op_q),
+      .opr_imm_i    (s2_imm_q),
       .exec_i       (s3_valid_q),
       .kind_i       (s3_kind_q),
       .op_i         (op),

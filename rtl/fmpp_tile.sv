@@ -35,10 +35,12 @@ module fmpp_tile #(
   // variable instead of folding each tile's constant into its own copy of the code.
   input  logic [31:0]                  base_i /*verilator public_flat_rd*/,
 
-  // Operand read (pipeline stage 2): the entry's words A and B
+  // Operand read (pipeline stage 2): the entry's words A and B, and the addend made from B
   input  logic                         opr_en_i,    // an entry is in stage 2
   input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
   input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
+  input  logic [fmpp_pkg::F_OP_W-1:0]  opr_op_i,    // the stage-2 entry's opcode
+  input  logic [fmpp_pkg::F_IMM_W-1:0] opr_imm_i,   // and its immediate (CMP's constant)
   // Execute bus (stage 3): the entry that executes this cycle (state changes at the clock edge)
   input  logic                         exec_i,      // an entry executes this cycle
   input  fmpp_pkg::qkind_e             kind_i,
@@ -94,8 +96,12 @@ module fmpp_tile #(
 
   // Operand registers (stage 2 -> 3). Word D, the flags and the mask are read in stage 3
   // itself: every earlier entry has written them by then, so they need no forwarding.
+  // opb_q holds the ALU's addend (fmpp_alu_addend: B, not B or not IMM) and cin_q its
+  // carry-in, prepared in stage 2 so that stage 3's adder starts from registers.
   word_t opa_q, opb_q;
-  word_t opa, opb, opd;
+  logic  cin_q;
+  word_t opa, opb, opd, opb_rd, addend;
+  logic  cin;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
@@ -111,10 +117,15 @@ module fmpp_tile #(
   // data, not from the memory (forwarding), so an entry may use its predecessor's result.
   assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
   assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+  assign opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+  fmpp_alu_addend #(.Lanes(Lanes)) u_addend (
+    .op_i(opr_op_i), .imm_i(opr_imm_i), .b_i(opb_rd), .y_o(addend), .cin_o(cin)
+  );
   always_ff @(posedge clk_i) begin
     if (opr_en_i) begin
       opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
-      opb_q <= fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+      opb_q <= addend;
+      cin_q <= cin;
     end
   end
   if (WIdxW < 6) begin : g_unused_hi
@@ -123,14 +134,14 @@ module fmpp_tile #(
                          d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
   end
 
-  fmpp_alu #(.Lanes(Lanes)) u_alu (
+  fmpp_alu_exec #(.Lanes(Lanes)) u_alu (
     .op_i    (op_i),
     .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
     .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
     .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
-    .imm_i   (imm_i),
     .a_i     (opa),
-    .b_i     (opb),
+    .y_i     (opb),
+    .cin_i   (cin_q),
     .d_i     (opd),
     .r_o     (alu_r),
     .carry_o (alu_c),

@@ -2,7 +2,8 @@
 # make asic: the FMPP in standard cells of the OSU 0.18 um library (Debian's
 # qflow-tech-osu018), for several sizes. Per size (BLOCKSxWORDS):
 #   1. synth   yosys `synth -flatten`; flip-flops legalized to plain D flip-flops and
-#              mapped with `dfflibmap -liberty`, logic with `abc -liberty`
+#              mapped with `dfflibmap -liberty`, logic with `abc -liberty`; modules marked
+#              keep_hierarchy (the ALU's carry levels) are mapped on their own, then flattened
 #   2. fanout  qflow's blifFanout (buffer trees, gate resizing) repeated until it changes
 #              no gate (at most ASIC_FANOUT_MAX rounds: a flow that does not settle fails)
 #   3. sta     OpenSTA on the buffered netlist, ideal clock and no wires (unplaced):
@@ -139,6 +140,8 @@ design -save synthesized
 dfflegalize -cell \$_DFF_P_ x
 dfflibmap -liberty $lib
 abc -liberty $lib
+setattr -mod -unset keep_hierarchy
+flatten
 setundef -zero
 clean -purge
 tee -o $out/$n.synth.stat stat -liberty $lib
@@ -155,6 +158,8 @@ techmap -map $root/tools/asic/latch_cell.v t:\$_DLATCH_P_
 dfflegalize -cell \$_DFF_P_ x
 dfflibmap -liberty $lib
 abc -liberty $lib
+setattr -mod -unset keep_hierarchy
+flatten
 setundef -zero
 clean -purge
 tee -o $out/$n.latch.stat stat -liberty $lib

@@ -5,7 +5,8 @@
 # clock frequency (nextpnr's timing analysis after routing), the logic cells, LUTs,
 # flip-flops, block RAMs and I/Os used, and the critical path.
 #
-# The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth).
+# The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth). Modules
+# marked keep_hierarchy (the ALU's carry levels) are mapped on their own, then flattened.
 #
 # Writes under $FPGA_OUT (default $BUILD/fpga, BUILD defaulting to build):
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
@@ -57,7 +58,8 @@ for r in "${runs[@]}"; do
   t0=$(date +%s)
   if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv $sources; \
       chparam -set NumBlocks $b -set NumWords $w fmpp_fpga_top; \
-      synth_ice40 -top fmpp_fpga_top -json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
+      synth_ice40 -top fmpp_fpga_top; setattr -mod -unset keep_hierarchy; flatten; opt_clean; \
+      write_json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
     echo "fpga.sh: yosys failed for $r:" >&2; tail -20 "$out/$name.yosys.log" >&2; exit 1
   fi
   # nextpnr exits non-zero when the design does not fit the device: that is a result

@@ -57,7 +57,8 @@ for s in "${sizes[@]}"; do
   t0=$(date +%s)
   # (yosys's warnings about array ports turned into registers are expected; see the log.)
   if ! yosys -q -l "$out/fmpp_${b}x${w}.log" -p "read_verilog -sv $sources; \
-      chparam -set NumBlocks $b -set NumWords $w $top; synth -top $top -flatten; \
+      chparam -set NumBlocks $b -set NumWords $w $top; hierarchy -top $top; setattr -mod -unset keep_hierarchy; \
+      synth -top $top -flatten; \
       dfflegalize -cell \$_DFF_P_ x; opt_clean; tee -o $stat stat -tech cmos" >/dev/null 2>&1; then
     echo "synth.sh: yosys failed for ${b}x${w}:" >&2
     tail -20 "$out/fmpp_${b}x${w}.log" >&2

@@ -1,6 +1,6 @@
 // The FMPP golden model: architectural state and the effect of each instruction.
 //
-// Bit-exact with the RTL (rtl/fmpp_tile.sv, fmpp_alu.sv). Timing and the bus are
+// Bit-exact with the RTL (rtl/fmpp_tile.sv, fmpp_alu_exec.sv). Timing and the bus are
 // in ModelBus; this class only knows what one queue entry does. Words are stored
 // word-major (all blocks' word w contiguous) and flags one byte per block, so each
 // instruction is one branch-free loop over blocks that the compiler vectorizes.

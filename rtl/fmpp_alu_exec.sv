@@ -1,0 +1,127 @@
+// fmpp_alu_exec: the block ALU of the FMPP (logic unit, parallel-prefix adder/subtracter,
+// one-bit shifter, bit copy, signed compare with the immediate), written once and
+// applied to the Lanes blocks of a tile. Its addend comes prepared by fmpp_alu_addend
+// (B, not B or not IMM, and the carry-in), one pipeline stage earlier in the tile;
+// fmpp_alu is the two together.
+//
+// Layout: every operand is a word in bit-plane form. Bit k of the word of block
+// (tile base + l) is bit l of plane k, and plane k is a[k*Lanes +: Lanes]. Each
+// expression below therefore reads as the logic of one block's ALU (for Lanes = 1
+// it is exactly that), while computing all Lanes blocks at once. No signal ever
+// crosses lanes: blocks are independent, as in the paper's BPBP organisation.
+//
+// Purely combinational; the tile applies the predicate and writes the result.
+// The adder's carries come from a Sklansky parallel-prefix network (fmpp_carry_level.sv,
+// one module per level: log2(32) = 5 AND-OR levels instead of a 32-bit ripple; why each
+// level is a module of its own is said there). The network's inputs and outputs are
+// computed outside the operation's always_comb, so that no process both feeds and reads it.
+// CMP reuses the subtracter: A + not IMM + 1 on the same carries, and ge_o is the sign
+// of A - IMM corrected by its overflow: A >= IMM signed.
+// CMP writes no word and neither C nor V: wr_c_o and wr_v_o stay 0, and the tile takes
+// only ge_o.
+// Plain `case` (distinct constant items, with default) for the reason given in
+// fmpp_tile.sv: every tile must compile to the same C++ body.
+module fmpp_alu_exec #(
+  parameter int unsigned Lanes = 64
+) (
+  input  logic [fmpp_pkg::F_OP_W-1:0]       op_i,      // fmpp_pkg::opcode_e
+  input  logic [fmpp_pkg::FUNC_FN_W-1:0]    fn_i,      // FUNC: AND / OR / XOR
+  input  logic [fmpp_pkg::BIT_I_W-1:0]      bit_i_i,   // BITCOPY source bit
+  input  logic [fmpp_pkg::BIT_J_W-1:0]      bit_j_i,   // BITCOPY destination bit
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  a_i,       // word A of every lane
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  y_i,       // the addend (fmpp_alu_addend): word B for FUNC and ADD
+  input  logic                              cin_i,     // the adder's carry-in (fmpp_alu_addend)
+  input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
+  output logic [fmpp_pkg::WordW*Lanes-1:0]  r_o,       // value for word D
+  output logic [Lanes-1:0]                  carry_o,   // new C flag
+  output logic [Lanes-1:0]                  ovf_o,     // signed overflow (ORed into V)
+  output logic                              wr_c_o,    // this op writes C
+  output logic                              wr_v_o,    // this op may set V
+  output logic [Lanes-1:0]                  ge_o       // CMP: word A >= IMM (signed)
+);
+  localparam int unsigned W = fmpp_pkg::WordW;
+
+  localparam int unsigned Levels = $clog2(W);  // of the carry network
+
+  // The adder: h, half sums; g0, generate per bit with the carry-in folded into bit 0's.
+  // After level l, g_level[l].g plane k is the carry out of bits k down to the bottom of
+  // k's 2^(l+1)-aligned group; after the last level (carry) the carry out of bit k. (One
+  // signal per level, not an array of levels: a simulator would see the array as one
+  // variable that feeds itself.)
+  logic [Lanes-1:0]   cin;
+  logic [W*Lanes-1:0] h, g0, carry;
+  assign cin = {Lanes{cin_i}};
+  assign h   = a_i ^ y_i;
+  assign g0  = (a_i & y_i) | {{(W-1)*Lanes{1'b0}}, h[0 +: Lanes] & cin};
+  for (genvar l = 0; l < Levels; l++) begin : g_level
+    logic [W*Lanes-1:0] g;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [W*Lanes-1:0] p;  // the last level's propagate is not needed
+    /* verilator lint_on UNUSEDSIGNAL */
+    if (l == 0) begin : g_first
+      fmpp_carry_level #(.Lanes(Lanes), .W(W), .Level(l)) u_level (.g_i(g0), .p_i(h), .g_o(g), .p_o(p));
+    end else begin : g_next
+      fmpp_carry_level #(.Lanes(Lanes), .W(W), .Level(l)) u_level (
+        .g_i(g_level[l-1].g), .p_i(g_level[l-1].p), .g_o(g), .p_o(p)
+      );
+    end
+  end
+  assign carry = g_level[Levels-1].g;
+
+  always_comb begin
+    logic [Lanes-1:0] x;        // BITCOPY: the selected plane of A
+    r_o     = '0;
+    carry_o = '0;
+    ovf_o   = '0;
+    wr_c_o  = 1'b0;
+    wr_v_o  = 1'b0;
+    ge_o    = '0;
+    x = '0;
+    case (op_i)
+      fmpp_pkg::OP_FUNC: begin
+        case (fn_i)
+          fmpp_pkg::FUNC_FN_AND: r_o = a_i & y_i;
+          fmpp_pkg::FUNC_FN_OR:  r_o = a_i | y_i;
+          default:               r_o = a_i ^ y_i;  // FUNC_FN_XOR; undefined codes never get here (ILLEGAL at push)
+        endcase
+      end
+      fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_CMP: begin
+        // Bit k's sum is its half sum with the carry into it (the carry-in, or bit k-1's out).
+        r_o     = h ^ {carry[(W-1)*Lanes-1:0], cin};
+        ovf_o   = carry[(W-2)*Lanes +: Lanes] ^ carry[(W-1)*Lanes +: Lanes];  // carry into the sign bit vs out of it
+        carry_o = carry[(W-1)*Lanes +: Lanes];  // SUB: 1 = no borrow (A >= B unsigned)
+        if (op_i == fmpp_pkg::OP_CMP) begin
+          // A - IMM >= 0 unless its sign is set without overflow or clear with it.
+          // (r_o, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
+          ge_o    = ~(r_o[(W-1)*Lanes +: Lanes] ^ ovf_o);
+        end else begin
+          wr_c_o  = 1'b1;
+          wr_v_o  = 1'b1;
+        end
+      end
+      fmpp_pkg::OP_BITCOPY: begin
+        // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder).
+        for (int k = 0; k < W; k++) begin
+          if (bit_i_i == 5'(k)) x = a_i[k*Lanes +: Lanes];
+        end
+        for (int k = 0; k < W; k++) begin
+          r_o[k*Lanes +: Lanes] = (bit_j_i == 5'(k)) ? x : d_i[k*Lanes +: Lanes];
+        end
+      end
+      fmpp_pkg::OP_LSHIFT: begin
+        r_o     = {a_i[(W-1)*Lanes-1:0], {Lanes{1'b0}}};
+        carry_o = a_i[(W-1)*Lanes +: Lanes];
+        ovf_o   = a_i[(W-1)*Lanes +: Lanes] ^ a_i[(W-2)*Lanes +: Lanes];
+        wr_c_o  = 1'b1;
+        wr_v_o  = 1'b1;
+      end
+      fmpp_pkg::OP_RSHIFT: begin
+        r_o     = {a_i[(W-1)*Lanes +: Lanes], a_i[W*Lanes-1:Lanes]};
+        carry_o = a_i[0 +: Lanes];
+        wr_c_o  = 1'b1;
+      end
+      default: ;  // not an ALU operation
+    endcase
+  end
+
+endmodule
