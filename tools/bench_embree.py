@@ -40,8 +40,24 @@ def fpga_mhz(path=FPGA_CSV):
 
 
 FPGA_MHZ = fpga_mhz()
-# Assumed, not measured (docs/perf.md, "Against Embree", says why).
-ASIC_MHZ = 250.0
+# make asic's largest machine in OSU 0.18 um standard cells, timed by OpenSTA before
+# placement (docs/asic/summary.csv, the run docs/generated/area.md reports).
+ASIC_CSV = os.path.join(ROOT, "docs", "asic", "summary.csv")
+
+
+def asic_clock(path=ASIC_CSV):
+    """(MHz, 'BxW') of the largest size of tools/asic.sh's summary.csv."""
+    import csv
+    with open(path, encoding="utf-8") as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    timed = [r for r in rows if r.get("fmax_mhz")]
+    if not timed:
+        sys.exit("%s: no timed size" % path)
+    best = max(timed, key=lambda r: int(r["blocks"]) * int(r["words"]))
+    return float(best["fmax_mhz"]), "%s x %s" % (best["blocks"], best["words"])
+
+
+ASIC_MHZ, ASIC_SIZE = asic_clock()
 KINDS = ("primary", "shadow", "secondary")
 
 
@@ -70,8 +86,9 @@ def si(x):
 
 def tables(build, repeat, min_seconds):
     main = ["| scene, frame | rays: Embree render (FMPP render) | Embree, 1 thread, per ray | Embree, stream "
-            "| BVH build | FMPP clocks | FMPP at 50 MHz | at %.1f MHz (FPGA) | at %.0f MHz (ASIC, assumed) "
-            "| faster Embree / FMPP at %.0f MHz |" % (FPGA_MHZ, ASIC_MHZ, ASIC_MHZ),
+            "| BVH build | FMPP clocks | FMPP at 50 MHz | at %.1f MHz (iCE40, measured) "
+            "| at %.1f MHz (0.18 um cells, %s, measured unplaced) | faster Embree / FMPP at %.1f MHz |" % (
+                FPGA_MHZ, ASIC_MHZ, ASIC_SIZE, ASIC_MHZ),
             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     kinds = ["| scene, frame | batch kind | rays | Embree rays/s, per ray | stream | FMPP clocks per ray "
              "| FMPP rays/s at 50 MHz |", "| --- | --- | ---: | ---: | ---: | ---: | ---: |"]
