@@ -51,8 +51,11 @@ def jobs(root, out, quick):
     js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
                    params={"Width": 92}, depth=4 if quick else 8, kind=3, joint=True))
     # The ALU's adder, subtracter and compare against `+` and `-` (combinational: a proof).
-    js.append(dict(name="alu_l2", top="fmpp_alu_formal", src=rtl + [frm("fmpp_alu_formal.sv")],
-                   params={"Lanes": 2}, depth=1, engine="sat", comb=True))
+    # Twice: the adder as synthesis reads it (the prefix network, modules per level) and as
+    # simulators read it (a ripple in the case; rtl/fmpp_alu_exec.sv says why two texts).
+    for name, defines in (("alu_l2", []), ("alu_l2_ripple", ["FMPP_RIPPLE_ADDER"])):
+        js.append(dict(name=name, top="fmpp_alu_formal", src=rtl + [frm("fmpp_alu_formal.sv")],
+                       params={"Lanes": 2}, depth=1, engine="sat", comb=True, defines=defines))
     # The pipelined array against the single-cycle one: a bounded check with yosys's SAT
     # solver (z3 does not get through the bit-plane ALU's definitions; no induction).
     js.append(dict(name="pipe_1x4", top="fmpp_pipe_formal",
@@ -135,7 +138,8 @@ def sat_run(job, jdir, name, keep, cover, timeout):
     chp = "".join(f"chparam -set {k} {v} {job['top']}; " for k, v in job["params"].items())
     sel = f"chformal -assert -remove t:$assert n:{keep} %d; " if keep else ""
     vcd = os.path.join(jdir, f"{name}.vcd")
-    script = (f"read_verilog -DSYNTHESIS {'-DSAT_COVER ' if cover else ''}-sv -formal {' '.join(job['src'])}; "
+    defs = "".join(f"-D{d} " for d in job.get("defines", []))
+    script = (f"read_verilog -DSYNTHESIS {defs}{'-DSAT_COVER ' if cover else ''}-sv -formal {' '.join(job['src'])}; "
               f"{chp}prep -top {job['top']}; setattr -mod -unset keep_hierarchy; flatten; memory_map; opt -fast; chformal -cover -remove; {sel}"
               f"opt -fast; dffunmap; sat -seq {job['depth']} -prove-asserts -set-assumes -set-init-zero "
               f"-dump_vcd {vcd}")

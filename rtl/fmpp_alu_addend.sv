@@ -1,9 +1,10 @@
 // fmpp_alu_addend: the block ALU's second operand as its adder takes it, for every lane
 // (bit-plane form, as in fmpp_alu_exec): word B for ADD and FUNC, not B for SUB, not IMM
-// (the same in every lane) for CMP; the carry-in is 1 for SUB and CMP. The tile computes
-// it in pipeline stage 2, after the operand read and its forwarding, and registers it
-// with the operand, so that the execute stage's adder starts from registers: the opcode's
-// decode is off the carry path. fmpp_alu is this and fmpp_alu_exec in one clock.
+// (the same in every lane) for CMP; the carry-in is 1 for SUB and CMP. The pipelined tile
+// makes the same function in stage 2, after the operand read and its forwarding (written
+// out in its clocked block, rtl/fmpp_tile.sv says why), and registers it with the operand,
+// so that the execute stage's adder starts from registers: the opcode's decode is off the
+// carry path. fmpp_alu is this module and fmpp_alu_exec in one clock.
 module fmpp_alu_addend #(
   parameter int unsigned Lanes = 64
 ) (

@@ -41,23 +41,31 @@ module fmpp_alu_exec #(
 );
   localparam int unsigned W = fmpp_pkg::WordW;
 
-  localparam int unsigned Levels = $clog2(W);  // of the carry network
-
   // The adder: h, half sums; g0, generate per bit with the carry-in folded into bit 0's.
-  // After level l, g_level[l].g plane k is the carry out of bits k down to the bottom of
-  // k's 2^(l+1)-aligned group; after the last level (carry) the carry out of bit k. (One
-  // signal per level, not an array of levels: a simulator would see the array as one
-  // variable that feeds itself.)
+  // After level l, plane k of the level's g is the carry out of bits k down to the bottom of
+  // k's 2^(l+1)-aligned group; after the last level (carry) the carry out of bit k.
+  //
+  // The adder has two texts. For synthesis the carries come from the network, each level a
+  // module (fmpp_carry_level, kept apart so that mapping cannot fold it into a ripple). For
+  // simulation (FMPP_RIPPLE_ADDER, set under Verilator) the ADD/SUB/CMP branch of the case
+  // below computes the same sums with a ripple carry: a simulator then works on the adder
+  // only for those operations, and a ripple is the cheapest text to evaluate on bit planes
+  // (as continuous logic the network cost every tile every clock, and the Verilated render
+  // of the README took half again as long). The formal jobs alu_l2 and alu_l2_ripple
+  // prove each text equal to `+` and `-`.
+`ifdef VERILATOR
+`define FMPP_RIPPLE_ADDER
+`endif
   logic [Lanes-1:0]   cin;
-  logic [W*Lanes-1:0] h, g0, carry;
   assign cin = {Lanes{cin_i}};
+`ifndef FMPP_RIPPLE_ADDER
+  localparam int unsigned Levels = $clog2(W);  // of the carry network
+  logic [W*Lanes-1:0] h, g0, carry;
   assign h   = a_i ^ y_i;
   assign g0  = (a_i & y_i) | {{(W-1)*Lanes{1'b0}}, h[0 +: Lanes] & cin};
   for (genvar l = 0; l < Levels; l++) begin : g_level
     logic [W*Lanes-1:0] g;
-    /* verilator lint_off UNUSEDSIGNAL */
     logic [W*Lanes-1:0] p;  // the last level's propagate is not needed
-    /* verilator lint_on UNUSEDSIGNAL */
     if (l == 0) begin : g_first
       fmpp_carry_level #(.Lanes(Lanes), .W(W), .Level(l)) u_level (.g_i(g0), .p_i(h), .g_o(g), .p_o(p));
     end else begin : g_next
@@ -67,9 +75,13 @@ module fmpp_alu_exec #(
     end
   end
   assign carry = g_level[Levels-1].g;
+`endif
 
   always_comb begin
     logic [Lanes-1:0] x;        // BITCOPY: the selected plane of A
+`ifdef FMPP_RIPPLE_ADDER
+    logic [Lanes-1:0] c, y;  // the simulation text's carry into the current bit, its addend bit
+`endif
     r_o     = '0;
     carry_o = '0;
     ovf_o   = '0;
@@ -77,6 +89,10 @@ module fmpp_alu_exec #(
     wr_v_o  = 1'b0;
     ge_o    = '0;
     x = '0;
+`ifdef FMPP_RIPPLE_ADDER
+    c = '0;
+    y = '0;
+`endif
     case (op_i)
       fmpp_pkg::OP_FUNC: begin
         case (fn_i)
@@ -86,10 +102,24 @@ module fmpp_alu_exec #(
         endcase
       end
       fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_CMP: begin
+`ifdef FMPP_RIPPLE_ADDER
+        // Simulation text: one full adder per bit.
+        c = cin;
+        for (int k = 0; k < W; k++) begin
+          x = a_i[k*Lanes +: Lanes];
+          y = y_i[k*Lanes +: Lanes];
+          r_o[k*Lanes +: Lanes] = x ^ y ^ c;
+          if (k == W - 1) ovf_o = c;  // carry into the sign bit ...
+          c = (x & y) | (c & (x ^ y));
+        end
+        ovf_o   = ovf_o ^ c;          // ... differs from the carry out: signed overflow
+        carry_o = c;                  // SUB: 1 = no borrow (A >= B unsigned)
+`else
         // Bit k's sum is its half sum with the carry into it (the carry-in, or bit k-1's out).
         r_o     = h ^ {carry[(W-1)*Lanes-1:0], cin};
         ovf_o   = carry[(W-2)*Lanes +: Lanes] ^ carry[(W-1)*Lanes +: Lanes];  // carry into the sign bit vs out of it
         carry_o = carry[(W-1)*Lanes +: Lanes];  // SUB: 1 = no borrow (A >= B unsigned)
+`endif
         if (op_i == fmpp_pkg::OP_CMP) begin
           // A - IMM >= 0 unless its sign is set without overflow or clear with it.
           // (r_o, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
@@ -123,5 +153,7 @@ module fmpp_alu_exec #(
       default: ;  // not an ALU operation
     endcase
   end
+
+`undef FMPP_RIPPLE_ADDER
 
 endmodule

@@ -100,8 +100,7 @@ module fmpp_tile #(
   // carry-in, prepared in stage 2 so that stage 3's adder starts from registers.
   word_t opa_q, opb_q;
   logic  cin_q;
-  word_t opa, opb, opd, opb_rd, addend;
-  logic  cin;
+  word_t opa, opb, opd;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
@@ -117,15 +116,22 @@ module fmpp_tile #(
   // data, not from the memory (forwarding), so an entry may use its predecessor's result.
   assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
   assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-  assign opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
-  fmpp_alu_addend #(.Lanes(Lanes)) u_addend (
-    .op_i(opr_op_i), .imm_i(opr_imm_i), .b_i(opb_rd), .y_o(addend), .cin_o(cin)
-  );
+  // The addend is fmpp_alu_addend's function, written out here inside the clocked block so
+  // that a simulator computes it only when an entry is in stage 2 (as a module's continuous
+  // logic every tile evaluated it every clock); formal job pipe_1x4 checks it against the
+  // single-cycle array, which uses fmpp_alu_addend itself.
   always_ff @(posedge clk_i) begin
+    word_t opb_rd, addend;  // stage 2's B (forwarded or read) and the addend made from it
     if (opr_en_i) begin
       opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+      for (int k = 0; k < W; k++) begin
+        if (opr_op_i == fmpp_pkg::OP_CMP) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
+        else if (opr_op_i == fmpp_pkg::OP_SUB) addend[k*Lanes +: Lanes] = ~opb_rd[k*Lanes +: Lanes];
+        else addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes];
+      end
       opb_q <= addend;
-      cin_q <= cin;
+      cin_q <= opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP;
     end
   end
   if (WIdxW < 6) begin : g_unused_hi
