@@ -22,42 +22,10 @@ import gallery  # noqa: E402
 
 ROOT = gallery.ROOT
 PAPER_MHZ = 50.0  # the paper's clock
-# make fpga's largest machine on the iCE40 HX8K (3 blocks x 8 words), from the committed
-# results (docs/data/fpga/summary.csv, the same run docs/generated/area.md reports).
-FPGA_CSV = os.path.join(ROOT, "docs", "data", "fpga", "summary.csv")
-
-
-def fpga_mhz(path=FPGA_CSV):
-    """The clock of the largest placed HX8K run of tools/fpga.sh's summary.csv."""
-    import csv
-    with open(path, encoding="utf-8") as f:
-        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
-    placed = [r for r in rows if r["device"] == "hx8k" and r["placed"] == "1"]
-    if not placed:
-        sys.exit("%s: no placed hx8k run" % path)
-    best = max(placed, key=lambda r: int(r["blocks"]) * int(r["words"]))
-    return float(best["fmax_mhz"])
-
-
-FPGA_MHZ = fpga_mhz()
-# make asic's largest machine in OSU 0.18 um standard cells, timed by OpenSTA before
-# placement (docs/asic/summary.csv, the run docs/generated/area.md reports).
-ASIC_CSV = os.path.join(ROOT, "docs", "asic", "summary.csv")
-
-
-def asic_clock(path=ASIC_CSV):
-    """(MHz, 'BxW') of the largest size of tools/asic.sh's summary.csv."""
-    import csv
-    with open(path, encoding="utf-8") as f:
-        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
-    timed = [r for r in rows if r.get("fmax_mhz")]
-    if not timed:
-        sys.exit("%s: no timed size" % path)
-    best = max(timed, key=lambda r: int(r["blocks"]) * int(r["words"]))
-    return float(best["fmax_mhz"]), "%s x %s" % (best["blocks"], best["words"])
-
-
-ASIC_MHZ, ASIC_SIZE = asic_clock()
+# The measured clocks: make fpga's largest HX8K machine and make asic's largest size in
+# 0.18 um cells (gallery.py reads both from the committed results).
+FPGA_MHZ = gallery.fpga_mhz()
+ASIC_MHZ, ASIC_SIZE = gallery.asic_clock()
 KINDS = ("primary", "shadow", "secondary")
 
 
