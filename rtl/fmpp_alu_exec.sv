@@ -1,8 +1,8 @@
 // fmpp_alu_exec: the block ALU of the FMPP (logic unit, parallel-prefix adder/subtracter,
 // one-bit shifter, bit copy, signed compare with the immediate), written once and
-// applied to the Lanes blocks of a tile. Its addend comes prepared by fmpp_alu_addend
-// (B, not B or not IMM, and the carry-in), one pipeline stage earlier in the tile;
-// fmpp_alu is the two together.
+// applied to the Lanes blocks of a tile. Its addend (B, not B or not IMM, and the
+// carry-in) comes prepared one pipeline stage earlier, by the tile (the function of
+// fmpp_alu_addend); fmpp_alu is fmpp_alu_addend and this module in one clock.
 //
 // Layout: every operand is a word in bit-plane form. Bit k of the word of block
 // (tile base + l) is bit l of plane k, and plane k is a[k*Lanes +: Lanes]. Each
@@ -11,10 +11,9 @@
 // crosses lanes: blocks are independent, as in the paper's BPBP organisation.
 //
 // Purely combinational; the tile applies the predicate and writes the result.
-// The adder's carries come from a Sklansky parallel-prefix network (fmpp_carry_level.sv,
-// one module per level: log2(32) = 5 AND-OR levels instead of a 32-bit ripple; why each
-// level is a module of its own is said there). The network's inputs and outputs are
-// computed outside the operation's always_comb, so that no process both feeds and reads it.
+// In synthesis the adder's carries come from a Sklansky parallel-prefix network
+// (fmpp_carry_level.sv, one module per level: log2(32) = 5 AND-OR levels instead of a
+// 32-bit ripple; simulators read a ripple, see below).
 // CMP reuses the subtracter: A + not IMM + 1 on the same carries, and ge_o is the sign
 // of A - IMM corrected by its overflow: A >= IMM signed.
 // CMP writes no word and neither C nor V: wr_c_o and wr_v_o stay 0, and the tile takes
@@ -50,8 +49,8 @@ module fmpp_alu_exec #(
   // simulation (FMPP_RIPPLE_ADDER, set under Verilator) the ADD/SUB/CMP branch of the case
   // below computes the same sums with a ripple carry: a simulator then works on the adder
   // only for those operations, and a ripple is the cheapest text to evaluate on bit planes
-  // (as continuous logic the network cost every tile every clock, and the Verilated render
-  // of the README took half again as long). The formal jobs alu_l2 and alu_l2_ripple
+  // (as continuous logic the network cost every tile every clock: with the addend also made
+  // by continuous logic, the Verilated render of the README took four times as long). The formal jobs alu_l2 and alu_l2_ripple
   // prove each text equal to `+` and `-`.
 `ifdef VERILATOR
 `define FMPP_RIPPLE_ADDER
