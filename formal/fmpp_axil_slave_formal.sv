@@ -82,9 +82,11 @@ module fmpp_axil_slave_formal #(
   endfunction
 
   logic [2:0] aw_t, ar_t;
-  logic       w_ok, w_push, r_ok;
+  logic       w_ok, w_push, w_queued, r_ok;
   assign aw_t = target(awaddr_i);
   assign ar_t = target(araddr_i);
+  // A write to QUEUE, FLAGS or WORDS (aligned) takes room in the queue, legal or not.
+  assign w_queued = awaddr_i[2:0] == 3'd0 && (awaddr_i == fmpp_pkg::REG_QUEUE || aw_t == 3'd3 || aw_t == 3'd4);
   always @(*) begin
     w_ok   = 1'b0;
     w_push = 1'b0;
@@ -162,6 +164,13 @@ module fmpp_axil_slave_formal #(
     end
   end
 
+  // An access that changes ERROR (an error, or any write to ERROR) was accepted at the
+  // last edge: the slave applies it at this one, and a read waits for it.
+  logic f_err_ev_q;
+  always_ff @(posedge clk_i) begin
+    f_err_ev_q <= rst_ni && ((w_hs && (!w_ok || awaddr_i == fmpp_pkg::REG_ERROR)) || (r_hs && !r_ok));
+  end
+
   logic [1:0]  f_bresp_q, f_rresp_q;
   logic        f_bvalid_q, f_rvalid_q, f_bready_q, f_rready_q;
   always_ff @(posedge clk_i) begin
@@ -209,15 +218,20 @@ module fmpp_axil_slave_formal #(
         // p_push_room: nothing is pushed into a full queue (the queue never overflows).
         p_push_room: assert (!q_full_i);
       end
-      // p_ordered: every access other than a push waits for the queue to drain.
-      p_ordered: assert ((!arready || q_empty_i) && (!awready || w_push || q_empty_i));
+      // p_ordered: every access other than a write to a queued target waits for the queue
+      // to drain.
+      p_ordered: assert ((!arready || q_empty_i) && (!awready || w_queued || q_empty_i));
+      // p_queued_room: a write to a queued target is accepted only with room in the queue.
+      p_queued_room: assert (!awready || !w_queued || !q_full_i);
       // p_no_stall: the slave never holds off a request it can serve: with the response
-      // channel free and room in the queue (a push) or the queue empty (anything else),
-      // the request is accepted in this clock. With the array draining the queue, no
+      // channel free and room in the queue (a write to QUEUE, FLAGS or WORDS) or the queue
+      // empty (anything else),
+      // the request is accepted in this clock; a read, also with no change of ERROR
+      // pending from the last clock. With the array draining the queue, no
       // back-pressure pattern on B and R can deadlock the port.
-      if (awvalid_i && wvalid_i && (!bvalid || bready_i) && (w_push ? !q_full_i : q_empty_i))
+      if (awvalid_i && wvalid_i && (!bvalid || bready_i) && (w_queued ? !q_full_i : q_empty_i))
         p_no_stall_w: assert (awready);
-      if (arvalid_i && (!rvalid || rready_i) && q_empty_i) p_no_stall_r: assert (arready);
+      if (arvalid_i && (!rvalid || rready_i) && q_empty_i && !f_err_ev_q) p_no_stall_r: assert (arready);
     end
   end
 

@@ -51,9 +51,11 @@ def jobs(root, out, quick):
     js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
                    params={"Width": 92}, depth=4 if quick else 8, kind=3, joint=True))
     # The ALU's adder, subtracter and compare against `+` and `-` (combinational: a proof).
-    # Twice: the adder as synthesis reads it (the prefix network, modules per level) and as
-    # simulators read it (a ripple in the case; rtl/fmpp_alu_exec.sv says why two texts).
-    for name, defines in (("alu_l2", []), ("alu_l2_ripple", ["FMPP_RIPPLE_ADDER"])):
+    # Three times: the adder as standard-cell synthesis reads it (the prefix network, modules
+    # per level), as the FPGA flow reads it (a `+` per lane, for the carry chain) and as
+    # simulators read it (a ripple in the case; rtl/fmpp_alu_exec.sv says why three texts).
+    for name, defines in (("alu_l2", []), ("alu_l2_chain", ["FMPP_CARRY_CHAIN_ADDER"]),
+                          ("alu_l2_ripple", ["FMPP_RIPPLE_ADDER"])):
         js.append(dict(name=name, top="fmpp_alu_formal", src=rtl + [frm("fmpp_alu_formal.sv")],
                        params={"Lanes": 2}, depth=1, engine="sat", comb=True, defines=defines))
     # The pipelined array against the single-cycle one: a bounded check with yosys's SAT

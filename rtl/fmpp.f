@@ -24,6 +24,7 @@ fmpp_alu.sv // sim
 fmpp_tile.sv
 fmpp_fifo.sv
 fmpp_instr_check.sv
+fmpp_window.sv
 fmpp_addr_decode.sv
 fmpp_axil_slave.sv
 fmpp_array.sv

@@ -30,12 +30,17 @@ module fmpp_addr_decode #(
   logic          in_plane, in_flags, in_words;
   logic [31:0]   plane_tile, flags_block, words_block, words_word;
 
-  assign off_plane = addr_i - fmpp_pkg::WIN_PLANES_BASE;
-  assign off_flags = addr_i - fmpp_pkg::WIN_FLAGS_BASE;
-  assign off_words = addr_i - fmpp_pkg::WIN_WORDS_BASE;
-  assign in_plane  = addr_i >= fmpp_pkg::WIN_PLANES_BASE && off_plane < fmpp_pkg::WIN_PLANES_SIZE;
-  assign in_flags  = addr_i >= fmpp_pkg::WIN_FLAGS_BASE  && off_flags < fmpp_pkg::WIN_FLAGS_SIZE;
-  assign in_words  = addr_i >= fmpp_pkg::WIN_WORDS_BASE  && off_words < fmpp_pkg::WIN_WORDS_SIZE;
+  // A window whose size is a power of two and whose base is a multiple of it is found
+  // by comparing the address bits above the size with the base's (a few LUT levels),
+  // and its offset is the bits below; any other window by subtraction and comparison
+  // (32-bit carry chains). The map's windows are all of the first kind; the second
+  // keeps a moved map correct (tests/map).
+  fmpp_window #(.Base(fmpp_pkg::WIN_PLANES_BASE), .Size(fmpp_pkg::WIN_PLANES_SIZE)) u_plane (
+    .addr_i, .in_o(in_plane), .off_o(off_plane));
+  fmpp_window #(.Base(fmpp_pkg::WIN_FLAGS_BASE), .Size(fmpp_pkg::WIN_FLAGS_SIZE)) u_flags (
+    .addr_i, .in_o(in_flags), .off_o(off_flags));
+  fmpp_window #(.Base(fmpp_pkg::WIN_WORDS_BASE), .Size(fmpp_pkg::WIN_WORDS_SIZE)) u_words (
+    .addr_i, .in_o(in_words), .off_o(off_words));
 
   assign plane_tile  = 32'(off_plane[FShift-1:0]) >> 3;
   assign flags_block = off_flags >> 3;

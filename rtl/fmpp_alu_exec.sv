@@ -44,20 +44,41 @@ module fmpp_alu_exec #(
   // After level l, plane k of the level's g is the carry out of bits k down to the bottom of
   // k's 2^(l+1)-aligned group; after the last level (carry) the carry out of bit k.
   //
-  // The adder has two texts. For synthesis the carries come from the network, each level a
-  // module (fmpp_carry_level, kept apart so that mapping cannot fold it into a ripple). For
+  // The adder has three texts. For synthesis in standard cells the carries come from the
+  // network, each level a module (fmpp_carry_level, kept apart so that mapping cannot fold
+  // it into a ripple). For an FPGA (FMPP_CARRY_CHAIN_ADDER, set by tools/fpga.sh) each
+  // lane's word is gathered from the planes and added with `+`, which synthesis maps onto
+  // the FPGA's dedicated carry chain (on the iCE40 about 0.1 ns a bit, against a LUT and
+  // its routing per prefix level). For
   // simulation (FMPP_RIPPLE_ADDER, set under Verilator) the ADD/SUB/CMP branch of the case
   // below computes the same sums with a ripple carry: a simulator then works on the adder
   // only for those operations, and a ripple is the cheapest text to evaluate on bit planes
   // (as continuous logic the network cost every tile every clock: with the addend also made
-  // by continuous logic, the Verilated render of the README took four times as long). The formal jobs alu_l2 and alu_l2_ripple
-  // prove each text equal to `+` and `-`.
+  // by continuous logic, the Verilated render of the README took four times as long). The
+  // formal jobs alu_l2, alu_l2_chain and alu_l2_ripple prove each text equal to `+` and `-`.
 `ifdef VERILATOR
 `define FMPP_RIPPLE_ADDER
 `endif
   logic [Lanes-1:0]   cin;
   assign cin = {Lanes{cin_i}};
-`ifndef FMPP_RIPPLE_ADDER
+`ifdef FMPP_RIPPLE_ADDER
+`elsif FMPP_CARRY_CHAIN_ADDER
+  logic [W*Lanes-1:0] carry;  // only the top two planes are used: out of bits 30 and 31
+  logic [W*Lanes-1:0] sum;
+  for (genvar l = 0; l < Lanes; l++) begin : g_lane
+    logic [W-1:0] a, y;
+    logic [W+1:0] s;  // bit 0 only carries cin into bit 1: one chain, cin at its start
+    for (genvar k = 0; k < W; k++) begin : g_gather
+      assign a[k] = a_i[k*Lanes + l];
+      assign y[k] = y_i[k*Lanes + l];
+      assign sum[k*Lanes + l] = s[k+1];
+    end
+    assign s = {1'b0, a, 1'b1} + {1'b0, y, cin_i};
+    assign carry[(W-1)*Lanes + l] = s[W+1];
+    assign carry[(W-2)*Lanes + l] = a[W-1] ^ y[W-1] ^ s[W];  // the carry into the sign bit
+  end
+  assign carry[(W-2)*Lanes-1:0] = '0;
+`else
   localparam int unsigned Levels = $clog2(W);  // of the carry network
   logic [W*Lanes-1:0] h, g0, carry;
   assign h   = a_i ^ y_i;
@@ -113,6 +134,10 @@ module fmpp_alu_exec #(
         end
         ovf_o   = ovf_o ^ c;          // ... differs from the carry out: signed overflow
         carry_o = c;                  // SUB: 1 = no borrow (A >= B unsigned)
+`elsif FMPP_CARRY_CHAIN_ADDER
+        r_o     = sum;
+        ovf_o   = carry[(W-2)*Lanes +: Lanes] ^ carry[(W-1)*Lanes +: Lanes];  // carry into the sign bit vs out of it
+        carry_o = carry[(W-1)*Lanes +: Lanes];  // SUB: 1 = no borrow (A >= B unsigned)
 `else
         // Bit k's sum is its half sum with the carry into it (the carry-in, or bit k-1's out).
         r_o     = h ^ {carry[(W-1)*Lanes-1:0], cin};

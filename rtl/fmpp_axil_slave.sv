@@ -1,10 +1,11 @@
 // fmpp_axil_slave: the FMPP's only port, an AXI4-Lite slave (64-bit data).
 //
-// Writes to QUEUE and to the WORDS/FLAGS windows are pushes: they are checked
-// here and, if legal, queued for the array in bus order. Every other access
+// Writes to QUEUE and to the WORDS/FLAGS windows are pushes: they are accepted when
+// the queue has room, checked here and, if legal, queued for the array in bus order. Every other access
 // (all reads, CTRL and ERROR writes) waits until the queue is empty and the array's
-// pipeline has drained (q_empty_i), so reads see every earlier push. A bad access answers SLVERR, has no other effect, and is
-// recorded in the sticky ERROR register. Rules and timing: docs/memory-map.md.
+// pipeline has drained (q_empty_i), so reads see every earlier push. A bad access
+// answers SLVERR, has no other effect, and is recorded in the sticky ERROR register
+// one clock later; a read waits for that clock. Rules and timing: docs/memory-map.md.
 //
 // A write is accepted when AWVALID and WVALID are both high (AWREADY = WREADY),
 // a read when ARVALID is high; the response follows one clock later. With
@@ -90,7 +91,7 @@ module fmpp_axil_slave #(
   );
 
   fmpp_pkg::err_e w_cause;
-  logic           w_push, w_ctrl, w_err_clear;
+  logic           w_target, w_push, w_ctrl, w_err_write, w_err_clear;
   fmpp_pkg::qentry_t w_entry;
   // The written value seen through the layouts of the writable registers.
   fmpp_pkg::ctrl_reg_t  w_ctrl_v;
@@ -98,11 +99,11 @@ module fmpp_axil_slave #(
   assign w_ctrl_v  = wdata_i;
   assign w_error_v = wdata_i;
 
+  // The write's error cause, by the documented priority (alignment, then the target,
+  // then strobes, then the instruction). Only recorded (ERROR, one clock later): what the
+  // accept and the push need is computed flat below, off this chain.
   always_comb begin
     w_cause     = fmpp_pkg::ERR_NONE;
-    w_push      = 1'b0;
-    w_ctrl      = 1'b0;
-    w_err_clear = 1'b0;
     w_entry.kind  = fmpp_pkg::QE_INSTR;
     w_entry.block = aw_block;
     w_entry.word  = aw_word;
@@ -115,15 +116,12 @@ module fmpp_axil_slave #(
         fmpp_pkg::REG_QUEUE[11:0]: begin
           if (wstrb_i != 8'hFF)  w_cause = fmpp_pkg::ERR_STROBE;
           else if (!instr_legal) w_cause = fmpp_pkg::ERR_ILLEGAL;
-          else                   w_push  = 1'b1;
         end
         fmpp_pkg::REG_CTRL[11:0]: begin
           if (wstrb_i != 8'hFF) w_cause = fmpp_pkg::ERR_STROBE;
-          else                  w_ctrl  = 1'b1;
         end
         fmpp_pkg::REG_ERROR[11:0]: begin
-          if (wstrb_i != 8'hFF) w_cause     = fmpp_pkg::ERR_STROBE;
-          else                  w_err_clear = w_error_v.sticky;
+          if (wstrb_i != 8'hFF) w_cause = fmpp_pkg::ERR_STROBE;
         end
         fmpp_pkg::REG_ID[11:0], fmpp_pkg::REG_CONFIG[11:0], fmpp_pkg::REG_STATUS[11:0],
         fmpp_pkg::REG_RESP[11:0], fmpp_pkg::REG_CYCLES[11:0], fmpp_pkg::REG_INSTRET[11:0],
@@ -135,23 +133,33 @@ module fmpp_axil_slave #(
     end else if (aw_is_plane) begin
       w_cause = fmpp_pkg::ERR_READONLY;
     end else if (aw_is_flags) begin
-      if (wstrb_i != 8'h01) begin
-        w_cause = fmpp_pkg::ERR_STROBE;
-      end else begin
-        w_push       = 1'b1;
-        w_entry.kind = fmpp_pkg::QE_FLAGS;
-      end
+      w_entry.kind = fmpp_pkg::QE_FLAGS;
+      if (wstrb_i != 8'h01) w_cause = fmpp_pkg::ERR_STROBE;
     end else if (aw_is_word) begin
-      if (wstrb_i[7:4] != 4'h0 || wstrb_i[3:0] == 4'h0) begin
-        w_cause = fmpp_pkg::ERR_STROBE;
-      end else begin
-        w_push       = 1'b1;
-        w_entry.kind = fmpp_pkg::QE_WORD;
-      end
+      w_entry.kind = fmpp_pkg::QE_WORD;
+      if (wstrb_i[7:4] != 4'h0 || wstrb_i[3:0] == 4'h0) w_cause = fmpp_pkg::ERR_STROBE;
     end else begin
       w_cause = fmpp_pkg::ERR_UNMAPPED;
     end
   end
+
+  // The write's decisions as flat logic: a queued target (QUEUE, FLAGS, WORDS) takes
+  // room in the queue whether legal or not, and is pushed if legal; CTRL and ERROR take
+  // all eight strobes. Anything else is an error (w_cause says which).
+  logic w_at_queue, w_at_ctrl, w_at_error, w_strb_all, w_strb_flags, w_strb_word, w_ok;
+  assign w_at_queue   = aw_aligned && aw_is_reg && aw_reg == fmpp_pkg::REG_QUEUE[11:0];
+  assign w_at_ctrl    = aw_aligned && aw_is_reg && aw_reg == fmpp_pkg::REG_CTRL[11:0];
+  assign w_at_error   = aw_aligned && aw_is_reg && aw_reg == fmpp_pkg::REG_ERROR[11:0];
+  assign w_strb_all   = wstrb_i == 8'hFF;
+  assign w_strb_flags = wstrb_i == 8'h01;
+  assign w_strb_word  = wstrb_i[7:4] == 4'h0 && wstrb_i[3:0] != 4'h0;
+  assign w_target     = w_at_queue || (aw_aligned && (aw_is_flags || aw_is_word));
+  assign w_push       = (w_at_queue && w_strb_all && instr_legal) || (aw_aligned && aw_is_flags && w_strb_flags) ||
+                        (aw_aligned && aw_is_word && w_strb_word);
+  assign w_ctrl       = w_at_ctrl && w_strb_all;
+  assign w_err_write  = w_at_error;
+  assign w_err_clear  = w_at_error && w_strb_all && w_error_v.sticky;
+  assign w_ok         = w_push || w_ctrl || (w_at_error && w_strb_all);
 
   // ----------------------------------------------------------------- read decode
   logic        ar_aligned, ar_is_reg, ar_is_plane, ar_is_flags, ar_is_word;
@@ -180,6 +188,15 @@ module fmpp_axil_slave #(
   logic [15:0]    err_count_q /*verilator public_flat_rd*/;
   logic [31:0]    err_addr_q /*verilator public_flat_rd*/;
   logic [7:0]     gap_q /*verilator public_flat_rd*/;
+  // Error events waiting for the next edge (see the error register below).
+  logic           ev_pend_q /*verilator public_flat_rd*/;
+  logic           ev_clear_q /*verilator public_flat_rd*/;
+  logic           ev_w_q /*verilator public_flat_rd*/;
+  logic           ev_r_q /*verilator public_flat_rd*/;
+  fmpp_pkg::err_e ev_wcause_q /*verilator public_flat_rd*/;
+  fmpp_pkg::err_e ev_rcause_q /*verilator public_flat_rd*/;
+  logic [31:0]    ev_waddr_q /*verilator public_flat_rd*/;
+  logic [31:0]    ev_raddr_q /*verilator public_flat_rd*/;
   logic [63:0]    cycles_q;
 
   fmpp_pkg::err_e r_cause;
@@ -269,12 +286,15 @@ module fmpp_axil_slave #(
   logic [63:0] rdata_q;
   logic w_err, r_err, w_accept, r_accept;
 
-  assign w_err = w_cause != fmpp_pkg::ERR_NONE;
+  assign w_err = !w_ok;
   assign r_err = r_cause != fmpp_pkg::ERR_NONE;
-  // A legal push needs room in the queue; every other access waits for it to drain.
-  assign w_accept = awvalid_i && wvalid_i && (!bvalid_q || bready_i) &&
-                    ((w_push && !w_err) ? !q_full_i : q_empty_i);
-  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i;
+  // A write to a queued target (QUEUE, FLAGS, WORDS) needs room in the queue, legal or
+  // not: the address alone decides, and the checks of the data and strobes (the
+  // instruction's legality, several LUT levels) stay off the accept. Every other access
+  // waits for the queue to drain.
+  assign w_accept = awvalid_i && wvalid_i && (!bvalid_q || bready_i) && (w_target ? !q_full_i : q_empty_i);
+  // A read also waits while an error event is pending (see the error register below).
+  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i && !ev_pend_q;
 
   assign awready_o    = w_accept;
   assign wready_o     = w_accept;
@@ -305,15 +325,40 @@ module fmpp_axil_slave #(
       if (r_accept) begin
         rvalid_q <= 1'b1;
         rresp_q  <= r_err ? RespSlvErr : RespOkay;
-        rdata_q  <= r_err ? '0 : r_data;
+        rdata_q  <= r_data;  // 0 for a read with an error (no branch of r_data's decode sets it)
       end else if (rready_i) begin
         rvalid_q <= 1'b0;
       end
     end
   end
 
-  // Error register: a clear (write 1 to STICKY) applies first; then the errors of
-  // this clock are recorded, the write's before the read's.
+  // Error register. What an access does to it (an error, a clear by writing 1 to
+  // STICKY) is registered as an event at the access's edge and applied at the next
+  // edge: the address decode and the accept then end in these few registers, and the
+  // counter's increment starts from them (on the iCE40 the decode, the accept and the
+  // 16-bit increment in one clock were the FMPP's longest path). A read waits while an
+  // event is pending (ev_pend_q: after an access with an error or any write to ERROR),
+  // so what ERROR and STATUS show is always up to date. A clear applies first; then
+  // the errors, the write's before the read's.
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      ev_pend_q  <= 1'b0;
+      ev_clear_q <= 1'b0;
+      ev_w_q     <= 1'b0;
+      ev_r_q     <= 1'b0;
+    end else begin
+      ev_pend_q  <= (w_accept && (w_err || w_err_write)) || (r_accept && r_err);
+      ev_clear_q <= w_accept && w_err_clear;
+      ev_w_q     <= w_accept && w_err;
+      ev_r_q     <= r_accept && r_err;
+    end
+    ev_wcause_q <= w_cause;
+    ev_rcause_q <= r_cause;
+    ev_waddr_q  <= awaddr_i;
+    ev_raddr_q  <= araddr_i;
+  end
+
   logic           err_sticky_d;
   fmpp_pkg::err_e err_cause_d;
   logic [15:0]    err_count_d;
@@ -324,24 +369,24 @@ module fmpp_axil_slave #(
     err_cause_d  = err_cause_q;
     err_count_d  = err_count_q;
     err_addr_d   = err_addr_q;
-    if (w_accept && w_err_clear) begin
+    if (ev_clear_q) begin
       err_sticky_d = 1'b0;
       err_cause_d  = fmpp_pkg::ERR_NONE;
       err_count_d  = '0;
       err_addr_d   = '0;
     end
-    if (w_accept && w_err) begin
+    if (ev_w_q) begin
       if (!err_sticky_d) begin
-        err_cause_d = w_cause;
-        err_addr_d  = awaddr_i;
+        err_cause_d = ev_wcause_q;
+        err_addr_d  = ev_waddr_q;
       end
       err_sticky_d = 1'b1;
       if (err_count_d != '1) err_count_d = err_count_d + 1'b1;
     end
-    if (r_accept && r_err) begin
+    if (ev_r_q) begin
       if (!err_sticky_d) begin
-        err_cause_d = r_cause;
-        err_addr_d  = araddr_i;
+        err_cause_d = ev_rcause_q;
+        err_addr_d  = ev_raddr_q;
       end
       err_sticky_d = 1'b1;
       if (err_count_d != '1) err_count_d = err_count_d + 1'b1;
@@ -396,7 +441,10 @@ module fmpp_axil_slave #(
                                  resp_any_i == 1'b1);
   c_b_backpressure: cover property (@(posedge clk_i) rst_ni && bvalid_q && !bready_i);
   c_r_backpressure: cover property (@(posedge clk_i) rst_ni && rvalid_q && !rready_i);
+  c_read_waits_err: cover property (@(posedge clk_i) rst_ni && arvalid_i && (!rvalid_q || rready_i) && q_empty_i &&
+                                     ev_pend_q);
   c_push_full: cover property (@(posedge clk_i) rst_ni && awvalid_i && wvalid_i && w_push && !w_err && q_full_i);
+  c_bad_push_busy: cover property (@(posedge clk_i) rst_ni && w_accept && w_target && w_err && !q_empty_i);
 `endif
 
   logic unused_prot;
@@ -433,6 +481,11 @@ module fmpp_axil_slave #(
     else $error("fmpp_axil_slave: read accepted while pushes are pending");
   a_push_room: assert property (@(posedge clk_i) disable iff (!rst_ni) push_o |-> !q_full_i)
     else $error("fmpp_axil_slave: push into a full queue");
+  a_cause_flat: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (awvalid_i && wvalid_i) |-> (w_ok == (w_cause == fmpp_pkg::ERR_NONE)))
+    else $error("fmpp_axil_slave: the flat write decision and the error cause disagree");
+  a_err_reads_zero: assert property (@(posedge clk_i) disable iff (!rst_ni) (arvalid_i && r_err) |-> r_data == '0)
+    else $error("fmpp_axil_slave: a read with an error would return data");
   a_push_legal: assert property (@(posedge clk_i) disable iff (!rst_ni)
       (push_o && w_entry.kind == fmpp_pkg::QE_INSTR) |-> instr_legal)
     else $error("fmpp_axil_slave: illegal instruction queued");

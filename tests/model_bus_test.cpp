@@ -130,6 +130,48 @@ TEST(ModelBus, ErrorKeepsTheFirstCauseCountsAndClears) {
   EXPECT_EQ((e >> 16) & 0xFFFF, 0xFFFFu);
 }
 
+TEST(ModelBus, AReadWaitsOneClockAfterAnAccessThatChangesError) {
+  ModelBus bus(Config{4, 8});
+  uint64_t v;
+  // Reference: a read right after a good register write is accepted at the next edge.
+  EXPECT_EQ(bus.write(map::kRegCtrl, 0), Resp::kOkay);
+  uint64_t t = bus.cycles();
+  EXPECT_EQ(bus.read(map::kRegId, &v), Resp::kOkay);
+  EXPECT_EQ(bus.cycles() - t, 1u);
+  // After a write with an error, a read with an error and a write to ERROR (even one
+  // that clears nothing), the read waits one clock for ERROR to change, then sees it.
+  struct Step {
+    const char* what;
+    bool write;
+    uint32_t addr;
+    uint64_t data;
+    uint64_t count_after;
+  } steps[] = {{"bad write", true, map::kRegId, 0, 1},
+               {"bad read", false, map::kRegQueue, 0, 2},
+               {"ERROR write of 0", true, map::kRegError, 0, 2},
+               {"ERROR write of 1", true, map::kRegError, 1, 0}};
+  for (const Step& s : steps) {
+    if (s.write) {
+      bus.write(s.addr, s.data);
+    } else {
+      bus.read(s.addr, &v);
+    }
+    t = bus.cycles();
+    EXPECT_EQ(bus.read(map::kRegError, &v), Resp::kOkay) << s.what;
+    EXPECT_EQ(bus.cycles() - t, 2u) << s.what;
+    EXPECT_EQ(map::kErrorCount.get(v), s.count_after) << s.what;
+    // A good read changes nothing: the next read is not held.
+    t = bus.cycles();
+    EXPECT_EQ(bus.read(map::kRegError, &v), Resp::kOkay) << s.what;
+    EXPECT_EQ(bus.cycles() - t, 1u) << s.what;
+  }
+  // A push right after an error is not held (only reads wait).
+  bus.write(map::kRegId, 0);
+  t = bus.cycles();
+  EXPECT_EQ(bus.write(map::kRegQueue, nop().encode()), Resp::kOkay);
+  EXPECT_EQ(bus.cycles() - t, 1u);
+}
+
 TEST(ModelBus, PushesTakeOneClockAndReadsDrain) {
   ModelBus bus(Config{4, 8});
   constexpr unsigned kLat = ModelBus::kPipeLatency;

@@ -93,6 +93,13 @@ class RtlBusImpl final : public RtlBus {
     err_cause_ = VarView(ctx_.get(), slv, "err_cause_q");
     err_count_ = VarView(ctx_.get(), slv, "err_count_q");
     err_addr_ = VarView(ctx_.get(), slv, "err_addr_q");
+    ev_clear_ = VarView(ctx_.get(), slv, "ev_clear_q");
+    ev_w_ = VarView(ctx_.get(), slv, "ev_w_q");
+    ev_r_ = VarView(ctx_.get(), slv, "ev_r_q");
+    ev_wcause_ = VarView(ctx_.get(), slv, "ev_wcause_q");
+    ev_rcause_ = VarView(ctx_.get(), slv, "ev_rcause_q");
+    ev_waddr_ = VarView(ctx_.get(), slv, "ev_waddr_q");
+    ev_raddr_ = VarView(ctx_.get(), slv, "ev_raddr_q");
     level_ = VarView(ctx_.get(), "TOP.fmpp_top.u_queue", "level_q");
     reset();
   }
@@ -194,12 +201,17 @@ class RtlBusImpl final : public RtlBus {
     return s;
   }
 
+  // ERROR as a read shows it: the register with the event of the last access applied
+  // (the slave registers an access's error or clear and applies it one edge later).
   ErrorState error_state() const override {
     ErrorState e;
     e.sticky = err_sticky_.u64() != 0;
     e.cause = static_cast<map::Err>(err_cause_.u64());
     e.count = static_cast<uint16_t>(err_count_.u64());
     e.addr = static_cast<uint32_t>(err_addr_.u64());
+    if (ev_clear_.u64() != 0) e = ErrorState{};
+    if (ev_w_.u64() != 0) e.record(static_cast<map::Err>(ev_wcause_.u64()), static_cast<uint32_t>(ev_waddr_.u64()));
+    if (ev_r_.u64() != 0) e.record(static_cast<map::Err>(ev_rcause_.u64()), static_cast<uint32_t>(ev_raddr_.u64()));
     return e;
   }
   uint8_t gap() const override { return static_cast<uint8_t>(gap_.u64()); }
@@ -346,6 +358,7 @@ class RtlBusImpl final : public RtlBus {
   std::unique_ptr<VerilatedFstC> fst_;
   std::vector<Tile> tiles_;
   VarView mask_, instret_, pop_, gap_, err_sticky_, err_cause_, err_count_, err_addr_, level_;
+  VarView ev_clear_, ev_w_, ev_r_, ev_wcause_, ev_rcause_, ev_waddr_, ev_raddr_;
   ExecHook hook_;
   Hold bhold_, rhold_;  // READY inputs held low (stress mode)
   uint64_t cycle_ = 0;

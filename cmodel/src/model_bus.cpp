@@ -74,6 +74,7 @@ void ModelBus::reset() {
   gap_ = 0;
   gap_cnt_ = 0;
   err_ = ErrorState{};
+  err_event_ = false;
 }
 
 Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry* push, bool* is_push) const {
@@ -122,6 +123,13 @@ Err ModelBus::check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry
   return Err::kUnmapped;
 }
 
+bool ModelBus::queued_target(uint32_t addr) const {
+  const Decoded d = decode_address(config(), addr);
+  if (!d.aligned) return false;
+  return (d.region == Decoded::Region::kReg && d.reg == map::kRegQueue) || d.region == Decoded::Region::kFlags ||
+         d.region == Decoded::Region::kWord;
+}
+
 void ModelBus::execute(const QueueEntry& e) {
   switch (e.kind) {
     case QueueEntry::Kind::kInstr:
@@ -137,6 +145,7 @@ void ModelBus::execute(const QueueEntry& e) {
 }
 
 void ModelBus::tick(const QueueEntry* push) {
+  err_event_ = false;  // an error event of the last edge lands at this one
   // The last stage executes: its effects land at this edge.
   constexpr size_t kLast = kPipeLatency - 1;
   const bool retired = pipe_valid_[kLast];
@@ -179,10 +188,16 @@ Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
   QueueEntry entry;
   bool is_push = false;
   const Err e = check_write(addr, data, strb, &entry, &is_push);
-  if (e == Err::kNone && is_push) {
+  if (queued_target(addr)) {
     while (count_ == ring_.size()) tick(nullptr);
-    tick(&entry);
-    return Resp::kOkay;
+    if (e == Err::kNone) {
+      tick(&entry);
+      return Resp::kOkay;
+    }
+    err_.record(e, addr);
+    tick(nullptr);
+    err_event_ = true;
+    return Resp::kSlvErr;
   }
   drain();
   // Accepted at this edge: register effects land with it.
@@ -194,6 +209,7 @@ Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
     err_ = ErrorState{};
   }
   tick(nullptr);
+  err_event_ = e != Err::kNone || addr == map::kRegError;
   return e == Err::kNone ? Resp::kOkay : Resp::kSlvErr;
 }
 
@@ -230,6 +246,7 @@ uint64_t ModelBus::register_value(uint32_t reg) const {
 
 Resp ModelBus::read(uint32_t addr, uint64_t* data) {
   drain();
+  if (err_event_) tick(nullptr);
   const Decoded d = decode_address(config(), addr);
   Err e = Err::kNone;
   uint64_t v = 0;
@@ -277,6 +294,7 @@ Resp ModelBus::read(uint32_t addr, uint64_t* data) {
     v = 0;
   }
   tick(nullptr);
+  err_event_ = e != Err::kNone;
   *data = v;
   return e == Err::kNone ? Resp::kOkay : Resp::kSlvErr;
 }

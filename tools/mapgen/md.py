@@ -116,22 +116,28 @@ def gen_md(m):
     o.append("## Ordering and timing")
     o.append("")
     o.append("- Three kinds of write are *pushes* into the instruction queue, in bus order: a write to "
-             "`QUEUE`, a write to the WORDS window and a write to the FLAGS window. A push is "
-             "validated when the bus presents it: a valid push is accepted as soon as the queue has "
-             f"room ({m['params']['QueueDepth']['value']} entries), so a full queue back-pressures the "
-             "bus; an invalid one is answered SLVERR only once the queue has drained, like a register "
-             "access, so its error is ordered after every earlier push.")
+             "`QUEUE`, a write to the WORDS window and a write to the FLAGS window. Such a write is "
+             "accepted as soon as the queue has room "
+             f"({m['params']['QueueDepth']['value']} entries), so a full queue back-pressures the bus, "
+             "whether it is valid or not: the address alone decides when. A valid one is queued; an "
+             "invalid one (bad strobes, an illegal instruction) is answered SLVERR and recorded in "
+             "ERROR, and queues nothing.")
     o.append("- The array pops one entry per clock (then idles `CTRL.GAP` clocks) into its three-stage "
              "pipeline (decode, operand read, execute); an entry takes effect two clocks after its pop, "
              "and the next entry may use its result at once.")
     o.append("- Every other access (every read, and writes to `CTRL` and `ERROR`) waits until the queue "
              "is empty and the pipeline has drained, so a read always sees the effect of every earlier push.")
+    o.append("- ERROR changes one clock after the access that changes it (an access with an error, or a "
+             "write to `ERROR`): the slave registers the event at the access and applies it at the next "
+             "clock edge. A read accepted right after such an access waits that one clock, so what "
+             "`ERROR` and `STATUS` show is always up to date.")
     o.append("- Register bits outside the fields listed above are reserved: a write ignores them and a "
              "read returns 0 in them (a write of 0x1FF to `CTRL` sets GAP to 0xFF). Instructions are "
              "stricter: a reserved instruction bit that is not 0 makes the push ILLEGAL.")
     o.append("- With the bus master keeping BREADY/RREADY high, a push costs one clock and a read costs "
-             "the clocks needed to drain the queue and the pipeline (two clocks after the last pop) plus one. The golden model counts clocks by the "
-             "same rules, so `CYCLES` agrees between model and RTL.")
+             "the clocks needed to drain the queue and the pipeline (two clocks after the last pop) plus one "
+             "(and one more right after an access that changes ERROR). The golden model counts clocks by "
+             "the same rules, so `CYCLES` agrees between model and RTL.")
     o.append("")
     o.extend(_how_generated())
     return "\n".join(o)

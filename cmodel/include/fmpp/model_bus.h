@@ -7,8 +7,12 @@
 // if there is one and its GAP counter is zero, then the bus may push. An entry popped
 // at one edge retires kPipeLatency edges later (rtl/fmpp_array.sv: decode, operand
 // read, execute; its forwarding makes the order of effects that of the entries). A
-// legal push is accepted at the first edge with room in the queue; every other access
-// at the first edge with the queue empty and the pipeline drained. cycles() counts
+// write to QUEUE, FLAGS or WORDS is accepted at the first edge with room in the queue
+// (and queued if legal); every other access at the first edge with the queue empty and
+// the pipeline drained. An access with an
+// error, or any write to ERROR, changes the ERROR register one edge after its own
+// (rtl/fmpp_axil_slave.sv registers the event first), and a read waits for that edge:
+// a read right after such an access is accepted one clock later. cycles() counts
 // edges since reset, as the RTL's CYCLES does, for a bus master that holds
 // BREADY/RREADY high and starts each access as soon as the previous one is accepted
 // (backends/rtl/rtl_bus.h drives the RTL that way).
@@ -90,6 +94,9 @@ class ModelBus : public Bus {
   // Checks a write without performing it: the error cause it would raise (kNone
   // if legal) and, for a legal push, the queue entry it would create.
   map::Err check_write(uint32_t addr, uint64_t data, uint8_t strb, QueueEntry* push, bool* is_push) const;
+  // Whether a write goes to a queued target (QUEUE, FLAGS or WORDS, aligned): such a write
+  // is accepted at the first edge with room in the queue, legal or not.
+  bool queued_target(uint32_t addr) const;
 
  private:
   void tick(const QueueEntry* push);  // one rising clock edge
@@ -109,6 +116,10 @@ class ModelBus : public Bus {
   uint64_t cycle_ = 0;
   uint8_t gap_ = 0;       // CTRL.GAP
   uint8_t gap_cnt_ = 0;   // idle clocks left before the next pop
+  // The last edge accepted an access that changes ERROR (an error, or a write to ERROR):
+  // the RTL applies it at the next edge, and a read waits for that edge. err_ holds the
+  // value as applied (what a read shows).
+  bool err_event_ = false;
   ErrorState err_;
   ExecHook exec_hook_;
 };
