@@ -58,6 +58,9 @@ def jobs(root, out, quick):
                           ("alu_l2_ripple", ["FMPP_RIPPLE_ADDER"])):
         js.append(dict(name=name, top="fmpp_alu_formal", src=rtl + [frm("fmpp_alu_formal.sv")],
                        params={"Lanes": 2}, depth=1, engine="sat", comb=True, defines=defines))
+    # The counters' increment (CYCLES, INSTRET) against `+ 1` (combinational: a proof).
+    js.append(dict(name="incr_64", top="fmpp_incr_formal", src=rtl + [frm("fmpp_incr_formal.sv")],
+                   params={"W": 64}, depth=1, engine="sat", comb=True))
     # The pipelined array against the single-cycle one: a bounded check with yosys's SAT
     # solver (z3 does not get through the bit-plane ALU's definitions; no induction).
     js.append(dict(name="pipe_1x4", top="fmpp_pipe_formal",

@@ -18,6 +18,8 @@
 // storage: *.u_tile.mem_q*
 fmpp_pkg.sv
 fmpp_carry_level.sv
+fmpp_and_level.sv
+fmpp_incr.sv
 fmpp_alu_addend.sv
 fmpp_alu_exec.sv
 fmpp_alu.sv // sim

@@ -133,6 +133,9 @@ module fmpp_array #(
   assign retire = s3_valid_q;
   assign busy_o = s2_valid_q || s3_valid_q;
 
+  logic [63:0] instret_inc;
+  fmpp_incr #(.W(64)) u_instret_inc (.q_i(instret_q), .inc_o(instret_inc));
+
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       gap_q     <= '0;
@@ -145,7 +148,7 @@ module fmpp_array #(
         gap_q <= gap_q - 1'b1;
       end
       if (retire && s3_kind_q == fmpp_pkg::QE_INSTR) begin
-        instret_q <= instret_q + 1'b1;
+        instret_q <= instret_inc;
         if (s3_op_q == fmpp_pkg::OP_MASKSET) mask_q <= s3_imm_q;
       end
     end

@@ -135,6 +135,34 @@ TEST_P(BusRules, AnInvalidPushWaitsForRoomInTheQueueNotForTheDrain) {
   be->finish();
 }
 
+TEST_P(BusRules, ErrorCountSaturatesAndAClearRestartsIt) {
+  auto be = make_backend(GetParam(), Config{64, 32});
+  Bus& bus = be->bus();
+  uint64_t v = 0;
+  // Bad writes and bad reads alternately, past the 16-bit count's maximum.
+  for (unsigned k = 0; k < 0x10004; ++k) {
+    if (k % 2) {
+      ASSERT_EQ(bus.read(map::kRegQueue, &v), Resp::kSlvErr);
+    } else {
+      ASSERT_EQ(bus.write(map::kRegId, 0), Resp::kSlvErr);
+    }
+    if (k == 0xFFFD) {
+      ASSERT_EQ(bus.read(map::kRegError, &v), Resp::kOkay);
+      ASSERT_EQ(map::kErrorCount.get(v), 0xFFFEu);
+    }
+  }
+  ASSERT_EQ(bus.read(map::kRegError, &v), Resp::kOkay);
+  EXPECT_EQ(map::kErrorCount.get(v), map::kErrorCount.max());
+  EXPECT_EQ(map::kErrorCause.get(v), static_cast<uint64_t>(map::Err::kReadonly)) << "the first cause stays";
+  ASSERT_EQ(bus.write(map::kRegError, 1), Resp::kOkay);
+  ASSERT_EQ(bus.write(map::kRegId, 0), Resp::kSlvErr);
+  ASSERT_EQ(bus.read(map::kRegError, &v), Resp::kOkay);
+  EXPECT_EQ(map::kErrorCount.get(v), 1u);
+  EXPECT_EQ(map::kErrorCause.get(v), static_cast<uint64_t>(map::Err::kReadonly));
+  ASSERT_EQ(bus.write(map::kRegError, 1), Resp::kOkay);
+  be->finish();
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, BusRules, ::testing::Values("cmodel", "rtl", "lockstep"),
                          [](const auto& info) { return std::string(info.param); });
 
