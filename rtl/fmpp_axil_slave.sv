@@ -181,22 +181,13 @@ module fmpp_axil_slave #(
     .flag_o     (ar_flag)
   );
 
-  // Sticky error state and registers.
-  // Public for the lockstep checker (tb/), which reads the state directly.
-  logic           err_sticky_q /*verilator public_flat_rd*/;
-  fmpp_pkg::err_e err_cause_q /*verilator public_flat_rd*/;
-  logic [15:0]    err_count_q /*verilator public_flat_rd*/;
-  logic [31:0]    err_addr_q /*verilator public_flat_rd*/;
+  // The ERROR register (fmpp_err_reg) and CTRL.GAP. gap_q is public for the lockstep
+  // checker (tb/), which reads the state directly.
+  logic           err_pend, err_sticky;
+  fmpp_pkg::err_e err_cause;
+  logic [15:0]    err_count;
+  logic [31:0]    err_addr;
   logic [7:0]     gap_q /*verilator public_flat_rd*/;
-  // Error events waiting for the next edge (see the error register below).
-  logic           ev_pend_q /*verilator public_flat_rd*/;
-  logic           ev_clear_q /*verilator public_flat_rd*/;
-  logic           ev_w_q /*verilator public_flat_rd*/;
-  logic           ev_r_q /*verilator public_flat_rd*/;
-  fmpp_pkg::err_e ev_wcause_q /*verilator public_flat_rd*/;
-  fmpp_pkg::err_e ev_rcause_q /*verilator public_flat_rd*/;
-  logic [31:0]    ev_waddr_q /*verilator public_flat_rd*/;
-  logic [31:0]    ev_raddr_q /*verilator public_flat_rd*/;
   logic [63:0]    cycles_q, cycles_inc;
 
   fmpp_pkg::err_e r_cause;
@@ -226,12 +217,12 @@ module fmpp_axil_slave #(
     status_v         = '0;
     status_v.any     = resp_any_i;
     status_v.ovf     = ovf_any_i;
-    status_v.err     = err_sticky_q;
+    status_v.err     = err_sticky;
     error_v          = '0;
-    error_v.addr     = err_addr_q;
-    error_v.count    = err_count_q;
-    error_v.cause    = err_cause_q;
-    error_v.sticky   = err_sticky_q;
+    error_v.addr     = err_addr;
+    error_v.count    = err_count;
+    error_v.cause    = err_cause;
+    error_v.sticky   = err_sticky;
     ctrl_v           = '0;
     ctrl_v.gap       = gap_q;
     resp_v           = '0;
@@ -293,8 +284,8 @@ module fmpp_axil_slave #(
   // instruction's legality, several LUT levels) stay off the accept. Every other access
   // waits for the queue to drain.
   assign w_accept = awvalid_i && wvalid_i && (!bvalid_q || bready_i) && (w_target ? !q_full_i : q_empty_i);
-  // A read also waits while an error event is pending (see the error register below).
-  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i && !ev_pend_q;
+  // A read also waits while an error event is pending (fmpp_err_reg).
+  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i && !err_pend;
 
   assign awready_o    = w_accept;
   assign wready_o     = w_accept;
@@ -332,87 +323,23 @@ module fmpp_axil_slave #(
     end
   end
 
-  // Error register. What an access does to it (an error, a clear by writing 1 to
-  // STICKY) is registered as an event at the access's edge and applied at the next
-  // edge: the address decode and the accept then end in these few registers, and the
-  // counter's increment starts from them (on the iCE40 the decode, the accept and the
-  // 16-bit increment in one clock were the FMPP's longest path). A read waits while an
-  // event is pending (ev_pend_q: after an access with an error or any write to ERROR),
-  // so what ERROR and STATUS show is always up to date. A clear applies first; then
-  // the errors, the write's before the read's.
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      ev_pend_q  <= 1'b0;
-      ev_clear_q <= 1'b0;
-      ev_w_q     <= 1'b0;
-      ev_r_q     <= 1'b0;
-    end else begin
-      ev_pend_q  <= (w_accept && (w_err || w_err_write)) || (r_accept && r_err);
-      ev_clear_q <= w_accept && w_err_clear;
-      ev_w_q     <= w_accept && w_err;
-      ev_r_q     <= r_accept && r_err;
-    end
-    ev_wcause_q <= w_cause;
-    ev_rcause_q <= r_cause;
-    ev_waddr_q  <= awaddr_i;
-    ev_raddr_q  <= araddr_i;
-  end
-
-  logic           err_sticky_d;
-  fmpp_pkg::err_e err_cause_d;
-  logic [15:0]    err_count_d;
-  logic [31:0]    err_addr_d;
-
-  // The count: after the clear, one more per error of the event, saturating at its
-  // maximum. One adder from the register, the clear selecting at its end (two saturating
-  // increments in series were the longest path of the 16 x 32 machine in standard cells).
-  logic [1:0]  ev_n;
-  logic [16:0] count_sum;
-  assign ev_n      = 2'(ev_w_q) + 2'(ev_r_q);
-  assign count_sum = {1'b0, err_count_q} + 17'(ev_n);
-
-  always_comb begin
-    err_sticky_d = err_sticky_q;
-    err_cause_d  = err_cause_q;
-    err_addr_d   = err_addr_q;
-    if (ev_clear_q) begin
-      err_sticky_d = 1'b0;
-      err_cause_d  = fmpp_pkg::ERR_NONE;
-      err_count_d  = 16'(ev_n);
-      err_addr_d   = '0;
-    end else begin
-      err_count_d  = count_sum[16] ? '1 : count_sum[15:0];
-    end
-    if (ev_w_q) begin
-      if (!err_sticky_d) begin
-        err_cause_d = ev_wcause_q;
-        err_addr_d  = ev_waddr_q;
-      end
-      err_sticky_d = 1'b1;
-    end
-    if (ev_r_q) begin
-      if (!err_sticky_d) begin
-        err_cause_d = ev_rcause_q;
-        err_addr_d  = ev_raddr_q;
-      end
-      err_sticky_d = 1'b1;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      err_sticky_q <= 1'b0;
-      err_cause_q  <= fmpp_pkg::ERR_NONE;
-      err_count_q  <= '0;
-      err_addr_q   <= '0;
-    end else begin
-      err_sticky_q <= err_sticky_d;
-      err_cause_q  <= err_cause_d;
-      err_count_q  <= err_count_d;
-      err_addr_q   <= err_addr_d;
-    end
-  end
+  fmpp_err_reg u_err (
+    .clk_i,
+    .rst_ni,
+    .w_err_i   (w_accept && w_err),
+    .w_cause_i (w_cause),
+    .w_addr_i  (awaddr_i),
+    .w_touch_i (w_accept && w_err_write),
+    .w_clear_i (w_accept && w_err_clear),
+    .r_err_i   (r_accept && r_err),
+    .r_cause_i (r_cause),
+    .r_addr_i  (araddr_i),
+    .pend_o    (err_pend),
+    .sticky_o  (err_sticky),
+    .cause_o   (err_cause),
+    .count_o   (err_count),
+    .addr_o    (err_addr)
+  );
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -451,7 +378,7 @@ module fmpp_axil_slave #(
   c_b_backpressure: cover property (@(posedge clk_i) rst_ni && bvalid_q && !bready_i);
   c_r_backpressure: cover property (@(posedge clk_i) rst_ni && rvalid_q && !rready_i);
   c_read_waits_err: cover property (@(posedge clk_i) rst_ni && arvalid_i && (!rvalid_q || rready_i) && q_empty_i &&
-                                     ev_pend_q);
+                                     err_pend);
   c_push_full: cover property (@(posedge clk_i) rst_ni && awvalid_i && wvalid_i && w_push && !w_err && q_full_i);
   c_bad_push_busy: cover property (@(posedge clk_i) rst_ni && w_accept && w_target && w_err && !q_empty_i);
 `endif

@@ -109,9 +109,9 @@ def build(cfg_name, blocks, words, lane_w, qentry, dumpfile, closed, size, shown
                        ("rvalid_o", BIN), ("rready_i", BIN), ("rdata_o[63:0]", HEX), ("rresp_o[1:0]", HEX)]:
             s.trace("%s.s_axil_%s" % (TOP, sig), f)
         s.trace(SLV + ".w_cause[3:0]", ENUM)
-        s.trace(SLV + ".err_sticky_q", BIN)
-        s.trace(SLV + ".err_cause_q[3:0]", HEX)
-        s.trace(SLV + ".err_count_q[15:0]", DEC)
+        s.trace(SLV + ".u_err.err_sticky_q", BIN)
+        s.trace(SLV + ".u_err.err_cause_q[3:0]", HEX)
+        s.trace(SLV + ".u_err.err_count_q[15:0]", DEC)
         s.trace(SLV + ".cycles_q[63:0]", DEC)
 
     def queue():

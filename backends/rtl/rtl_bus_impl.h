@@ -80,6 +80,7 @@ class RtlBusImpl final : public RtlBus {
     }
     const std::string arr = "TOP.fmpp_top.u_array";
     const std::string slv = "TOP.fmpp_top.u_slave";
+    const std::string err = slv + ".u_err";
     for (unsigned t = 0; t < cfg_.tiles(); ++t) {
       const std::string tile = arr + ".g_tile[" + std::to_string(t) + "].u_tile";
       const unsigned lanes = std::min(map::kLaneW, cfg_.blocks - t * map::kLaneW);
@@ -89,17 +90,17 @@ class RtlBusImpl final : public RtlBus {
     instret_ = VarView(ctx_.get(), arr, "instret_q");
     pop_ = VarView(ctx_.get(), arr, "retire");  // an entry executes at the next edge
     gap_ = VarView(ctx_.get(), slv, "gap_q");
-    err_sticky_ = VarView(ctx_.get(), slv, "err_sticky_q");
-    err_cause_ = VarView(ctx_.get(), slv, "err_cause_q");
-    err_count_ = VarView(ctx_.get(), slv, "err_count_q");
-    err_addr_ = VarView(ctx_.get(), slv, "err_addr_q");
-    ev_clear_ = VarView(ctx_.get(), slv, "ev_clear_q");
-    ev_w_ = VarView(ctx_.get(), slv, "ev_w_q");
-    ev_r_ = VarView(ctx_.get(), slv, "ev_r_q");
-    ev_wcause_ = VarView(ctx_.get(), slv, "ev_wcause_q");
-    ev_rcause_ = VarView(ctx_.get(), slv, "ev_rcause_q");
-    ev_waddr_ = VarView(ctx_.get(), slv, "ev_waddr_q");
-    ev_raddr_ = VarView(ctx_.get(), slv, "ev_raddr_q");
+    err_sticky_ = VarView(ctx_.get(), err, "err_sticky_q");
+    err_cause_ = VarView(ctx_.get(), err, "err_cause_q");
+    err_count_ = VarView(ctx_.get(), err, "err_count_q");
+    err_addr_ = VarView(ctx_.get(), err, "err_addr_q");
+    ev_clear_ = VarView(ctx_.get(), err, "ev_clear_q");
+    ev_w_ = VarView(ctx_.get(), err, "ev_w_q");
+    ev_r_ = VarView(ctx_.get(), err, "ev_r_q");
+    ev_wcause_ = VarView(ctx_.get(), err, "ev_wcause_q");
+    ev_rcause_ = VarView(ctx_.get(), err, "ev_rcause_q");
+    ev_waddr_ = VarView(ctx_.get(), err, "ev_waddr_q");
+    ev_raddr_ = VarView(ctx_.get(), err, "ev_raddr_q");
     level_ = VarView(ctx_.get(), "TOP.fmpp_top.u_queue", "level_q");
     reset();
   }
