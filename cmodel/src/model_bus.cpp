@@ -188,7 +188,8 @@ Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
   QueueEntry entry;
   bool is_push = false;
   const Err e = check_write(addr, data, strb, &entry, &is_push);
-  if (queued_target(addr)) {
+  // A legal push is a queued target; only a bad write needs the address decoded again.
+  if (is_push || (e != Err::kNone && queued_target(addr))) {
     while (count_ == ring_.size()) tick(nullptr);
     if (e == Err::kNone) {
       tick(&entry);

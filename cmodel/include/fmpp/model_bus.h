@@ -11,7 +11,7 @@
 // (and queued if legal); every other access at the first edge with the queue empty and
 // the pipeline drained. An access with an
 // error, or any write to ERROR, changes the ERROR register one edge after its own
-// (rtl/fmpp_axil_slave.sv registers the event first), and a read waits for that edge:
+// (rtl/fmpp_err_reg.sv registers the event first), and a read waits for that edge:
 // a read right after such an access is accepted one clock later. cycles() counts
 // edges since reset, as the RTL's CYCLES does, for a bus master that holds
 // BREADY/RREADY high and starts each access as soon as the previous one is accepted
