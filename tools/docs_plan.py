@@ -36,7 +36,10 @@ def why_not(c):
         return "n = %d: %s redone, %d of %s pixels off (bound %.2f %%)" % (
             c["n"], pct(c["flagged_share"]), round(c["pixel_rate"] * c["pixels_sampled"]),
             docblock.fmt_int(c["pixels_sampled"]), 100 * c["pixel_bound"])
-    return "n = %d: %s of the triangles to the host, wrong rate %s" % (c["n"], pct(c["host_share"]), pct(c["wrong_rate"]))
+    why = "n = %d: %s of the triangles to the host, wrong rate %s" % (c["n"], pct(c["host_share"]), pct(c["wrong_rate"]))
+    if c.get("primary_redone", -1) >= 0 and c["wrong_rate"] >= 0:
+        why += ", %s of the primary sample redone" % pct(c["primary_redone"])
+    return why
 
 
 def plan_row(scene, r):

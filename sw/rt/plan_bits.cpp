@@ -125,12 +125,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       const bool keeps = c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share;
       // Even a clean rest of the sample would not bring the bound within the target, or
       // the redone rays so far exceed the allowance for the whole sample, or (a cost, not
-      // the target: an estimate will do) 1,000 pixels or more redo half as many again as
-      // allowed.
+      // the target: an estimate will do) 1,000 pixels or more redo a quarter as many again
+      // as allowed.
       const bool fails = upper_confidence_bound(over, sampled, req.confidence) > req.target_wrong_rate ||
                          c.flagged_share * static_cast<double>(done) >
                              req.max_flagged_share * static_cast<double>(sampled) ||
-                         (done >= 2 * kChunk && c.flagged_share > 1.5 * req.max_flagged_share);
+                         (done >= 2 * kChunk && c.flagged_share > kCostlyRedone * req.max_flagged_share);
       if (keeps || fails) break;
     }
     c.sample_cycles += st.cycles;
@@ -173,9 +173,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     for (size_t i = 0; i < got.size(); ++i) wrong += got[i].tri != ref[i].tri;
     c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
     c.sample_cycles = st.cycles;
-    const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share;
+    c.primary_redone = flagged_share(st);
+    const bool costly = c.primary_redone > kCostlyRedone * req.max_flagged_share && n != 32;
+    const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share && !costly;
     steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
-              " of triangles ill-conditioned" + (primary_ok ? "" : ": too many"));
+              " of triangles ill-conditioned, " + pct(c.primary_redone) + " of its rays redone" +
+              (primary_ok ? "" : ": too many"));
     if (primary_ok) render_frame(c);  // only then the frame: it costs more
     plan.candidates.push_back(c);
     if (primary_ok && c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
@@ -189,7 +192,11 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         const PlanCandidate& p = plan.candidates[plan.candidates.size() - 2];
         why << " (n = " << p.n << ": " << pct(p.wrong_rate) << " wrong, " << pct(p.host_share) << " ill-conditioned";
         if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the sampled pixels off";
-        if (p.flagged_share >= 0) why << ", " << pct(p.flagged_share) << " of its rays redone";
+        if (p.flagged_share >= 0) {
+          why << ", " << pct(p.flagged_share) << " of its rays redone";
+        } else if (p.primary_redone > kCostlyRedone * req.max_flagged_share) {
+          why << ", " << pct(p.primary_redone) << " of its primary sample's rays redone";
+        }
         why << ")";
       }
       return {n, why.str()};

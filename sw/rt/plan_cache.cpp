@@ -110,6 +110,7 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       pc.pixel_bound = c.at("pixel_bound").get<double>();
       pc.pixels_sampled = c.at("pixels_sampled").get<size_t>();
       pc.flagged_share = c.at("flagged_share").get<double>();
+      pc.primary_redone = c.at("primary_redone").get<double>();
       pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
       p.candidates.push_back(pc);
     }
@@ -138,7 +139,7 @@ bool store_plan(const std::string& dir, const std::string& key, const Plan& p, s
     j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
                                {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
                                {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
-                               {"sample_cycles", c.sample_cycles}});
+                               {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
   }
   for (const PassSizeEstimate& s : p.pass_sizes) {
     j["pass_sizes"].push_back(

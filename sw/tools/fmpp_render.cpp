@@ -290,7 +290,7 @@ int main(int argc, char** argv) {
         rep["plan"]["candidates"].push_back(
             {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate},
              {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
-             {"sample_cycles", c.sample_cycles}});
+             {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
       }
       if (!quiet) {
         // One short line; the reasons, every candidate and the cost model's estimates are

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include "sw/isect/forms/general/certify_general.h"
 #include "sw/isect/forms/general/general_frame.h"
@@ -86,11 +87,9 @@ class GeneralForm : public RayForm {
     // No tmin: a quotient far below every Q, so that Q >= Qmin is never in doubt.
     const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
     dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
-    uint32_t excl = 0;  // number of the excluded triangle's broadcast in this pass, 0 for none
-    for (size_t k = 0; k < broadcasts.size(); ++k) {
-      if (broadcasts[k].tri == r.exclude) excl = number_of[k];
-    }
-    dev.write_word(b, kExcl, excl);
+    // The number of the excluded triangle's broadcast in this pass, 0 for none.
+    const auto excluded = broadcast_of_.find(r.exclude);
+    dev.write_word(b, kExcl, excluded == broadcast_of_.end() ? 0u : number_of[excluded->second]);
   }
 
   void init(Program& p) const override {
@@ -230,6 +229,7 @@ class GeneralForm : public RayForm {
     };
     b.tri = k;
     b.edge_cond = cond;
+    broadcast_of_.emplace(k, broadcasts.size());
     broadcasts.push_back(std::move(b));
     bounds_.push_back(bd);
   }
@@ -388,6 +388,7 @@ class GeneralForm : public RayForm {
   bool has_tmin_ = false;               // some ray of the batch has tmin > 0
   certify::GeneralRayErrors word_err_;  // bounds on the batch's ray words
   std::vector<Bounds> bounds_;          // of each broadcast
+  std::unordered_map<int, size_t> broadcast_of_;  // triangle -> its broadcast (load_ray's exclusion)
   std::vector<uint64_t> code_;
 };
 
