@@ -88,6 +88,11 @@ fails "--out -: the report needs a file name" "$report" precision --quick --out 
 fails "--out $dir: is a directory" "$report" precision --quick --out "$dir" --img-dir "$dir/pq" --data-dir "$dir/pq"
 test ! -e "$dir/pq"  # a refused run creates nothing
 fails "--size excludes --quick" "$report" precision --quick --size 16
+# --clock MHZ:LABEL (a clock beside the paper's 50 MHz): refused before any measurement.
+for bad in abc 5: :label 0:zero -3:neg 5x:junk 2e6:fast; do
+  fails "--clock '$bad': expected MHZ:LABEL" "$report" paper --quick --clock "$bad" --out "$dir/clock.md"
+done
+[ ! -e "$dir/clock.md" ] || { echo "a refused --clock still wrote $dir/clock.md"; exit 1; }
 fails "$dir/none.csv: cannot open" "$report" area --synth-dir "$src/docs/data/synth" --fpga-csv "$dir/none.csv" --out -
 fails "$dir/none.csv: cannot open" "$report" paper --quick --fpga-csv "$dir/none.csv" --out "$dir/p.md"
 "$report" area --synth-dir "$src/docs/data/synth" --out - > "$dir/area.md"

@@ -55,10 +55,18 @@ def gen_area(build):
     area_md(build, os.path.join(out_dir(build), "generated", "area.md"))
 
 
+def paper_clocks():
+    """--clock arguments of fmpp-report paper: make asic's measured clock and its projection to the CPU's node."""
+    asic, size = gallery.asic_clock()
+    proj, label = gallery.projected_clock()
+    return ["--clock", "%.1f:0.18 um cells, %s, measured unplaced" % (asic, size), "--clock", "%.1f:%s" % (proj, label)]
+
+
 def gen_paper(build):
     """docs/generated/paper-reproduction.md, docs/img/fig{5,6,7}*.png, docs/data/paper_data.json."""
     run([tool(build, "fmpp-report"), "paper", "--out", os.path.join(out_dir(build), "generated", "paper-reproduction.md"),
-         "--img-dir", os.path.join(out_dir(build), "img"), "--data-dir", os.path.join(out_dir(build), "data")])
+         "--img-dir", os.path.join(out_dir(build), "img"), "--data-dir", os.path.join(out_dir(build), "data")] +
+        paper_clocks())
 
 
 def gen_precision(build):

@@ -109,23 +109,29 @@ def asic_clock(path=ASIC_CSV):
     return float(best["fmax_mhz"]), "%s x %s" % (best["blocks"], best["words"])
 
 
-WALL_COLUMN = 11  # the one column of figures_table that depends on the machine (tools/docs.py check)
+def projected_clock():
+    """(MHz, label): make asic's clock projected to the CPU's process node (tools/node_scale.py)."""
+    import node_scale
+    return node_scale.project_mhz(asic_clock()[0]), node_scale.label()
+
+
+WALL_COLUMN = 12  # the one column of figures_table that depends on the machine (tools/docs.py check)
 
 
 def figures_table(build, frames, folder="gallery"):
-    fpga, (asic, size) = fpga_mhz(), asic_clock()
+    fpga, (asic, size), (proj, proj_label) = fpga_mhz(), asic_clock(), projected_clock()
     rows = ["| scene | triangles | frame | rays | FMPP clocks | any-hit oracle | culled / any-hit | nearest-hit oracle "
             "| at 50 MHz (the paper's) | at %.1f MHz (iCE40, measured) | at %.1f MHz (0.18 um cells, %s, measured) "
-            "| golden-model wall time |" % (fpga, asic, size),
-            "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+            "| at %.0f MHz (%s) | golden-model wall time |" % (fpga, asic, size, proj, proj_label),
+            "| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for scene, side in frames:
         r = load(build, scene, side, folder)
         o = r["oracle"]
-        rows.append("| %s | %s | %d x %d | %s | %s | %s | %.2f | %s | %.1f ms | %.1f ms | %.1f ms | %.3g s |" % (
+        rows.append("| %s | %s | %d x %d | %s | %s | %s | %.2f | %s | %.1f ms | %.1f ms | %.1f ms | %.2f ms | %.3g s |" % (
             scene, docblock.fmt_int(r["triangles"]), side, side, docblock.fmt_int(rays(r)), docblock.fmt_int(r["cycles"]),
             docblock.fmt_int(o["any_hit_cycles"]), o["cycles_over_any_hit"], docblock.fmt_int(o["nearest_hit_cycles"]),
             1e3 * r["cycles"] / 50e6, 1e3 * r["cycles"] / (fpga * 1e6), 1e3 * r["cycles"] / (asic * 1e6),
-            r["wall_seconds"]))
+            1e3 * r["cycles"] / (proj * 1e6), r["wall_seconds"]))
     return rows
 
 

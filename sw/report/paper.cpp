@@ -35,8 +35,13 @@ Command add_paper(CLI::App& app) {
                   "with the CPU then hold a rate of 1 test/s (the deterministic part, for the docs_check test)");
   c.sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh (the measured clock)")
       ->capture_default_str();
+  c.sub->add_option("--clock", opt->clocks,
+                    "MHZ:LABEL, a further clock for the comparison with the CPU, labelled measured or projected "
+                    "(repeatable; make docs passes make asic's clock and its projection to the CPU's node)");
   c.run = [opt]() -> int {
     const FpgaData fpga = read_fpga(opt->fpga_csv);  // before any output or measurement: a bad file fails at once
+    std::vector<paper::Clock> clocks;
+    for (const std::string& text : opt->clocks) clocks.push_back(paper::parse_clock(text));
     prepare_outputs(*opt);
     const paper::Options& o = *opt;
     const Config rcfg = named_config(o.rtl_config);
@@ -49,7 +54,7 @@ Command add_paper(CLI::App& app) {
     const paper::Sweep sweep = paper::measure_sweep(rcfg, w);
     const paper::CpuRates cpu = o.counts_only ? paper::CpuRates{1, 1} : paper::measure_cpu(o.quick);
 
-    const paper::Derived d = paper::derive(w, b, cpu, o.n);
+    const paper::Derived d = paper::derive(w, b, cpu, o.n, clocks);
 
     const std::string md = paper::markdown(o, rcfg, date, paper::Measured{t1, w, b, sweep, cpu, fpga}, d);
     write_report(o, md, paper::report_data(t1, sweep, cpu, d));

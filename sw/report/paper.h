@@ -35,6 +35,10 @@ struct Options : ReportOutput {
   unsigned triangles = 10000;
   unsigned n = 32;
   bool counts_only = false;  // no CPU timing: its sections hold placeholders (tools/docs.py check)
+  // Clocks beside the paper's 50 MHz in the comparison with the CPU, as "MHZ:LABEL" (the
+  // label says whether measured or projected: make docs passes make asic's measured clock
+  // and its projection to the CPU's node, tools/node_scale.py).
+  std::vector<std::string> clocks;
   std::string fpga_csv = FMPP_SOURCE_DIR "/docs/data/fpga/summary.csv";  // make fpga's figures (fpga.cpp)
 };
 
@@ -132,11 +136,18 @@ struct Fig7Row {
 struct AmdahlRow {
   double speedup = 0, overall = 0;
 };
+// A clock of the comparison with the CPU, with what it is (measured where, or projected).
+struct Clock {
+  double mhz = 0;
+  std::string label;
+};
+// Parses --clock's "MHZ:LABEL"; throws std::invalid_argument naming the text.
+Clock parse_clock(const std::string& text);
 // Test rates of FMPPs of side^2 blocks doing CSD broadcasts, against the CPU.
 struct CpuRow {
   double side = 0, blocks = 0;  // blocks = side^2
-  double t50 = 0, t1g = 0;    // tests per second at 50 MHz and 1 GHz
-  double x50 = 0, x1g = 0;    // the same over the CPU's rate
+  double t50 = 0, x50 = 0;      // tests per second at 50 MHz, and over the CPU's rate
+  std::vector<double> t, x;     // the same at each of Options::clocks
 };
 
 // Everything the clock model derives from the measurements.
@@ -148,9 +159,11 @@ struct Derived {
   nlohmann::json fig7_curves, fig56;  // plot data: against the number of triangles
   std::vector<AmdahlRow> amdahl;
   std::vector<CpuRow> cpu;
+  std::vector<Clock> clocks;  // of CpuRow::t
 };
 
-Derived derive(const Workload& w, const Broadcasts& b, const CpuRates& cpu, unsigned n);
+Derived derive(const Workload& w, const Broadcasts& b, const CpuRates& cpu, unsigned n,
+               const std::vector<Clock>& clocks);
 
 // The JSON data behind the report and its plots (img_dir/paper_data.json).
 nlohmann::json report_data(const Table1& t1, const Sweep& sweep, const CpuRates& cpu, const Derived& d);

@@ -4,6 +4,8 @@
 // clocks for machines too large to simulate: Table 2, Fig. 7, the Amdahl figures and
 // the data of Figs. 5-7 (plotted by tools/plot_paper.py).
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "sw/report/paper.h"
 
@@ -129,21 +131,42 @@ std::vector<AmdahlRow> amdahl(const CostModel& cm, const Broadcasts& b) {
 }
 
 // Ray-parallel CSD broadcasts test (blocks) rays each.
-std::vector<CpuRow> cpu_rows(const Broadcasts& b, const CpuRates& rates) {
+std::vector<CpuRow> cpu_rows(const Broadcasts& b, const CpuRates& rates, const std::vector<Clock>& clocks) {
   const double cpu = rates.cpu;
   std::vector<CpuRow> rows;
   for (double side : {64.0, 256.0, 1024.0}) {
     const double P = side * side;
-    const double t50 = P * 50e6 / b.rp_const.st.steps_per_broadcast();
-    const double t1g = P * 1e9 / b.rp_const.st.steps_per_broadcast();
-    rows.push_back(CpuRow{side, P, t50, t1g, t50 / cpu, t1g / cpu});
+    CpuRow r{side, P, P * 50e6 / b.rp_const.st.steps_per_broadcast(), 0, {}, {}};
+    r.x50 = r.t50 / cpu;
+    for (const Clock& c : clocks) {
+      r.t.push_back(P * c.mhz * 1e6 / b.rp_const.st.steps_per_broadcast());
+      r.x.push_back(r.t.back() / cpu);
+    }
+    rows.push_back(r);
   }
   return rows;
 }
 
 }  // namespace
 
-Derived derive(const Workload& w, const Broadcasts& b, const CpuRates& cpu, unsigned n) {
+Clock parse_clock(const std::string& text) {
+  const size_t colon = text.find(':');
+  Clock c;
+  size_t used = 0;
+  try {
+    c.mhz = std::stod(text.substr(0, colon), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (colon == std::string::npos || used != colon || !(c.mhz > 0 && c.mhz < 1e6) || colon + 1 >= text.size()) {
+    throw std::invalid_argument("--clock '" + text + "': expected MHZ:LABEL, MHz in (0, 1e6) and a label");
+  }
+  c.label = text.substr(colon + 1);
+  return c;
+}
+
+Derived derive(const Workload& w, const Broadcasts& b, const CpuRates& cpu, unsigned n,
+               const std::vector<Clock>& clocks) {
   Derived d;
   d.cm = fit_model(w, b, n);
   d.table2 = table2(d.cm, b);
@@ -153,7 +176,8 @@ Derived derive(const Workload& w, const Broadcasts& b, const CpuRates& cpu, unsi
   d.fig7_curves = fig7_curves(d.cm, b);
   d.fig56 = fig56(d.cm, b);
   d.amdahl = amdahl(d.cm, b);
-  d.cpu = cpu_rows(b, cpu);
+  d.cpu = cpu_rows(b, cpu, clocks);
+  d.clocks = clocks;
   return d;
 }
 
@@ -176,8 +200,10 @@ json report_data(const Table1& t1, const Sweep& sweep, const CpuRates& cpu, cons
   data["fig7"] = d.fig7_curves;
   data["fig56"] = d.fig56;
   json cpu_rows = json::array();
-  for (const CpuRow& r : d.cpu) cpu_rows.push_back({{"blocks", r.blocks}, {"t50", r.t50}, {"t1g", r.t1g}});
-  data["cpu"] = {{"tests_per_s", cpu.cpu}, {"reference_tests_per_s", cpu.ref}, {"rows", cpu_rows}};
+  for (const CpuRow& r : d.cpu) cpu_rows.push_back({{"blocks", r.blocks}, {"t50", r.t50}, {"t_at_clocks", r.t}});
+  json clocks = json::array();
+  for (const Clock& c : d.clocks) clocks.push_back({{"mhz", c.mhz}, {"label", c.label}});
+  data["cpu"] = {{"tests_per_s", cpu.cpu}, {"reference_tests_per_s", cpu.ref}, {"clocks", clocks}, {"rows", cpu_rows}};
   return data;
 }
 
