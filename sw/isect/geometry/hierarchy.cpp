@@ -96,52 +96,60 @@ double extent(const Triangle& t) {
 
 Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack, unsigned leaf_items)
     : leaf_items_(std::max(1u, leaf_items)) {
-  std::vector<uint32_t> ids;
-  std::vector<glm::dvec3> centre(boxes.size());
+  std::vector<Entry> items;
   for (size_t i = 0; i < boxes.size(); ++i) {
     if (boxes[i].empty()) continue;
-    ids.push_back(static_cast<uint32_t>(i));
-    centre[i] = 0.5 * boxes[i].lo + 0.5 * boxes[i].hi;
+    items.push_back({0.5 * boxes[i].lo + 0.5 * boxes[i].hi, static_cast<uint32_t>(i)});
   }
-  if (ids.empty()) return;
-  nodes_.reserve(2 * ids.size() / leaf_items_ + 2);
+  if (items.empty()) return;
+  nodes_.reserve(4 * items.size() / leaf_items_ + 2);  // leaves hold at least half of leaf_items_
+  items_.reserve(items.size());
   nodes_.emplace_back();
-  build(0, ids, 0, ids.size(), boxes, centre, slack);
+  build(0, items, 0, items.size(), boxes, slack);
 }
 
-// Fills node `self` with the subtree of ids[begin, end); an inner node's children are
-// appended as a pair. Every split halves the items, so the depth stays below 40.
-void Bvh::build(uint32_t self, std::vector<uint32_t>& ids, size_t begin, size_t end, const std::vector<Box>& boxes,
-                const std::vector<glm::dvec3>& centre, const std::vector<double>& slack) {
-  Box box, cb;
-  double most = 0;
-  for (size_t i = begin; i < end; ++i) {
-    box.grow(boxes[ids[i]]);
-    cb.grow(centre[ids[i]]);
-    if (!slack.empty()) most = std::max(most, slack[ids[i]]);
-  }
-  nodes_[self].box = box;
-  nodes_[self].slack = most;
+// Fills node `self` with the subtree of items[begin, end); an inner node's children are
+// appended as a pair. Every split halves the items, so the depth stays below 40. A
+// node's box and slack are its children's, joined after they are built: the same values
+// as over its items (min and max are exact), read once per item rather than once per level.
+void Bvh::build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end, const std::vector<Box>& boxes,
+                const std::vector<double>& slack) {
   if (end - begin <= leaf_items_) {
-    nodes_[self].first = static_cast<uint32_t>(items_.size());
+    Box box;
+    double most = 0;
+    for (size_t i = begin; i < end; ++i) {
+      box.grow(boxes[items[i].id]);
+      if (!slack.empty()) most = std::max(most, slack[items[i].id]);
+      items_.push_back(items[i].id);
+    }
+    nodes_[self].box = box;
+    nodes_[self].slack = most;
+    nodes_[self].first = static_cast<uint32_t>(items_.size() - (end - begin));
     nodes_[self].count = static_cast<uint32_t>(end - begin);
-    items_.insert(items_.end(), ids.begin() + static_cast<std::ptrdiff_t>(begin),
-                  ids.begin() + static_cast<std::ptrdiff_t>(end));
     return;
   }
+  Box cb;
+  for (size_t i = begin; i < end; ++i) cb.grow(items[i].centre);
   const glm::dvec3 span = cb.hi - cb.lo;
   const int axis = span.x >= span.y && span.x >= span.z ? 0 : span.y >= span.z ? 1 : 2;
   const size_t mid = begin + (end - begin) / 2;
-  std::nth_element(ids.begin() + static_cast<std::ptrdiff_t>(begin), ids.begin() + static_cast<std::ptrdiff_t>(mid),
-                   ids.begin() + static_cast<std::ptrdiff_t>(end), [&](uint32_t a, uint32_t b) {
-                     return centre[a][axis] < centre[b][axis] || (centre[a][axis] == centre[b][axis] && a < b);
+  // Ties broken by the index: a total order, so the halves do not depend on the order
+  // the items come in.
+  std::nth_element(items.begin() + static_cast<std::ptrdiff_t>(begin),
+                   items.begin() + static_cast<std::ptrdiff_t>(mid), items.begin() + static_cast<std::ptrdiff_t>(end),
+                   [axis](const Entry& a, const Entry& b) {
+                     return a.centre[axis] < b.centre[axis] || (a.centre[axis] == b.centre[axis] && a.id < b.id);
                    });
   const uint32_t left = static_cast<uint32_t>(nodes_.size());
   nodes_[self].first = left;
   nodes_.emplace_back();
   nodes_.emplace_back();
-  build(left, ids, begin, mid, boxes, centre, slack);
-  build(left + 1, ids, mid, end, boxes, centre, slack);
+  build(left, items, begin, mid, boxes, slack);
+  build(left + 1, items, mid, end, boxes, slack);
+  Box box = nodes_[left].box;
+  box.grow(nodes_[left + 1].box);
+  nodes_[self].box = box;
+  nodes_[self].slack = std::max(nodes_[left].slack, nodes_[left + 1].slack);
 }
 
 void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {
