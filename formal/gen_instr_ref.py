@@ -6,10 +6,11 @@ The reference is derived from rtl/fmpp_map.json alone, in a different shape from
 RTL: one case item per opcode of the map, with a 64-bit mask of the bits that must
 be zero (every field the opcode does not use, and every bit of a used X or IMM field
 that none of the opcode's sub-fields covers), range checks of the used word fields,
-and the value lists of the sub-fields that have them. A sub-field belongs to the
-opcode whose name starts with the sub-field's prefix (REF_FN -> REF, BIT_I -> BITCOPY,
-FLAG_LUT -> FLAGOP). One rule is not in the map and is added here by hand: REF on the
-address part (REF_PART = ADDR) must name word 0 (docs/isa.md).
+the value lists of the sub-fields that have them, and the fields a sub-field value
+requires (the map's "requires": REF on the address part names word 0), each spelled
+as a condition on the instruction's bits. A sub-field belongs to the opcode whose name
+starts with the sub-field's prefix (REF_FN -> REF, BIT_I -> BITCOPY, FLAG_LUT ->
+FLAGOP): the RTL reads the opcodes' own lists instead.
 
 Usage: gen_instr_ref.py --map rtl/fmpp_map.json --out build/formal/fmpp_instr_ref.sv
 """
@@ -85,13 +86,13 @@ def main():
             if wf in uses:
                 lsb, width = fields[wf]
                 checks.append(f"(32'(instr_i[{lsb + width - 1}:{lsb}]) < NumWords)")
-        if name == "REF":
-            # Not in the map: the address part is matched against word 0's slot only.
-            part = next(sf for sf in own if sf["name"] == "REF_PART")
-            addr = part["values"]["ADDR"]
-            bit = fields["X"][0] + part["lsb"]
-            alsb, awidth = fields["A"]
-            checks.append(f"(instr_i[{bit}] != 1'b{addr} || instr_i[{alsb + awidth - 1}:{alsb}] == '0)")
+        for sf in own:
+            for vn, need in sf.get("requires", {}).items():
+                lo = fields[sf["of"]][0] + sf["lsb"]
+                hi = lo + sf["width"] - 1
+                holds = " && ".join(f"instr_i[{fields[fn][0] + fields[fn][1] - 1}:{fields[fn][0]}] == "
+                                    f"{fields[fn][1]}'d{fv}" for fn, fv in need.items())
+                checks.append(f"(instr_i[{hi}:{lo}] != {sf['width']}'d{sf['values'][vn]} || ({holds}))")
         cond = " && ".join([f"(instr_i & 64'h{zero:016x}) == '0"] + checks)
         lines.append(f"      {fields['OP'][1]}'d{code}: legal_o = {cond};  // {name}")
 

@@ -64,7 +64,7 @@ def jobs(root, out, quick):
     # The pipelined array against the single-cycle one: a bounded check with yosys's SAT
     # solver (z3 does not get through the bit-plane ALU's definitions; no induction).
     js.append(dict(name="pipe_1x4", top="fmpp_pipe_formal",
-                   src=rtl + [frm("fmpp_array_sc.sv"), frm("fmpp_pipe_formal.sv")], params={"NumBlocks": 1, "NumWords": 4},
+                   src=rtl + [frm("fmpp_array_sc.sv"), frm("fmpp_tile_sc.sv"), frm("fmpp_pipe_formal.sv")], params={"NumBlocks": 1, "NumWords": 4},
                    depth=PIPE_DEPTH_QUICK if quick else PIPE_DEPTH, engine="sat"))
     for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
         js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal",

@@ -29,6 +29,7 @@ fmpp_instr_check.sv
 fmpp_window.sv
 fmpp_addr_decode.sv
 fmpp_err_reg.sv
+fmpp_reg_read.sv
 fmpp_axil_slave.sv
 fmpp_array.sv
 fmpp_top.sv

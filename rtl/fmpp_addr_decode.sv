@@ -15,16 +15,20 @@ module fmpp_addr_decode #(
   output logic                       is_plane_o,   // PLANES window, mapped
   output logic                       is_flags_o,   // FLAGS window, mapped
   output logic                       is_word_o,    // WORDS window, mapped
-  output logic [15:0]                block_o,      // block (FLAGS, WORDS) or tile (PLANES)
-  output logic [5:0]                 word_o,
-  output logic [2:0]                 flag_o
+  output logic [fmpp_pkg::BlockIdxW-1:0] block_o,  // block (FLAGS, WORDS) or tile (PLANES)
+  output logic [fmpp_pkg::WordIdxW-1:0]  word_o,
+  output logic [fmpp_pkg::FlagIdxW-1:0]  flag_o
 );
   localparam int unsigned LaneW    = fmpp_pkg::LaneW;
   localparam int unsigned NumTiles = (NumBlocks + LaneW - 1) / LaneW;
   localparam int unsigned WIdxW    = $clog2(NumWords);   // NumWords is even, so >= 1
-  localparam int unsigned WShift   = 3 + WIdxW;          // WORDS block stride = 2^WShift bytes
+  localparam int unsigned BeatW    = $clog2(fmpp_pkg::DataW / 8);  // byte offset within a beat
+  localparam int unsigned WShift   = BeatW + WIdxW;      // WORDS block stride = 2^WShift bytes
   localparam int unsigned AW       = fmpp_pkg::AddrW;
   localparam int unsigned FShift   = fmpp_pkg::WIN_PLANES_FLAG_SHIFT;  // PLANES: flag above, tile below
+  localparam int unsigned BIW      = fmpp_pkg::BlockIdxW;
+  localparam int unsigned WOW      = fmpp_pkg::WordIdxW;
+  localparam int unsigned FIW      = fmpp_pkg::FlagIdxW;
 
   logic [AW-1:0] off_plane, off_flags, off_words;
   logic          in_plane, in_flags, in_words;
@@ -42,32 +46,34 @@ module fmpp_addr_decode #(
   fmpp_window #(.Base(fmpp_pkg::WIN_WORDS_BASE), .Size(fmpp_pkg::WIN_WORDS_SIZE)) u_words (
     .addr_i, .in_o(in_words), .off_o(off_words));
 
-  assign plane_tile  = 32'(off_plane[FShift-1:0]) >> 3;
-  assign flags_block = off_flags >> 3;
+  assign plane_tile  = 32'(off_plane[FShift-1:0]) >> BeatW;
+  assign flags_block = off_flags >> BeatW;
   assign words_block = off_words >> WShift;
-  assign words_word  = {26'd0, off_words[8:3] & 6'((1 << WIdxW) - 1)};
+  logic [WOW-1:0] word_bits;  // the word slot, its bits past NumWords' index cleared
+  assign word_bits   = off_words[BeatW +: WOW] & WOW'((1 << WIdxW) - 1);
+  assign words_word  = 32'(word_bits);
 
-  assign aligned_o  = addr_i[2:0] == 3'b000;
+  assign aligned_o  = addr_i[BeatW-1:0] == '0;
   assign is_reg_o   = addr_i[AW-1:12] == '0;
   assign reg_o      = addr_i[11:0];
   assign is_plane_o = in_plane && plane_tile < NumTiles;
   assign is_flags_o = in_flags && flags_block < NumBlocks;
   assign is_word_o  = in_words && words_block < NumBlocks && words_word < NumWords;
-  assign flag_o     = off_plane[FShift +: 3];
+  assign flag_o     = off_plane[FShift +: FIW];
 
   always_comb begin
     block_o = '0;
     word_o  = '0;
-    if (in_plane) block_o = plane_tile[15:0];
-    if (in_flags) block_o = flags_block[15:0];
+    if (in_plane) block_o = plane_tile[BIW-1:0];
+    if (in_flags) block_o = flags_block[BIW-1:0];
     if (in_words) begin
-      block_o = words_block[15:0];
-      word_o  = words_word[5:0];
+      block_o = words_block[BIW-1:0];
+      word_o  = words_word[WOW-1:0];
     end
   end
 
   logic unused_hi;
-  assign unused_hi = ^{plane_tile[31:16], flags_block[31:16], words_block[31:16], words_word[31:6],
-                       off_plane[AW-1:FShift+3], off_flags[2:0], off_words[2:0]};
+  assign unused_hi = ^{plane_tile[31:BIW], flags_block[31:BIW], words_block[31:BIW], words_word[31:WOW],
+                       off_plane[AW-1:FShift+FIW], off_flags[BeatW-1:0], off_words[BeatW-1:0]};
 
 endmodule

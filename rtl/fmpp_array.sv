@@ -26,33 +26,33 @@ module fmpp_array #(
   input  fmpp_pkg::qentry_t    head_i,
   input  logic                 head_valid_i,
   output logic                 pop_o,
-  input  logic [7:0]           gap_i,        // CTRL.GAP
+  input  logic [fmpp_pkg::REG_CTRL_GAP_W-1:0] gap_i,  // CTRL.GAP
   output logic                 busy_o,       // entries popped but not yet retired
 
   // Host read port (combinational; reads are only accepted while the queue is empty)
   input  logic                 rd_en_i,
   input  fmpp_pkg::rkind_e     rd_kind_i,
-  input  logic [15:0]          rd_block_i,   // block (WORD, FLAGS) or tile (PLANE)
-  input  logic [5:0]           rd_word_i,
-  input  logic [2:0]           rd_flag_i,
+  input  logic [fmpp_pkg::BlockIdxW-1:0] rd_block_i,  // block (WORD, FLAGS) or tile (PLANE)
+  input  logic [fmpp_pkg::WordIdxW-1:0]  rd_word_i,
+  input  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_i,
   output logic [63:0]          rd_data_o,
 
   // Responders and summaries (combinational, evaluated when resp_en_i)
   input  logic                 resp_en_i,
   output logic                 resp_any_o,
-  output logic [31:0]          resp_count_o,
-  output logic [30:0]          resp_first_o,
+  output logic [fmpp_pkg::REG_RESP_COUNT_W-1:0] resp_count_o,
+  output logic [fmpp_pkg::REG_RESP_FIRST_W-1:0] resp_first_o,
   output logic                 ovf_any_o,
 
-  output logic [31:0]          mask_o,
-  output logic [63:0]          instret_o
+  output logic [fmpp_pkg::REG_MASK_VALUE_W-1:0] mask_o,
+  output logic [fmpp_pkg::REG_INSTRET_VALUE_W-1:0] instret_o
 );
   localparam int unsigned LaneW    = fmpp_pkg::LaneW;
   localparam int unsigned NumTiles = (NumBlocks + LaneW - 1) / LaneW;
   localparam int unsigned LastLanes = NumBlocks - (NumTiles - 1) * LaneW;
 
   // Sequencer: pop one entry per clock, then idle for CTRL.GAP clocks.
-  logic [7:0]  gap_q;
+  logic [fmpp_pkg::REG_CTRL_GAP_W-1:0] gap_q;
   // Public for the lockstep checker (tb/), which reads the state directly.
   logic [31:0] mask_q /*verilator public_flat_rd*/;
   logic [63:0] instret_q /*verilator public_flat_rd*/;
@@ -91,7 +91,7 @@ module fmpp_array #(
   logic [fmpp_pkg::F_B_W-1:0]   s2_b_q;
   logic [fmpp_pkg::F_X_W-1:0]   s2_x_q, s3_x_q;
   logic [fmpp_pkg::F_IMM_W-1:0] s2_imm_q, s3_imm_q;
-  logic [15:0]                  s2_block_q, s3_block_q;
+  logic [fmpp_pkg::BlockIdxW-1:0] s2_block_q, s3_block_q;
   logic [3:0]                   s2_strb_q, s3_strb_q;
 
   always_ff @(posedge clk_i) begin
@@ -169,7 +169,7 @@ module fmpp_array #(
   logic        t_flagop_any [NumTiles];
   logic        t_sel_any    [NumTiles];
   logic [31:0] t_sel_count  [NumTiles];
-  logic [5:0]  t_sel_first  [NumTiles];
+  logic [fmpp_pkg::LaneIdxW-1:0] t_sel_first [NumTiles];
   logic        t_ovf_any    [NumTiles];
   logic [63:0] t_rd_data    [NumTiles];
   logic        flagop_any;
@@ -235,7 +235,7 @@ module fmpp_array #(
         ovf_any_o    = ovf_any_o | t_ovf_any[t];
         if (t_sel_any[t]) begin
           resp_any_o   = 1'b1;
-          resp_first_o = 31'(t * LaneW) | {25'd0, t_sel_first[t]};
+          resp_first_o = fmpp_pkg::REG_RESP_FIRST_W'(t * LaneW) | fmpp_pkg::REG_RESP_FIRST_W'(t_sel_first[t]);
         end
       end
     end
@@ -329,20 +329,20 @@ module fmpp_array #(
   c_op_setsadr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SETSADR);
   c_op_flagop: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP);
   c_op_cmp: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP);
-  c_ref_through_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b0);
-  c_ref_through_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd0 && x[2] == 1'b1);
-  c_ref_and_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b0);
-  c_ref_and_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd1 && x[2] == 1'b1);
-  c_ref_or_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b0);
-  c_ref_or_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[1:0] == 2'd2 && x[2] == 1'b1);
+  c_ref_through_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_THROUGH && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA);
+  c_ref_through_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_THROUGH && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR);
+  c_ref_and_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_AND && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA);
+  c_ref_and_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_AND && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR);
+  c_ref_or_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_OR && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA);
+  c_ref_or_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_OR && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR);
   c_cmp_through_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
   c_cmp_through_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_THROUGH && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
   c_cmp_and_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
   c_cmp_and_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
   c_cmp_or_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
   c_cmp_or_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
-  c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && flagop_any);
-  c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[8] && !flagop_any);
+  c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && flagop_any);
+  c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && !flagop_any);
   c_word_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_WORD);
   c_flags_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_FLAGS);
   c_gap_stall: cover property (@(posedge clk_i) head_valid_i && gap_q != '0);

@@ -47,29 +47,28 @@ module fmpp_axil_slave #(
   // Array read port, responders and state shown in registers
   output logic                         rd_en_o,
   output fmpp_pkg::rkind_e             rd_kind_o,
-  output logic [15:0]                  rd_block_o,
-  output logic [5:0]                   rd_word_o,
-  output logic [2:0]                   rd_flag_o,
+  output logic [fmpp_pkg::BlockIdxW-1:0] rd_block_o,
+  output logic [fmpp_pkg::WordIdxW-1:0]  rd_word_o,
+  output logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_o,
   input  logic [63:0]                  rd_data_i,
   output logic                         resp_en_o,
   input  logic                         resp_any_i,
-  input  logic [31:0]                  resp_count_i,
-  input  logic [30:0]                  resp_first_i,
+  input  logic [fmpp_pkg::REG_RESP_COUNT_W-1:0] resp_count_i,
+  input  logic [fmpp_pkg::REG_RESP_FIRST_W-1:0] resp_first_i,
   input  logic                         ovf_any_i,
-  input  logic [31:0]                  mask_i,
-  input  logic [63:0]                  instret_i,
-  output logic [7:0]                   gap_o
+  input  logic [fmpp_pkg::REG_MASK_VALUE_W-1:0] mask_i,
+  input  logic [fmpp_pkg::REG_INSTRET_VALUE_W-1:0] instret_i,
+  output logic [fmpp_pkg::REG_CTRL_GAP_W-1:0] gap_o
 );
   localparam logic [1:0] RespOkay   = 2'b00;
   localparam logic [1:0] RespSlvErr = 2'b10;
-  localparam int unsigned WShift = 3 + $clog2(NumWords);
 
   // ---------------------------------------------------------------- write decode
   logic        aw_aligned, aw_is_reg, aw_is_plane, aw_is_flags, aw_is_word;
   logic [11:0] aw_reg;
-  logic [15:0] aw_block;
-  logic [5:0]  aw_word;
-  logic [2:0]  aw_flag;
+  logic [fmpp_pkg::BlockIdxW-1:0] aw_block;
+  logic [fmpp_pkg::WordIdxW-1:0]  aw_word;
+  logic [fmpp_pkg::FlagIdxW-1:0]  aw_flag;
   logic        instr_legal;
 
   fmpp_addr_decode #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_aw_decode (
@@ -164,9 +163,9 @@ module fmpp_axil_slave #(
   // ----------------------------------------------------------------- read decode
   logic        ar_aligned, ar_is_reg, ar_is_plane, ar_is_flags, ar_is_word;
   logic [11:0] ar_reg;
-  logic [15:0] ar_block;
-  logic [5:0]  ar_word;
-  logic [2:0]  ar_flag;
+  logic [fmpp_pkg::BlockIdxW-1:0] ar_block;
+  logic [fmpp_pkg::WordIdxW-1:0]  ar_word;
+  logic [fmpp_pkg::FlagIdxW-1:0]  ar_flag;
 
   fmpp_addr_decode #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_ar_decode (
     .addr_i     (araddr_i),
@@ -185,57 +184,36 @@ module fmpp_axil_slave #(
   // checker (tb/), which reads the state directly.
   logic           err_pend, err_sticky;
   fmpp_pkg::err_e err_cause;
-  logic [15:0]    err_count;
-  logic [31:0]    err_addr;
-  logic [7:0]     gap_q /*verilator public_flat_rd*/;
+  logic [fmpp_pkg::REG_ERROR_COUNT_W-1:0] err_count;
+  logic [fmpp_pkg::AddrW-1:0] err_addr;
+  logic [fmpp_pkg::REG_CTRL_GAP_W-1:0] gap_q /*verilator public_flat_rd*/;
   logic [63:0]    cycles_q, cycles_inc;
 
   fmpp_pkg::err_e r_cause;
   logic [63:0]    r_data;
 
-  // Register values, packed by the map's layouts (reserved bits 0).
-  fmpp_pkg::id_reg_t      id_v;
-  fmpp_pkg::config_reg_t  config_v;
-  fmpp_pkg::status_reg_t  status_v;
-  fmpp_pkg::error_reg_t   error_v;
-  fmpp_pkg::ctrl_reg_t    ctrl_v;
-  fmpp_pkg::resp_reg_t    resp_v;
-  fmpp_pkg::cycles_reg_t  cycles_v;
-  fmpp_pkg::instret_reg_t instret_v;
-  fmpp_pkg::mask_reg_t    mask_v;
-  always_comb begin
-    id_v             = '0;
-    id_v.magic       = fmpp_pkg::Magic;
-    id_v.major       = fmpp_pkg::VersionMajor;
-    id_v.minor       = fmpp_pkg::VersionMinor;
-    config_v         = '0;
-    config_v.wshift  = 8'(WShift);
-    config_v.lanes   = 8'(fmpp_pkg::LaneW);
-    config_v.qdepth  = 8'(fmpp_pkg::QueueDepth);
-    config_v.words   = 8'(NumWords);
-    config_v.blocks  = 32'(NumBlocks);
-    status_v         = '0;
-    status_v.any     = resp_any_i;
-    status_v.ovf     = ovf_any_i;
-    status_v.err     = err_sticky;
-    error_v          = '0;
-    error_v.addr     = err_addr;
-    error_v.count    = err_count;
-    error_v.cause    = err_cause;
-    error_v.sticky   = err_sticky;
-    ctrl_v           = '0;
-    ctrl_v.gap       = gap_q;
-    resp_v           = '0;
-    resp_v.any       = resp_any_i;
-    resp_v.first     = resp_first_i;
-    resp_v.count     = resp_count_i;
-    cycles_v         = '0;
-    cycles_v.value   = cycles_q;
-    instret_v        = '0;
-    instret_v.value  = instret_i;
-    mask_v           = '0;
-    mask_v.value     = mask_i;
-  end
+  // What the read returns (the registers by the map's layouts, or the read port).
+  fmpp_reg_read #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_reg_read (
+    .aligned_i    (ar_aligned),
+    .is_reg_i     (ar_is_reg),
+    .reg_i        (ar_reg),
+    .is_window_i  (ar_is_plane || ar_is_flags || ar_is_word),
+    .rd_data_i,
+    .resp_any_i,
+    .resp_count_i,
+    .resp_first_i,
+    .ovf_any_i,
+    .err_sticky_i (err_sticky),
+    .err_cause_i  (err_cause),
+    .err_count_i  (err_count),
+    .err_addr_i   (err_addr),
+    .gap_i        (gap_q),
+    .cycles_i     (cycles_q),
+    .instret_i,
+    .mask_i,
+    .cause_o      (r_cause),
+    .data_o       (r_data)
+  );
 
   assign rd_en_o    = arvalid_i && ar_aligned && (ar_is_plane || ar_is_flags || ar_is_word);
   assign rd_kind_o  = ar_is_plane ? fmpp_pkg::RK_PLANE : (ar_is_flags ? fmpp_pkg::RK_FLAGS : fmpp_pkg::RK_WORD);
@@ -244,32 +222,6 @@ module fmpp_axil_slave #(
   assign rd_flag_o  = ar_flag;
   assign resp_en_o  = arvalid_i && ar_is_reg &&
                       (ar_reg == fmpp_pkg::REG_RESP[11:0] || ar_reg == fmpp_pkg::REG_STATUS[11:0]);
-
-  always_comb begin
-    r_cause = fmpp_pkg::ERR_NONE;
-    r_data  = '0;
-    if (!ar_aligned) begin
-      r_cause = fmpp_pkg::ERR_ALIGN;
-    end else if (ar_is_reg) begin
-      unique case (ar_reg)
-        fmpp_pkg::REG_ID[11:0]:      r_data = id_v;
-        fmpp_pkg::REG_CONFIG[11:0]:  r_data = config_v;
-        fmpp_pkg::REG_STATUS[11:0]:  r_data = status_v;
-        fmpp_pkg::REG_ERROR[11:0]:   r_data = error_v;
-        fmpp_pkg::REG_CTRL[11:0]:    r_data = ctrl_v;
-        fmpp_pkg::REG_RESP[11:0]:    r_data = resp_v;
-        fmpp_pkg::REG_CYCLES[11:0]:  r_data = cycles_v;
-        fmpp_pkg::REG_INSTRET[11:0]: r_data = instret_v;
-        fmpp_pkg::REG_MASK[11:0]:    r_data = mask_v;
-        fmpp_pkg::REG_QUEUE[11:0]:   r_cause = fmpp_pkg::ERR_WRITEONLY;
-        default:                     r_cause = fmpp_pkg::ERR_UNMAPPED;
-      endcase
-    end else if (ar_is_plane || ar_is_flags || ar_is_word) begin
-      r_data = rd_data_i;
-    end else begin
-      r_cause = fmpp_pkg::ERR_UNMAPPED;
-    end
-  end
 
   // ------------------------------------------------------------------ handshakes
   logic bvalid_q, rvalid_q;

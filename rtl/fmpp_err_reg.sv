@@ -25,13 +25,14 @@ module fmpp_err_reg (
   output logic                          pend_o,
   output logic                          sticky_o,
   output fmpp_pkg::err_e                cause_o,
-  output logic [15:0]                   count_o,
+  output logic [fmpp_pkg::REG_ERROR_COUNT_W-1:0] count_o,
   output logic [fmpp_pkg::AddrW-1:0]    addr_o
 );
   logic           err_sticky_q /*verilator public_flat_rd*/;
   fmpp_pkg::err_e err_cause_q /*verilator public_flat_rd*/;
-  logic [15:0]    err_count_q /*verilator public_flat_rd*/;
-  logic [31:0]    err_addr_q /*verilator public_flat_rd*/;
+  localparam int unsigned CW = fmpp_pkg::REG_ERROR_COUNT_W;
+  logic [CW-1:0]  err_count_q /*verilator public_flat_rd*/;
+  logic [fmpp_pkg::AddrW-1:0] err_addr_q /*verilator public_flat_rd*/;
   // The events waiting for the next edge.
   logic           ev_pend_q /*verilator public_flat_rd*/;
   logic           ev_clear_q /*verilator public_flat_rd*/;
@@ -39,8 +40,8 @@ module fmpp_err_reg (
   logic           ev_r_q /*verilator public_flat_rd*/;
   fmpp_pkg::err_e ev_wcause_q /*verilator public_flat_rd*/;
   fmpp_pkg::err_e ev_rcause_q /*verilator public_flat_rd*/;
-  logic [31:0]    ev_waddr_q /*verilator public_flat_rd*/;
-  logic [31:0]    ev_raddr_q /*verilator public_flat_rd*/;
+  logic [fmpp_pkg::AddrW-1:0] ev_waddr_q /*verilator public_flat_rd*/;
+  logic [fmpp_pkg::AddrW-1:0] ev_raddr_q /*verilator public_flat_rd*/;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
@@ -64,13 +65,13 @@ module fmpp_err_reg (
   // maximum. One adder from the register, the clear selecting at its end (two saturating
   // increments in series were the longest path of the 16 x 32 machine in standard cells).
   logic [1:0]     ev_n;
-  logic [16:0]    count_sum;
+  logic [CW:0]    count_sum;
   logic           err_sticky_d;
   fmpp_pkg::err_e err_cause_d;
-  logic [15:0]    err_count_d;
-  logic [31:0]    err_addr_d;
+  logic [CW-1:0]  err_count_d;
+  logic [fmpp_pkg::AddrW-1:0] err_addr_d;
   assign ev_n      = 2'(ev_w_q) + 2'(ev_r_q);
-  assign count_sum = {1'b0, err_count_q} + 17'(ev_n);
+  assign count_sum = {1'b0, err_count_q} + (CW + 1)'(ev_n);
 
   always_comb begin
     err_sticky_d = err_sticky_q;
@@ -79,10 +80,10 @@ module fmpp_err_reg (
     if (ev_clear_q) begin
       err_sticky_d = 1'b0;
       err_cause_d  = fmpp_pkg::ERR_NONE;
-      err_count_d  = 16'(ev_n);
+      err_count_d  = CW'(ev_n);
       err_addr_d   = '0;
     end else begin
-      err_count_d  = count_sum[16] ? '1 : count_sum[15:0];
+      err_count_d  = count_sum[CW] ? '1 : count_sum[CW-1:0];
     end
     if (ev_w_q) begin
       if (!err_sticky_d) begin

@@ -14,6 +14,10 @@ package fmpp_pkg;
   parameter int unsigned MaxWords = 64;  // largest NumWords (word fields are 6 bits)
   parameter int unsigned MaxBlocks = 65536;  // largest NumBlocks (PLANES window holds 1024 tiles)
   parameter int unsigned QueueDepth = 16;  // instruction queue entries
+  parameter int unsigned BlockIdxW = 16;  // bits of a block index (below MaxBlocks)
+  parameter int unsigned WordIdxW = 6;  // bits of a word index (below MaxWords)
+  parameter int unsigned FlagIdxW = 3;  // bits of a flag index (below NumFlags)
+  parameter int unsigned LaneIdxW = 6;  // bits of a lane of a tile (below LaneW)
   parameter logic [31:0] Magic = 32'h464D5050;
   parameter logic [15:0] VersionMajor = 16'd1;
   parameter logic [15:0] VersionMinor = 16'd0;
@@ -45,6 +49,54 @@ package fmpp_pkg;
   parameter logic [AddrW-1:0] REG_INSTRET = 32'h00000038;
   parameter logic [AddrW-1:0] REG_MASK = 32'h00000040;
   parameter logic [AddrW-1:0] REG_QUEUE = 32'h00000048;
+
+  // Register fields: [REG_<REGISTER>_<FIELD>_LSB +: REG_<REGISTER>_<FIELD>_W]
+  parameter int unsigned REG_ID_MINOR_LSB = 0;
+  parameter int unsigned REG_ID_MINOR_W = 16;
+  parameter int unsigned REG_ID_MAJOR_LSB = 16;
+  parameter int unsigned REG_ID_MAJOR_W = 16;
+  parameter int unsigned REG_ID_MAGIC_LSB = 32;
+  parameter int unsigned REG_ID_MAGIC_W = 32;
+  parameter int unsigned REG_CONFIG_BLOCKS_LSB = 0;
+  parameter int unsigned REG_CONFIG_BLOCKS_W = 32;
+  parameter int unsigned REG_CONFIG_WORDS_LSB = 32;
+  parameter int unsigned REG_CONFIG_WORDS_W = 8;
+  parameter int unsigned REG_CONFIG_QDEPTH_LSB = 40;
+  parameter int unsigned REG_CONFIG_QDEPTH_W = 8;
+  parameter int unsigned REG_CONFIG_LANES_LSB = 48;
+  parameter int unsigned REG_CONFIG_LANES_W = 8;
+  parameter int unsigned REG_CONFIG_WSHIFT_LSB = 56;
+  parameter int unsigned REG_CONFIG_WSHIFT_W = 8;
+  parameter int unsigned REG_STATUS_ERR_LSB = 0;
+  parameter int unsigned REG_STATUS_ERR_W = 1;
+  parameter int unsigned REG_STATUS_OVF_LSB = 1;
+  parameter int unsigned REG_STATUS_OVF_W = 1;
+  parameter int unsigned REG_STATUS_ANY_LSB = 2;
+  parameter int unsigned REG_STATUS_ANY_W = 1;
+  parameter int unsigned REG_ERROR_STICKY_LSB = 0;
+  parameter int unsigned REG_ERROR_STICKY_W = 1;
+  parameter int unsigned REG_ERROR_CAUSE_LSB = 4;
+  parameter int unsigned REG_ERROR_CAUSE_W = 4;
+  parameter int unsigned REG_ERROR_COUNT_LSB = 16;
+  parameter int unsigned REG_ERROR_COUNT_W = 16;
+  parameter int unsigned REG_ERROR_ADDR_LSB = 32;
+  parameter int unsigned REG_ERROR_ADDR_W = 32;
+  parameter int unsigned REG_CTRL_GAP_LSB = 0;
+  parameter int unsigned REG_CTRL_GAP_W = 8;
+  parameter int unsigned REG_RESP_COUNT_LSB = 0;
+  parameter int unsigned REG_RESP_COUNT_W = 32;
+  parameter int unsigned REG_RESP_FIRST_LSB = 32;
+  parameter int unsigned REG_RESP_FIRST_W = 31;
+  parameter int unsigned REG_RESP_ANY_LSB = 63;
+  parameter int unsigned REG_RESP_ANY_W = 1;
+  parameter int unsigned REG_CYCLES_VALUE_LSB = 0;
+  parameter int unsigned REG_CYCLES_VALUE_W = 64;
+  parameter int unsigned REG_INSTRET_VALUE_LSB = 0;
+  parameter int unsigned REG_INSTRET_VALUE_W = 64;
+  parameter int unsigned REG_MASK_VALUE_LSB = 0;
+  parameter int unsigned REG_MASK_VALUE_W = 32;
+  parameter int unsigned REG_QUEUE_INSTR_LSB = 0;
+  parameter int unsigned REG_QUEUE_INSTR_W = 64;
 
   // Register layouts, bit 63 first; rsvd<lsb> members are reserved (read as 0)
   typedef struct packed {
@@ -218,6 +270,24 @@ package fmpp_pkg;
   parameter int unsigned NumRsvSegs = 9;
   parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000010F, 64'h0000000000001E10, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
   parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {9'b000001010, 9'b011001110, 9'b000111111, 9'b111111111, 9'b111111111, 9'b000111100, 9'b111111000, 9'b111111000, 9'b001111000, 9'b111110000, 9'b111110000, 9'b111010000, 9'b000001010, 9'b000111111, 9'b111111111};
+
+  // The rest of the legality rules, as masks (entry k at [k*64 +: 64]; an empty table
+  // holds one entry that never applies): ILLEGAL when (instr & IllegalMask) ==
+  // IllegalValue (a sub-field value the map does not name), or when (instr & ReqWhenMask)
+  // == ReqWhenValue and (instr & ReqNeedMask) != ReqNeedValue (a sub-field value that
+  // requires other fields to hold given values).
+  //   REF with REF_FN = 3
+  //   FUNC with FUNC_FN = 3
+  //   CMP with CMP_FN = 3
+  //   REF with REF_PART = ADDR requires A = 0
+  parameter int unsigned NumIllegal = 3;
+  parameter logic [3*64-1:0] IllegalMask = {64'hF800000300000000, 64'hF800000300000000, 64'hF800000300000000};
+  parameter logic [3*64-1:0] IllegalValue = {64'h7000000300000000, 64'h1800000300000000, 64'h1000000300000000};
+  parameter int unsigned NumRequires = 1;
+  parameter logic [1*64-1:0] ReqWhenMask = {64'hF800000400000000};
+  parameter logic [1*64-1:0] ReqWhenValue = {64'h1000000400000000};
+  parameter logic [1*64-1:0] ReqNeedMask = {64'h0003F00000000000};
+  parameter logic [1*64-1:0] ReqNeedValue = {64'h0000000000000000};
 
 endpackage
 /* verilator lint_on UNUSEDPARAM */

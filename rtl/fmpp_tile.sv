@@ -50,7 +50,7 @@ module fmpp_tile #(
   input  logic [fmpp_pkg::F_X_W-1:0]   x_i,         // sub-fields by opcode (fmpp_pkg::REF_FN_LSB, ...)
   input  logic [fmpp_pkg::F_IMM_W-1:0] imm_i,
   input  logic [31:0]                  mask_i,
-  input  logic [15:0]                  hw_block_i,  // block of a window write
+  input  logic [fmpp_pkg::BlockIdxW-1:0] hw_block_i,  // block of a window write
   input  logic [3:0]                   hw_strb_i,
   input  logic [31:0]                  hw_data_i,
   input  logic                         flagop_any_i, // FLAGOP: some block in the array has v = 1
@@ -59,16 +59,16 @@ module fmpp_tile #(
   // Host read port (combinational, evaluated only for the addressed tile)
   input  logic                         rd_en_i,     // a window read is being requested
   input  fmpp_pkg::rkind_e             rd_kind_i,
-  input  logic [15:0]                  rd_block_i,  // block (WORD, FLAGS) or tile (PLANE)
-  input  logic [5:0]                   rd_word_i,
-  input  logic [2:0]                   rd_flag_i,
+  input  logic [fmpp_pkg::BlockIdxW-1:0] rd_block_i,  // block (WORD, FLAGS) or tile (PLANE)
+  input  logic [fmpp_pkg::WordIdxW-1:0]  rd_word_i,
+  input  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_i,
   output logic [63:0]                  rd_data_o,
 
   // Responders over SEL and the overflow summary (only evaluated when resp_en_i)
   input  logic                         resp_en_i,
   output logic                         sel_any_o,
   output logic [31:0]                  sel_count_o,
-  output logic [5:0]                   sel_first_o,
+  output logic [fmpp_pkg::LaneIdxW-1:0] sel_first_o,
   output logic                         ovf_any_o
 );
   /*verilator no_inline_module*/
@@ -166,13 +166,13 @@ module fmpp_tile #(
   lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
   logic  hw_sel;       // the window write is for this tile
   logic  rd_sel;       // the window read is for this tile
-  logic [5:0] hw_lane, rd_lane;
+  logic [fmpp_pkg::LaneIdxW-1:0] hw_lane, rd_lane;
   assign hw_sel  = hw_block_i[15:6] == base_i[15:6];
-  assign hw_lane = hw_block_i[5:0];
+  assign hw_lane = hw_block_i[fmpp_pkg::LaneIdxW-1:0];
   assign hw_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << hw_lane;
   assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
                                                               : rd_block_i[15:6] == base_i[15:6]);
-  assign rd_lane = rd_block_i[5:0];
+  assign rd_lane = rd_block_i[fmpp_pkg::LaneIdxW-1:0];
   logic [fmpp_pkg::REF_FS_W-1:0]  fa_idx;
   logic [fmpp_pkg::FLAG_FB_W-1:0] fb_idx;
   always_comb begin

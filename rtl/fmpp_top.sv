@@ -42,15 +42,16 @@ module fmpp_top #(
 
   logic                 rd_en, resp_en;
   fmpp_pkg::rkind_e     rd_kind;
-  logic [15:0]          rd_block;
-  logic [5:0]           rd_word;
-  logic [2:0]           rd_flag;
+  logic [fmpp_pkg::BlockIdxW-1:0] rd_block;
+  logic [fmpp_pkg::WordIdxW-1:0]  rd_word;
+  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag;
   logic [63:0]          rd_data;
   logic                 resp_any, ovf_any;
-  logic [31:0]          resp_count, mask;
-  logic [30:0]          resp_first;
-  logic [63:0]          instret;
-  logic [7:0]           gap;
+  logic [fmpp_pkg::REG_RESP_COUNT_W-1:0]    resp_count;
+  logic [fmpp_pkg::REG_RESP_FIRST_W-1:0]    resp_first;
+  logic [fmpp_pkg::REG_MASK_VALUE_W-1:0]    mask;
+  logic [fmpp_pkg::REG_INSTRET_VALUE_W-1:0] instret;
+  logic [fmpp_pkg::REG_CTRL_GAP_W-1:0] gap;
 
   fmpp_axil_slave #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_slave (
     .clk_i,

@@ -55,19 +55,14 @@ bool is_legal(uint64_t raw, unsigned num_words) {
   if (!(reserved & kFieldD.mask()) && i.d >= num_words) return false;
   if (!(reserved & kFieldA.mask()) && i.a >= num_words) return false;
   if (!(reserved & kFieldB.mask()) && i.b >= num_words) return false;
-  switch (i.op) {
-    case Op::kRef:
-      if (!defined(kRefFnLegal, kRefFn.get(i.x)) || !defined(kRefPartLegal, kRefPart.get(i.x))) return false;
-      if (kRefPart.get(i.x) == static_cast<unsigned>(RefPart::kAddr) && i.a != 0) return false;
-      break;
-    case Op::kFunc:
-      if (!defined(kFuncFnLegal, kFuncFn.get(i.x))) return false;
-      break;
-    case Op::kCmp:
-      if (!defined(kCmpFnLegal, kCmpFn.get(i.x)) || !defined(kCmpLtLegal, kCmpLt.get(i.x))) return false;
-      break;
-    default:
-      break;
+  // The map's other rules (generated tables): undefined sub-field values, and values
+  // that require other fields to hold given values.
+  for (unsigned k = 0; k < kNumIllegalPatterns; ++k) {
+    if ((raw & kIllegalPatterns[k].mask) == kIllegalPatterns[k].value) return false;
+  }
+  for (unsigned k = 0; k < kNumRequirements; ++k) {
+    const Requirement& q = kRequirements[k];
+    if ((raw & q.when_mask) == q.when_value && (raw & q.need_mask) != q.need_value) return false;
   }
   return true;
 }

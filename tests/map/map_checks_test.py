@@ -38,6 +38,18 @@ CASES = [
      "may use only a, b"),
     ("register fields overlap", lambda m: reg(m, "ERROR")["fields"][1].update(lsb=0), "CAUSE [3:0] overlaps"),
     ("missing section", lambda m: m.pop("errors"), "missing an entry"),
+    ("requirement of an unnamed value", lambda m: sub(m, "REF_PART")["requires"].update(BOTH={"A": 0}),
+     "REF_PART.requires names BOTH, not one of its values"),
+    ("requirement on an unused field", lambda m: sub(m, "REF_PART")["requires"].update(ADDR={"B": 0}),
+     "REF does not use field B"),
+    ("required value too wide", lambda m: sub(m, "REF_PART")["requires"].update(ADDR={"A": 64}),
+     "A = 64 does not fit 6 bits"),
+    ("wide sub-fields naming few values", lambda m: (sub(m, "BIT_I").update(values={"ZERO": 0}),
+                                                     sub(m, "BIT_J").update(values={"ZERO": 0})),
+     "65 undefined sub-field values to check (at most 64)"),
+    ("index range not a power of two", lambda m: m["params"]["MaxWords"].update(value=48), "must be a power of two"),
+    ("word field narrower than a word index", lambda m: m["params"]["MaxWords"].update(value=128),
+     "field D is 6 bits, the params give WordIdxW = 7"),
 ]
 
 

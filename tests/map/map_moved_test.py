@@ -8,9 +8,14 @@ opcodes, error causes and flag indices are renumbered, and most register fields 
 Then it
   (a) regenerates the scratch package, header and docs with the scratch gen_map.py and
       checks that each shows the new layout and no longer the old one;
-  (b) Verilates the scratch RTL (tiny configuration, -Wall) with the scratch model, test
-      bench and Device, and runs tests/map/moved_lockstep_main.cpp: directed microcode
-      checked against host arithmetic, then random accesses with RTL and model in lockstep.
+  (b) Verilates the scratch RTL (tiny configuration, -Wall, with the FMPP_COVERAGE cover
+      points) with the scratch model, test bench and Device, and runs
+      tests/map/moved_lockstep_main.cpp: directed microcode checked against host
+      arithmetic, then random accesses with RTL and model in lockstep;
+  (c) reads the run's cover points: those that select an opcode's sub-field values
+      (REF, CMP, FLAGOP's ANY) must all have been hit; one whose condition no instruction
+      of the moved encoding can meet (a position or value the map has moved, spelled as
+      a number) fails here.
 A position or code of an instruction field, sub-field, register field, flag, opcode or error
 cause written as a number in that code, instead of taken from the map, makes (b) fail (lint,
 a directed check or a lockstep mismatch). Exit status 0 = everything followed the map.
@@ -145,14 +150,43 @@ def build_and_run(scratch, accesses):
     # Unoptimised: the run is short, the compile is what takes the time.
     cflags = f"-std=c++17 -O0 -I{scratch} -I{os.path.join(scratch, 'cmodel', 'include')}"
     cmd = ["verilator", "--cc", "--exe", "--build", "-j", "2", "-Wall", "--assert", "--trace-fst",
+           "--coverage-user", "-DFMPP_COVERAGE",
            "-MAKEFLAGS", "OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0",
            "--top-module", "fmpp_top", "--prefix", "Vfmpp_tiny", "-Mdir", "obj",
            f"-GNumBlocks={cfg['blocks']}", f"-GNumWords={cfg['words']}",
            "-CFLAGS", cflags, "-o", "moved_lockstep"] + rtl + cpp
     run(cmd, scratch, "Verilate and build the moved RTL, model, test bench and Device")
-    out = run([os.path.join(scratch, "obj", "moved_lockstep"), str(accesses)], scratch,
+    cov = os.path.join(scratch, "obj", "coverage.dat")
+    out = run([os.path.join(scratch, "obj", "moved_lockstep"), str(accesses), "1", cov], scratch,
               "directed microcode and random lockstep on the moved encoding")
     print(out.strip())
+    check_cover_points(cov)
+
+
+# Cover points that decode a sub-field's value: each must be hit by the run.
+SUBFIELD_COVERS = [f"c_ref_{fn}_{part}" for fn in ("through", "and", "or") for part in ("data", "addr")] + \
+                  [f"c_cmp_{fn}_{lt}" for fn in ("through", "and", "or") for lt in ("ge", "lt")] + \
+                  ["c_flagop_any_taken", "c_flagop_any_skipped"]
+
+
+def check_cover_points(path):
+    """(c): Verilator's coverage file holds one line per cover point, its name in the
+    'o' key and its count at the end."""
+    counts = {}
+    for line in read(path).splitlines():
+        if not line.startswith("C "):
+            continue
+        keys = dict(kv.split("\x02", 1) for kv in line[3:line.rindex("'")].split("\x01") if "\x02" in kv)
+        name = keys.get("o", "")
+        counts[name] = counts.get(name, 0) + int(line.rsplit(" ", 1)[1])
+    missing = [c for c in SUBFIELD_COVERS if c not in counts]
+    if missing:
+        fail(f"cover points not compiled into the moved RTL: {', '.join(missing)}")
+    unhit = [c for c in SUBFIELD_COVERS if counts[c] == 0]
+    if unhit:
+        fail(f"cover points never hit on the moved encoding (a position or value not from the map?): {', '.join(unhit)}")
+    print(f"map_moved_test: the {len(SUBFIELD_COVERS)} cover points of sub-field values were all hit "
+          f"({min(counts[c] for c in SUBFIELD_COVERS)} times at least)")
 
 
 def main():

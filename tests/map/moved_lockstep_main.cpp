@@ -4,7 +4,9 @@
 // directed microcode first, then random accesses of every kind - and fails if RTL and
 // model disagree, or if either disagrees with host arithmetic.
 //
-// Usage: moved_lockstep [accesses] [seed]     (the binary is Verilated with --prefix Vfmpp_tiny)
+// Usage: moved_lockstep [accesses] [seed] [coverage.dat]
+//   (the binary is Verilated with --prefix Vfmpp_tiny; with --coverage-user and
+//   FMPP_COVERAGE, the RTL's cover points are written to coverage.dat at the end)
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -88,7 +90,9 @@ int main(int argc, char** argv) {
   const unsigned long seed = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 1;
   try {
     const Config cfg = named_config("tiny");
-    backends::RtlBusImpl<Vfmpp_tiny> rtl(cfg, backends::RtlOptions{});
+    backends::RtlOptions ro;
+    if (argc > 3) ro.coverage_file = argv[3];
+    backends::RtlBusImpl<Vfmpp_tiny> rtl(cfg, ro);
     ModelBus model(cfg);
     backends::Lockstep ls(rtl, model, backends::LockstepOptions{});
     Device dev(ls);

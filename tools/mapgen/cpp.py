@@ -1,5 +1,6 @@
 """cmodel/include/fmpp/map.h: the map as C++17 constants in namespace fmpp::map."""
-from .model import BANNER, camel, hexint, legal_values, lut_value, op_reserved
+from .model import (BANNER, camel, hexint, illegal_patterns, index_widths, legal_values, lut_value, op_reserved,
+                    requirements)
 
 _BITFIELD = """\
 // Bits [lsb, lsb + width) of a 64-bit value: a register, an instruction, or a field
@@ -37,6 +38,8 @@ def gen_h(m):
     o.append(f"inline constexpr unsigned kDataW = {m['bus']['data_width']};")
     for k, v in m["params"].items():
         o.append(f"inline constexpr unsigned k{k} = {v['value']};  // {v['desc']}")
+    for name, width, what in index_widths(m):
+        o.append(f"inline constexpr unsigned k{name} = {width};  // bits of {what}")
     o.append(f"inline constexpr uint32_t kMagic = 0x{hexint(m['magic']):08X}u;")
     o.append(f"inline constexpr uint16_t kVersionMajor = {m['version']['major']};")
     o.append(f"inline constexpr uint16_t kVersionMinor = {m['version']['minor']};")
@@ -91,6 +94,28 @@ def gen_h(m):
     o.append("inline constexpr uint64_t kOpReserved[kNumOpcodes] = {")
     for op in ops:
         o.append(f"    0x{op_reserved(m, op):016X}ull,  // {op['name']}")
+    o.append("};")
+    pats, reqs = illegal_patterns(m), requirements(m)
+    o.append("// The rest of the legality rules besides reserved bits and word ranges, as masks: an")
+    o.append("// instruction is ILLEGAL when (raw & mask) == value for an IllegalPattern (an opcode's")
+    o.append("// sub-field holding a value the map does not name), or when (raw & when_mask) ==")
+    o.append("// when_value and (raw & need_mask) != need_value for a Requirement (a sub-field value")
+    o.append("// that requires other fields to hold given values).")
+    o.append("struct IllegalPattern {")
+    o.append("  uint64_t mask, value;")
+    o.append("};")
+    o.append(f"inline constexpr unsigned kNumIllegalPatterns = {len(pats)};")
+    o.append("inline constexpr IllegalPattern kIllegalPatterns[kNumIllegalPatterns > 0 ? kNumIllegalPatterns : 1] = {")
+    for mask, value, what in pats or [(0, 1, "none (never matches)")]:
+        o.append(f"    {{0x{mask:016X}ull, 0x{value:016X}ull}},  // {what}")
+    o.append("};")
+    o.append("struct Requirement {")
+    o.append("  uint64_t when_mask, when_value, need_mask, need_value;")
+    o.append("};")
+    o.append(f"inline constexpr unsigned kNumRequirements = {len(reqs)};")
+    o.append("inline constexpr Requirement kRequirements[kNumRequirements > 0 ? kNumRequirements : 1] = {")
+    for wm, wv, nm, nv, what in reqs or [(0, 1, 0, 0, "none (never applies)")]:
+        o.append(f"    {{0x{wm:016X}ull, 0x{wv:016X}ull, 0x{nm:016X}ull, 0x{nv:016X}ull}},  // {what}")
     o.append("};")
     o.append("")
     o.append("// Sub-fields: bit positions inside the field named in the comment (get/put apply to that")

@@ -116,6 +116,62 @@ def legal_values(s):
     return sum(1 << v for v in s["values"].values())
 
 
+# More patterns than this would make the legality check a long chain of compares: a map
+# with a wide sub-field naming few of its values should narrow the sub-field instead.
+MAX_ILLEGAL_PATTERNS = 64
+
+
+def illegal_patterns(m):
+    """[(mask, value, what)]: an instruction is ILLEGAL when (instr & mask) == value, for
+    each opcode and each of its sub-fields that names its values, once per value it does
+    not name (the opcode's bits and the sub-field's)."""
+    opf = field(m, "OP")
+    out = []
+    for op in sorted(m["opcodes"], key=lambda o: o["code"]):
+        for n in op.get("subfields", []):
+            s = subfield(m, n)
+            if "values" not in s:
+                continue
+            lsb = sub_abs_lsb(m, s)
+            for v in range(1 << s["width"]):
+                if not (legal_values(s) >> v) & 1:
+                    out.append((span(opf["lsb"], opf["width"]) | span(lsb, s["width"]),
+                                (op["code"] << opf["lsb"]) | (v << lsb), f"{op['name']} with {n} = {v}"))
+    return out
+
+
+def requirements(m):
+    """[(when_mask, when_value, need_mask, need_value, what)]: an instruction is ILLEGAL when
+    (instr & when_mask) == when_value and (instr & need_mask) != need_value: a sub-field
+    value that requires other fields to hold given values (the sub-field's "requires")."""
+    opf = field(m, "OP")
+    out = []
+    for op in sorted(m["opcodes"], key=lambda o: o["code"]):
+        for n in op.get("subfields", []):
+            s = subfield(m, n)
+            lsb = sub_abs_lsb(m, s)
+            for vn, need in s.get("requires", {}).items():
+                need_mask = need_value = 0
+                for fname, fv in need.items():
+                    f = field(m, fname)
+                    need_mask |= span(f["lsb"], f["width"])
+                    need_value |= fv << f["lsb"]
+                what = f"{op['name']} with {n} = {vn} requires " + ", ".join(f"{k} = {v}" for k, v in need.items())
+                out.append((span(opf["lsb"], opf["width"]) | span(lsb, s["width"]),
+                            (op["code"] << opf["lsb"]) | (s["values"][vn] << lsb), need_mask, need_value, what))
+    return out
+
+
+def index_widths(m):
+    """[(name, width, what)]: the bits of a block, word, flag and lane index, from the
+    params (each a power of two, checked)."""
+    p = {k: v["value"] for k, v in m["params"].items()}
+    return [("BlockIdxW", p["MaxBlocks"].bit_length() - 1, "a block index (below MaxBlocks)"),
+            ("WordIdxW", p["MaxWords"].bit_length() - 1, "a word index (below MaxWords)"),
+            ("FlagIdxW", p["NumFlags"].bit_length() - 1, "a flag index (below NumFlags)"),
+            ("LaneIdxW", p["LaneW"].bit_length() - 1, "a lane of a tile (below LaneW)")]
+
+
 def lut_value(expr, where):
     """Truth table of a flag function of a (flag FLAG_FA) and b (flag FLAG_FB):
     bit 2a + b is the function's value."""
@@ -203,6 +259,35 @@ def check(m, path):
                 raise MapError(f"{where}: {o['name']} has sub-field {n} of {s['of']}, a field it does not use")
         _no_overlap([(n, sub_abs_lsb(m, subfield(m, n)), subfield(m, n)["width"]) for n in subs], 64,
                     f"{where}: sub-fields of {o['name']}")
+    for s in m["subfields"]:
+        owners = [o for o in ops if s["name"] in o.get("subfields", [])]
+        for vn, need in s.get("requires", {}).items():
+            if vn not in s.get("values", {}):
+                raise MapError(f"{where}: {s['name']}.requires names {vn}, not one of its values")
+            for fname, fv in need.items():
+                f = field(m, fname)
+                if not 0 <= fv < 1 << f["width"]:
+                    raise MapError(f"{where}: {s['name']}.requires {vn}: {fname} = {fv} does not fit {f['width']} bits")
+                for o in owners:
+                    if fname not in o["uses"]:
+                        raise MapError(f"{where}: {s['name']}.requires {vn}: {o['name']} does not use field {fname}")
+    if len(illegal_patterns(m)) > MAX_ILLEGAL_PATTERNS:
+        raise MapError(f"{where}: {len(illegal_patterns(m))} undefined sub-field values to check (at most "
+                       f"{MAX_ILLEGAL_PATTERNS}): narrow the sub-fields that name few of their values")
+    for k in ("MaxBlocks", "MaxWords", "NumFlags", "LaneW"):
+        v = m["params"][k]["value"]
+        if v < 2 or v & (v - 1):
+            raise MapError(f"{where}: params.{k} = {v} must be a power of two (its index is a bit field)")
+    widths = {n: w for n, w, _ in index_widths(m)}
+    for fname, wname in (("D", "WordIdxW"), ("A", "WordIdxW"), ("B", "WordIdxW"), ("F", "FlagIdxW")):
+        if field(m, fname)["width"] != widths[wname]:
+            raise MapError(f"{where}: field {fname} is {field(m, fname)['width']} bits, the params give "
+                           f"{wname} = {widths[wname]}")
+    qw = {f["name"]: f["width"] for f in m["queue_entry"]["fields"]}
+    for fname, wname in (("block", "BlockIdxW"), ("word", "WordIdxW")):
+        if qw.get(fname) != widths[wname]:
+            raise MapError(f"{where}: queue_entry.{fname} is {qw.get(fname)} bits, the params give "
+                           f"{wname} = {widths[wname]}")
     named = {n for o in ops for n in o.get("subfields", [])}
     for s in m["subfields"]:
         if s["name"] not in named:

@@ -1,6 +1,7 @@
 """rtl/fmpp_pkg.sv: the map as a SystemVerilog package (members referred to by
 qualified name: yosys 0.23 cannot parse `import`, nor unpacked array parameters)."""
-from .model import BANNER, hexint, legal_values, op_reserved, reg_layout, register, reserved_segments
+from .model import (BANNER, hexint, illegal_patterns, index_widths, legal_values, op_reserved, reg_layout, register,
+                    requirements, reserved_segments)
 
 
 def _enum(o, name, width, items, comments=None):
@@ -26,6 +27,8 @@ def gen_sv(m):
     o.append(f"  parameter int unsigned DataW = {m['bus']['data_width']};")
     for k, v in m["params"].items():
         o.append(f"  parameter int unsigned {k} = {v['value']};  // {v['desc']}")
+    for name, width, what in index_widths(m):
+        o.append(f"  parameter int unsigned {name} = {width};  // bits of {what}")
     o.append(f"  parameter logic [31:0] Magic = 32'h{hexint(m['magic']):08X};")
     o.append(f"  parameter logic [15:0] VersionMajor = 16'd{m['version']['major']};")
     o.append(f"  parameter logic [15:0] VersionMinor = 16'd{m['version']['minor']};")
@@ -42,6 +45,12 @@ def gen_sv(m):
     o.append("  // Registers (byte offsets)")
     for r in m["registers"]:
         o.append(f"  parameter logic [AddrW-1:0] REG_{r['name']} = 32'h{hexint(r['offset']):08X};")
+    o.append("")
+    o.append("  // Register fields: [REG_<REGISTER>_<FIELD>_LSB +: REG_<REGISTER>_<FIELD>_W]")
+    for r in m["registers"]:
+        for f in r["fields"]:
+            o.append(f"  parameter int unsigned REG_{r['name']}_{f['name']}_LSB = {f['lsb']};")
+            o.append(f"  parameter int unsigned REG_{r['name']}_{f['name']}_W = {f['width']};")
     o.append("")
     o.append("  // Register layouts, bit 63 first; rsvd<lsb> members are reserved (read as 0)")
     for r in m["registers"]:
@@ -114,6 +123,25 @@ def gen_sv(m):
         row = "".join("1" if op["code"] in opset else "0" for _, opset in reversed(segs))
         rows.append(f"{len(segs)}'b{row}")
     o.append(f"  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {{{', '.join(rows)}}};")
+    o.append("")
+    pats, reqs = illegal_patterns(m), requirements(m)
+    o.append("  // The rest of the legality rules, as masks (entry k at [k*64 +: 64]; an empty table")
+    o.append("  // holds one entry that never applies): ILLEGAL when (instr & IllegalMask) ==")
+    o.append("  // IllegalValue (a sub-field value the map does not name), or when (instr & ReqWhenMask)")
+    o.append("  // == ReqWhenValue and (instr & ReqNeedMask) != ReqNeedValue (a sub-field value that")
+    o.append("  // requires other fields to hold given values).")
+    for what in [w for _, _, w in pats] + [r[4] for r in reqs]:
+        o.append(f"  //   {what}")
+    o.append(f"  parameter int unsigned NumIllegal = {len(pats)};")
+    rows = pats or [(0, 1, "")]
+    for i, name in enumerate(["IllegalMask", "IllegalValue"]):
+        body = ", ".join("64'h%016X" % r[i] for r in reversed(rows))
+        o.append(f"  parameter logic [{len(rows)}*64-1:0] {name} = {{{body}}};")
+    o.append(f"  parameter int unsigned NumRequires = {len(reqs)};")
+    rows = reqs or [(0, 1, 0, 0, "")]
+    for i, name in enumerate(["ReqWhenMask", "ReqWhenValue", "ReqNeedMask", "ReqNeedValue"]):
+        body = ", ".join("64'h%016X" % r[i] for r in reversed(rows))
+        o.append(f"  parameter logic [{len(rows)}*64-1:0] {name} = {{{body}}};")
     o.append("")
     o.append("endpackage")
     o.append("/* verilator lint_on UNUSEDPARAM */")

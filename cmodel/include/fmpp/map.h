@@ -32,6 +32,10 @@ inline constexpr unsigned kLaneW = 64;  // blocks per tile (lanes of one bit-pla
 inline constexpr unsigned kMaxWords = 64;  // largest NumWords (word fields are 6 bits)
 inline constexpr unsigned kMaxBlocks = 65536;  // largest NumBlocks (PLANES window holds 1024 tiles)
 inline constexpr unsigned kQueueDepth = 16;  // instruction queue entries
+inline constexpr unsigned kBlockIdxW = 16;  // bits of a block index (below MaxBlocks)
+inline constexpr unsigned kWordIdxW = 6;  // bits of a word index (below MaxWords)
+inline constexpr unsigned kFlagIdxW = 3;  // bits of a flag index (below NumFlags)
+inline constexpr unsigned kLaneIdxW = 6;  // bits of a lane of a tile (below LaneW)
 inline constexpr uint32_t kMagic = 0x464D5050u;
 inline constexpr uint16_t kVersionMajor = 1;
 inline constexpr uint16_t kVersionMinor = 0;
@@ -169,6 +173,27 @@ inline constexpr uint64_t kOpReserved[kNumOpcodes] = {
     0x00FFFFC0FFFFFEF0ull,  // FLAGOP
     0x00FC0FC000000000ull,  // CMP
 };
+// The rest of the legality rules besides reserved bits and word ranges, as masks: an
+// instruction is ILLEGAL when (raw & mask) == value for an IllegalPattern (an opcode's
+// sub-field holding a value the map does not name), or when (raw & when_mask) ==
+// when_value and (raw & need_mask) != need_value for a Requirement (a sub-field value
+// that requires other fields to hold given values).
+struct IllegalPattern {
+  uint64_t mask, value;
+};
+inline constexpr unsigned kNumIllegalPatterns = 3;
+inline constexpr IllegalPattern kIllegalPatterns[kNumIllegalPatterns > 0 ? kNumIllegalPatterns : 1] = {
+    {0xF800000300000000ull, 0x1000000300000000ull},  // REF with REF_FN = 3
+    {0xF800000300000000ull, 0x1800000300000000ull},  // FUNC with FUNC_FN = 3
+    {0xF800000300000000ull, 0x7000000300000000ull},  // CMP with CMP_FN = 3
+};
+struct Requirement {
+  uint64_t when_mask, when_value, need_mask, need_value;
+};
+inline constexpr unsigned kNumRequirements = 1;
+inline constexpr Requirement kRequirements[kNumRequirements > 0 ? kNumRequirements : 1] = {
+    {0xF800000400000000ull, 0x1000000400000000ull, 0x0003F00000000000ull, 0x0000000000000000ull},  // REF with REF_PART = ADDR requires A = 0
+};
 
 // Sub-fields: bit positions inside the field named in the comment (get/put apply to that
 // field's value); the values of those that name them, and k<Name>Legal with bit v set
@@ -176,7 +201,7 @@ inline constexpr uint64_t kOpReserved[kNumOpcodes] = {
 inline constexpr BitField kRefFn{0, 2};  // within X: how the match combines with flag REF_FS
 enum class RefFn : uint8_t { kThrough = 0, kAnd = 1, kOr = 2 };
 inline constexpr uint32_t kRefFnLegal = 0x7;
-inline constexpr BitField kRefPart{2, 1};  // within X: what is matched: word A (DATA) or the block index (ADDR; A must be 0)
+inline constexpr BitField kRefPart{2, 1};  // within X: what is matched: word A (DATA) or the block index (ADDR)
 enum class RefPart : uint8_t { kData = 0, kAddr = 1 };
 inline constexpr uint32_t kRefPartLegal = 0x3;
 inline constexpr BitField kRefFs{3, 3};  // within X: source flag combined with the match

@@ -87,9 +87,8 @@ class GeneralForm : public RayForm {
     // No tmin: a quotient far below every Q, so that Q >= Qmin is never in doubt.
     const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
     dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
-    // The number of the excluded triangle's broadcast in this pass, 0 for none.
-    const auto excluded = broadcast_of_.find(r.exclude);
-    dev.write_word(b, kExcl, excluded == broadcast_of_.end() ? 0u : number_of[excluded->second]);
+    const auto excl = broadcast_of_.find(r.exclude);  // its number in this pass, 0 for none
+    dev.write_word(b, kExcl, excl == broadcast_of_.end() ? 0u : number_of[excl->second]);
   }
 
   void init(Program& p) const override {

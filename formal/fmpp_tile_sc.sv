@@ -1,0 +1,337 @@
+// The tile of the single-cycle FMPP array (formal/fmpp_array_sc.sv): fmpp_tile as it was
+// before the pipeline, the reference of the pipelined tile in formal runs. Only its
+// coverage points, assertions and Verilator pragmas are left out.
+module fmpp_tile_sc #(
+  parameter int unsigned Lanes    = 64,
+  parameter int unsigned NumWords = 32
+) (
+  input  logic                         clk_i,
+  // Active-low reset, sampled synchronously by every flop; only the assertions'
+  // `disable iff` uses it asynchronously (hence the lint waiver).
+  /* verilator lint_off SYNCASYNCNET */
+  input  logic                         rst_ni,
+  /* verilator lint_on SYNCASYNCNET */
+  // Index of lane 0 (a multiple of LaneW). Public so that Verilator keeps it a
+  // variable instead of folding each tile's constant into its own copy of the code.
+  input  logic [31:0]                  base_i,
+
+  // Execute bus: the queue entry popped this cycle (state changes at the clock edge)
+  input  logic                         exec_i,      // an entry executes this cycle
+  input  fmpp_pkg::qkind_e             kind_i,
+  input  logic [fmpp_pkg::F_OP_W-1:0]  op_i,        // fmpp_pkg::opcode_e
+  input  logic [fmpp_pkg::F_F_W-1:0]   f_i,
+  input  logic [fmpp_pkg::F_D_W-1:0]   d_i,
+  input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
+  input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
+  input  logic [fmpp_pkg::F_X_W-1:0]   x_i,         // sub-fields by opcode (fmpp_pkg::REF_FN_LSB, ...)
+  input  logic [fmpp_pkg::F_IMM_W-1:0] imm_i,
+  input  logic [31:0]                  mask_i,
+  input  logic [15:0]                  hw_block_i,  // block of a window write
+  input  logic [3:0]                   hw_strb_i,
+  input  logic [31:0]                  hw_data_i,
+  input  logic                         flagop_any_i, // FLAGOP: some block in the array has v = 1
+  output logic                         flagop_any_o, // FLAGOP: some block in this tile has v = 1
+
+  // Host read port (combinational, evaluated only for the addressed tile)
+  input  logic                         rd_en_i,     // a window read is being requested
+  input  fmpp_pkg::rkind_e             rd_kind_i,
+  input  logic [15:0]                  rd_block_i,  // block (WORD, FLAGS) or tile (PLANE)
+  input  logic [5:0]                   rd_word_i,
+  input  logic [2:0]                   rd_flag_i,
+  output logic [63:0]                  rd_data_o,
+
+  // Responders over SEL and the overflow summary (only evaluated when resp_en_i)
+  input  logic                         resp_en_i,
+  output logic                         sel_any_o,
+  output logic [31:0]                  sel_count_o,
+  output logic [5:0]                   sel_first_o,
+  output logic                         ovf_any_o
+);
+
+  localparam int unsigned W  = fmpp_pkg::WordW;
+  localparam int unsigned NF = fmpp_pkg::NumFlags;
+  localparam int unsigned FC = fmpp_pkg::FlagC;
+  localparam int unsigned FV = fmpp_pkg::FlagV;
+  // Word fields are F_D_W bits; the push check guarantees they are below NumWords.
+  localparam int unsigned WIdxW = (NumWords > 1) ? $clog2(NumWords) : 1;
+  // REF's source flag and FLAGOP's first flag share a multiplexer when the map puts them
+  // in the same bits of X (a constant: both selections below fold into one).
+  localparam bit FsIsFa = fmpp_pkg::REF_FS_LSB == fmpp_pkg::FLAG_FA_LSB;
+  // CMP's source flag likewise shares it when it sits where REF's does.
+  localparam bit CmpFsIsFs = fmpp_pkg::CMP_FS_LSB == fmpp_pkg::REF_FS_LSB;
+
+  typedef logic [W*Lanes-1:0]  word_t;   // one word of every lane, plane k at [k*Lanes +: Lanes]
+  typedef logic [NF*Lanes-1:0] flags_t;  // flag f of every lane at [f*Lanes +: Lanes]
+  typedef logic [Lanes-1:0]    lane_t;
+
+  // State. Words have no reset (memory); flags reset to 0 (nothing selected).
+  word_t  mem_q [NumWords];
+  flags_t flag_q;
+  flags_t flag_d;
+
+  word_t opa, opb, opd;
+  word_t alu_r;
+  lane_t alu_c, alu_v, alu_ge;
+  logic  alu_wr_c, alu_wr_v;
+  word_t wr_data;
+  logic  wr_en;
+
+  assign opa = mem_q[a_i[WIdxW-1:0]];
+  assign opb = mem_q[b_i[WIdxW-1:0]];
+  assign opd = mem_q[d_i[WIdxW-1:0]];
+  if (WIdxW < 6) begin : g_unused_hi
+    logic unused_hi;
+    assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
+                         d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
+  end
+
+  fmpp_alu #(.Lanes(Lanes)) u_alu (
+    .op_i    (op_i),
+    .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
+    .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
+    .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
+    .imm_i   (imm_i),
+    .a_i     (opa),
+    .b_i     (opb),
+    .d_i     (opd),
+    .r_o     (alu_r),
+    .carry_o (alu_c),
+    .ovf_o   (alu_v),
+    .wr_c_o  (alu_wr_c),
+    .wr_v_o  (alu_wr_v),
+    .ge_o    (alu_ge)
+  );
+
+  // Selections every instruction needs, computed once per clock. (Written as loops
+  // rather than functions: Verilator names function temporaries per call site, which
+  // would stop it from sharing one C++ body among the tiles.)
+  lane_t pred;         // flag F: the predicate
+  lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
+  lane_t flag_b;       // FLAGOP: flag FLAG_FB
+  lane_t hw_lane_sel;  // one-hot lane of a window write (the word line)
+  lane_t rd_lane_sel;  // one-hot lane of a window read
+  lane_t rd_plane;     // flag rd_flag_i of every lane
+  logic  hw_sel;       // the window write is for this tile
+  logic  rd_sel;       // the window read is for this tile
+  logic [5:0] hw_lane, rd_lane;
+  assign hw_sel  = hw_block_i[15:6] == base_i[15:6];
+  assign hw_lane = hw_block_i[5:0];
+  assign rd_sel  = rd_en_i && (rd_kind_i == fmpp_pkg::RK_PLANE ? rd_block_i[9:0] == base_i[15:6]
+                                                              : rd_block_i[15:6] == base_i[15:6]);
+  assign rd_lane = rd_block_i[5:0];
+  logic [fmpp_pkg::REF_FS_W-1:0]  fa_idx;
+  logic [fmpp_pkg::FLAG_FB_W-1:0] fb_idx;
+  always_comb begin
+    fa_idx = x_i[fmpp_pkg::REF_FS_LSB +: fmpp_pkg::REF_FS_W];
+    if (!FsIsFa && op_i == fmpp_pkg::OP_FLAGOP) fa_idx = x_i[fmpp_pkg::FLAG_FA_LSB +: fmpp_pkg::FLAG_FA_W];
+    if (!CmpFsIsFs && op_i == fmpp_pkg::OP_CMP) fa_idx = x_i[fmpp_pkg::CMP_FS_LSB +: fmpp_pkg::CMP_FS_W];
+  end
+  assign fb_idx = x_i[fmpp_pkg::FLAG_FB_LSB +: fmpp_pkg::FLAG_FB_W];
+  always_comb begin
+    pred = '0;
+    flag_a = '0;
+    flag_b = '0;
+    rd_plane = '0;
+    for (int k = 0; k < NF; k++) begin
+      if (f_i == 3'(k))       pred     = flag_q[k*Lanes +: Lanes];
+      if (fa_idx == 3'(k))    flag_a   = flag_q[k*Lanes +: Lanes];
+      if (fb_idx == 3'(k))    flag_b   = flag_q[k*Lanes +: Lanes];
+      if (rd_flag_i == 3'(k)) rd_plane = flag_q[k*Lanes +: Lanes];
+    end
+    for (int l = 0; l < Lanes; l++) begin
+      hw_lane_sel[l] = hw_lane == 6'(l);
+      rd_lane_sel[l] = rd_lane == 6'(l);
+    end
+  end
+
+  // Bit k of every lane's block index (the ROM address part): low bits from the lane
+  // number, high bits from base_i. Constant for a given tile.
+  word_t index;
+  always_comb begin
+    for (int k = 0; k < W; k++) begin
+      for (int l = 0; l < Lanes; l++) begin
+        index[k*Lanes + l] = (k < 6) ? ((l >> k) & 1) == 1 : base_i[k];
+      end
+    end
+  end
+
+  // FLAGOP value: lut[2 fa + fb] in every lane (lut = FLAG_LUT).
+  lane_t flagop_v;
+  logic [fmpp_pkg::FLAG_LUT_W-1:0] lut;
+  assign lut = imm_i[fmpp_pkg::FLAG_LUT_LSB +: fmpp_pkg::FLAG_LUT_W];
+  always_comb begin
+    flagop_v = '0;
+    if (exec_i && kind_i == fmpp_pkg::QE_INSTR && op_i == fmpp_pkg::OP_FLAGOP) begin
+      flagop_v = ({Lanes{lut[0]}} & ~flag_a & ~flag_b) | ({Lanes{lut[1]}} & ~flag_a & flag_b) |
+                 ({Lanes{lut[2]}} &  flag_a & ~flag_b) | ({Lanes{lut[3]}} &  flag_a & flag_b);
+    end
+  end
+  assign flagop_any_o = |flagop_v;
+
+  // Next state. At most one flag plane (fl_dst) and one word (D) change per clock,
+  // besides the C and V updates of the ALU.
+  always_comb begin
+    lane_t match, src, fl_new;
+    logic [31:0] key_mask;
+    logic addr_part, fl_we;
+    logic [fmpp_pkg::F_F_W-1:0] fl_dst;
+    flag_d   = flag_q;
+    wr_en    = 1'b0;
+    wr_data  = opd;
+    match    = '0;
+    src      = '0;
+    fl_new   = '0;
+    fl_we    = 1'b0;
+    fl_dst   = f_i;
+    key_mask = mask_i;
+    addr_part = 1'b0;
+    if (exec_i) begin
+      case (kind_i)
+        fmpp_pkg::QE_INSTR: begin
+          case (op_i)
+            fmpp_pkg::OP_REF, fmpp_pkg::OP_SETSADR: begin
+              // Masked match: every unmasked bit of the source equals the key bit.
+              addr_part = (op_i == fmpp_pkg::OP_SETSADR) ||
+                          x_i[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR;
+              if (op_i == fmpp_pkg::OP_SETSADR) key_mask = '0;
+              match = '1;
+              for (int k = 0; k < W; k++) begin
+                if (!key_mask[k]) begin
+                  src = addr_part ? index[k*Lanes +: Lanes] : opa[k*Lanes +: Lanes];
+                  match = match & ~(src ^ {Lanes{imm_i[k]}});
+                end
+              end
+              fl_we = 1'b1;
+              if (op_i == fmpp_pkg::OP_SETSADR) begin
+                fl_dst = 3'(fmpp_pkg::FlagSEL);
+                fl_new = match;
+              end else begin
+                case (x_i[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W])
+                  fmpp_pkg::REF_FN_AND: fl_new = flag_a & match;
+                  fmpp_pkg::REF_FN_OR:  fl_new = flag_a | match;
+                  default:              fl_new = match;  // THROUGH
+                endcase
+              end
+            end
+            fmpp_pkg::OP_CMP: begin
+              // Signed compare with IMM on the ALU's subtracter; CMP_LT turns >= into <.
+              match = alu_ge ^ {Lanes{x_i[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT}};
+              fl_we = 1'b1;
+              case (x_i[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W])
+                fmpp_pkg::CMP_FN_AND: fl_new = flag_a & match;
+                fmpp_pkg::CMP_FN_OR:  fl_new = flag_a | match;
+                default:              fl_new = match;  // THROUGH
+              endcase
+            end
+            fmpp_pkg::OP_SETS, fmpp_pkg::OP_RESETS: begin
+              fl_we  = 1'b1;
+              fl_dst = 3'(fmpp_pkg::FlagSEL);
+              fl_new = (op_i == fmpp_pkg::OP_SETS) ? '1 : '0;
+            end
+            fmpp_pkg::OP_FLAGOP: begin
+              fl_we  = imm_i[fmpp_pkg::FLAG_ANY_LSB +: fmpp_pkg::FLAG_ANY_W] == '0 || flagop_any_i;
+              fl_new = flagop_v;
+            end
+            fmpp_pkg::OP_WRITES: begin
+              // Masked parallel write: masked bits and unselected blocks keep their value.
+              wr_en = 1'b1;
+              for (int k = 0; k < W; k++) begin
+                if (!mask_i[k]) begin
+                  wr_data[k*Lanes +: Lanes] = ({Lanes{imm_i[k]}} & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+                end
+              end
+            end
+            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_BITCOPY,
+            fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
+              wr_en = 1'b1;
+              for (int k = 0; k < W; k++) begin
+                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+              end
+              if (alu_wr_c) flag_d[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
+              if (alu_wr_v) flag_d[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
+            end
+            default: ;  // NOP and MASKSET do not touch the tile
+          endcase
+        end
+        fmpp_pkg::QE_WORD: begin
+          // One word of one block: the lane's word line, byte enables from the strobes.
+          if (hw_sel) begin
+            wr_en = 1'b1;
+            for (int k = 0; k < W; k++) begin
+              if (hw_strb_i[k / 8]) begin
+                wr_data[k*Lanes +: Lanes] = (opd[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);
+              end
+            end
+          end
+        end
+        fmpp_pkg::QE_FLAGS: begin
+          if (hw_sel) begin
+            for (int f = 0; f < NF; f++) begin
+              flag_d[f*Lanes +: Lanes] = (flag_q[f*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[f]}} & hw_lane_sel);
+            end
+          end
+        end
+        default: ;
+      endcase
+    end
+    if (fl_we) begin
+      for (int f = 0; f < NF; f++) begin
+        if (fl_dst == 3'(f)) flag_d[f*Lanes +: Lanes] = fl_new;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      flag_q <= '0;
+    end else begin
+      flag_q <= flag_d;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (wr_en) mem_q[d_i[WIdxW-1:0]] <= wr_data;
+  end
+
+  // Host read port: the addressed lane's word (or flags) gathered through a one-hot
+  // lane select, or a whole flag plane.
+  always_comb begin
+    word_t w;
+    rd_data_o = '0;
+    w = '0;
+    if (rd_sel) begin
+      case (rd_kind_i)
+        fmpp_pkg::RK_WORD: begin
+          w = mem_q[rd_word_i[WIdxW-1:0]];
+          for (int k = 0; k < W; k++) rd_data_o[k] = |(w[k*Lanes +: Lanes] & rd_lane_sel);
+        end
+        fmpp_pkg::RK_FLAGS: begin
+          for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
+        end
+        default: rd_data_o[Lanes-1:0] = rd_plane;  // RK_PLANE
+      endcase
+    end
+  end
+
+  // Responders: any, count and the lowest selected lane (isolate the lowest set bit,
+  // then encode it), and whether any lane has V.
+  always_comb begin
+    lane_t sel, lowest;
+    sel         = flag_q[fmpp_pkg::FlagSEL*Lanes +: Lanes];
+    lowest      = '0;
+    sel_any_o   = 1'b0;
+    sel_count_o = '0;
+    sel_first_o = '0;
+    ovf_any_o   = 1'b0;
+    if (resp_en_i) begin
+      sel_any_o   = |sel;
+      sel_count_o = $countones(sel);
+      lowest      = sel & (~sel + 1'b1);
+      for (int k = 0; k < 6; k++) sel_first_o[k] = |(lowest & index[k*Lanes +: Lanes]);
+      ovf_any_o   = |flag_q[FV*Lanes +: Lanes];
+    end
+  end
+
+
+
+endmodule
