@@ -274,8 +274,8 @@ def energy_markdown(d, ep, a):
     w(f"Mean toggle rate of the nets over the frame: {float(all1['mean_activity']):.3f} ({b1} x {w1}), "
       f"{float(all2['mean_activity']):.3f} ({b2} x {w2}) per clock. The netlist agrees with the RTL on "
       f"{100 * float(all1['check_agree']):.3f} % and {100 * float(all2['check_agree']):.3f} % of flip-flop bits and clocks "
-      "(each named flip-flop's computed D against its traced next Q; where they differ the smaller netlist's responders "
-      "see fewer blocks than the traced 64)." +
+      "(each named flip-flop's computed D against its traced next Q; where they differ, the smaller netlist lacks blocks "
+      "of the traced 64-block machine, which the host's traffic still addresses and its responders would count)." +
       (f" Of the flip-flops, {fmt(int(all1['flops_traced']))} of {fmt(int(all1['flops']))} ({b1} x {w1}) and "
        f"{fmt(int(all2['flops_traced']))} of {fmt(int(all2['flops']))} ({b2} x {w2}) are read from the trace by their "
        "RTL names; the others (left without a name by synthesis, or per-tile ones that depend on the lane count) "
