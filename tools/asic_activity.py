@@ -8,9 +8,13 @@ each pin's activity given with set_power_pin_activity. This tool computes it:
    gives, for every clock cycle, the value of every register and every input port
    (sampled at the end of the cycle, just before the rising edge).
 2. Every flip-flop of the netlist is matched by name to its RTL register bit (yosys keeps
-   register names through synthesis); a flip-flop with no RTL name gets Q(t) = D(t-1),
-   iterated. With --lanes the tile's lane-indexed registers (word storage, flags) of a
-   smaller netlist take lanes 0..B-1 of the traced machine's --trace-lanes lanes.
+   register names through synthesis, or names the register's output after a wire it drives,
+   such as the tile port it feeds). With --lanes the tile's lane-indexed registers (word
+   storage, flags, the pipeline's operand registers: --lane-regs) of a smaller netlist take
+   lanes 0..B-1 of the traced machine's --trace-lanes lanes; the tile's lane-independent
+   registers (--tile-regs) are read as traced. A flip-flop with no RTL name, a per-tile one
+   that depends on the lane count, or one whose name the trace lacks gets Q(t) = D(t-1),
+   iterated; these are counted by reason and listed by register (stderr and the JSON).
 3. The combinational cells are evaluated from those values with each cell's Liberty
    function, all cycles at once (one Python integer per net, bit t = cycle t): a
    zero-delay, cycle-based simulation (no glitches).
@@ -28,6 +32,26 @@ import re
 import sys
 
 from asic_netlist import Fail, Trace, compile_function, norm, read_liberty, read_netlist, vcd_stream  # noqa: F401
+
+
+LANE_REGS = r"\.u_tile\.(mem_q\[\d+\]|flag_q|opa_q|opb_q|opa|opb)$"
+TILE_REGS = r"\.u_tile\.(\w+_i|cin_q|fa_idx|fb_idx)$"
+TILE_SCOPE = r"\.u_tile\."
+SIM_UNNAMED = "no RTL name"
+SIM_TILE = "per-tile, lane-dependent or not listed (--lane-regs, --tile-regs)"
+
+
+def classify(base, lane_re, tile_re, tilereg_re):
+    """How a flip-flop's register (its Q net's name without the bit) is found:
+    'lane' (lane-indexed, remapped with --lanes), 'name' (read as traced), or why it is
+    simulated from its D input instead."""
+    if base.startswith("_") or "$" in base:
+        return SIM_UNNAMED
+    if lane_re.search(base):
+        return "lane"
+    if tile_re.search(base) and not tilereg_re.search(base):
+        return SIM_TILE
+    return "name"
 
 
 def self_test():
@@ -59,7 +83,23 @@ def self_test():
         except Fail:
             continue
         raise Fail(f"self-test: {bad!r} was accepted")
-    print(f"asic_activity.py self-test: {len(cases)} functions agree with their truth tables")
+    # how the pipelined RTL's flip-flops (as yosys names them) are found in the trace
+    regs = {
+        "u_array.g_tile[0].u_tile.mem_q[7]": "lane", "u_array.g_tile[0].u_tile.flag_q": "lane",
+        "u_array.g_tile[0].u_tile.opa": "lane", "u_array.g_tile[0].u_tile.opb_q": "lane",
+        "u_array.g_tile[0].u_tile.a_i": "name", "u_array.g_tile[0].u_tile.exec_i": "name",
+        "u_array.g_tile[0].u_tile.cin_q": "name", "u_array.g_tile[0].u_tile.fa_idx": "name",
+        "u_array.s2_x_q": "name", "u_queue.mem_q[3]": "name", "u_slave.u_err.ev_w_q": "name",
+        "u_array.g_tile[0].u_tile.ovf_any_o": SIM_TILE, "u_array.g_tile[0].u_tile.rd_data_o": SIM_TILE,
+        "_000216_": SIM_UNNAMED, "$auto$dff.cc:1": SIM_UNNAMED,
+    }
+    res = [re.compile(x) for x in (LANE_REGS, TILE_SCOPE, TILE_REGS)]
+    for reg, want in regs.items():
+        got = classify(reg, *res)
+        if got != want:
+            raise Fail(f"self-test: register {reg} is classed {got!r}, not {want!r}")
+    print(f"asic_activity.py self-test: {len(cases)} functions agree with their truth tables, "
+          f"{len(regs)} register names are classed as expected")
     return 0
 
 
@@ -75,8 +115,15 @@ def main():
     ap.add_argument("--scope", default="TOP.fmpp_top", help="the traced design's top scope")
     ap.add_argument("--lanes", type=int, default=0, help="blocks of the netlist's tile (when smaller than the trace's)")
     ap.add_argument("--trace-lanes", type=int, default=64, help="lanes of the traced tile")
-    ap.add_argument("--lane-regs", default=r"\.u_tile\.(mem_q\[\d+\]|flag_q)$", help="lane-indexed registers (regex)")
-    ap.add_argument("--tile-scope", default=r"\.u_tile\.", help="scope of per-tile signals (only --lane-regs are mapped)")
+    ap.add_argument("--lane-regs", default=LANE_REGS,
+                    help="lane-indexed registers (regex): the words, the flags and the stage-3 operands (opa and opb "
+                         "are the names yosys keeps for opa_q and opb_q)")
+    ap.add_argument("--tile-regs", default=TILE_REGS,
+                    help="per-tile registers whose value does not depend on the tile's lanes (regex; the tile's "
+                         "inputs from the array's stage registers, which yosys names after the tile's ports): "
+                         "read from the traced tile as they are")
+    ap.add_argument("--tile-scope", default=TILE_SCOPE,
+                    help="scope of per-tile signals (only --lane-regs and --tile-regs are read from the trace)")
     ap.add_argument("--pkg", required=True, help="fmpp_pkg.sv (opcode and queue-kind names)")
     ap.add_argument("--exec", default="u_array.g_tile[0].u_tile.exec_i")
     ap.add_argument("--kind", default="u_array.g_tile[0].u_tile.kind_i")
@@ -131,6 +178,31 @@ def main():
     known = set(q for _, _, _, q in seqs) | {find(p) for p, d in portbits.items() if d == "input"}
     known |= {"1'b0", "1'b1", "1'bx"}
     by_net = {net: (name, cell, o) for name, cell, o, net in comb}
+    # Nets that no cell drives (yosys leaves a few: the pass-through buffers of a kept
+    # module's unused outputs, e.g. a carry level's p_o after its driver was removed as
+    # dead). Held at 0, which is right only if nothing that counts reads them: every cell
+    # they reach, directly or through other cells, must be dead (no flip-flop's D, no
+    # output port beyond it); else the netlist is broken and this fails.
+    readers = {}
+    for name, cell, o, net in comb:
+        for p in fcache[(cell, o)][0]:
+            readers.setdefault(inst_conns[name][p], []).append(net)
+    undriven = sorted(n for n in readers if n not in by_net and n not in known)
+    reach, todo = set(undriven), list(undriven)
+    while todo:
+        for out in readers.get(todo.pop(), []):
+            if out not in reach:
+                reach.add(out)
+                todo.append(out)
+    live = {d for _, _, d, _ in seqs} | {find(p) for p, d in portbits.items() if d == "output"}
+    hit = sorted(reach & live)
+    if hit:
+        raise Fail(f"undriven nets {undriven[:5]} reach flip-flops or outputs ({hit[:5]}): the netlist is broken")
+    dead = len(reach) - len(undriven)
+    if undriven:
+        print(f"{len(undriven)} undriven nets read only by {dead} dead cell outputs (held at 0): "
+              + ", ".join(undriven[:8]) + (" ..." if len(undriven) > 8 else ""), file=sys.stderr)
+    known |= set(undriven)
     sys.setrecursionlimit(1000000)
     done = set(known)
     for net0 in by_net:
@@ -155,26 +227,22 @@ def main():
                 order.append((net, fcache[(cell, o)][1], [inst_conns[name][p] for p in ins]))
                 stack.pop()
 
-    # the flip-flops' RTL names
+    # the flip-flops' RTL names. A flip-flop not read from the trace is simulated from its D
+    # input (Q(t) = D(t-1)); each one is counted under its reason and listed by register.
     lane_re, tile_re = re.compile(a.lane_regs), re.compile(a.tile_scope)
+    tilereg_re = re.compile(a.tile_regs)
     flop_src = {}   # q net -> (trace signal, bit) or None
+    why_sim = {}    # q net -> why it is simulated, not read from the trace
     wanted = set()
     bitname = re.compile(r"^(.*)\[(\d+)\]$")
-    widths_nl = {}
-    for _, _, _, q in seqs:
-        m = bitname.match(q)
-        if m:
-            widths_nl[m.group(1)] = max(widths_nl.get(m.group(1), 0), int(m.group(2)) + 1)
     for _, _, _, q in seqs:
         m = bitname.match(q)
         base, bit = (m.group(1), int(m.group(2))) if m else (q, 0)
-        if base.startswith("_") or "$" in base:
-            flop_src[q] = None
+        how = classify(base, lane_re, tile_re, tilereg_re)
+        if how not in ("lane", "name"):
+            flop_src[q], why_sim[q] = None, how
             continue
-        if tile_re.search(base) and not lane_re.search(base):
-            flop_src[q] = None
-            continue
-        if a.lanes and lane_re.search(base):
+        if a.lanes and how == "lane":
             ln = a.lanes
             bit = (bit // ln) * a.trace_lanes + (bit % ln)
         full = a.scope + "." + base
@@ -194,13 +262,25 @@ def main():
     tr = Trace(a.fst, wanted)
     for s in list(flop_src):
         if flop_src[s] and flop_src[s][0] in tr.missing:
-            flop_src[s] = None
+            flop_src[s], why_sim[s] = None, "its name is not in the trace"
+        elif flop_src[s] and flop_src[s][1] >= tr.widths[flop_src[s][0]]:
+            raise Fail(f"flip-flop {s} maps to bit {flop_src[s][1]} of {flop_src[s][0]}, which has "
+                       f"{tr.widths[flop_src[s][0]]} bits in the trace (--lanes, --trace-lanes, --lane-regs?)")
     miss_in = [s for s in in_src.values() if s[0] in tr.missing]
     if miss_in or any(s in tr.missing for s in cls_sig):
         raise Fail(f"trace lacks inputs or class signals: {sorted(set(x[0] for x in miss_in))[:5]} {tr.missing[:5]}")
     unmapped = [q for q, s in flop_src.items() if s is None]
-    print(f"{top}: {len(insts)} cells, {len(seqs)} flip-flops ({len(seqs) - len(unmapped)} named after RTL registers, "
+    simulated = {}  # reason -> register (bits stripped) -> flip-flops
+    for q in unmapped:
+        m = bitname.match(q)
+        reg = m.group(1) if m and not q.startswith("_") else q
+        simulated.setdefault(why_sim[q], {})
+        simulated[why_sim[q]][reg] = simulated[why_sim[q]].get(reg, 0) + 1
+    print(f"{top}: {len(insts)} cells, {len(seqs)} flip-flops ({len(seqs) - len(unmapped)} read from the trace, "
           f"{len(unmapped)} simulated from their D input), {len(order)} combinational outputs", file=sys.stderr)
+    for why, regs in sorted(simulated.items()):
+        print(f"  simulated, {why}: {sum(regs.values())} flip-flops: " +
+              ", ".join(f"{r} ({n})" for r, n in sorted(regs.items())), file=sys.stderr)
 
     allnets = [net for net, _, _ in order] + [q for _, _, _, q in seqs] + list(in_src)
     classes = ["idle"] + [kinds[k] for k in sorted(kinds) if kinds[k] != "INSTR"] + [opnames[k] for k in sorted(opnames)]
@@ -209,6 +289,8 @@ def main():
     ones = {n: [0] * len(classes) for n in allnets}
     ccount = [0] * len(classes)
     check_ok = check_all = 0
+    check_regs = {}  # register -> bits and clocks where the netlist's D differs from the traced next Q
+    unsettled = 0   # chunks whose simulated flip-flops did not settle
     prev_last = {}
     prev_cls_last = None
     total = 0
@@ -241,6 +323,8 @@ def main():
             return int.from_bytes(np.packbits(col, bitorder="little").tobytes(), "little")
         colcache = {}
         val = {"1'b0": 0, "1'b1": M, "1'bx": 0}
+        for net in undriven:
+            val[net] = 0
         for net, (sig, bit) in in_src.items():
             val[net] = column(sig, bit)
         for name, cell, d, q in seqs:
@@ -274,13 +358,18 @@ def main():
             if not changed:
                 break
         else:
-            print(f"warning: {changed} unnamed flip-flops still changing after 12 rounds", file=sys.stderr)
+            unsettled += 1
+            print(f"warning: {changed} simulated flip-flops still changing after 12 rounds", file=sys.stderr)
         # check: D(t) of the named flip-flops equals their traced Q(t+1)
         for _, _, d, q in seqs:
             if flop_src[q] is not None and T > 1:
                 diff = (val[d] ^ (val[q] >> 1)) & ((1 << (T - 1)) - 1)
                 check_all += T - 1
-                check_ok += T - 1 - diff.bit_count()
+                nd = diff.bit_count()
+                check_ok += T - 1 - nd
+                if nd:
+                    reg = flop_src[q][0][len(a.scope) + 1:]
+                    check_regs[reg] = check_regs.get(reg, 0) + nd
         # toggles: between the previous chunk's last cycle and this one's, and within
         flops = set(q for _, _, _, q in seqs)
         for n in allnets:
@@ -312,6 +401,9 @@ def main():
             pins_of.setdefault(n, []).append(f"{name}/{p}")
     summary = {"cycles": total, "classes": {c: ccount[i] for i, c in enumerate(classes) if ccount[i]},
                "flops": len(seqs), "flops_named": len(seqs) - len(unmapped), "check_bits": check_all,
+               "flops_simulated": simulated, "unsettled_chunks": unsettled,
+               "undriven_nets": len(undriven), "dead_cell_outputs": dead,
+               "check_differ_by_register": dict(sorted(check_regs.items(), key=lambda x: -x[1])[:20]),
                "check_agree": check_ok, "netlist": a.netlist, "fst": a.fst, "lanes": a.lanes or None}
     inports = {find(p): p for p, d in portbits.items() if d == "input"}
 

@@ -117,7 +117,9 @@ def cmd_collect(a):
                                "seq_mw": "%.4f" % (1000 * r["power_sequential"][3]),
                                "comb_mw": "%.4f" % (1000 * r["power_combinational"][3]),
                                "mean_activity": "%.5f" % act["mean_activity"] if cls == "all" else "",
-                               "check_agree": "%.6f" % (act["check_agree"] / max(1, act["check_bits"])) if cls == "all" else ""})
+                               "check_agree": "%.6f" % (act["check_agree"] / max(1, act["check_bits"])) if cls == "all" else "",
+                               "flops": act["flops"] if cls == "all" else "",
+                               "flops_traced": act["flops_named"] if cls == "all" else ""})
         if not any(x["blocks"] == b and x["words"] == w for x in energyrows):
             raise ReportError(f"{size}: no OpenSTA power logs in {e}")
     render = os.path.join(a.dir, "energy", "render.json")

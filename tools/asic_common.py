@@ -143,7 +143,7 @@ COLUMNS = ["blocks", "words", "cells", "area_um2", "transistors", "flops", "buff
            "synth_cells", "synth_area_um2", "synth_transistors", "path_ns", "fmax_mhz", "levels", "power_mw", "power_seq_mw",
            "power_comb_mw", "latch_cells", "latch_area_um2", "latch_transistors", "latches", "crit_from", "crit_to"]
 ENERGY_COLUMNS = ["blocks", "words", "class", "cycles", "power_mw", "energy_pj", "internal_mw", "switching_mw",
-                  "leakage_mw", "seq_mw", "comb_mw", "mean_activity", "check_agree"]
+                  "leakage_mw", "seq_mw", "comb_mw", "mean_activity", "check_agree", "flops", "flops_traced"]
 PNR_COLUMNS = ["blocks", "words", "cells", "area_um2", "path_unplaced_ns", "fmax_unplaced_mhz", "power_unplaced_mw",
                "path_placed_ns", "fmax_placed_mhz", "power_placed_mw", "placed_nets", "placed_to",
                "path_routed_ns", "fmax_routed_mhz", "power_routed_mw", "routed_nets", "routed_to"]
