@@ -353,6 +353,12 @@ module fmpp_array #(
   if (NumBlocks < 1 || NumBlocks > fmpp_pkg::MaxBlocks) begin : g_bad_blocks
     $error("fmpp_array: NumBlocks = %0d outside [1, %0d]", NumBlocks, fmpp_pkg::MaxBlocks);
   end
+  // The tiles' 64-lane bit-plane indexing: a block's lane is its low 6 bits, its tile the
+  // bits above (compared with the tile's base_i), and the index bits 0-5 of a lane come
+  // from its lane number. All of that holds only for 64 lanes per tile.
+  if (fmpp_pkg::LaneW != 64) begin : g_bad_lane_width
+    $error("fmpp_array: the tiles' lane indexing assumes fmpp_pkg::LaneW = 64, not %0d", fmpp_pkg::LaneW);
+  end
   a_hw_block: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                (pop && !is_instr) |-> 32'(head_i.block) < NumBlocks)
     else $error("fmpp_array: window write to block %0d of %0d", head_i.block, NumBlocks);

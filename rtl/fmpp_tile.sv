@@ -14,13 +14,9 @@
 //   - host writes of one word or one block's flags (queued window writes).
 // It also answers the host read port and reports its share of the responders.
 //
-// The tile is deliberately not inlined by Verilator so that all full tiles share one
-// C++ body: a 4096-block build takes seconds and the simulation stays in the
-// instruction cache. For that the tile's code must not differ between instances:
-// it selects itself by comparing block numbers with base_i (no per-instance port
-// expressions), uses no functions (Verilator numbers their temporaries per call
-// site) and plain `case` (with --assert, `case` checks embed the instance
-// name); every case statement here has distinct constant items and a default.
+// Written so that Verilator gives all full tiles one C++ body (docs/architecture.md,
+// "One code for every tile"): no per-instance port expressions, no functions, and
+// `case` statements with distinct constant items and a default.
 module fmpp_tile #(
   parameter int unsigned Lanes    = 64,
   parameter int unsigned NumWords = 32
@@ -94,10 +90,9 @@ module fmpp_tile #(
   flags_t flag_q /*verilator public_flat_rd*/;
   flags_t flag_d;
 
-  // Operand registers (stage 2 -> 3). Word D, the flags and the mask are read in stage 3
-  // itself: every earlier entry has written them by then, so they need no forwarding.
-  // opb_q holds the ALU's addend (fmpp_alu_addend: B, not B or not IMM) and cin_q its
-  // carry-in, prepared in stage 2 so that stage 3's adder starts from registers.
+  // Operand registers (stage 2 -> 3); word D, the flags and the mask are read in stage 3,
+  // when every earlier entry has written them. opb_q is the ALU's addend (B, not B or not
+  // IMM) and cin_q its carry-in, made in stage 2 so that stage 3's adder starts from registers.
   word_t opa_q, opb_q;
   logic  cin_q;
   word_t opa, opb, opd;
@@ -116,10 +111,8 @@ module fmpp_tile #(
   // data, not from the memory (forwarding), so an entry may use its predecessor's result.
   assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
   assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-  // The addend is fmpp_alu_addend's function, written out here inside the clocked block so
-  // that a simulator computes it only when an entry is in stage 2 (as a module's continuous
-  // logic every tile evaluated it every clock); formal job pipe_1x4 checks it against the
-  // single-cycle array, which uses fmpp_alu_addend itself.
+  // The addend is fmpp_alu_addend's function, written inside the clocked block so that a
+  // simulator computes it only for an entry in stage 2 (formal job pipe_1x4 checks it).
   always_ff @(posedge clk_i) begin
     word_t opb_rd, addend;  // stage 2's B (forwarded or read) and the addend made from it
     if (opr_en_i) begin
@@ -157,9 +150,7 @@ module fmpp_tile #(
     .ge_o    (alu_ge)
   );
 
-  // Selections every instruction needs, computed once per clock. (Written as loops
-  // rather than functions: Verilator names function temporaries per call site, which
-  // would stop it from sharing one C++ body among the tiles.)
+  // Selections every instruction needs, once per clock (loops, not functions: see the top).
   lane_t pred;         // flag F: the predicate
   lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
   lane_t flag_b;       // FLAGOP: flag FLAG_FB
@@ -342,10 +333,8 @@ module fmpp_tile #(
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
   end
 
-  // Host read port: the addressed lane's word (or flags) gathered through a one-hot
-  // lane select, or a whole flag plane. Everything but the tile select sits inside it, so
-  // a tile that is not addressed does no work for it: the port follows the bus inputs
-  // combinationally, and the simulator evaluates it whenever they change.
+  // Host read port: the addressed lane's word (or flags) through a one-hot lane select, or a
+  // whole flag plane; all inside the tile select, so a tile not addressed does no work.
   always_comb begin
     word_t w;
     lane_t rd_lane_sel;
@@ -392,26 +381,18 @@ module fmpp_tile #(
 
   // Coverage (make coverage only: named cover points would give each tile its own code)
 `ifdef FMPP_COVERAGE
-  // A lane's adder carries out and overflows. Verilator 5.006 merges the iterations of
-  // this loop into one point per tile, so these say "some lane"; that every lane does
-  // is checked by the ALU's unit test (tests/rtl_units/alu_unit_test.cpp).
+  // Some lane's adder carries out and overflows (Verilator 5.006 merges the loop's
+  // iterations into one point per tile; every lane: tests/rtl_units/alu_unit_test.cpp).
   for (genvar l = 0; l < Lanes; l++) begin : g_cov_lane
     c_carry: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_c && pred[l] && alu_c[l]);
     c_ovf: cover property (@(posedge clk_i) exec_i && kind_i == fmpp_pkg::QE_INSTR && alu_wr_v && pred[l] && alu_v[l]);
   end
 `endif
 
-  // Elaboration check. (Run-time properties of the tile's inputs are asserted in
-  // fmpp_array: assertions here would carry each tile's name into its code.)
+  // Elaboration check (run-time properties of the tile's inputs: fmpp_array).
 `ifndef SYNTHESIS
   if (Lanes < 1 || Lanes > fmpp_pkg::LaneW) begin : g_bad_lanes
     $error("fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
-  end
-  // The tile's 64-lane bit-plane indexing: a block's lane is block[5:0], its tile is
-  // block[15:6] (compared with base_i[15:6]), and the index bits 0-5 of a lane come from
-  // its lane number. All of that holds only for 64 lanes per tile.
-  if (fmpp_pkg::LaneW != 64) begin : g_bad_lane_width
-    $error("fmpp_tile: the lane indexing assumes fmpp_pkg::LaneW = 64, not %0d", fmpp_pkg::LaneW);
   end
 `endif
 

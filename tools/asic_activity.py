@@ -31,8 +31,7 @@ import os
 import re
 import sys
 
-from asic_netlist import Fail, Trace, compile_function, norm, read_liberty, read_netlist, vcd_stream  # noqa: F401
-
+from asic_netlist import Fail, Trace, compile_cells, compile_function, read_liberty, read_netlist, undriven_nets
 
 LANE_REGS = r"\.u_tile\.(mem_q\[\d+\]|flag_q|opa_q|opb_q|opa|opb)$"
 TILE_REGS = r"\.u_tile\.(\w+_i|cin_q|fa_idx|fb_idx)$"
@@ -115,13 +114,10 @@ def main():
     ap.add_argument("--scope", default="TOP.fmpp_top", help="the traced design's top scope")
     ap.add_argument("--lanes", type=int, default=0, help="blocks of the netlist's tile (when smaller than the trace's)")
     ap.add_argument("--trace-lanes", type=int, default=64, help="lanes of the traced tile")
-    ap.add_argument("--lane-regs", default=LANE_REGS,
-                    help="lane-indexed registers (regex): the words, the flags and the stage-3 operands (opa and opb "
-                         "are the names yosys keeps for opa_q and opb_q)")
-    ap.add_argument("--tile-regs", default=TILE_REGS,
-                    help="per-tile registers whose value does not depend on the tile's lanes (regex; the tile's "
-                         "inputs from the array's stage registers, which yosys names after the tile's ports): "
-                         "read from the traced tile as they are")
+    ap.add_argument("--lane-regs", default=LANE_REGS, help="lane-indexed registers (regex): the words, the "
+                    "flags and the stage-3 operands (opa and opb: yosys's names for opa_q and opb_q)")
+    ap.add_argument("--tile-regs", default=TILE_REGS, help="per-tile registers that do not depend on the lanes "
+                    "(regex; the tile's inputs from the stage registers, named after its ports): read as traced")
     ap.add_argument("--tile-scope", default=TILE_SCOPE,
                     help="scope of per-tile signals (only --lane-regs and --tile-regs are read from the trace)")
     ap.add_argument("--pkg", required=True, help="fmpp_pkg.sv (opcode and queue-kind names)")
@@ -142,35 +138,7 @@ def main():
     if not opnames or "INSTR" not in kinds.values():
         raise Fail(f"{a.pkg}: no OP_ or QE_INSTR codes")
 
-    # cells: functions compiled once per cell type
-    comb, seqs = [], []
-    fcache = {}
-    drivers = {}
-    for name, cell, conns in insts:
-        info = lib[cell]
-        outs = [p for p, (d, f) in info["pins"].items() if d == "output"]
-        if info["seq"] is not None:
-            if info["seq"][0] != "ff" or info["seq"][4] != "CLK" or info["seq"][3] not in info["pins"]:
-                raise Fail(f"{cell}: only positive-edge D flip-flops are simulated (got {info['seq']})")
-            q = conns.get("Q")
-            d = conns.get(info["seq"][3])
-            if q is None or d is None:
-                raise Fail(f"{name}: flip-flop without D or Q")
-            seqs.append((name, cell, d, q))
-            drivers[q] = (name, "Q")
-            continue
-        for o in outs:
-            f = info["pins"][o][1]
-            if f is None:
-                raise Fail(f"{cell}.{o}: no function")
-            key = (cell, o)
-            if key not in fcache:
-                ins = [p for p, (d, _) in info["pins"].items() if d == "input"]
-                src = compile_function(f, ins)
-                fcache[key] = (ins, eval("lambda M, " + ", ".join("p_" + p for p in ins) + ": " + src))
-            if o in conns:
-                comb.append((name, cell, o, conns[o]))
-                drivers[conns[o]] = (name, o)
+    comb, seqs, fcache, drivers = compile_cells(insts, lib)
 
     # topological order of the combinational cells
     inst_conns = {name: conns for name, cell, conns in insts}
@@ -178,30 +146,7 @@ def main():
     known = set(q for _, _, _, q in seqs) | {find(p) for p, d in portbits.items() if d == "input"}
     known |= {"1'b0", "1'b1", "1'bx"}
     by_net = {net: (name, cell, o) for name, cell, o, net in comb}
-    # Nets that no cell drives (yosys leaves a few: the pass-through buffers of a kept
-    # module's unused outputs, e.g. a carry level's p_o after its driver was removed as
-    # dead). Held at 0, which is right only if nothing that counts reads them: every cell
-    # they reach, directly or through other cells, must be dead (no flip-flop's D, no
-    # output port beyond it); else the netlist is broken and this fails.
-    readers = {}
-    for name, cell, o, net in comb:
-        for p in fcache[(cell, o)][0]:
-            readers.setdefault(inst_conns[name][p], []).append(net)
-    undriven = sorted(n for n in readers if n not in by_net and n not in known)
-    reach, todo = set(undriven), list(undriven)
-    while todo:
-        for out in readers.get(todo.pop(), []):
-            if out not in reach:
-                reach.add(out)
-                todo.append(out)
-    live = {d for _, _, d, _ in seqs} | {find(p) for p, d in portbits.items() if d == "output"}
-    hit = sorted(reach & live)
-    if hit:
-        raise Fail(f"undriven nets {undriven[:5]} reach flip-flops or outputs ({hit[:5]}): the netlist is broken")
-    dead = len(reach) - len(undriven)
-    if undriven:
-        print(f"{len(undriven)} undriven nets read only by {dead} dead cell outputs (held at 0): "
-              + ", ".join(undriven[:8]) + (" ..." if len(undriven) > 8 else ""), file=sys.stderr)
+    undriven, dead = undriven_nets(comb, seqs, fcache, inst_conns, by_net, known, portbits, find)
     known |= set(undriven)
     sys.setrecursionlimit(1000000)
     done = set(known)

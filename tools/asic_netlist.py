@@ -3,6 +3,7 @@ compiled to Python, the yosys netlist, and the simulation's trace of register va
 """
 import re
 import subprocess
+import sys
 
 
 class Fail(Exception):
@@ -261,3 +262,63 @@ class Trace:
 
 
 # --- evaluation ------------------------------------------------------------------------
+
+
+def compile_cells(insts, lib):
+    """The netlist's cells with each output's Liberty function compiled once per cell type:
+    (comb [(instance, cell, output pin, net)], seqs [(instance, cell, D net, Q net)],
+    fcache {(cell, pin): (input pins, function)}, drivers {net: (instance, pin)})."""
+    comb, seqs, fcache, drivers = [], [], {}, {}
+    for name, cell, conns in insts:
+        info = lib[cell]
+        outs = [p for p, (d, f) in info["pins"].items() if d == "output"]
+        if info["seq"] is not None:
+            if info["seq"][0] != "ff" or info["seq"][4] != "CLK" or info["seq"][3] not in info["pins"]:
+                raise Fail(f"{cell}: only positive-edge D flip-flops are simulated (got {info['seq']})")
+            q = conns.get("Q")
+            d = conns.get(info["seq"][3])
+            if q is None or d is None:
+                raise Fail(f"{name}: flip-flop without D or Q")
+            seqs.append((name, cell, d, q))
+            drivers[q] = (name, "Q")
+            continue
+        for o in outs:
+            f = info["pins"][o][1]
+            if f is None:
+                raise Fail(f"{cell}.{o}: no function")
+            key = (cell, o)
+            if key not in fcache:
+                ins = [p for p, (d, _) in info["pins"].items() if d == "input"]
+                src = compile_function(f, ins)
+                fcache[key] = (ins, eval("lambda M, " + ", ".join("p_" + p for p in ins) + ": " + src))
+            if o in conns:
+                comb.append((name, cell, o, conns[o]))
+                drivers[conns[o]] = (name, o)
+    return comb, seqs, fcache, drivers
+
+
+def undriven_nets(comb, seqs, fcache, inst_conns, by_net, known, portbits, find):
+    """Nets that no cell drives (yosys leaves a few: the pass-through buffers of a kept
+    module's unused outputs, e.g. a carry level's p_o after its driver was removed as
+    dead): (the nets sorted, how many dead cell outputs they reach). They are held at 0, which is right only if nothing that counts reads
+    them: every cell they reach, directly or through other cells, must be dead (no
+    flip-flop's D, no output port beyond it); else the netlist is broken and this fails."""
+    readers = {}
+    for name, cell, o, net in comb:
+        for p in fcache[(cell, o)][0]:
+            readers.setdefault(inst_conns[name][p], []).append(net)
+    undriven = sorted(n for n in readers if n not in by_net and n not in known)
+    reach, todo = set(undriven), list(undriven)
+    while todo:
+        for out in readers.get(todo.pop(), []):
+            if out not in reach:
+                reach.add(out)
+                todo.append(out)
+    live = {d for _, _, d, _ in seqs} | {find(p) for p, d in portbits.items() if d == "output"}
+    hit = sorted(reach & live)
+    if hit:
+        raise Fail(f"undriven nets {undriven[:5]} reach flip-flops or outputs ({hit[:5]}): the netlist is broken")
+    if undriven:
+        print(f"{len(undriven)} undriven nets read only by {len(reach) - len(undriven)} dead cell outputs (held at 0): "
+              + ", ".join(undriven[:8]) + (" ..." if len(undriven) > 8 else ""), file=sys.stderr)
+    return undriven, len(reach) - len(undriven)
