@@ -27,7 +27,7 @@ PAPER_MHZ = 50.0  # the paper's clock
 FPGA_MHZ = gallery.fpga_mhz()
 ASIC_MHZ, ASIC_SIZE = gallery.asic_clock()
 # make asic's clock projected to the CPU's process node (tools/node_scale.py): labelled so.
-PROJ_MHZ, PROJ_LABEL = gallery.projected_clock()
+PROJ_MHZ, PROJ_LABEL = gallery.projected_clock(ASIC_MHZ)
 KINDS = ("primary", "shadow", "secondary")
 
 

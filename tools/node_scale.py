@@ -47,20 +47,24 @@ def energy_factor(row, vdd=None):
     return (row["e2"] * v + row["e1"]) * v + row["e0"]
 
 
-def project_mhz(mhz, node=CPU_NODE, table=None):
-    """A clock measured at 180 nm, projected to `node` at its nominal supply."""
+def _rows(node, table):
+    """(the measured node's row, node's row); exits naming the node if the table lacks it."""
     t = table or nodes()
     if node not in t:
-        sys.exit("node_scale: no row for node %s in %s" % (node, CSV))
-    return mhz * delay_factor(t[MEASURED_NODE]) / delay_factor(t[node])
+        sys.exit("node_scale: no row for node %s in %s (rows: %s)" % (node, CSV, ", ".join(sorted(t))))
+    return t[MEASURED_NODE], t[node]
+
+
+def project_mhz(mhz, node=CPU_NODE, table=None):
+    """A clock measured at 180 nm, projected to `node` at its nominal supply."""
+    m, n = _rows(node, table)
+    return mhz * delay_factor(m) / delay_factor(n)
 
 
 def project_energy(e, node=CPU_NODE, table=None):
     """An energy measured at 180 nm, projected to `node` at its nominal supply."""
-    t = table or nodes()
-    if node not in t:
-        sys.exit("node_scale: no row for node %s in %s" % (node, CSV))
-    return e * energy_factor(t[node]) / energy_factor(t[MEASURED_NODE])
+    m, n = _rows(node, table)
+    return e * energy_factor(n) / energy_factor(m)
 
 
 def label(node=CPU_NODE):
@@ -74,9 +78,7 @@ def main():
     ap.add_argument("--pj", type=float, help="an energy measured at 180 nm, in pJ")
     a = ap.parse_args()
     t = nodes()
-    if a.node not in t:
-        sys.exit("node_scale: no row for node %s in %s (rows: %s)" % (a.node, CSV, ", ".join(sorted(t))))
-    m, n = t[MEASURED_NODE], t[a.node]
+    m, n = _rows(a.node, t)
     print("180 nm at %.2f V -> %s nm (%s) at %.2f V: delay x %.4f, energy x %.5f, area x %.4f" % (
         m["vdd"], a.node, n["model"], n["vdd"], delay_factor(n) / delay_factor(m),
         energy_factor(n) / energy_factor(m), n["area_vs_180"]))

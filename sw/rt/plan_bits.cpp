@@ -84,8 +84,8 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
     std::mt19937_64 rng(0x5eed + 1);
     std::shuffle(order.begin(), order.end(), rng);
-    for (size_t b = 0; b < order.size(); b += b == 0 ? first : kChunk) {
-      const size_t e = std::min(order.size(), b + (b == 0 ? first : kChunk));
+    for (size_t b = 0, step = first; b < order.size(); b += step, step = kChunk) {
+      const size_t e = std::min(order.size(), b + step);
       std::vector<uint32_t> c(order.begin() + static_cast<std::ptrdiff_t>(b), order.begin() + static_cast<std::ptrdiff_t>(e));
       std::sort(c.begin(), c.end());  // frame order: coherent passes
       chunks.push_back(std::move(c));
