@@ -8,14 +8,15 @@ be zero (every field the opcode does not use, and every bit of a used X or IMM f
 that none of the opcode's sub-fields covers), range checks of the used word fields,
 the value lists of the sub-fields that have them, and the fields a sub-field value
 requires (the map's "requires": REF on the address part names word 0), each spelled
-as a condition on the instruction's bits. A sub-field belongs to the opcode whose name
-starts with the sub-field's prefix (REF_FN -> REF, BIT_I -> BITCOPY, FLAG_LUT ->
-FLAGOP): the RTL reads the opcodes' own lists instead.
+as a condition on the instruction's bits. A sub-field belongs to the opcodes whose
+description names it (REF_FN: REF; SHR_A: ADD, SUB and RSHIFT): the RTL reads the
+opcodes' own lists instead.
 
 Usage: gen_instr_ref.py --map rtl/fmpp_map.json --out build/formal/fmpp_instr_ref.sv
 """
 import argparse
 import json
+import re
 import sys
 
 
@@ -40,18 +41,17 @@ def main():
             fail(f"{args.map}: field {need} missing from 'fields'")
     word_fields = ("D", "A", "B")
     ops = m["opcodes"]
-    names = [o["name"] for o in ops]
 
-    def owner(sub_name):
-        prefix = sub_name.split("_")[0]
-        hits = [n for n in names if n.startswith(prefix)]
-        if len(hits) != 1:
-            fail(f"{args.map}: sub-field {sub_name} matches opcodes {hits}, expected exactly one")
-        return hits[0]
+    def owners(sub_name):
+        hits = [o["name"] for o in ops if re.search(rf"\b{sub_name}\b", o["desc"])]
+        if not hits:
+            fail(f"{args.map}: no opcode's description names sub-field {sub_name}")
+        return hits
 
     subs = {}
     for sf in m["subfields"]:
-        subs.setdefault(owner(sf["name"]), []).append(sf)
+        for name in owners(sf["name"]):
+            subs.setdefault(name, []).append(sf)
 
     lines = []
     for o in ops:

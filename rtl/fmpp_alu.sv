@@ -1,6 +1,6 @@
 // fmpp_alu: the block ALU of the FMPP in one clock, for the Lanes blocks of a tile:
-// fmpp_alu_addend (the second operand as the adder takes it) feeding fmpp_alu_exec (the
-// operations). The pipelined tile uses the two parts in consecutive stages; this
+// fmpp_alu_addend (the operands as the execute stage takes them: A through the shifter,
+// the addend) feeding fmpp_alu_exec (the operations). The pipelined tile uses the two parts in consecutive stages; this
 // composition is the ALU's unit under test (tests/rtl_units) and the single-cycle
 // reference's (formal/fmpp_array_sc.sv). Operands and results are in bit-plane form: bit k
 // of the word of lane l is bit l of plane k, a[k*Lanes +: Lanes].
@@ -14,7 +14,7 @@ module fmpp_alu #(
   input  logic [fmpp_pkg::FUNC_FN_W-1:0]    fn_i,      // FUNC: AND / OR / XOR
   input  logic [fmpp_pkg::BIT_I_W-1:0]      bit_i_i,   // BITCOPY source bit
   input  logic [fmpp_pkg::BIT_J_W-1:0]      bit_j_i,   // BITCOPY destination bit
-  input  logic [fmpp_pkg::F_IMM_W-1:0]      imm_i,     // CMP: the constant compared with
+  input  logic [fmpp_pkg::F_IMM_W-1:0]      imm_i,     // CMP: the constant compared with; ADD/SUB/RSHIFT: SHR_A
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  a_i,       // word A of every lane
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  b_i,       // word B of every lane
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
@@ -25,12 +25,14 @@ module fmpp_alu #(
   output logic                              wr_v_o,    // this op may set V
   output logic [Lanes-1:0]                  ge_o       // CMP: word A >= IMM (signed)
 );
-  logic [fmpp_pkg::WordW*Lanes-1:0] y;
+  logic [fmpp_pkg::WordW*Lanes-1:0] a, y;
   logic cin;
 
-  fmpp_alu_addend #(.Lanes(Lanes)) u_addend (.op_i(op_i), .imm_i(imm_i), .b_i(b_i), .y_o(y), .cin_o(cin));
+  fmpp_alu_addend #(.Lanes(Lanes)) u_addend (
+    .op_i(op_i), .imm_i(imm_i), .a_i(a_i), .b_i(b_i), .a_o(a), .y_o(y), .cin_o(cin)
+  );
   fmpp_alu_exec #(.Lanes(Lanes)) u_exec (
-    .op_i(op_i), .fn_i(fn_i), .bit_i_i(bit_i_i), .bit_j_i(bit_j_i), .a_i(a_i), .y_i(y), .cin_i(cin),
+    .op_i(op_i), .fn_i(fn_i), .bit_i_i(bit_i_i), .bit_j_i(bit_j_i), .a_i(a), .y_i(y), .cin_i(cin),
     .d_i(d_i), .r_o(r_o), .carry_o(carry_o), .ovf_o(ovf_o), .wr_c_o(wr_c_o), .wr_v_o(wr_v_o), .ge_o(ge_o)
   );
 

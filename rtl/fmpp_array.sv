@@ -343,6 +343,10 @@ module fmpp_array #(
   c_cmp_or_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
   c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && flagop_any);
   c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && !flagop_any);
+  c_shr_add_max: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_ADD && &imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
+  c_shr_sub: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SUB && |imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
+  c_shr_rshift: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_RSHIFT && |imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
+  c_shr_fwd: cover property (@(posedge clk_i) s3_wr_word && ex_instr && s2_rd_a && s2_a_q == s3_d_q && s2_op_q == fmpp_pkg::OP_ADD && |s2_imm_q[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
   c_word_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_WORD);
   c_flags_write: cover property (@(posedge clk_i) retire && s3_kind_q == fmpp_pkg::QE_FLAGS);
   c_gap_stall: cover property (@(posedge clk_i) head_valid_i && gap_q != '0);

@@ -20,7 +20,7 @@ package fmpp_pkg;
   parameter int unsigned LaneIdxW = 6;  // bits of a lane of a tile (below LaneW)
   parameter logic [31:0] Magic = 32'h464D5050;
   parameter logic [15:0] VersionMajor = 16'd1;
-  parameter logic [15:0] VersionMinor = 16'd0;
+  parameter logic [15:0] VersionMinor = 16'd1;
 
   // Flags with a fixed meaning
   parameter int unsigned FlagSEL = 0;  // selection flag: the CAM responder tag and the default predicate
@@ -176,11 +176,11 @@ package fmpp_pkg;
     OP_MASKSET = 5'd1,  // mask <- imm; a 1 bit masks that bit out of REF matches and protects it from WRITES
     OP_REF = 5'd2,  // masked match of word A (or of the block index, by REF_PART) against IMM, combined with flag REF_FS by REF_FN into flag F, in every block
     OP_FUNC = 5'd3,  // D <- A op B, op = FUNC_FN (AND, OR, XOR), where flag F is set
-    OP_ADD = 5'd4,  // D <- A + B; C <- carry out; V |= signed overflow; where flag F is set
-    OP_SUB = 5'd5,  // D <- A - B; C <- no borrow; V |= signed overflow; where flag F is set
+    OP_ADD = 5'd4,  // D <- (A >>> SHR_A) + B; C <- carry out; V |= signed overflow; where flag F is set
+    OP_SUB = 5'd5,  // D <- (A >>> SHR_A) - B; C <- no borrow; V |= signed overflow; where flag F is set
     OP_BITCOPY = 5'd6,  // bit BIT_J of D <- bit BIT_I of A, where flag F is set
     OP_LSHIFT = 5'd7,  // D <- A << 1; C <- A[31]; V |= A[31] xor A[30]; where flag F is set
-    OP_RSHIFT = 5'd8,  // D <- A >>> 1 (arithmetic); C <- A[0]; where flag F is set
+    OP_RSHIFT = 5'd8,  // D <- A >>> (SHR_A + 1) (arithmetic); C <- the last bit shifted out; where flag F is set
     OP_WRITES = 5'd9,  // D <- (D and mask) or (imm and not mask), where flag F is set
     OP_SETS = 5'd10,  // SEL <- 1 in every block
     OP_RESETS = 5'd11,  // SEL <- 0 in every block
@@ -214,6 +214,8 @@ package fmpp_pkg;
   parameter int unsigned BIT_I_W = 5;
   parameter int unsigned BIT_J_LSB = 8;  // within IMM
   parameter int unsigned BIT_J_W = 5;
+  parameter int unsigned SHR_A_LSB = 0;  // within IMM
+  parameter int unsigned SHR_A_W = 5;
   parameter int unsigned FLAG_FA_LSB = 3;  // within X
   parameter int unsigned FLAG_FA_W = 3;
   parameter int unsigned FLAG_FB_LSB = 0;  // within X
@@ -263,13 +265,13 @@ package fmpp_pkg;
   // a field is used by the opcode exactly when its bits are not reserved.
   parameter int unsigned NumOpcodes = 15;
   // OpReserved[op*64 +: 64]
-  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FC0FC000000000, 64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFFF, 64'h0000003FFFFFFFFF, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
+  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FC0FC000000000, 64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFE0, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFE0, 64'h0000003FFFFFFFE0, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
   // The same, grouped for a cheap check: bits reserved for the same opcodes form one
   // segment; RsvSegMask[s*64 +: 64] are its bits, RsvSegOps[op*NumRsvSegs + s] = 1
   // if opcode op reserves segment s.
-  parameter int unsigned NumRsvSegs = 9;
-  parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000010F, 64'h0000000000001E10, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
-  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {9'b000001010, 9'b011001110, 9'b000111111, 9'b111111111, 9'b111111111, 9'b000111100, 9'b111111000, 9'b111111000, 9'b001111000, 9'b111110000, 9'b111110000, 9'b111010000, 9'b000001010, 9'b000111111, 9'b111111111};
+  parameter int unsigned NumRsvSegs = 11;
+  parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000000F, 64'h0000000000000010, 64'h0000000000000100, 64'h0000000000001E00, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
+  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {11'b00000001010, 11'b01011001110, 11'b00000111111, 11'b11111111111, 11'b11111111111, 11'b00000111100, 11'b00111111000, 11'b11111111000, 11'b00001111000, 11'b00111110000, 11'b00111110000, 11'b11111010000, 11'b00000001010, 11'b00000111111, 11'b11111111111};
 
   // The rest of the legality rules, as masks (entry k at [k*64 +: 64]; an empty table
   // holds one entry that never applies): ILLEGAL when (instr & IllegalMask) ==

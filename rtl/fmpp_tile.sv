@@ -1,17 +1,15 @@
 // fmpp_tile: Lanes blocks of the FMPP CAM array (a tile of at most LaneW blocks).
 //
 // Each block has NumWords data words of 32 bits, 8 flags and its read-only index
-// (base_i + lane: the paper's ROM address part). The tile stores its words in
-// bit-plane form (see fmpp_alu) so that one instruction is a handful of wide
-// bitwise operations, and executes the instruction broadcast by fmpp_array in the
-// array's pipeline: in stage 2 it reads words A and B into its operand registers
-// (forwarding the word stage 3 writes in the same clock), in stage 3 it executes on them
-// with the flags and word D as they are then, and writes back at the clock edge:
-//   - masked match (REF, SETSADR) of a word or of the block index into a flag,
-//   - masked parallel write (WRITES) and the block ALU, predicated on a flag,
-//   - signed compare of a word with the immediate (CMP) into a flag,
-//   - flag logic (SETS, RESETS, FLAGOP),
-//   - host writes of one word or one block's flags (queued window writes).
+// (base_i + lane: the paper's ROM address part). The tile stores its words in bit-plane
+// form (see fmpp_alu) so that one instruction is a handful of wide bitwise operations, and
+// executes the instruction broadcast by fmpp_array in the array's pipeline: in stage 2 it
+// reads words A and B into its operand registers (forwarding the word stage 3 writes in the
+// same clock), in stage 3 it executes on them with the flags and word D as they are then,
+// and writes back at the clock edge: masked match (REF, SETSADR) of a word or of the block
+// index into a flag; masked parallel write (WRITES) and the block ALU, predicated on a
+// flag; signed compare of a word with the immediate (CMP) into a flag; flag logic (SETS,
+// RESETS, FLAGOP); host writes of one word or one block's flags (queued window writes).
 // It also answers the host read port and reports its share of the responders.
 //
 // Written so that Verilator gives all full tiles one C++ body (docs/architecture.md,
@@ -90,12 +88,11 @@ module fmpp_tile #(
   flags_t flag_q /*verilator public_flat_rd*/;
   flags_t flag_d;
 
-  // Operand registers (stage 2 -> 3); word D, the flags and the mask are read in stage 3,
-  // when every earlier entry has written them. opb_q is the ALU's addend (B, not B or not
-  // IMM) and cin_q its carry-in, made in stage 2 so that stage 3's adder starts from registers.
-  word_t opa_q, opb_q;
+  // Operand registers (stage 2 -> 3): A through the shifter, the ALU's addend (B, not B or
+  // not IMM) and its carry-in, made in stage 2 so that stage 3's adder starts from registers.
+  // Word D, the flags and the mask are read in stage 3, when every earlier entry wrote them.
+  word_t opa_q, opb_q, opd;
   logic  cin_q;
-  word_t opa, opb, opd;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
@@ -103,20 +100,27 @@ module fmpp_tile #(
   logic  wr_en;
   logic  fwd_a, fwd_b;
 
-  assign opa = opa_q;
-  assign opb = opb_q;
   assign opd = mem_q[d_i[WIdxW-1:0]];
 
-  // Stage 2: the word the entry in stage 3 writes at this edge is taken from its write
-  // data, not from the memory (forwarding), so an entry may use its predecessor's result.
+  // Stage 2: the word the entry in stage 3 writes at this edge is taken from its write data
+  // (forwarding), so an entry may use its predecessor's result. The shifted A and the addend
+  // are fmpp_alu_addend's function, written in the clocked block so that a simulator computes
+  // them only for an entry in stage 2 (formal job pipe_1x4 checks them).
   assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
   assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-  // The addend is fmpp_alu_addend's function, written inside the clocked block so that a
-  // simulator computes it only for an entry in stage 2 (formal job pipe_1x4 checks it).
   always_ff @(posedge clk_i) begin
-    word_t opb_rd, addend;  // stage 2's B (forwarded or read) and the addend made from it
+    word_t opa_rd, opb_rd, addend;  // stage 2's A and B (forwarded or read), the addend from B
+    logic [fmpp_pkg::SHR_A_W-1:0] shr;
     if (opr_en_i) begin
-      opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
+          ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
+      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin  // the shifter: a level per bit of SHR_A
+        for (int k = 0; k < W; k++) begin  // plane k takes plane k + 2^j; the sign plane fills
+          if (shr[j]) opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+        end
+      end
+      opa_q <= opa_rd;
       opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
       for (int k = 0; k < W; k++) begin
         if (opr_op_i == fmpp_pkg::OP_CMP) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
@@ -138,8 +142,8 @@ module fmpp_tile #(
     .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
     .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
     .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
-    .a_i     (opa),
-    .y_i     (opb),
+    .a_i     (opa_q),
+    .y_i     (opb_q),
     .cin_i   (cin_q),
     .d_i     (opd),
     .r_o     (alu_r),
@@ -236,7 +240,7 @@ module fmpp_tile #(
               match = '1;
               for (int k = 0; k < W; k++) begin
                 if (!key_mask[k]) begin
-                  src = addr_part ? index[k*Lanes +: Lanes] : opa[k*Lanes +: Lanes];
+                  src = addr_part ? index[k*Lanes +: Lanes] : opa_q[k*Lanes +: Lanes];
                   match = match & ~(src ^ {Lanes{imm_i[k]}});
                 end
               end
@@ -365,11 +369,7 @@ module fmpp_tile #(
   always_comb begin
     lane_t sel, lowest;
     sel         = flag_q[fmpp_pkg::FlagSEL*Lanes +: Lanes];
-    lowest      = '0;
-    sel_any_o   = 1'b0;
-    sel_count_o = '0;
-    sel_first_o = '0;
-    ovf_any_o   = 1'b0;
+    {lowest, sel_any_o, sel_count_o, sel_first_o, ovf_any_o} = '0;
     if (resp_en_i) begin
       sel_any_o   = |sel;
       sel_count_o = $countones(sel);

@@ -62,6 +62,14 @@ unsigned ProgramGenerator::flag_index() {
   return pick == 0 ? map::kFlagSEL : std::uniform_int_distribution<unsigned>(0, map::kNumFlags - 1)(rng_);
 }
 
+unsigned ProgramGenerator::shift_amount() {
+  const unsigned pick = std::uniform_int_distribution<unsigned>(0, 7)(rng_);
+  if (pick < 4) return 0;
+  if (pick == 4) return 1;
+  if (pick == 5) return static_cast<unsigned>(map::kShrA.max());
+  return std::uniform_int_distribution<unsigned>(1, static_cast<unsigned>(map::kShrA.max()))(rng_);
+}
+
 unsigned ProgramGenerator::legal_code(uint32_t legal) {
   unsigned codes[32], n = 0;
   for (unsigned v = 0; v < 32; ++v) {
@@ -111,15 +119,15 @@ uint64_t ProgramGenerator::random_instruction() {
     case Op::kFunc:
       i = func(static_cast<FuncFn>(legal_code(map::kFuncFnLegal)), word_index(), word_index(), word_index(), pred);
       break;
-    case Op::kAdd: i = add(word_index(), word_index(), word_index(), pred); break;
-    case Op::kSub: i = sub(word_index(), word_index(), word_index(), pred); break;
+    case Op::kAdd: i = add(word_index(), word_index(), word_index(), pred, shift_amount()); break;
+    case Op::kSub: i = sub(word_index(), word_index(), word_index(), pred, shift_amount()); break;
     case Op::kBitcopy: {
       std::uniform_int_distribution<unsigned> bit(0, map::kWordW - 1);
       i = bitcopy(word_index(), bit(rng_), word_index(), bit(rng_), pred);
       break;
     }
     case Op::kLshift: i = lshift(word_index(), word_index(), pred); break;
-    case Op::kRshift: i = rshift(word_index(), word_index(), pred); break;
+    case Op::kRshift: i = rshift(word_index(), word_index(), pred, shift_amount() + 1); break;
     case Op::kWrites: i = writes(word_index(), edge_value(), pred); break;
     case Op::kSets: i = sets(); break;
     case Op::kResets: i = resets(); break;

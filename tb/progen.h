@@ -52,6 +52,9 @@ class ProgramGenerator {
   unsigned word_index();
   unsigned block_index();
   unsigned flag_index();
+  // SHR_A of ADD, SUB and RSHIFT: 0 half the time (the plain operation), else the edges
+  // 1 and 31 or any amount between.
+  unsigned shift_amount();
   // A random code among those a sub-field's legal mask (map::k<Sub>Legal) defines.
   unsigned legal_code(uint32_t legal);
   void push_instruction(Bus& bus, uint64_t raw);

@@ -245,8 +245,8 @@ TEST(CullHint, ShadowRaysLeaveTheirOwnTriangleOut) {
   ASSERT_GT(false_hints, 10u);
   KernelStats st;
   expect_same(a, run(wrong, tris, true, true, &st), wrong);
-  // With 14 words the blocks hold neither word: no hint, no reach, the same results.
-  auto be = make_backend("cmodel", Config{64, 14});
+  // With only the kernel's words the blocks hold neither word: no hint, no reach, the same results.
+  auto be = make_backend("cmodel", Config{64, words_needed({})});
   Device dev(be->bus());
   KernelOptions o;
   KernelStats narrow;

@@ -103,9 +103,9 @@ diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/auto.txt")
 grep -q '"words": 26' "$dir/auto.json"
 "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins general --out "$dir/general.txt"
 diff <(cut -d' ' -f1 "$dir/ref.txt") <(cut -d' ' -f1 "$dir/general.txt")
-"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins group --words 14 --out /dev/null
-if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 14 2> "$dir/err.txt"; then exit 1; fi
-grep -q -- "--words 14 is too few: 5 of the 5 rays .* give --words 26 or more (or leave --words out), or --origins group" "$dir/err.txt"
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins group --words 20 --out /dev/null
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --words 20 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--words 20 is too few: 5 of the 5 rays .* give --words 26 or more (or leave --words out), or --origins group" "$dir/err.txt"
 if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --origins general --config tiny 2> "$dir/err.txt"; then exit 1; fi
 grep -q -- "--config tiny (10 words) is too few: with --origins general" "$dir/err.txt"
 # Option values checked at the command line.

@@ -23,10 +23,13 @@ TEST(Isa, EncodeDecodeRoundTrip) {
                          ref(RefFn::kOr, RefPart::kAddr, 0, 17, 0, 1),
                          func(FuncFn::kXor, 1, 2, 3, 4),
                          add(31, 30, 29, 7),
+                         add(31, 30, 29, 7, 31),
                          sub(0, 1, 2),
+                         sub(0, 1, 2, 0, 17),
                          bitcopy(3, 31, 4, 0, 1),
                          lshift(6, 6),
                          rshift(7, 2, 5),
+                         rshift(7, 2, 5, 32),
                          writes(9, 0x12345678, 2),
                          sets(),
                          resets(),
@@ -72,12 +75,17 @@ TEST(Isa, BuildersRejectOversizedOperands) {
   EXPECT_THROW(bitcopy(0, 32, 0, 0), std::invalid_argument);
   EXPECT_THROW(lshift(0, 64), std::invalid_argument);
   EXPECT_THROW(rshift(0, 0, 9), std::invalid_argument);
+  EXPECT_THROW(rshift(0, 0, 0, 0), std::invalid_argument) << "a shift by 0";
+  EXPECT_THROW(rshift(0, 0, 0, 33), std::invalid_argument);
+  EXPECT_THROW(add(0, 0, 0, 0, 32), std::invalid_argument);
+  EXPECT_THROW(sub(0, 0, 0, 0, 32), std::invalid_argument);
   EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 64, 0, 0), std::invalid_argument);
   EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 0, 0, 8), std::invalid_argument);
   EXPECT_THROW(cmp(CmpFn::kAnd, CmpLt::kGe, 0, 0, 0, 8), std::invalid_argument);
   EXPECT_THROW(cmp(static_cast<CmpFn>(3), CmpLt::kGe, 0, 0, 0), std::invalid_argument);
   // The largest operands that fit are accepted.
-  EXPECT_NO_THROW(add(63, 63, 63, 7));
+  EXPECT_NO_THROW(add(63, 63, 63, 7, 31));
+  EXPECT_NO_THROW(rshift(63, 63, 7, 32));
   EXPECT_NO_THROW(bitcopy(63, 31, 63, 31, 7));
   EXPECT_NO_THROW(flagop(7, 7, 7, 0xF, true));
 }
@@ -139,7 +147,11 @@ TEST(Isa, LegalityRules) {
   EXPECT_TRUE(is_legal(add(7, 0, 0).encode(), 8));
   EXPECT_FALSE(is_legal(add(0, 8, 0).encode(), 8));
   EXPECT_FALSE(is_legal(add(0, 0, 8).encode(), 8));
-  EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | 1, 8)) << "ADD with an immediate";
+  EXPECT_TRUE(is_legal(add(0, 0, 0).encode() | 31, 8)) << "ADD with SHR_A = 31";
+  EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | 32, 8)) << "ADD with an immediate beyond SHR_A";
+  EXPECT_FALSE(is_legal(sub(0, 0, 0).encode() | (uint64_t{1} << 31), 8)) << "SUB with an immediate beyond SHR_A";
+  EXPECT_FALSE(is_legal(rshift(0, 0).encode() | 32, 8)) << "RSHIFT with an immediate beyond SHR_A";
+  EXPECT_FALSE(is_legal(lshift(0, 0).encode() | 1, 8)) << "LSHIFT has no shift amount";
   EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | (uint64_t{1} << 32), 8)) << "ADD with X set";
   EXPECT_FALSE(is_legal(lshift(0, 0).encode() | (uint64_t{1} << 38), 8)) << "LSHIFT with B set";
   EXPECT_TRUE(is_legal(writes(7, ~0u).encode(), 8));
@@ -205,11 +217,11 @@ Instr random_legal(Op op, std::mt19937_64& rng) {
       return ref(static_cast<RefFn>(code(map::kRefFnLegal)), part, part == RefPart::kAddr ? 0 : u(W), imm, u(F), u(F));
     }
     case Op::kFunc: return func(static_cast<FuncFn>(code(map::kFuncFnLegal)), u(W), u(W), u(W), u(F));
-    case Op::kAdd: return add(u(W), u(W), u(W), u(F));
-    case Op::kSub: return sub(u(W), u(W), u(W), u(F));
+    case Op::kAdd: return add(u(W), u(W), u(W), u(F), u(32));
+    case Op::kSub: return sub(u(W), u(W), u(W), u(F), u(32));
     case Op::kBitcopy: return bitcopy(u(W), u(32), u(W), u(32), u(F));
     case Op::kLshift: return lshift(u(W), u(W), u(F));
-    case Op::kRshift: return rshift(u(W), u(W), u(F));
+    case Op::kRshift: return rshift(u(W), u(W), u(F), 1 + u(32));
     case Op::kWrites: return writes(u(W), imm, u(F));
     case Op::kSets: return sets();
     case Op::kResets: return resets();
@@ -262,6 +274,10 @@ TEST(Isa, RandomWordsAreRarelyLegalAndDisassembleByTheirOpcode) {
 
 TEST(Isa, Disassembly) {
   EXPECT_EQ(disasm(add(3, 1, 2).encode()), "ADD w3 = w1 + w2 ?f0");
+  EXPECT_EQ(disasm(add(3, 1, 2, 4, 7).encode()), "ADD w3 = (w1 >>> 7) + w2 ?f4");
+  EXPECT_EQ(disasm(sub(3, 1, 2, 0, 31).encode()), "SUB w3 = (w1 >>> 31) - w2 ?f0");
+  EXPECT_EQ(disasm(rshift(5, 6).encode()), "RSHIFT w5 = w6 >>> 1 ?f0");
+  EXPECT_EQ(disasm(rshift(5, 6, 2, 32).encode()), "RSHIFT w5 = w6 >>> 32 ?f2");
   EXPECT_EQ(disasm(ref(RefFn::kAnd, RefPart::kAddr, 0, 5, 1, 2).encode()), "REF.and f1 = f2, addr ~ 0x00000005");
   EXPECT_EQ(disasm(cmp(CmpFn::kThrough, CmpLt::kGe, 4, -7, 2, 0).encode()), "CMP.through f2 = f0, w4 >= -7");
   EXPECT_EQ(disasm(cmp(CmpFn::kAnd, CmpLt::kLt, 9, INT32_MIN, 3, 5).encode()), "CMP.and f3 = f5, w9 < -2147483648");

@@ -231,7 +231,7 @@ TEST(Spp, ThePlanSeesTheSamplesAndTheLights) {
   r.sample_rays = 64;
   r.sample_pixels = 64;
   const Plan one = make_plan(s, r);
-  EXPECT_EQ(one.config.words, 14u);
+  EXPECT_EQ(one.config.words, fmpp::isect::words_needed({}));
   s.spp = 4;
   const Plan four = make_plan(s, r);
   ASSERT_FALSE(one.pass_sizes.empty());

@@ -236,6 +236,46 @@ TEST_F(MachineTest, ShiftsAndBitcopy) {
   EXPECT_EQ(m.word(1, 3), 0xAAAAAAAAu);
 }
 
+// ADD, SUB and RSHIFT with word A through the shifter (SHR_A): floor division of A by
+// 2^shr, then the operation, with C and V from that operation.
+TEST_F(MachineTest, ShiftedOperandA) {
+  m.write_word(0, 0, 0x80000000);  // INT32_MIN
+  m.write_word(1, 0, 0xFFFFFFFF);  // -1: stays -1 however far it is shifted
+  m.write_word(2, 0, 0x7FFFFFFF);
+  m.write_word(3, 0, 0x00000005);
+  for (unsigned b = 0; b < 4; ++b) m.write_word(b, 1, 0x7FFFFFFF);
+  select(0b0111);  // block 3 is not selected: nothing of it changes
+  run(add(2, 0, 1, kSel, 31));
+  EXPECT_EQ(m.word(0, 2), 0x7FFFFFFEu) << "-1 + INT32_MAX";
+  EXPECT_TRUE(m.flag(0, kC));
+  EXPECT_FALSE(m.flag(0, kV));
+  EXPECT_EQ(m.word(1, 2), 0x7FFFFFFEu);
+  EXPECT_EQ(m.word(2, 2), 0x7FFFFFFFu) << "INT32_MAX >>> 31 = 0";
+  EXPECT_FALSE(m.flag(2, kC));
+  EXPECT_EQ(m.word(3, 2), 0u);
+  run(sub(3, 0, 1, kSel, 1));  // (A >>> 1) - INT32_MAX
+  EXPECT_EQ(m.word(0, 3), 0x40000001u) << "-2^30 - (2^31 - 1) wraps";
+  EXPECT_TRUE(m.flag(0, kV)) << "signed overflow of the subtraction after the shift";
+  EXPECT_EQ(m.word(1, 3), 0x80000000u) << "-1 - INT32_MAX";
+  EXPECT_FALSE(m.flag(1, kV));
+  EXPECT_EQ(m.word(2, 3), 0xC0000000u) << "(2^30 - 1) - (2^31 - 1)";
+  EXPECT_FALSE(m.flag(2, kC)) << "a borrow";
+  EXPECT_EQ(m.word(3, 3), 0u);
+  // RSHIFT by 5 and by 32 (every bit the sign); C is the last bit shifted out.
+  m.write_word(0, 0, 0x12345670);
+  run(rshift(4, 0, kSel, 5));
+  EXPECT_EQ(m.word(0, 4), 0x0091A2B3u);
+  EXPECT_TRUE(m.flag(0, kC)) << "bit 4 of A";
+  EXPECT_EQ(m.word(2, 4), 0x03FFFFFFu);
+  run(rshift(5, 0, kSel, 32));
+  EXPECT_EQ(m.word(0, 5), 0u);
+  EXPECT_FALSE(m.flag(0, kC)) << "bit 31 of A";
+  EXPECT_EQ(m.word(1, 5), 0xFFFFFFFFu);
+  EXPECT_TRUE(m.flag(1, kC));
+  EXPECT_EQ(m.word(3, 4), 0u);
+  EXPECT_EQ(m.word(3, 5), 0u);
+}
+
 TEST_F(MachineTest, WritesHonoursMaskAndSelection) {
   for (unsigned b = 0; b < 4; ++b) m.write_word(b, 6, 0x11223344);
   select(0b1001);

@@ -21,7 +21,7 @@ uint64_t rd(Bus& bus, uint32_t addr) {
 
 TEST(ModelBus, IdentificationAndConfig) {
   ModelBus bus(Config{100, 16});
-  EXPECT_EQ(rd(bus, map::kRegId), 0x464D505000010000ull);
+  EXPECT_EQ(rd(bus, map::kRegId), 0x464D505000010001ull);
   const uint64_t cfg = rd(bus, map::kRegConfig);
   EXPECT_EQ(cfg & 0xFFFFFFFF, 100u);
   EXPECT_EQ((cfg >> 32) & 0xFF, 16u);

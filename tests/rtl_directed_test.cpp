@@ -46,7 +46,7 @@ class RtlDirected : public ::testing::TestWithParam<std::string> {
 };
 
 TEST_P(RtlDirected, IdentificationAndConfig) {
-  EXPECT_EQ(rd(map::kRegId), 0x464D505000010000ull);
+  EXPECT_EQ(rd(map::kRegId), 0x464D505000010001ull);
   const uint64_t c = rd(map::kRegConfig);
   EXPECT_EQ(c & 0xFFFFFFFF, cfg.blocks);
   EXPECT_EQ((c >> 32) & 0xFF, cfg.words);
@@ -94,6 +94,27 @@ TEST_P(RtlDirected, AddSubShiftFlagsReadBack) {
   push(bitcopy(4, 5, 3, 31));
   EXPECT_EQ(get(0, 4), 32u);
   EXPECT_EQ(rd(map::kRegStatus) & 2, 2u) << "OVF summary";
+}
+
+// Word A through the stage-2 shifter, including the forwarded word of the instruction
+// just before (back to back in the pipeline).
+TEST_P(RtlDirected, ShiftedOperandA) {
+  put(0, 0, 0x80000000);
+  put(0, 1, 0x7FFFFFFF);
+  put(0, 2, 0x12345670);
+  push(sets());
+  push(add(3, 0, 1, map::kFlagSEL, 31));  // -1 + INT32_MAX, carry out
+  EXPECT_EQ(get(0, 3), 0x7FFFFFFEu);
+  EXPECT_EQ(flags(0), (1u << map::kFlagC) | 1u);
+  push(sub(4, 0, 1, map::kFlagSEL, 1));  // -2^30 - INT32_MAX: overflow
+  EXPECT_EQ(get(0, 4), 0x40000001u);
+  EXPECT_EQ(flags(0) >> map::kFlagV & 1, 1u);
+  push(rshift(5, 2, map::kFlagSEL, 5));
+  push(add(5, 5, 1, map::kFlagSEL, 20));  // forwarded: (0x0091A2B3 >>> 20) + INT32_MAX
+  EXPECT_EQ(get(0, 5), 0x80000008u);
+  push(rshift(6, 0, map::kFlagSEL, 32));
+  EXPECT_EQ(get(0, 6), 0xFFFFFFFFu);
+  EXPECT_EQ(flags(0) >> map::kFlagC & 1, 1u) << "the sign bit shifted out last";
 }
 
 TEST_P(RtlDirected, RespondersNoneOneAllLast) {

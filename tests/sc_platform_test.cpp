@@ -113,7 +113,7 @@ TEST(TlmTarget, ServesReadsAndWritesAtTheFmppAddresses) {
   sc_time delay = sc_core::SC_ZERO_TIME;
   Beat id(tlm::TLM_READ_COMMAND, map::kRegId);
   ASSERT_EQ(r.send(id.p, delay), tlm::TLM_OK_RESPONSE);
-  EXPECT_EQ(id.value(), 0x464D505000010000ull);
+  EXPECT_EQ(id.value(), 0x464D505000010001ull);
 
   Beat w(tlm::TLM_WRITE_COMMAND, word_addr(c, 99, 15), 0xCAFEF00D);
   w.enables({kOn, kOn, kOn, kOn, kOff, kOff, kOff, kOff});
@@ -298,8 +298,8 @@ TEST(TlmTarget, ReadCopiesOnlyTheEnabledBytes) {
   Beat b(tlm::TLM_READ_COMMAND, map::kRegId, 0xEEEE'EEEE'EEEE'EEEEull);
   b.enables({kOn, kOff});
   ASSERT_EQ(r.send(b.p, delay), tlm::TLM_OK_RESPONSE);
-  // ID = 0x464D5050_00010000: bytes 0, 2, 4, 6 are 0x00, 0x01, 0x50, 0x4D.
-  EXPECT_EQ(b.value(), 0xEE4DEE50EE01EE00ull);
+  // ID = 0x464D5050_00010001 (version 1.1): bytes 0, 2, 4, 6 are 0x01, 0x01, 0x50, 0x4D.
+  EXPECT_EQ(b.value(), 0xEE4DEE50EE01EE01ull);
 }
 
 TEST(TlmTarget, OffersNoDmiAndNoDebugTransport) {

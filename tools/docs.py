@@ -27,6 +27,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import docblock  # noqa: E402
+import form_steps  # noqa: E402
 import gallery  # noqa: E402
 
 from docs_common import PY, ROOT, out_dir, run, tool  # noqa: E402,F401
@@ -42,6 +43,8 @@ def area_md(build, out):
     base = out + ".base"
     run([tool(build, "fmpp-report"), "area", "--synth-dir", os.path.join(data, "synth"),
          "--fpga-csv", os.path.join(data, "fpga", "summary.csv"),
+         "--baseline-dir", os.path.join(data, "synth", "before_shr"),
+         "--baseline-label", "the RTL before the shifted operand A, SHR_A (commit 4709c66)",
          "--baseline-dir", os.path.join(data, "synth", "before_cmp"),
          "--baseline-label", "the RTL before CMP (commit b28488d)", "--out", base])
     run([sys.executable, os.path.join(ROOT, "tools", "asic_report.py"), "doc", "--area-md", base,
@@ -171,8 +174,23 @@ def gen_inject(build):
         print("skipped docs/img/lockstep-mismatch.png: xvfb-run and gtkwave are needed (make deps)", file=sys.stderr)
 
 
+# docs/perf.md's table of steps per broadcast per form and n, beside an earlier build's.
+STEPS_BEFORE = ("steps_before_shr.csv", "the build before the shifted operand (commit 4709c66)")
+
+
+def steps_block(build, folder):
+    now = form_steps.measure(tool(build, "fmpp-intersect"), folder)
+    return form_steps.table(now, form_steps.read_csv(os.path.join(ROOT, "docs", "data", STEPS_BEFORE[0])),
+                            STEPS_BEFORE[1])
+
+
+def gen_steps(build):
+    """docs/perf.md's steps per broadcast of every form at every n (fmpp-intersect, golden model)."""
+    docblock.save_block(out_dir(build), "docs/perf.md", "form-steps", steps_block(build, os.path.join(build, "form-steps")))
+
+
 GENERATORS = {"area": gen_area, "inject": gen_inject, "plan": gen_plan, "render": gen_render, "paper": gen_paper,
-              "precision": gen_precision, "gallery": gen_gallery, "embree": gen_embree}
+              "precision": gen_precision, "gallery": gen_gallery, "embree": gen_embree, "steps": gen_steps}
 
 
 # ------------------------------------------------------------------ update
@@ -284,6 +302,10 @@ def check(build):
                 got = table_rows(docblock.read_block(os.path.join(ROOT, target), name), 3).get(key)
                 c.same("%s, block %s, row %s" % (target, name, " ".join(key)),
                        " | ".join(got[:gallery.WALL_COLUMN]) if got else None, " | ".join(want))
+
+        # docs/perf.md: the steps per broadcast of every form and n.
+        c.same("docs/perf.md, block form-steps", docblock.read_block(os.path.join(ROOT, "docs/perf.md"), "form-steps"),
+               steps_block(build, os.path.join(tmp, "form-steps")))
 
         # docs/generated/paper-reproduction.md: the sections made of counts.
         paper = os.path.join(tmp, "paper.md")

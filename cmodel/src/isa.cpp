@@ -137,11 +137,16 @@ std::string disasm(uint64_t raw) {
                     func_fn_symbol(static_cast<unsigned>(kFuncFn.get(i.x))), i.b, i.f);
       break;
     case Op::kAdd:
-      std::snprintf(buf, sizeof buf, "ADD w%u = w%u + w%u ?f%u", i.d, i.a, i.b, i.f);
+    case Op::kSub: {
+      const char* sym = i.op == Op::kAdd ? "+" : "-";
+      const unsigned shr = static_cast<unsigned>(kShrA.get(i.imm));
+      if (shr == 0) {
+        std::snprintf(buf, sizeof buf, "%s w%u = w%u %s w%u ?f%u", name, i.d, i.a, sym, i.b, i.f);
+      } else {
+        std::snprintf(buf, sizeof buf, "%s w%u = (w%u >>> %u) %s w%u ?f%u", name, i.d, i.a, shr, sym, i.b, i.f);
+      }
       break;
-    case Op::kSub:
-      std::snprintf(buf, sizeof buf, "SUB w%u = w%u - w%u ?f%u", i.d, i.a, i.b, i.f);
-      break;
+    }
     case Op::kBitcopy:
       std::snprintf(buf, sizeof buf, "BITCOPY w%u[%u] = w%u[%u] ?f%u", i.d, static_cast<unsigned>(kBitJ.get(i.imm)),
                     i.a, static_cast<unsigned>(kBitI.get(i.imm)), i.f);
@@ -150,7 +155,8 @@ std::string disasm(uint64_t raw) {
       std::snprintf(buf, sizeof buf, "LSHIFT w%u = w%u << 1 ?f%u", i.d, i.a, i.f);
       break;
     case Op::kRshift:
-      std::snprintf(buf, sizeof buf, "RSHIFT w%u = w%u >>> 1 ?f%u", i.d, i.a, i.f);
+      std::snprintf(buf, sizeof buf, "RSHIFT w%u = w%u >>> %u ?f%u", i.d, i.a,
+                    static_cast<unsigned>(kShrA.get(i.imm)) + 1, i.f);
       break;
     case Op::kWrites:
       std::snprintf(buf, sizeof buf, "WRITES w%u = 0x%08x ?f%u", i.d, i.imm, i.f);
@@ -230,11 +236,15 @@ Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred) {
   return make(Op::kFunc, flag("func", "pred", pred), word("func", "d", d), word("func", "a", a), word("func", "b", b),
               static_cast<unsigned>(x), 0);
 }
-Instr add(unsigned d, unsigned a, unsigned b, unsigned pred) {
-  return make(Op::kAdd, flag("add", "pred", pred), word("add", "d", d), word("add", "a", a), word("add", "b", b), 0, 0);
+Instr add(unsigned d, unsigned a, unsigned b, unsigned pred, unsigned shr) {
+  const uint64_t imm = map::kShrA.put(field("add", "shr", shr, 1u << map::kShrA.width));
+  return make(Op::kAdd, flag("add", "pred", pred), word("add", "d", d), word("add", "a", a), word("add", "b", b), 0,
+              static_cast<uint32_t>(imm));
 }
-Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred) {
-  return make(Op::kSub, flag("sub", "pred", pred), word("sub", "d", d), word("sub", "a", a), word("sub", "b", b), 0, 0);
+Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred, unsigned shr) {
+  const uint64_t imm = map::kShrA.put(field("sub", "shr", shr, 1u << map::kShrA.width));
+  return make(Op::kSub, flag("sub", "pred", pred), word("sub", "d", d), word("sub", "a", a), word("sub", "b", b), 0,
+              static_cast<uint32_t>(imm));
 }
 Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred) {
   const uint64_t imm = map::kBitJ.put(field("bitcopy", "j", j, map::kWordW)) |
@@ -245,8 +255,11 @@ Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred) {
 Instr lshift(unsigned d, unsigned a, unsigned pred) {
   return make(Op::kLshift, flag("lshift", "pred", pred), word("lshift", "d", d), word("lshift", "a", a), 0, 0, 0);
 }
-Instr rshift(unsigned d, unsigned a, unsigned pred) {
-  return make(Op::kRshift, flag("rshift", "pred", pred), word("rshift", "d", d), word("rshift", "a", a), 0, 0, 0);
+Instr rshift(unsigned d, unsigned a, unsigned pred, unsigned by) {
+  if (by < 1) throw std::invalid_argument("fmpp::ins::rshift: by = 0 is not a shift (1 .. 32)");
+  const uint64_t imm = map::kShrA.put(field("rshift", "by - 1", by - 1, 1u << map::kShrA.width));
+  return make(Op::kRshift, flag("rshift", "pred", pred), word("rshift", "d", d), word("rshift", "a", a), 0, 0,
+              static_cast<uint32_t>(imm));
 }
 Instr writes(unsigned d, uint32_t data, unsigned pred) {
   return make(Op::kWrites, flag("writes", "pred", pred), word("writes", "d", d), 0, 0, 0, data);

@@ -50,13 +50,13 @@ FMPP_KERNEL void k_logic(uint32_t* d, const uint32_t* a, const uint32_t* b, uint
   }
 }
 
-// ADD (sub = false) or SUB (sub = true): C <- carry out, V |= signed overflow.
+// ADD (sub = false) or SUB (sub = true) of A >>> shr and B: C <- carry out, V |= signed overflow.
 FMPP_KERNEL void k_addsub(uint32_t* d, const uint32_t* a, const uint32_t* b, uint8_t* fl, size_t n, unsigned p,
-                          bool sub) {
+                          bool sub, unsigned shr) {
   const uint32_t inv = sub ? ~0u : 0u;
   const uint32_t cin = sub ? 1u : 0u;
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t x = a[i], y = b[i] ^ inv;
+    const uint32_t x = static_cast<uint32_t>(static_cast<int32_t>(a[i]) >> shr), y = b[i] ^ inv;
     const uint32_t r = x + y + cin;
     // Carry out of bit 31 of x + y + cin, and signed overflow of that sum.
     const uint32_t carry = ((x & y) | ((x | y) & ~r)) >> 31;
@@ -69,15 +69,17 @@ FMPP_KERNEL void k_addsub(uint32_t* d, const uint32_t* a, const uint32_t* b, uin
   }
 }
 
-FMPP_KERNEL void k_shift(uint32_t* d, const uint32_t* a, uint8_t* fl, size_t n, unsigned p, bool left) {
+// LSHIFT (left, by one) or RSHIFT (by shr + 1, arithmetic; C <- the last bit shifted out).
+FMPP_KERNEL void k_shift(uint32_t* d, const uint32_t* a, uint8_t* fl, size_t n, unsigned p, bool left, unsigned shr) {
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t x = a[i];
+    uint32_t x = a[i];
     uint32_t r, carry, ovf;
     if (left) {
       r = x << 1;
       carry = x >> 31;
       ovf = ((x >> 31) ^ (x >> 30)) & 1u;
     } else {
+      x = static_cast<uint32_t>(static_cast<int32_t>(x) >> shr);
       r = static_cast<uint32_t>(static_cast<int32_t>(x) >> 1);
       carry = x & 1u;
       ovf = 0;
@@ -186,7 +188,7 @@ void Machine::execute(uint64_t raw) {
       break;
     case Op::kAdd:
     case Op::kSub:
-      k_addsub(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.op == Op::kSub);
+      k_addsub(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.op == Op::kSub, map::kShrA.get(in.imm));
       break;
     case Op::kBitcopy:
       k_bitcopy(row(in.d), row(in.a), fl, n, in.f, static_cast<unsigned>(map::kBitI.get(in.imm)),
@@ -194,7 +196,8 @@ void Machine::execute(uint64_t raw) {
       break;
     case Op::kLshift:
     case Op::kRshift:
-      k_shift(row(in.d), row(in.a), fl, n, in.f, in.op == Op::kLshift);
+      k_shift(row(in.d), row(in.a), fl, n, in.f, in.op == Op::kLshift,
+              in.op == Op::kRshift ? map::kShrA.get(in.imm) : 0u);
       break;
     case Op::kWrites:
       k_writes(row(in.d), fl, n, in.f, in.imm, mask_);

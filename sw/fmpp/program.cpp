@@ -140,7 +140,51 @@ void dot_rows(Program& p, const std::vector<Row>& rows, unsigned n, unsigned act
   }
 }
 
-void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active) {
+namespace {
+
+// One ADD or SUB of a row: sign * word, at digit position k.
+struct Step {
+  unsigned word;
+  int sign;
+};
+
+// The steps of one digit position: the non-zero digits of the row's terms there, two of
+// them folded into one step wherever `pairs` holds their sum or difference.
+std::vector<Step> position_steps(const Row& row, const std::vector<std::vector<int8_t>>& d, unsigned k,
+                                 const std::vector<PairWords>& pairs) {
+  std::vector<Step> single;
+  for (size_t j = 0; j < row.terms.size(); ++j) {
+    if (d[j][k] != 0) single.push_back(Step{row.terms[j].y, d[j][k]});
+  }
+  std::vector<Step> out;
+  std::vector<bool> used(single.size(), false);
+  for (size_t u = 0; u < single.size(); ++u) {
+    if (used[u]) continue;
+    for (size_t v = u + 1; v < single.size() && !used[u]; ++v) {
+      if (used[v]) continue;
+      for (const PairWords& pw : pairs) {
+        const Step* first = nullptr;
+        const Step* second = nullptr;
+        if (pw.a == single[u].word && pw.b == single[v].word) first = &single[u], second = &single[v];
+        if (pw.a == single[v].word && pw.b == single[u].word) first = &single[v], second = &single[u];
+        if (first == nullptr) continue;
+        out.push_back(Step{first->sign == second->sign ? pw.sum : pw.diff, first->sign});
+        used[u] = used[v] = true;
+        break;
+      }
+    }
+    if (!used[u]) {
+      out.push_back(single[u]);
+      used[u] = true;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active,
+                    const std::vector<PairWords>& pairs) {
   check_n(n, "fmpp::dot_rows_const");
   for (const Row& row : rows) {
     std::vector<std::vector<int8_t>> d;
@@ -152,27 +196,38 @@ void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsign
         if (d.back()[k] != 0) kmin = std::min(kmin, k);
       }
     }
+    for (const PairWords& pw : pairs) {
+      if (row.r == pw.sum || row.r == pw.diff) throw std::invalid_argument("fmpp::dot_rows_const: result word is a pair word");
+    }
     if (kmin == n) {  // all constants zero
       p << func(FuncFn::kXor, row.r, row.r, row.r, active);
       continue;
     }
-    bool zero = true;  // R not yet written: the first +1 digit copies instead of adding
+    // The partial sum R stands at digit position `at`: it still owes the shifts of the
+    // positions from `at` up to n. Each ADD/SUB first shifts R by the distance from the
+    // previous step's position (operand A through the shifter), which is exactly the
+    // RSHIFTs of the LSB-first product between the two (floor divisions compose).
+    bool zero = true;  // R not yet written: the first positive step copies instead of adding
+    unsigned at = kmin;
     for (unsigned k = kmin; k < n; ++k) {
-      for (size_t j = 0; j < row.terms.size(); ++j) {
-        const int8_t digit = d[j][k];
-        if (digit == 0) continue;
-        const unsigned y = row.terms[j].y;
-        if (zero && digit > 0) {
-          p << func(FuncFn::kOr, row.r, y, y, active);
+      for (const Step& s : position_steps(row, d, k, pairs)) {
+        if (zero && s.sign > 0) {
+          p << func(FuncFn::kOr, row.r, s.word, s.word, active);
         } else {
           if (zero) p << func(FuncFn::kXor, row.r, row.r, row.r, active);
-          p << (digit > 0 ? add(row.r, row.r, y, active) : sub(row.r, row.r, y, active));
+          const unsigned shr = k - at;
+          p << (s.sign > 0 ? add(row.r, row.r, s.word, active, shr) : sub(row.r, row.r, s.word, active, shr));
         }
         zero = false;
+        at = k;
       }
-      p << rshift(row.r, row.r, active);
     }
+    p << rshift(row.r, row.r, active, n - at);  // the shifts after the last digit (1 .. n)
   }
+}
+
+void pair_words(Program& p, const std::vector<PairWords>& pairs, unsigned active) {
+  for (const PairWords& pw : pairs) p << add(pw.sum, pw.a, pw.b, active) << sub(pw.diff, pw.a, pw.b, active);
 }
 
 int64_t dot_reference(const std::vector<int64_t>& c, const std::vector<int64_t>& y, unsigned n) {

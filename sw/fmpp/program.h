@@ -56,7 +56,9 @@ void transfer(Program& p, unsigned block, unsigned w, uint32_t v);
 void mul(Program& p, unsigned r, unsigned x, unsigned y, unsigned n, unsigned active, unsigned tmp);
 
 // R <- floor(c * Y / 2^n) for a constant c, |c| < 2^(n-1) or c = -2^(n-1): one ADD or SUB
-// per non-zero CSD digit and one RSHIFT per digit position from the lowest non-zero one.
+// per non-zero CSD digit (each first shifting R by the distance from the previous digit)
+// and one RSHIFT (for the positions above the last digit); one FUNC more if the lowest
+// digit is -1.
 void mul_const(Program& p, unsigned r, int64_t c, unsigned y, unsigned n, unsigned active);
 
 // F_dst <- F_src and (W >= 0): a sign test (MASKSET, REF).
@@ -90,9 +92,24 @@ struct Row {
 // bit: (1 + 2 * terms) per bit plus one RSHIFT per row per bit.
 void dot_rows(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active, unsigned tmp);
 
-// Constant multipliers: same results, one ADD/SUB per non-zero CSD digit and one RSHIFT
-// per row per digit position from the row's lowest non-zero digit.
-void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active);
+// Constant multipliers: same results, one ADD/SUB per non-zero CSD digit (its operand R
+// shifted by the distance from the row's previous digit) and one RSHIFT per row, plus a
+// FUNC per row whose lowest digit is -1.
+//
+// With `pairs`: words the block keeps holding y_a + y_b and y_a - y_b for multiplicand
+// words y_a, y_b (pair_words below makes them, once for as long as the y stay). Where a
+// row has non-zero digits of both y_a and y_b at the same position, one ADD/SUB of the
+// sum or the difference stands for the two: d_a y_a + d_b y_b = d_a (y_a + d_a d_b y_b).
+// The partial sums after each position are the same numbers, so the results are too.
+struct PairWords {
+  unsigned a = 0, b = 0;       // the multiplicand words
+  unsigned sum = 0, diff = 0;  // words holding y_a + y_b and y_a - y_b
+};
+void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active,
+                    const std::vector<PairWords>& pairs = {});
+// The pair words: sum <- y_a + y_b, diff <- y_a - y_b for each pair, in blocks `active`
+// (2 instructions a pair). |y| < 2^30 keeps both exact (V is set otherwise).
+void pair_words(Program& p, const std::vector<PairWords>& pairs, unsigned active);
 
 // Reference arithmetic for the above: floor(sum c_j * y_j / 2^n) in exact integers.
 int64_t dot_reference(const std::vector<int64_t>& c, const std::vector<int64_t>& y, unsigned n);

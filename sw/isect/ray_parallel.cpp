@@ -223,6 +223,7 @@ class RayParallelPlan : public PassPlan {
         sent->push_back(k);
         number_of_[k] = static_cast<uint32_t>(sent->size());
         send_broadcast(dev, *this, k, number_of_[k], st_);
+        boxes_->broadcast_sent();
       }
       return false;
     });

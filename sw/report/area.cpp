@@ -8,6 +8,8 @@
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "sw/report/area.h"
 #include "sw/report/fpga.h"
@@ -22,8 +24,8 @@ struct AreaOptions {
   unsigned words = kPaperWordsRayParallel;
   std::string out;
   std::string fpga_csv;  // tools/fpga.sh summary.csv: adds the FPGA section (fpga.cpp)
-  std::string baseline_dir;    // an earlier synthesis: adds the section comparing the two
-  std::string baseline_label;  // what the earlier RTL was
+  std::vector<std::string> baseline_dirs;    // earlier syntheses: a section comparing each with this one
+  std::vector<std::string> baseline_labels;  // what each earlier RTL was
 };
 }  // namespace
 
@@ -38,23 +40,27 @@ void register_area(CLI::App& app) {
       ->check(CLI::Range(1u, 64u));
   sub->add_option("--out", opt->out, "write the Markdown report to this file instead of stdout ('-': stdout)");
   sub->add_option("--fpga-csv", opt->fpga_csv, "summary.csv of tools/fpga.sh: adds the measured FPGA clock and size");
-  sub->add_option("--baseline-dir", opt->baseline_dir,
-                  "tools/synth.sh output of an earlier RTL: adds a section comparing its costs with these");
-  sub->add_option("--baseline-label", opt->baseline_label, "what the earlier RTL of --baseline-dir was (its heading)");
+  sub->add_option("--baseline-dir", opt->baseline_dirs,
+                  "tools/synth.sh output of an earlier RTL: adds a section comparing its costs with these (repeatable)");
+  sub->add_option("--baseline-label", opt->baseline_labels,
+                  "what the earlier RTL of each --baseline-dir was (its heading; one per --baseline-dir, in order)");
   sub->callback([opt] {
     if (!opt->out.empty()) check_writable("--out", opt->out);
-    if (opt->baseline_dir.empty() != opt->baseline_label.empty()) {
-      throw std::runtime_error("--baseline-dir and --baseline-label go together (got only " +
-                               std::string(opt->baseline_dir.empty() ? "--baseline-label" : "--baseline-dir") + ")");
+    if (opt->baseline_dirs.size() != opt->baseline_labels.size()) {
+      throw std::runtime_error("--baseline-dir and --baseline-label go together (got " +
+                               std::to_string(opt->baseline_dirs.size()) + " --baseline-dir and " +
+                               std::to_string(opt->baseline_labels.size()) + " --baseline-label)");
     }
     const SynthData data = read_synth(opt->synth_dir);
-    SynthData before;
-    if (!opt->baseline_dir.empty()) before = read_synth(opt->baseline_dir);
+    std::vector<SynthData> before;
+    for (const std::string& dir : opt->baseline_dirs) before.push_back(read_synth(dir));
     FpgaData fpga;
     if (!opt->fpga_csv.empty()) fpga = read_fpga(opt->fpga_csv);
     auto write = [&](std::ostream& os) {
       write_area_report(data, opt->words, os);
-      if (!before.sizes.empty()) write_baseline_section(data, before, opt->baseline_label, opt->words, os);
+      for (size_t k = 0; k < before.size(); ++k) {
+        if (!before[k].sizes.empty()) write_baseline_section(data, before[k], opt->baseline_labels[k], opt->words, os);
+      }
       if (!fpga.runs.empty()) write_fpga_section(fpga, os);
     };
     if (opt->out.empty() || opt->out == "-") {

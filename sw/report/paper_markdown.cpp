@@ -45,7 +45,7 @@ void table1(std::ostream& md, const Table1& t, unsigned n) {
   }
   for (const auto& [k, v] : t.mul_csd) {
     md << "| multiply by a constant, n = " << k << " | - | " << fmt(v[0], 1) << " mean (" << fmt(v[1]) << ".." << fmt(v[2])
-       << ") | = instructions | CSD: one ADD/SUB per non-zero digit, one RSHIFT per digit position (2000 random constants) |\n";
+       << ") | = instructions | CSD: one ADD/SUB per non-zero digit, each shifting the partial sum by the distance from the previous digit (SHR_A), and one RSHIFT (2000 random constants) |\n";
   }
   md << "| sign test | 4 | " << t.sign_instructions << " (1 when the mask is set) | " << t.sign_instructions
      << " | `MASKSET 0x7fffffff; REF.and f = f, w ~ 0` |\n";
@@ -86,7 +86,9 @@ void broadcasts(std::ostream& md, const Workload& w, const Broadcasts& b, unsign
         "shift-and-add over the multiplier bits, so one MASKSET per bit serves all nine products and "
         "each product costs 2 instructions per bit (REF, ADD) instead of 4; the constant kernel "
         "(canonical signed digits of each broadcast element, known to the host) emits only an ADD or "
-        "SUB per non-zero digit and one RSHIFT per row per digit position, and loads no matrix at all. "
+        "SUB per non-zero digit (each shifting the partial sum on the way in: SHR_A) and one RSHIFT per "
+        "row, shares one step between two digits at the same position (the ray's pair words), and "
+        "loads no matrix at all. "
         "Results of the two multiplies are bit-identical (tested).\n\n";
 }
 

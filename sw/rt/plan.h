@@ -16,7 +16,7 @@
 //     to certify them (uncertain decisions, t beyond the requested accuracy:
 //     docs/intersection.md, "Certified results"): certification must not become "do it
 //     all on the host".
-//   - Words per block: what the kernels need: 14 for rays that share an origin, 24 when
+//   - Words per block: what the kernels need: 20 for rays that share an origin, 26 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
 //   - Blocks (the pass size) and the pass order, in the ray-parallel mapping: from the

@@ -40,7 +40,7 @@ COPIED = ["rtl", "cmodel", "backends", "tb", "tools", "docs", os.path.join("sw",
 FIELDS = {"IMM": 32, "B": 26, "OP": 21, "X": 15, "F": 12, "A": 6, "D": 0}
 SUBFIELDS = {"REF_FN": 4, "REF_PART": 0, "REF_FS": 1, "FUNC_FN": 3, "BIT_I": 20, "BIT_J": 3,
              "FLAG_FA": 0, "FLAG_FB": 3, "FLAG_LUT": 12, "FLAG_ANY": 31,
-             "CMP_FN": 0, "CMP_LT": 5, "CMP_FS": 2}
+             "CMP_FN": 0, "CMP_LT": 5, "CMP_FS": 2, "SHR_A": 27}
 VALUES = {"REF_FN": {"THROUGH": 3, "AND": 1, "OR": 0}, "REF_PART": {"DATA": 1, "ADDR": 0},
           "FUNC_FN": {"AND": 2, "OR": 3, "XOR": 0}, "CMP_FN": {"THROUGH": 2, "AND": 0, "OR": 3},
           "CMP_LT": {"GE": 1, "LT": 0}}
@@ -166,7 +166,7 @@ def build_and_run(scratch, accesses):
 # Cover points that decode a sub-field's value: each must be hit by the run.
 SUBFIELD_COVERS = [f"c_ref_{fn}_{part}" for fn in ("through", "and", "or") for part in ("data", "addr")] + \
                   [f"c_cmp_{fn}_{lt}" for fn in ("through", "and", "or") for lt in ("ge", "lt")] + \
-                  ["c_flagop_any_taken", "c_flagop_any_skipped"]
+                  ["c_flagop_any_taken", "c_flagop_any_skipped", "c_shr_add_max", "c_shr_sub", "c_shr_rshift"]
 
 
 def check_cover_points(path):

@@ -61,9 +61,12 @@ TEST(RtlUnitAlu, AgreesWithTheModelArithmeticInEveryLane) {
       d[l] = static_cast<uint32_t>(rng());
     }
     const unsigned i = rng() % 32, j = rng() % 32;
+    const unsigned shr = rng() % 2 ? 0 : static_cast<unsigned>(rng() % 32);  // word A through the shifter
     const fmpp::FuncFn fn = static_cast<fmpp::FuncFn>(rng() % 3);
-    const fmpp::Instr ops[] = {fmpp::ins::add(3, 1, 2), fmpp::ins::sub(3, 1, 2), fmpp::ins::func(fn, 3, 1, 2),
-                               fmpp::ins::lshift(3, 1), fmpp::ins::rshift(3, 1), fmpp::ins::bitcopy(3, j, 1, i)};
+    const unsigned sel = fmpp::map::kFlagSEL;
+    const fmpp::Instr ops[] = {fmpp::ins::add(3, 1, 2, sel, shr),   fmpp::ins::sub(3, 1, 2, sel, shr),
+                               fmpp::ins::func(fn, 3, 1, 2),        fmpp::ins::lshift(3, 1),
+                               fmpp::ins::rshift(3, 1, sel, shr + 1), fmpp::ins::bitcopy(3, j, 1, i)};
     const fmpp::Instr& in = ops[round % 6];
 
     fmpp::Machine m(cfg);
@@ -82,6 +85,7 @@ TEST(RtlUnitAlu, AgreesWithTheModelArithmeticInEveryLane) {
     alu.fn_i = in.x & 3;
     alu.bit_i_i = in.imm & 0x1F;
     alu.bit_j_i = (in.imm >> 8) & 0x1F;
+    alu.imm_i = in.imm;
     alu.eval();
     const Lanes r = get_planes(alu.r_o);
     const bool writes_c = alu.wr_c_o, writes_v = alu.wr_v_o;

@@ -56,11 +56,15 @@ Instr ref(RefFn fn, RefPart part, unsigned a, uint32_t key, unsigned fd, unsigne
 // (word a < imm) for kLt; the mask is not used. One clock; no word, C or V changes.
 Instr cmp(CmpFn fn, CmpLt lt, unsigned a, int32_t imm, unsigned fd, unsigned fs = map::kFlagSEL);
 Instr func(FuncFn fn, unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
-Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
-Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
+// d <- (word a >>> shr) + word b, and (word a >>> shr) - word b: word A passes the
+// arithmetic right shifter first (SHR_A, 0 .. 31), so a shift-and-add product lines up
+// its partial sum in the same clock as it adds.
+Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL, unsigned shr = 0);
+Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL, unsigned shr = 0);
 Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred = map::kFlagSEL);
 Instr lshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL);
-Instr rshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL);
+// d <- word a >>> by (arithmetic), by = 1 .. 32 (encoded as SHR_A = by - 1).
+Instr rshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL, unsigned by = 1);
 Instr writes(unsigned d, uint32_t data, unsigned pred = map::kFlagSEL);
 Instr sets();
 Instr resets();

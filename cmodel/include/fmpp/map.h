@@ -38,7 +38,7 @@ inline constexpr unsigned kFlagIdxW = 3;  // bits of a flag index (below NumFlag
 inline constexpr unsigned kLaneIdxW = 6;  // bits of a lane of a tile (below LaneW)
 inline constexpr uint32_t kMagic = 0x464D5050u;
 inline constexpr uint16_t kVersionMajor = 1;
-inline constexpr uint16_t kVersionMinor = 0;
+inline constexpr uint16_t kVersionMinor = 1;
 
 inline constexpr unsigned kFlagSEL = 0;  // selection flag: the CAM responder tag and the default predicate
 inline constexpr unsigned kFlagC = 6;  // carry of the last ADD/SUB/LSHIFT/RSHIFT executed in the block
@@ -123,11 +123,11 @@ enum class Op : uint8_t {
   kMaskset = 1,  // mask <- imm; a 1 bit masks that bit out of REF matches and protects it from WRITES
   kRef = 2,  // masked match of word A (or of the block index, by REF_PART) against IMM, combined with flag REF_FS by REF_FN into flag F, in every block
   kFunc = 3,  // D <- A op B, op = FUNC_FN (AND, OR, XOR), where flag F is set
-  kAdd = 4,  // D <- A + B; C <- carry out; V |= signed overflow; where flag F is set
-  kSub = 5,  // D <- A - B; C <- no borrow; V |= signed overflow; where flag F is set
+  kAdd = 4,  // D <- (A >>> SHR_A) + B; C <- carry out; V |= signed overflow; where flag F is set
+  kSub = 5,  // D <- (A >>> SHR_A) - B; C <- no borrow; V |= signed overflow; where flag F is set
   kBitcopy = 6,  // bit BIT_J of D <- bit BIT_I of A, where flag F is set
   kLshift = 7,  // D <- A << 1; C <- A[31]; V |= A[31] xor A[30]; where flag F is set
-  kRshift = 8,  // D <- A >>> 1 (arithmetic); C <- A[0]; where flag F is set
+  kRshift = 8,  // D <- A >>> (SHR_A + 1) (arithmetic); C <- the last bit shifted out; where flag F is set
   kWrites = 9,  // D <- (D and mask) or (imm and not mask), where flag F is set
   kSets = 10,  // SEL <- 1 in every block
   kResets = 11,  // SEL <- 0 in every block
@@ -161,11 +161,11 @@ inline constexpr uint64_t kOpReserved[kNumOpcodes] = {
     0x07FFFFFF00000000ull,  // MASKSET
     0x00FC0FC000000000ull,  // REF
     0x0000003CFFFFFFFFull,  // FUNC
-    0x0000003FFFFFFFFFull,  // ADD
-    0x0000003FFFFFFFFFull,  // SUB
+    0x0000003FFFFFFFE0ull,  // ADD
+    0x0000003FFFFFFFE0ull,  // SUB
     0x00000FFFFFFFE0E0ull,  // BITCOPY
     0x00000FFFFFFFFFFFull,  // LSHIFT
-    0x00000FFFFFFFFFFFull,  // RSHIFT
+    0x00000FFFFFFFFFE0ull,  // RSHIFT
     0x0003FFFF00000000ull,  // WRITES
     0x07FFFFFFFFFFFFFFull,  // SETS
     0x07FFFFFFFFFFFFFFull,  // RESETS
@@ -210,6 +210,7 @@ enum class FuncFn : uint8_t { kAnd = 0, kOr = 1, kXor = 2 };
 inline constexpr uint32_t kFuncFnLegal = 0x7;
 inline constexpr BitField kBitI{0, 5};  // within IMM: source bit of word A
 inline constexpr BitField kBitJ{8, 5};  // within IMM: destination bit of word D
+inline constexpr BitField kShrA{0, 5};  // within IMM: how far word A is shifted right (arithmetic) before the operation
 inline constexpr BitField kFlagFa{3, 3};  // within X: first source flag (index weight 2)
 inline constexpr BitField kFlagFb{0, 3};  // within X: second source flag (index weight 1)
 inline constexpr BitField kFlagLut{0, 4};  // within IMM: truth table: bit 2 * fa + fb is the result for flag values fa, fb

@@ -67,6 +67,7 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 
 void SharedBoxTest::clear() {
   classes_ = 0;
+  reach_fresh_ = reach_made_ = false;
   for (unsigned c = 0; c < 6; ++c) {
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::numeric_limits<int64_t>::max();
@@ -162,7 +163,8 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   for (const std::vector<Compare>& cmps : classes) {
     for (const Compare& k : cmps) dist = dist || (k.kind == Compare::kDist && k.word == kD);
   }
-  if (dist) {
+  reach_made_ = dist && !reach_fresh_;
+  if (reach_made_) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
     // A flagged block's best may not be a hit at all (an uncertain inside test): its
     // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
@@ -218,6 +220,7 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
+  reach_fresh_ = reach_fresh_ || reach_made_;
   const bool hit = dev.responders().any;
   dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
   st->instructions += p.size() + 1;

@@ -67,6 +67,10 @@ class SharedBoxTest {
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
            double pad = 0) const;
+  // The blocks' reach word (best - BB, unbounded where flagged: word kD) is made by the
+  // first test after clear() or after a broadcast, and the tests after it reuse it. Every
+  // broadcast uses kD as scratch: call this after sending one.
+  void broadcast_sent() { reach_fresh_ = reach_made_ = false; }
 
  private:
   glm::dvec3 origin_;
@@ -76,6 +80,8 @@ class SharedBoxTest {
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
   bool has_cull_ = false, reach_ = false;
+  // kD holds the reach (reach_fresh_); the program append made last writes it (reach_made_).
+  mutable bool reach_fresh_ = false, reach_made_ = false;
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
 };
 

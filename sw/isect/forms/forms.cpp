@@ -48,6 +48,15 @@ void SharedOriginForm::load_ray(Device& dev, unsigned b, const Ray& r, const std
 void SharedOriginForm::init(Program& p) const {
   p << writes(kBest, 0, layout::kSel) << writes(kIdx, 0, layout::kSel) << writes(kCnt, 0, layout::kSel)
     << writes(kOne, 1, layout::kSel) << writes(kBB, 0, layout::kSel) << flagop(layout::kUnc, 0, 0, lut::kZero);
+  pair_words(p, pairs(), layout::kSel);
+}
+
+const std::vector<PairWords>& SharedOriginForm::pairs() const {
+  static const std::vector<PairWords> kPairs = {{kV + 0, kV + 1, kPair + 0, kPair + 1},
+                                                {kV + 0, kV + 2, kPair + 2, kPair + 3},
+                                                {kV + 1, kV + 2, kPair + 4, kPair + 5}};
+  static const std::vector<PairWords> kNone;
+  return opt_.mul == MulMode::kConst ? kPairs : kNone;
 }
 
 double SharedOriginForm::t_rel_bound(uint32_t best, size_t k) const {

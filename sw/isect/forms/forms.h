@@ -103,6 +103,9 @@ class SharedOriginForm : public RayForm {
 
   // The farthest vertex of t from the rays' origin.
   double farthest(const Triangle& t) const;
+  // The words holding sums and differences of the direction's components (constant
+  // multiply; none for the generic one), made by init: dot_rows_const's `pairs`.
+  const std::vector<PairWords>& pairs() const;
   // The start of every broadcast of a shared-origin form: under the pass's data mask
   // (set by its init, kept by every broadcast), the broadcast counter counts it.
   static Program begin_broadcast();

@@ -250,9 +250,8 @@ class GeneralForm : public RayForm {
   // before it). Both >= 0: the order of the two exact quotients is not certain.
   static void near_words(Program& p, unsigned pred, unsigned y) {
     const unsigned w = kA + 0, f = kA + 2;
-    p << add(w, kQ, y, pred);
-    for (int k = 1; k < policy::kGeneralCertBits; ++k) p << rshift(w, w, pred);
-    for (int k = 0; k < 4; ++k) p << add(w, w, kOne, pred);
+    p << add(w, kQ, y, pred) << add(w, w, kOne, pred, policy::kGeneralCertBits - 1);  // the shift, then + 1
+    for (int k = 1; k < 4; ++k) p << add(w, w, kOne, pred);
     p << sub(f, w, kTmp, pred) << add(w, w, kTmp, pred);
   }
   // U |= blocks `pred` whose order against Y is not certain. Uses flag kTmp.
@@ -320,7 +319,7 @@ class GeneralForm : public RayForm {
     // det to the quotient's scale (where the ray may be inside), then "strong": det >=
     // 2^jd and nv >= 2^jn, so that Q is within 2^-s of t / u. kT <- not strong.
     for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kX);
-    for (int k = 0; k > dshift; --k) p << rshift(kDet, kDet, kX);
+    if (dshift < 0) p << rshift(kDet, kDet, kX, static_cast<unsigned>(std::min(-dshift, 32)));
     p.mask(low(th.jd));
     p << ref(RefFn::kThrough, RefPart::kData, kDet, 0, kT, kSel);
     p.mask(low(th.jn));
@@ -340,13 +339,15 @@ class GeneralForm : public RayForm {
     p << flagop(kX, kT, kPs, lut::kAndNotB) << flagop(map::kFlagV, map::kFlagV, kX, lut::kOr);
     p << flagop(kHit, kHit, kT, lut::kAndNotB) << flagop(kPs, kPs, kT, lut::kAndNotB);
     p << func(FuncFn::kOr, kA + 1, kDet, kDet, kHit);  // the shifted det, kept for the best
-    // Restoring division: Q = floor(det 2^(q-1) / nv), the remainder in det.
-    p << func(FuncFn::kXor, kQ, kQ, kQ, kHit);
+    // Restoring division: Q = floor(det 2^(q-1) / nv), the remainder in det. Both are
+    // non-negative here, so SUB's carry (no borrow) is the quotient bit, C <- det >= nv,
+    // with no sign test; C is cleared outside kHit first, so only kHit blocks act.
+    constexpr unsigned kC = map::kFlagC;  // the quotient bit here; scratch after the arithmetic
+    p << func(FuncFn::kXor, kQ, kQ, kQ, kHit) << flagop(kC, kC, kHit, lut::kAnd);
     for (int j = static_cast<int>(opt_.qbits) - 1; j >= 0; --j) {
+      if (j + 1 < static_cast<int>(opt_.qbits)) p << lshift(kQ, kQ, kHit);  // Q is 0 before the first bit
       p << sub(kTmp, kDet, kNv, kHit);
-      nonneg(p, kT, kHit, kTmp);
-      p << func(FuncFn::kOr, kDet, kTmp, kTmp, kT);
-      p << lshift(kQ, kQ, kHit) << add(kQ, kQ, kOne, kT);
+      p << func(FuncFn::kOr, kDet, kTmp, kTmp, kC) << add(kQ, kQ, kOne, kC);
       if (j > 0) p << lshift(kDet, kDet, kHit);
     }
     // Beyond the ray's tmin (only batches with one need the test).
@@ -366,7 +367,6 @@ class GeneralForm : public RayForm {
     p << flagop(kX, kHit, kX, lut::kAndNotB);
     p << sub(kTmp, kQ, kBest, kHit);
     near_words(p, kX, kBest);
-    constexpr unsigned kC = map::kFlagC;  // free scratch from here: no more arithmetic
     p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kT, kX);  // has a best, not certainly beyond it
     p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kC, kT);  // nor certainly before it
     p << flagop(kC, kC, kPs, lut::kAndNotB) << flagop(kU, kU, kC, lut::kOr);

@@ -156,12 +156,12 @@ class PaperForm : public SharedOriginForm {
       for (unsigned k = 0; k < 9; ++k) p << writes(kX + k, static_cast<uint32_t>(x[k]), kSel);
       dot_rows(p, rows, opt_.n, kSel, layout::kTmp);
     } else {
-      dot_rows_const(p, rows, opt_.n, kSel);
+      dot_rows_const(p, rows, opt_.n, kSel, pairs());
     }
     *test_steps = certify::inside_certain(p, kT, pb.k);
     p << add(kS, kT + 0, kT + 1, kHit) << add(kS, kS, kT + 2, kHit);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
-    for (int s = 0; s > shift; --s) p << rshift(kS, kS, kHit);
+    if (shift < 0) p << rshift(kS, kS, kHit, static_cast<unsigned>(std::min(-shift, 32)));  // >>> 32: the sign
     certify::keep_nearest_certain(p);
     return p;
   }

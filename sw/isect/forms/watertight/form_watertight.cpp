@@ -101,7 +101,7 @@ class WatertightForm : public SharedOriginForm {
       rows[i].r = i < 3 ? kT + i : kS;
       for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, i < 3 ? x[i][j] : y[j], 0});
     }
-    dot_rows_const(p, rows, opt_.n, kSel);
+    dot_rows_const(p, rows, opt_.n, kSel, pairs());
     *test_steps = certify::inside_certain(p, kT, wb.k);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
     certify::keep_nearest_certain(p);
