@@ -67,21 +67,48 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
           static_cast<double>(st.load_cycles + st.readback_cycles) / static_cast<double>(sample.size())};
 }
 
-// The broadcasts of passes of `blocks` rays of rays[order[..]]: per pass, the triangles
-// whose boxes some of its rays cross before their first hit (all, without culling).
-uint64_t broadcasts(const std::vector<Ray>& rays, const std::vector<size_t>& order, unsigned blocks, const Bvh& bvh,
-                    size_t tris, bool cull) {
+// Per ray of a group, the triangles whose boxes it crosses before its first hit: what the
+// walk of the culling reaches for it alone, the same whatever pass it is in. A pass's
+// broadcasts are the triangles some of its rays reach, so these lists price every pass
+// size and order without walking the hierarchy again.
+struct Reach {
+  std::vector<uint32_t> start;  // ray k's triangles: tris[start[k] .. start[k + 1]); k indexes the group's rays
+  std::vector<uint32_t> tris;
+};
+
+Reach reach_lists(const std::vector<Ray>& rays, const std::vector<size_t>& own, const Bvh& bvh) {
+  Reach r;
+  r.start.reserve(own.size() + 1);
+  r.start.push_back(0);
+  for (const fmpp::isect::RayPacket& p : fmpp::isect::make_packets(rays, own, 0, own.size(), 1, 0)) {
+    bvh.visit(p, [&](uint32_t k) { r.tris.push_back(k); });
+    r.start.push_back(static_cast<uint32_t>(r.tris.size()));
+  }
+  return r;
+}
+
+// The broadcasts of passes of `blocks` rays in the order `pos` (the positions, in the
+// group's rays, of the rays in pass order): per pass, the triangles some of its rays
+// reach (all, without culling). stamp (one entry per triangle) marks the pass that last
+// counted a triangle; `pass` numbers the passes across calls, so that it is never cleared.
+uint64_t broadcasts(const Reach& reach, const std::vector<uint32_t>& pos, unsigned blocks, size_t tris, bool cull,
+                    std::vector<uint64_t>& stamp, uint64_t& pass) {
   uint64_t total = 0;
-  std::vector<char> reach(tris);
-  for (size_t base = 0; base < order.size(); base += blocks) {
+  for (size_t base = 0; base < pos.size(); base += blocks) {
     if (!cull) {
       total += tris;
       continue;
     }
-    const size_t end = std::min(order.size(), base + blocks);
-    std::fill(reach.begin(), reach.end(), 0);
-    bvh.reached(fmpp::isect::make_packets(rays, order, base, end, 1, 0), reach, nullptr);
-    total += static_cast<uint64_t>(std::count(reach.begin(), reach.end(), 1));
+    ++pass;
+    for (size_t i = base; i < std::min(pos.size(), base + blocks); ++i) {
+      for (uint32_t j = reach.start[pos[i]]; j < reach.start[pos[i] + 1]; ++j) {
+        const uint32_t k = reach.tris[j];
+        if (stamp[k] != pass) {
+          stamp[k] = pass;
+          ++total;
+        }
+      }
+    }
   }
   return total;
 }
@@ -134,12 +161,29 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
   std::vector<Box> boxes;
   for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
   const Bvh bvh(boxes, {}, 1);
+  // Each group's reach lists, and its rays' positions in the coherent and the own order.
+  std::vector<Reach> reach;
+  std::vector<std::vector<uint32_t>> coherent_pos, own_pos;
+  for (const Group& g : groups) {
+    reach.push_back(opt.cull ? reach_lists(*g.rays, g.own, bvh) : Reach{});
+    std::vector<uint32_t> at(g.rays->size());
+    own_pos.emplace_back(g.own.size());
+    for (size_t k = 0; k < g.own.size(); ++k) {
+      at[g.own[k]] = static_cast<uint32_t>(k);
+      own_pos.back()[k] = static_cast<uint32_t>(k);
+    }
+    coherent_pos.emplace_back();
+    for (size_t i : g.coherent) coherent_pos.back().push_back(at[i]);
+  }
+  std::vector<uint64_t> stamp(scene.triangles.size(), 0);
+  uint64_t pass = 0;
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc) {
     double clocks = 0;
     *bc = 0;
-    for (const Group& g : groups) {
-      const uint64_t b =
-          broadcasts(*g.rays, coherent ? g.coherent : g.own, blocks, bvh, scene.triangles.size(), opt.cull);
+    for (size_t i = 0; i < groups.size(); ++i) {
+      const Group& g = groups[i];
+      const uint64_t b = broadcasts(reach[i], coherent ? coherent_pos[i] : own_pos[i], blocks,
+                                    scene.triangles.size(), opt.cull, stamp, pass);
       *bc += b;
       clocks += static_cast<double>(b) * (g.shared ? shared_b : general_b) +
                 static_cast<double>(g.own.size()) * (g.shared ? shared_r : general_r);
