@@ -381,7 +381,12 @@ void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vect
   // Passes take consecutive rays of this order; results land at the caller's indices.
   const std::vector<size_t> order = opt.coherent ? coherent_order(rays, idx) : idx;
   RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words);
+  const KernelStats before = *st;
   run_passes(dev, plan, opt, st);
+  const int f = form.id();
+  st->form_broadcasts[f] += st->broadcasts - before.broadcasts;
+  st->form_broadcast_cycles[f] += st->compute_cycles + st->box_cycles - before.compute_cycles - before.box_cycles;
+  st->form_io_cycles[f] += st->load_cycles + st->readback_cycles - before.load_cycles - before.readback_cycles;
 }
 
 }  // namespace fmpp::isect

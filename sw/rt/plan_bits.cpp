@@ -1,6 +1,7 @@
 // The plan's choice of the multiplier bits (see plan_parts.h, plan.h).
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -39,7 +40,8 @@ std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
 
 // Precision: the smallest candidate n whose sampled primary rays and sampled frame
 // meet the target (see plan.h). Fills plan.candidates.
-Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan) {
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
+                               const Image* reference, fmpp::isect::KernelStats* sample_stats, Plan& plan) {
   if (req.bits) return {*req.bits, "set by the user"};
   Steps steps(req);
   const size_t pixels = static_cast<size_t>(req.width) * req.height;
@@ -48,8 +50,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
   std::vector<Ray> sample;
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
-  ReferenceIntersector ri(scene.triangles);
-  const std::vector<Hit> ref = ri.intersect(sample);
+  const std::vector<Hit> ref = exact.intersect(sample);
   std::vector<double> cond;
   for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
   steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays");
@@ -92,6 +93,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     }
   }
   std::vector<Image> ref_chunks;
+  std::map<unsigned, fmpp::isect::KernelStats> frame_stats;  // of each n whose frame sample was rendered
+  // The decision, with the frame sample's counters at its n.
+  auto decided = [&](unsigned n, std::string why) {
+    if (frame_stats.count(n)) *sample_stats = frame_stats[n];
+    return Decision<unsigned>{n, std::move(why)};
+  };
   // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
   // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
   const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
@@ -110,8 +117,17 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       RenderOptions part = frame;
       part.pixels = chunks[k];
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
-      if (ref_chunks.size() <= k) {
-        ref_chunks.push_back(render(scene, ri, part, nullptr));
+      if (ref_chunks.size() <= k && reference) {
+        // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
+        ref_chunks.emplace_back(frame.width, frame.height);
+        for (uint32_t i : part.pixels) {
+          const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
+          const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));
+          ref_chunks.back().at(x, y) = reference->at(x, y);
+        }
+        if (part.pixels.empty()) ref_chunks.back() = *reference;
+      } else if (ref_chunks.size() <= k) {
+        ref_chunks.push_back(render(scene, exact, part, nullptr));
         steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
       }
       fmpp::ModelBus fbus(frame_cfg);
@@ -141,6 +157,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       if (keeps || fails) break;
     }
     c.sample_cycles += st.cycles;
+    frame_stats[c.n] = st;
   };
   auto frame_figure = [&](const PlanCandidate& c) {
     std::ostringstream f;
@@ -206,7 +223,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         }
         why << ")";
       }
-      return {n, why.str()};
+      return decided(n, why.str());
     }
   }
   // No n met every criterion. The frame's pixels are the target itself; the others
@@ -222,12 +239,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         << pct(req.target_wrong_rate) << ", at a cost: machine's own wrong triangles on primary rays "
         << pct(w.wrong_rate) << ", " << pct(w.host_share) << " of triangles beyond the conditioning limit, "
         << pct(w.flagged_share) << " of the sample's rays redone on the host";
-    return {32, why.str()};
+    return decided(32, why.str());
   }
   plan.met_target = false;
   why << "no n meets the error target " << pct(req.target_wrong_rate) << ": the widest, n = 32, leaves "
       << frame_figure(w);
-  return {32, why.str()};
+  return decided(32, why.str());
 }
 
 }  // namespace rt::plan_parts
