@@ -12,6 +12,7 @@
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/exact/reference.h"
+#include "sw/isect/form_cache.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/rt/plan_parts.h"
 #include "sw/rt/render.h"
@@ -102,10 +103,15 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
   // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
   const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
+  // The shared-origin forms the plan's golden-model runs prepare, kept for the next run
+  // with the same form, n, options and origin (form_cache.h): the primary samples of one
+  // n, the frame sample's chunks and its shadow rays from one light at every depth.
+  fmpp::isect::FormCache forms(scene.triangles);
   auto options = [&](unsigned n) {
     fmpp::isect::KernelOptions o = req.base;
     o.n = n;
     o.progress = nullptr;
+    o.forms = &forms;
     return o;
   };
   // The frame sample at n: what the rays the primary sample does not see (shadow rays

@@ -98,8 +98,11 @@ class SharedOriginForm : public RayForm {
   double ray_scale(const glm::dvec3& d) const;
   // The common exponent E of the compared sums S_c = S / 2^(E+1) of the batch in.idx:
   // the nearest possible hit (policy::nearest_for_exponent) keeps S_c below
-  // 2^kSumBits. Sets t_scale_ = 2^(E+1).
+  // 2^kSumBits. Sets t_scale_ = 2^(E+1), and keeps E and that nearest distance.
   int sum_exponent(const FormInputs& in);
+  // The batch enters the form only through E: another batch with the same E makes the
+  // same form.
+  bool serves(const FormInputs& in) const override { return exponent_for(in) == sum_exp_; }
 
   // The farthest vertex of t from the rays' origin.
   double farthest(const Triangle& t) const;
@@ -126,6 +129,12 @@ class SharedOriginForm : public RayForm {
   const KernelOptions& opt_;
   glm::dvec3 origin_;   // the rays' shared origin
   double t_scale_ = 1;  // 1/t = S_c t_scale sv
+  double nearest_ = 0;  // policy::nearest_for_exponent of the triangles' distances from the origin
+  int sum_exp_ = 0;     // E
+
+ private:
+  // E for the batch in.idx, with nearest_ known.
+  int exponent_for(const FormInputs& in) const;
 };
 
 }  // namespace fmpp::isect

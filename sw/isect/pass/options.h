@@ -16,6 +16,7 @@
 namespace fmpp::isect {
 
 class PassShare;  // pass.h
+class FormCache;  // form_cache.h
 
 enum class Mapping { kRay, kObject };
 enum class MulMode { kGeneric, kConst };
@@ -82,6 +83,9 @@ struct KernelOptions {
   double t_accuracy = 0;
   // Several FMPPs: the passes of each call handed out among them (pass.h; nullptr: all here).
   PassShare* share = nullptr;
+  // Shared-origin forms prepared by earlier calls, kept for later ones (form_cache.h;
+  // nullptr: every call prepares its own). The same answers and clocks either way.
+  FormCache* forms = nullptr;
   // Checks every option and, with the words the forms need (form_table.cpp, where it is
   // defined: the registry knows them), the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;

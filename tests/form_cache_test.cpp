@@ -1,0 +1,106 @@
+// Prepared forms kept between calls (form_cache.h): a call that finds its form prepared
+// gives the same answers and counters, clocks included, as one that prepares its own.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "fmpp/model_bus.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/form_cache.h"
+#include "sw/isect/kernels.h"
+
+namespace fmpp::isect {
+namespace {
+
+std::vector<Triangle> random_triangles(unsigned count, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris;
+  for (unsigned k = 0; k < count; ++k) {
+    const glm::dvec3 c(3 * u(rng), 3 * u(rng), 8 + 4 * u(rng));
+    Triangle t;
+    for (auto& p : t.p) p = c + 0.8 * glm::dvec3(u(rng), u(rng), u(rng));
+    tris.push_back(t);
+  }
+  return tris;
+}
+
+// A batch as the ray tracer makes them: rays from the eye and from two lights, and a few
+// of their own (tmin, an excluded triangle); `seed` varies the directions.
+std::vector<Ray> batch(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  const glm::dvec3 origins[3] = {{0, 0, 0}, {4, 5, 1}, {-3, 2, 0.5}};
+  std::vector<Ray> rays;
+  for (int k = 0; k < 300; ++k) {
+    const glm::dvec3& o = origins[k % 3];
+    // The eye looks along +z; a light's rays go towards points among the triangles.
+    const glm::dvec3 d = k % 3 == 0 ? glm::dvec3(u(rng), u(rng), 1)
+                                    : glm::dvec3(0, 0, 9) + 5.0 * glm::dvec3(u(rng), u(rng), u(rng)) - o;
+    rays.push_back(Ray{o, d});
+  }
+  for (int k = 0; k < 20; ++k) rays.push_back(Ray{{u(rng), u(rng), 2 + u(rng)}, {u(rng), u(rng), 1}, 1e-3});
+  return rays;
+}
+
+struct Outcome {
+  std::vector<Hit> hits;
+  KernelStats st;
+};
+
+Outcome run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const KernelOptions& o) {
+  ModelBus bus(Config{64, 32});
+  Device dev(bus);
+  Outcome r;
+  r.hits = intersect_fmpp(dev, rays, tris, o, &r.st);
+  return r;
+}
+
+void expect_same(const Outcome& a, const Outcome& b) {
+  ASSERT_EQ(a.hits.size(), b.hits.size());
+  for (size_t i = 0; i < a.hits.size(); ++i) {
+    EXPECT_EQ(a.hits[i].tri, b.hits[i].tri) << "ray " << i;
+    EXPECT_EQ(a.hits[i].t, b.hits[i].t) << "ray " << i;
+    EXPECT_EQ(a.hits[i].t_err, b.hits[i].t_err) << "ray " << i;
+    EXPECT_EQ(a.hits[i].redo, b.hits[i].redo) << "ray " << i;
+  }
+  EXPECT_EQ(a.st.cycles, b.st.cycles);
+  EXPECT_EQ(a.st.broadcasts, b.st.broadcasts);
+  EXPECT_EQ(0, std::memcmp(&a.st, &b.st, sizeof(KernelStats))) << "every counter";
+}
+
+TEST(FormCache, SameAnswersAndClocksAsFreshForms) {
+  const std::vector<Triangle> tris = random_triangles(300, 3);
+  for (bool watertight : {false, true}) {
+    FormCache cache(tris);
+    for (unsigned n : {20u, 24u, 24u, 28u}) {
+      for (uint64_t seed : {1u, 2u, 3u}) {
+        KernelOptions o;
+        o.n = n;
+        o.watertight = watertight;
+        const Outcome fresh = run(batch(seed), tris, o);
+        o.forms = &cache;
+        expect_same(fresh, run(batch(seed), tris, o));
+      }
+    }
+    // Every n and origin prepared once per sum exponent; the rest reused.
+    EXPECT_GT(cache.reused(), cache.made()) << "watertight " << watertight;
+  }
+}
+
+TEST(FormCache, OnlyForItsOwnTriangles) {
+  const std::vector<Triangle> tris = random_triangles(50, 5);
+  const std::vector<Triangle> copy = tris;
+  FormCache cache(tris);
+  KernelOptions o;
+  o.forms = &cache;
+  const Outcome a = run(batch(1), copy, o);
+  EXPECT_EQ(cache.made() + cache.reused(), 0u) << "another vector, even with the same triangles";
+  const Outcome b = run(batch(1), tris, o);
+  EXPECT_GT(cache.made(), 0u);
+  expect_same(a, b);
+}
+
+}  // namespace
+}  // namespace fmpp::isect
