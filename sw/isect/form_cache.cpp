@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "sw/isect/pass/policy.h"
+
 namespace fmpp::isect {
 namespace {
 
@@ -75,8 +77,13 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
   e.opt.forms = nullptr;
   e.origin = in.origin;
   e.s = s;
+  const auto key = std::make_tuple(in.origin.x, in.origin.y, in.origin.z, s);
+  auto near = nearest_.find(key);
+  if (near == nearest_.end()) {
+    near = nearest_.emplace(key, policy::nearest_for_exponent(distance_range(in.tris, in.origin))).first;
+  }
   try {
-    e.form = info.make(FormInputs{e.opt, in.tris, in.rays, in.idx, in.origin, in.st});
+    e.form = info.make(FormInputs{e.opt, in.tris, in.rays, in.idx, in.origin, in.st, &near->second});
   } catch (...) {
     cache_.pop_front();
     throw;

@@ -16,7 +16,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <list>
+#include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "sw/isect/cull/cull_bounds.h"
@@ -72,6 +74,9 @@ class FormCache {
   };
   const std::vector<Triangle>& tris_;
   size_t entries_;
+  // The nearest distance of the scaled triangles from an origin (FormInputs::nearest),
+  // by origin and scale: the same for every form and n.
+  std::map<std::tuple<double, double, double, int>, double> nearest_;
   CoordinateRange range_;
   int scaled_s_ = 0;
   std::vector<Triangle> scaled_;

@@ -6,10 +6,10 @@
 // greater than the best candidate's. It cannot, because (1) every box is padded by 2^-30
 // of its triangle's extent and largest coordinate, far beyond the rounding of the box
 // and of the packet test (a few ulps of the coordinates), so a box the ray meets is
-// entered; and (2) a leaf is left only when its entry distance exceeds the best hit's
-// distance, taken one ulp up (the exact t is within one ulp below the returned one),
-// times 1 + 2^-30, plus 2^-30 of the origin's largest coordinate: the rounding of the
-// entry distance is far below that margin. tests/reference_bvh_test.cpp compares it with
+// entered; and (2) a leaf is left only when its entry distance exceeds an upper bound
+// on the best hit's distance (the upper end of the filtered test's enclosure of its t,
+// exact.h: Candidate::hi), times 1 + 2^-30, plus 2^-30 of the origin's largest
+// coordinate: the rounding of the entry distance is far below that margin. tests/reference_bvh_test.cpp compares it with
 // nearest_reference on hard placements.
 #include "sw/isect/exact/reference_bvh.h"
 
@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sw/isect/exact/exact.h"
 #include "sw/isect/exact/reference.h"
 
 namespace fmpp::isect {
@@ -53,15 +54,17 @@ Hit ReferenceBvh::nearest(const Ray& r) const {
   const double slack = kRel * max_abs(r.o);
   double best = kInf;  // an upper bound on the best candidate's distance (length units)
   std::vector<int> candidates;
+  // The filtered test (exact.h) decides each hit exactly and encloses its t: the upper
+  // end bounds the distance without the exact t, which only the best needs.
+  exact::RayTest test(r);
+  exact::Candidate c;
   bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
     if (entry > best) return true;  // leaves come in order of entry: none further is nearer
     for (uint32_t i = 0; i < n; ++i) {
       const int tri = static_cast<int>(items[i]);
-      if (tri == r.exclude) continue;
-      const double t = intersect_reference(r, tris_[items[i]]);
-      if (!(t < kInf)) continue;
+      if (tri == r.exclude || !test.hits(tris_[items[i]], &c)) continue;
       candidates.push_back(tri);
-      best = std::min(best, std::nextafter(t, kInf) * len * (1 + kRel) + slack);
+      best = std::min(best, c.hi * len * (1 + kRel) + slack);
     }
     return false;
   });

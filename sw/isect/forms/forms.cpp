@@ -55,7 +55,7 @@ double SharedOriginForm::t_rel_bound(uint32_t best, size_t k) const {
 }
 
 int SharedOriginForm::sum_exponent(const FormInputs& in) {
-  nearest_ = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
+  nearest_ = in.nearest ? *in.nearest : policy::nearest_for_exponent(distance_range(in.tris, in.origin));
   sum_exp_ = exponent_for(in);
   t_scale_ = std::ldexp(1.0, sum_exp_ + 1);
   return sum_exp_;

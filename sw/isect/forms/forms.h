@@ -32,6 +32,9 @@ struct FormInputs {
   const std::vector<size_t>& idx;  // the batch: rays[idx[..]]
   glm::dvec3 origin;               // the shared origin (shared-origin forms)
   KernelStats* st;
+  // Shared-origin forms: policy::nearest_for_exponent of the triangles' distances from
+  // the origin, if the caller knows it (form_cache.h); nullptr: the form finds it.
+  const double* nearest = nullptr;
 };
 
 // Every form, by one identifier: the index of KernelStats' per-form counters and of the
