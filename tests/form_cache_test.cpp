@@ -73,7 +73,7 @@ void expect_same(const Outcome& a, const Outcome& b) {
 TEST(FormCache, SameAnswersAndClocksAsFreshForms) {
   const std::vector<Triangle> tris = random_triangles(300, 3);
   for (bool watertight : {false, true}) {
-    FormCache cache(tris);
+    FormCache cache(tris, size_t{1} << 30);
     for (unsigned n : {20u, 24u, 24u, 28u}) {
       for (uint64_t seed : {1u, 2u, 3u}) {
         KernelOptions o;
@@ -89,10 +89,32 @@ TEST(FormCache, SameAnswersAndClocksAsFreshForms) {
   }
 }
 
+// Calls that cycle through more origins than the cache holds (an area light's points, at
+// every depth) keep finding some: a full cache replaces the form used last that no call
+// has reused, so the first ones stay.
+TEST(FormCache, CyclingThroughMoreOriginsThanItHolds) {
+  const std::vector<Triangle> tris = random_triangles(100, 7);
+  FormCache cache(tris, 3 * FormCache::kBytesPerTriangle * tris.size());  // three forms
+  const glm::dvec3 origins[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  for (int round = 0; round < 3; ++round) {
+    for (const glm::dvec3& o : origins) {
+      std::vector<Ray> rays;
+      for (int k = 0; k < 64; ++k) rays.push_back(Ray{o, {0.01 * (k % 8) - 0.04, 0.01 * (k / 8) - 0.04, 1}});
+      KernelOptions opt;
+      const Outcome fresh = run(rays, tris, opt);
+      opt.forms = &cache;
+      expect_same(fresh, run(rays, tris, opt));
+    }
+  }
+  // Round one prepares all five; rounds two and three find the first two again.
+  EXPECT_EQ(cache.reused(), 4u);
+  EXPECT_EQ(cache.made(), 11u);
+}
+
 TEST(FormCache, OnlyForItsOwnTriangles) {
   const std::vector<Triangle> tris = random_triangles(50, 5);
   const std::vector<Triangle> copy = tris;
-  FormCache cache(tris);
+  FormCache cache(tris, size_t{1} << 30);
   KernelOptions o;
   o.forms = &cache;
   const Outcome a = run(batch(1), copy, o);

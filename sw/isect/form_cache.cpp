@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <stdexcept>
 
 #include "sw/isect/pass/policy.h"
@@ -41,7 +42,8 @@ void CoordinateRange::add(const CoordinateRange& r) {
   lowest_bit = std::min(lowest_bit, r.lowest_bit);
 }
 
-FormCache::FormCache(const std::vector<Triangle>& tris, size_t entries) : tris_(tris), entries_(std::max<size_t>(1, entries)) {
+FormCache::FormCache(const std::vector<Triangle>& tris, size_t bytes)
+    : tris_(tris), entries_(std::max<size_t>(2, bytes / (kBytesPerTriangle * std::max<size_t>(1, tris.size())))) {
   for (const Triangle& t : tris) {
     for (const glm::dvec3& p : t.p) range_.add(p);
   }
@@ -64,9 +66,14 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
     if (it->id == info.id && it->s == s && it->origin == in.origin && same_options(it->opt, in.opt) &&
         it->form->serves(in)) {
       cache_.splice(cache_.begin(), cache_, it);  // the last used first
+      it->reused = true;
       ++reused_;
       return {cache_.front().form.get(), &cache_.front().cull};
     }
+  }
+  if (cache_.size() >= entries_) {
+    const auto victim = std::find_if(cache_.begin(), cache_.end(), [](const Entry& x) { return !x.reused; });
+    cache_.erase(victim != cache_.end() ? victim : std::prev(cache_.end()));
   }
   cache_.emplace_front();
   Entry& e = cache_.front();
@@ -89,7 +96,6 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
     throw;
   }
   ++made_;
-  if (cache_.size() > entries_) cache_.pop_back();
   return {e.form.get(), &e.cull};
 }
 

@@ -39,9 +39,17 @@ struct CoordinateRange {
 
 class FormCache {
  public:
+  // A prepared form with its culling takes about this much memory per triangle
+  // (measured: 60 paper forms of the 52,532-triangle armadillo, 1.5 GB).
+  static constexpr size_t kBytesPerTriangle = 512;
+
   // For calls on `tris` (the very vector; it must outlive the cache and not change):
-  // calls on other triangles do not use it. Keeps the `entries` forms used last.
-  explicit FormCache(const std::vector<Triangle>& tris, size_t entries = 4);
+  // calls on other triangles do not use it. Keeps as many forms as about `bytes` hold
+  // (kBytesPerTriangle), at least 2. When it is full, a new form takes the place of the
+  // last used one that no call has reused yet, else of the least recently used: calls
+  // that cycle through more origins than it holds (area lights' points, at every depth)
+  // then keep finding the same ones, rather than none.
+  FormCache(const std::vector<Triangle>& tris, size_t bytes);
 
   // Whether a call on these triangles may use the cache.
   bool holds(const std::vector<Triangle>& tris) const { return &tris == &tris_; }
@@ -71,6 +79,7 @@ class FormCache {
     int s;
     std::unique_ptr<RayForm> form;
     PreparedCull cull;
+    bool reused = false;
   };
   const std::vector<Triangle>& tris_;
   size_t entries_;
