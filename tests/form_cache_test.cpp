@@ -111,6 +111,27 @@ TEST(FormCache, CyclingThroughMoreOriginsThanItHolds) {
   EXPECT_EQ(cache.made(), 11u);
 }
 
+// The plan's forms handed to the frame: what preparing those the next phase finds took.
+TEST(FormCache, SecondsCarriedToTheNextPhase) {
+  const std::vector<Triangle> tris = random_triangles(200, 9);
+  FormCache cache(tris, size_t{1} << 30);
+  KernelOptions o;
+  o.forms = &cache;
+  run(batch(1), tris, o);
+  run(batch(1), tris, o);
+  EXPECT_EQ(cache.carried_seconds(), 0) << "found in the phase that made them";
+  cache.next_phase();
+  o.n = 20;
+  run(batch(1), tris, o);
+  EXPECT_EQ(cache.carried_seconds(), 0) << "made in this phase";
+  o.n = 24;
+  run(batch(1), tris, o);
+  const double carried = cache.carried_seconds();
+  EXPECT_GT(carried, 0);
+  run(batch(1), tris, o);
+  EXPECT_EQ(cache.carried_seconds(), carried) << "each form counted once";
+}
+
 TEST(FormCache, OnlyForItsOwnTriangles) {
   const std::vector<Triangle> tris = random_triangles(50, 5);
   const std::vector<Triangle> copy = tris;

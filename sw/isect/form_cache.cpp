@@ -2,6 +2,7 @@
 #include "sw/isect/form_cache.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <iterator>
@@ -68,6 +69,10 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
       cache_.splice(cache_.begin(), cache_, it);  // the last used first
       it->reused = true;
       ++reused_;
+      if (it->phase < phase_ && !it->carried) {
+        it->carried = true;
+        carried_seconds_ += it->seconds + it->cull.seconds;
+      }
       return {cache_.front().form.get(), &cache_.front().cull};
     }
   }
@@ -84,6 +89,8 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
   e.opt.forms = nullptr;
   e.origin = in.origin;
   e.s = s;
+  e.phase = phase_;
+  const auto t0 = std::chrono::steady_clock::now();
   const auto key = std::make_tuple(in.origin.x, in.origin.y, in.origin.z, s);
   auto near = nearest_.find(key);
   if (near == nearest_.end()) {
@@ -95,6 +102,7 @@ FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, 
     cache_.pop_front();
     throw;
   }
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++made_;
   return {e.form.get(), &e.cull};
 }

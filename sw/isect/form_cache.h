@@ -71,6 +71,13 @@ class FormCache {
   uint64_t made() const { return made_; }
   uint64_t reused() const { return reused_; }
 
+  // Work handed on (fmpp-render: the precision plan's forms to the frame). next_phase()
+  // starts a new phase; carried_seconds() is what preparing the forms made in earlier
+  // phases and found by calls of the current one took (the form, its culling), each
+  // form counted once.
+  void next_phase() { ++phase_; }
+  double carried_seconds() const { return carried_seconds_; }
+
  private:
   struct Entry {
     FormId id;
@@ -80,6 +87,9 @@ class FormCache {
     std::unique_ptr<RayForm> form;
     PreparedCull cull;
     bool reused = false;
+    unsigned phase = 0;    // in which it was made
+    bool carried = false;  // found in a later phase
+    double seconds = 0;    // making the form (its culling's: PreparedCull::seconds)
   };
   const std::vector<Triangle>& tris_;
   size_t entries_;
@@ -91,6 +101,8 @@ class FormCache {
   std::vector<Triangle> scaled_;
   std::list<Entry> cache_;  // the last used first
   uint64_t made_ = 0, reused_ = 0;
+  unsigned phase_ = 0;
+  double carried_seconds_ = 0;
 };
 
 }  // namespace fmpp::isect

@@ -109,11 +109,10 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
   // The shared-origin forms the plan's golden-model runs prepare, kept for the next run
   // with the same form, n, options and origin (form_cache.h): the primary samples of one
-  // n, the frame sample's chunks and its shadow rays from one light at every depth. Up to
-  // about 512 MB of them: on armadillo_soft, whose two area lights' 48 points each take a
-  // form at every depth, 19 forms of its 52,532 triangles (measured: 129 forms made for
-  // the frame sample with 4 kept, 104 with 19, 72 with 39).
-  fmpp::isect::FormCache forms(scene.triangles, size_t{512} << 20);
+  // n, the frame sample's chunks and its shadow rays from one light at every depth
+  // (kPlanFormBytes, plan.h).
+  std::optional<fmpp::isect::FormCache> own_forms;
+  fmpp::isect::FormCache& forms = req.forms ? *req.forms : own_forms.emplace(scene.triangles, kPlanFormBytes);
   auto options = [&](unsigned n) {
     fmpp::isect::KernelOptions o = req.base;
     o.n = n;

@@ -2,6 +2,7 @@
 #include "sw/isect/cull/cull_bounds.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -35,6 +36,7 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, c
 
 void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
                   unsigned leaf_items, bool probe) {
+  const auto t0 = std::chrono::steady_clock::now();
   c->bounds = cull_bounds(tris, form, opt);
   c->bvh = Bvh(c->bounds.boxes, c->bounds.rel, leaf_items);
   if (probe) {
@@ -45,6 +47,7 @@ void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayF
     c->probe_bvh = Bvh(tight);
   }
   c->ready = true;
+  c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const {

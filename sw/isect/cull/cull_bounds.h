@@ -48,6 +48,7 @@ struct PreparedCull {
   bool ready = false;
   CullBounds bounds;
   Bvh bvh, probe_bvh;
+  double seconds = 0;  // preparing them took
 };
 // Fills *c (and sets ready); the probe's hierarchy only if `probe`.
 void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
