@@ -9,6 +9,7 @@
 #include "sw/fmpp/device.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/pass/policy.h"
 
 namespace fmpp::isect {
 namespace {
@@ -79,13 +80,39 @@ TEST(FormCache, SameAnswersAndClocksAsFreshForms) {
         KernelOptions o;
         o.n = n;
         o.watertight = watertight;
+        // The machine's own answers (the plan's primary samples), and the host's share.
+        o.cond_bits = seed == 2 ? policy::kRawCondBits : seed == 3 ? 10 : -1;
         const Outcome fresh = run(batch(seed), tris, o);
         o.forms = &cache;
         expect_same(fresh, run(batch(seed), tris, o));
       }
     }
-    // Every n and origin prepared once per sum exponent; the rest reused.
-    EXPECT_GT(cache.reused(), cache.made()) << "watertight " << watertight;
+    EXPECT_GT(cache.reused(), 0u) << "watertight " << watertight;
+  }
+}
+
+// The conditioning limit changes a form only through the triangles it sends to the host:
+// the machine's own answers (no limit, the plan's primary samples) and the default limit
+// share a form where no triangle lies between them; a limit that sends some does not.
+TEST(FormCache, LimitsThatSendTheSameTrianglesShareAForm) {
+  const std::vector<Triangle> tris = random_triangles(300, 3);
+  FormCache cache(tris, size_t{1} << 30);
+  KernelOptions o;
+  o.forms = &cache;
+  const Outcome first = run(batch(1), tris, o);
+  ASSERT_EQ(first.st.host_triangles, 0u);
+  const uint64_t made = cache.made();
+  o.cond_bits = policy::kRawCondBits;
+  const Outcome raw = run(batch(1), tris, o);
+  EXPECT_EQ(cache.made(), made) << "the same form";
+  o.cond_bits = 8;
+  const Outcome tight = run(batch(1), tris, o);
+  EXPECT_GT(tight.st.host_triangles, 0u);
+  EXPECT_GT(cache.made(), made) << "another form";
+  for (int bits : {policy::kRawCondBits, 8}) {
+    KernelOptions f;
+    f.cond_bits = bits;
+    expect_same(run(batch(1), tris, f), bits == 8 ? tight : raw);
   }
 }
 

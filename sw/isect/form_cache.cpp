@@ -14,7 +14,8 @@ namespace fmpp::isect {
 namespace {
 
 // Whether forms prepared under a and b are the same: every option but the ones that only
-// steer a call (the pass order, the oracle's counts, progress, sharing, this cache).
+// steer a call (the pass order, the oracle's counts, progress, sharing, this cache) and
+// the conditioning limit, which the form compares itself (RayForm::serves).
 // A field added to KernelOptions must be placed on one side or the other: the size below
 // is that of the fields known here.
 static_assert(sizeof(void*) != 8 || sizeof(KernelOptions) == 112, "a field added to KernelOptions: is it in same_options?");
@@ -22,7 +23,7 @@ bool same_options(const KernelOptions& a, const KernelOptions& b) {
   return a.mapping == b.mapping && a.mul == b.mul && a.n == b.n && a.vbits == b.vbits && a.mbits == b.mbits &&
          a.qbits == b.qbits && a.origins == b.origins && a.cull == b.cull && a.cull_packet == b.cull_packet &&
          a.cull_probe == b.cull_probe && a.fmpp_boxes == b.fmpp_boxes && a.watertight == b.watertight &&
-         a.cond_bits == b.cond_bits && a.t_accuracy == b.t_accuracy;
+         a.t_accuracy == b.t_accuracy;
 }
 
 }  // namespace

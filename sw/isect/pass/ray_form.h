@@ -103,7 +103,8 @@ class RayForm {
   virtual CullModel cull_model(const std::vector<Triangle>& tris) const = 0;
   virtual CullPad cull_pad(const Triangle& t, const Broadcast& b, const CullModel& m) const = 0;
   // Whether this form, prepared for another batch, is the one `in` would make, given the
-  // same form, options, triangles and origin (form_cache.h): false unless the form knows.
+  // same form, triangles, origin and options but the conditioning limit (form_cache.h):
+  // false unless the form knows.
   virtual bool serves(const FormInputs& /*in*/) const { return false; }
 };
 
