@@ -83,21 +83,14 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   size_t first = std::max(kChunk, static_cast<size_t>(std::max(
                                       0.0, std::floor(std::log1p(-req.confidence) / std::log1p(-req.target_wrong_rate)) - 1)));
   while (first < sampled && upper_confidence_bound(0, first, req.confidence) > req.target_wrong_rate) first += 1;
-  std::vector<std::vector<uint32_t>> chunks;
-  if (frame.pixels.empty()) {
-    chunks.emplace_back();  // the whole frame
-  } else {
-    std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
-    std::mt19937_64 rng(0x5eed + 1);
-    std::shuffle(order.begin(), order.end(), rng);
-    for (size_t b = 0, step = first; b < order.size(); b += step, step = kChunk) {
-      const size_t e = std::min(order.size(), b + step);
-      std::vector<uint32_t> c(order.begin() + static_cast<std::ptrdiff_t>(b), order.begin() + static_cast<std::ptrdiff_t>(e));
-      std::sort(c.begin(), c.end());  // frame order: coherent passes
-      chunks.push_back(std::move(c));
-    }
-  }
-  std::vector<Image> ref_chunks;
+  // The sample in random order, and the ends of its chunks (prefixes of that order); a
+  // frame sampled whole is one chunk.
+  std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(0x5eed + 1));
+  std::vector<size_t> ends;
+  for (size_t e = first; e < sampled && !frame.pixels.empty(); e += kChunk) ends.push_back(e);
+  ends.push_back(sampled);
+  std::map<std::pair<size_t, size_t>, Image> ref_chunks;  // the reference's pixels of each chunk rendered
   std::map<unsigned, fmpp::isect::KernelStats> frame_stats;  // of each n whose frame sample was rendered
   // The decision, with the frame sample's counters at its n.
   auto decided = [&](unsigned n, std::string why) {
@@ -125,28 +118,42 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   auto render_frame = [&](PlanCandidate& c) {
     fmpp::isect::KernelStats st;
     size_t done = 0, over = 0;
-    for (size_t k = 0; k < chunks.size(); ++k) {
+    // The rule on the cost below refuses a candidate after 1,000 pixels; one whose primary
+    // sample already redoes more than a quarter of what it refuses (the frame sample has
+    // redone about four times the primary sample's share on every shipped scene) renders
+    // its first 1,000 pixels on their own, so that it can stop there.
+    std::vector<size_t> to = ends;
+    if (c.primary_redone * 4 > kCostlyRedone * req.max_flagged_share && 2 * kChunk < first && !frame.pixels.empty()) {
+      to.insert(to.begin(), 2 * kChunk);
+    }
+    for (size_t k = 0, from = 0; k < to.size(); from = to[k++]) {
       RenderOptions part = frame;
-      part.pixels = chunks[k];
+      if (!frame.pixels.empty()) {
+        part.pixels.assign(order.begin() + static_cast<std::ptrdiff_t>(from), order.begin() + static_cast<std::ptrdiff_t>(to[k]));
+        std::sort(part.pixels.begin(), part.pixels.end());  // frame order: coherent passes
+      }
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
-      if (ref_chunks.size() <= k && reference) {
+      Image* ref = nullptr;
+      if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) {
+        ref = &it->second;
+      } else if (reference) {
         // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
-        ref_chunks.emplace_back(frame.width, frame.height);
+        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), part.pixels.empty() ? *reference : Image(frame.width, frame.height))
+                   .first->second;
         for (uint32_t i : part.pixels) {
           const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
           const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));
-          ref_chunks.back().at(x, y) = reference->at(x, y);
+          ref->at(x, y) = reference->at(x, y);
         }
-        if (part.pixels.empty()) ref_chunks.back() = *reference;
-      } else if (ref_chunks.size() <= k) {
-        ref_chunks.push_back(render(scene, exact, part, nullptr));
+      } else {
+        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), render(scene, exact, part, nullptr)).first->second;
         steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
       }
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
       // Pixels outside the chunk are black in both renders: they count as equal.
-      over += compare(render(scene, fi, part, nullptr), ref_chunks[k]).pixels_over;
+      over += compare(render(scene, fi, part, nullptr), *ref).pixels_over;
       st.add(fi.stats());
       done += count;
       c.pixels_sampled = done;
