@@ -45,7 +45,7 @@ void CoordinateRange::add(const CoordinateRange& r) {
 }
 
 FormCache::FormCache(const std::vector<Triangle>& tris, size_t bytes)
-    : tris_(tris), entries_(std::max<size_t>(2, bytes / (kBytesPerTriangle * std::max<size_t>(1, tris.size())))) {
+    : tris_(tris), entries_(std::max<size_t>(1, bytes / (kBytesPerTriangle * std::max<size_t>(1, tris.size())))) {
   for (const Triangle& t : tris) {
     for (const glm::dvec3& p : t.p) range_.add(p);
   }

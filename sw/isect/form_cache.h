@@ -45,10 +45,11 @@ class FormCache {
 
   // For calls on `tris` (the very vector; it must outlive the cache and not change):
   // calls on other triangles do not use it. Keeps as many forms as about `bytes` hold
-  // (kBytesPerTriangle), at least 2. When it is full, a new form takes the place of the
-  // last used one that no call has reused yet, else of the least recently used: calls
-  // that cycle through more origins than it holds (area lights' points, at every depth)
-  // then keep finding the same ones, rather than none.
+  // (kBytesPerTriangle), at least the one in use (a form it lets go is freed before the
+  // next is made: never more than one beyond the budget). When it is full, a new form
+  // takes the place of the last used one that no call has reused yet, else of the least
+  // recently used: calls that cycle through more origins than it holds (area lights'
+  // points, at every depth) then keep finding the same ones, rather than none.
   FormCache(const std::vector<Triangle>& tris, size_t bytes);
 
   // Whether a call on these triangles may use the cache.
