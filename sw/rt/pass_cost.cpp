@@ -194,6 +194,15 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   uint64_t pass = 0;
   // Per batch, the groups the kernels make on `blocks` blocks (rays sharing an origin,
   // rays of their own: the routing depends on the blocks), each priced at its rates.
+  // A group's coherent order, kept for the other sizes that group the batch alike.
+  std::vector<std::vector<std::pair<std::vector<size_t>, std::vector<size_t>>>> orders(frame.batches.size());
+  auto coherent_order = [&](size_t k, const std::vector<size_t>& idx) -> const std::vector<size_t>& {
+    for (const auto& o : orders[k]) {
+      if (o.first == idx) return o.second;
+    }
+    orders[k].emplace_back(idx, fmpp::isect::coherent_order(frame.batches[k].second, idx));
+    return orders[k].back().second;
+  };
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc) {
     double clocks = 0;
     *bc = 0;
@@ -202,7 +211,7 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
       const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, blocks);
       auto add = [&](const std::vector<size_t>& idx, bool shared) {
         if (idx.empty()) return;
-        const uint64_t b = broadcasts(reach[k], coherent ? fmpp::isect::coherent_order(rays, idx) : idx, blocks,
+        const uint64_t b = broadcasts(reach[k], coherent ? coherent_order(k, idx) : idx, blocks,
                                       scene.triangles.size(), opt.cull, stamp, pass);
         *bc += b;
         clocks += static_cast<double>(b) * (shared ? shared_b : general_b) +
