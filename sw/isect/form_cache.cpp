@@ -18,7 +18,8 @@ namespace {
 // the conditioning limit, which the form compares itself (RayForm::serves).
 // A field added to KernelOptions must be placed on one side or the other: the size below
 // is that of the fields known here.
-static_assert(sizeof(void*) != 8 || sizeof(KernelOptions) == 112, "a field added to KernelOptions: is it in same_options?");
+static_assert(sizeof(void*) != 8 || sizeof(KernelOptions) == 112,
+              "a field added to KernelOptions: is it in same_options?");
 bool same_options(const KernelOptions& a, const KernelOptions& b) {
   return a.mapping == b.mapping && a.mul == b.mul && a.n == b.n && a.vbits == b.vbits && a.mbits == b.mbits &&
          a.qbits == b.qbits && a.origins == b.origins && a.cull == b.cull && a.cull_packet == b.cull_packet &&

@@ -129,7 +129,8 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     for (size_t k = 0, from = 0; k < to.size(); from = to[k++]) {
       RenderOptions part = frame;
       if (!frame.pixels.empty()) {
-        part.pixels.assign(order.begin() + static_cast<std::ptrdiff_t>(from), order.begin() + static_cast<std::ptrdiff_t>(to[k]));
+        const auto at = [&](size_t i) { return order.begin() + static_cast<std::ptrdiff_t>(i); };
+        part.pixels.assign(at(from), at(to[k]));
         std::sort(part.pixels.begin(), part.pixels.end());  // frame order: coherent passes
       }
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
@@ -138,8 +139,8 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         ref = &it->second;
       } else if (reference) {
         // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
-        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), part.pixels.empty() ? *reference : Image(frame.width, frame.height))
-                   .first->second;
+        Image chunk = part.pixels.empty() ? *reference : Image(frame.width, frame.height);
+        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
         for (uint32_t i : part.pixels) {
           const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
           const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));

@@ -2,15 +2,16 @@
 //
 // The walk only chooses candidates; the answer is the exact comparisons among them (as
 // nearest_reference_among makes them), so it can differ from nearest_reference only if
-// the walk left out a triangle that the exact nearest hit needs: one the ray meets at a distance no
-// greater than the best candidate's. It cannot, because (1) every box is padded by 2^-30
-// of its triangle's extent and largest coordinate, far beyond the rounding of the box
-// and of the packet test (a few ulps of the coordinates), so a box the ray meets is
-// entered; and (2) a leaf is left only when its entry distance exceeds an upper bound
-// on the best hit's distance (the upper end of the filtered test's enclosure of its t,
-// exact.h: Candidate::hi), times 1 + 2^-30, plus 2^-30 of the origin's largest
-// coordinate: the rounding of the entry distance is far below that margin. tests/reference_bvh_test.cpp compares it with
-// nearest_reference on hard placements.
+// the walk left out a triangle that the exact nearest hit needs: one the ray meets at a
+// distance no greater than the best candidate's. It cannot, because (1) every box is
+// padded by 2^-30 of its triangle's extent and largest coordinate, far beyond the
+// rounding of the box and of the packet test (a few ulps of the coordinates), so a box
+// the ray meets is entered; and (2) a leaf is left only when its entry distance exceeds
+// an upper bound on the best hit's distance (the upper end of the filtered test's
+// enclosure of its t, exact.h: Candidate::hi), times 1 + 2^-30, plus 2^-30 of the
+// origin's largest coordinate: the rounding of the entry distance is far below that
+// margin. tests/reference_bvh_test.cpp compares it with nearest_reference on hard
+// placements.
 #include "sw/isect/exact/reference_bvh.h"
 
 #include <algorithm>
