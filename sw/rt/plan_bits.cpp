@@ -1,8 +1,8 @@
 // The plan's choice of the multiplier bits (see plan_parts.h, plan.h).
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <random>
