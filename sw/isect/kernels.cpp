@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sw/isect/form_cache.h"
 #include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/pass/pass.h"
@@ -49,26 +50,24 @@ RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, uns
   return rr;
 }
 
-int scene_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
-  double m = 0;
-  int low = std::numeric_limits<int>::max();  // exponent of the lowest set bit of any value
-  auto visit = [&](const glm::dvec3& v) {
-    for (int k = 0; k < 3; ++k) {
-      if (v[k] == 0) continue;
-      m = std::max(m, std::abs(v[k]));
-      int e;
-      const double f = std::frexp(v[k], &e);  // |f| in [0.5, 1)
-      const auto mant = static_cast<uint64_t>(std::abs(std::ldexp(f, 53)));
-      low = std::min(low, e - 53 + __builtin_ctzll(mant));
-    }
-  };
-  for (const Triangle& t : tris) {
-    for (const glm::dvec3& p : t.p) visit(p);
-  }
-  for (const Ray& r : rays) visit(r.o);
-  if (m == 0) return 0;
+namespace {
+
+// The exponent s of scene_exponent, from the range of the call's coordinates.
+int exponent_of(const CoordinateRange& r) {
+  if (r.largest == 0) return 0;
   // The largest value into [1, 2), unless that would push a low bit below 2^-1074.
-  return std::max(-std::ilogb(m), -1074 - low);
+  return std::max(-std::ilogb(r.largest), -1074 - r.lowest_bit);
+}
+
+}  // namespace
+
+int scene_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tris) {
+  CoordinateRange r;
+  for (const Triangle& t : tris) {
+    for (const glm::dvec3& p : t.p) r.add(p);
+  }
+  for (const Ray& ray : rays) r.add(ray.o);
+  return exponent_of(r);
 }
 
 std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& in_tris,
@@ -87,15 +86,24 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   // limits"): exact (s is held back where a low bit would fall below 2^-1074), and it
   // changes no answer but every t by 2^s. So the kernels' double arithmetic never
   // underflows for a scene of subnormal size nor overflows for one near the limit.
-  const int s = scene_exponent(in_rays, in_tris);
+  // A cache of prepared forms (form_cache.h) knows the triangles' share and keeps them scaled.
+  FormCache* cache = opt.forms && opt.forms->holds(in_tris) ? opt.forms : nullptr;
+  int s;
+  if (cache) {
+    CoordinateRange r = cache->range();
+    for (const Ray& ray : in_rays) r.add(ray.o);
+    s = exponent_of(r);
+  } else {
+    s = scene_exponent(in_rays, in_tris);
+  }
   std::vector<Triangle> scaled;
-  if (s != 0) {
+  if (s != 0 && !cache) {
     scaled = in_tris;
     for (Triangle& t : scaled) {
       for (glm::dvec3& p : t.p) p = glm::dvec3(std::ldexp(p.x, s), std::ldexp(p.y, s), std::ldexp(p.z, s));
     }
   }
-  const std::vector<Triangle>& tris = s != 0 ? scaled : in_tris;
+  const std::vector<Triangle>& tris = cache ? cache->scaled(s) : s != 0 ? scaled : in_tris;
   // Every direction is scaled by a power of two to a largest component in [1, 2), and its
   // parameters (tmin, tmax, the hit's t) by the inverse: exact, and the kernels' scales
   // then never see a direction's magnitude, only its shape.
@@ -126,6 +134,9 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
     const FormInfo& f = form_for(opt, true);
     if (f.run_object) {
       f.run_object(dev, rays, idx, tris, origin, opt, out, &st);
+    } else if (cache) {
+      const FormCache::Prepared p = cache->form(f, FormInputs{opt, tris, rays, idx, origin, &st}, s);
+      run_ray_parallel(dev, rays, idx, tris, *p.form, opt, out, &st, &origin, p.cull);
     } else {
       const std::unique_ptr<RayForm> form = f.make(FormInputs{opt, tris, rays, idx, origin, &st});
       run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);

@@ -28,13 +28,14 @@ class RayParallelPlan : public PassPlan {
  public:
   RayParallelPlan(const std::vector<Ray>& rays, const std::vector<size_t>& idx, const std::vector<Triangle>& tris,
                   RayForm& form, const KernelOptions& opt, std::vector<Hit>& out, KernelStats* st,
-                  const glm::dvec3* origin, unsigned words)
-      : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st) {
+                  const glm::dvec3* origin, unsigned words, PreparedCull* prepared)
+      : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st),
+        cull_(prepared ? *prepared : own_), bounds_(cull_.bounds), bvh_(cull_.bvh), probe_bvh_(cull_.probe_bvh) {
     if (opt_.cull) {
-      bounds_ = cull_bounds(tris, form, opt);
-      bvh_ = Bvh(bounds_.boxes, bounds_.rel, kCullLeafItems);
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
-      if (opt_.fmpp_boxes && origin && shared && form_.fmpp_box_test()) {
+      const bool fmpp_boxes = opt_.fmpp_boxes && origin && shared && form_.fmpp_box_test();
+      if (!cull_.ready) prepare_cull(&cull_, tris, form, opt, kCullLeafItems, !fmpp_boxes);
+      if (fmpp_boxes) {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         shared_ = shared;
         const layout::ray::CullWords cw = layout::ray::cull_words(opt_.mul == MulMode::kGeneric);
@@ -43,12 +44,6 @@ class RayParallelPlan : public PassPlan {
           boxes_->set_cull_words(cw);
         }
         origin_ = *origin;
-      } else {
-        // The probe only guesses (the final broadcasts decide), so it walks the triangles'
-        // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
-        std::vector<Box> tight;
-        for (const Broadcast& b : form_.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
-        probe_bvh_ = Bvh(tight);
       }
     }
     if (opt_.oracle) oracle_ = std::make_unique<Oracle>(tris);
@@ -356,8 +351,10 @@ class RayParallelPlan : public PassPlan {
   }
 
   enum class Phase { kAll, kProbe, kFinal };
-  CullBounds bounds_;
-  Bvh bvh_, probe_bvh_;
+  PreparedCull own_;  // without a prepared one
+  PreparedCull& cull_;
+  const CullBounds& bounds_;
+  const Bvh &bvh_, &probe_bvh_;
   std::unique_ptr<SharedBoxTest> boxes_;  // culling on the FMPP (shared-origin paper form)
   const SharedOriginForm* shared_ = nullptr;  // the form, with boxes_
   std::optional<layout::ray::CullWords> cull_words_;  // where the blocks have room for reach and hint
@@ -377,12 +374,17 @@ class RayParallelPlan : public PassPlan {
 
 void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
                       const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
-                      std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin) {
+                      std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin, PreparedCull* cull) {
   st->host_triangles += form.host.size();
   // Passes take consecutive rays of this order; results land at the caller's indices.
   const std::vector<size_t> order = opt.coherent ? coherent_order(rays, idx) : idx;
-  RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words);
+  RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words, cull);
+  const KernelStats before = *st;
   run_passes(dev, plan, opt, st);
+  const int f = form.id();
+  st->form_broadcasts[f] += st->broadcasts - before.broadcasts;
+  st->form_broadcast_cycles[f] += st->compute_cycles + st->box_cycles - before.compute_cycles - before.box_cycles;
+  st->form_io_cycles[f] += st->load_cycles + st->readback_cycles - before.load_cycles - before.readback_cycles;
 }
 
 }  // namespace fmpp::isect

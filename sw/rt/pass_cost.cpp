@@ -4,13 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/geometry/hierarchy.h"
-#include "sw/isect/cull/oracle.h"
 #include "sw/isect/cull/order.h"
+#include "sw/isect/forms/forms.h"
 #include "sw/rt/render.h"
 
 namespace rt {
@@ -21,28 +22,26 @@ using fmpp::isect::Bvh;
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
-// Renders the frame with exact hits (the hierarchy's front-to-back walk) and keeps every
-// batch of rays, each cut at its exact nearest hit: the rays the FMPP will get.
+// Renders the frame with the exact reference's hits and keeps every batch of rays, each
+// cut at its exact nearest hit: the rays the FMPP will get.
 class Recorder : public Intersector {
  public:
-  Recorder(const std::vector<fmpp::isect::Triangle>& tris, double margin) : oracle_(tris), margin_(margin) {}
+  explicit Recorder(ReferenceIntersector& exact) : exact_(exact) {}
   void set_batch_kind(BatchKind k) override { kind_ = k; }
   std::vector<Hit> intersect(const std::vector<Ray>& rays) override {
-    std::vector<Hit> hits;
+    std::vector<Hit> hits = exact_.intersect(rays);
     std::vector<Ray> cut = rays;
-    for (Ray& r : cut) {
-      hits.push_back(oracle_.nearest(r));
-      if (hits.back().hit()) r.tmax = std::min(r.tmax, hits.back().t * (1 + 1e-9));
+    for (size_t i = 0; i < cut.size(); ++i) {
+      if (hits[i].hit()) cut[i].tmax = std::min(cut[i].tmax, hits[i].t * (1 + 1e-9));
     }
     batches.push_back({kind_, std::move(cut)});
     return hits;
   }
-  double spawn_margin() const override { return margin_; }
+  double spawn_margin() const override { return exact_.spawn_margin(); }
   std::vector<std::pair<BatchKind, std::vector<Ray>>> batches;
 
  private:
-  fmpp::isect::Oracle oracle_;
-  double margin_;
+  ReferenceIntersector& exact_;
   BatchKind kind_ = BatchKind::kPrimary;
 };
 
@@ -67,21 +66,50 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
           static_cast<double>(st.load_cycles + st.readback_cycles) / static_cast<double>(sample.size())};
 }
 
-// The broadcasts of passes of `blocks` rays of rays[order[..]]: per pass, the triangles
-// whose boxes some of its rays cross before their first hit (all, without culling).
-uint64_t broadcasts(const std::vector<Ray>& rays, const std::vector<size_t>& order, unsigned blocks, const Bvh& bvh,
-                    size_t tris, bool cull) {
+// Per ray of a batch, the triangles whose boxes it crosses before its first hit: what the
+// walk of the culling reaches for it alone, the same whatever group and pass it is in.
+// A pass's broadcasts are the triangles some of its rays reach, so these lists price
+// every pass size and order without walking the hierarchy again.
+struct Reach {
+  std::vector<uint32_t> start;  // ray i's triangles: tris[start[i] .. start[i + 1])
+  std::vector<uint32_t> tris;
+};
+
+Reach reach_lists(const std::vector<Ray>& rays, const Bvh& bvh) {
+  Reach r;
+  r.start.reserve(rays.size() + 1);
+  r.start.push_back(0);
+  std::vector<size_t> all(rays.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  for (const fmpp::isect::RayPacket& p : fmpp::isect::make_packets(rays, all, 0, all.size(), 1, 0)) {
+    bvh.visit(p, [&](uint32_t k) { r.tris.push_back(k); });
+    r.start.push_back(static_cast<uint32_t>(r.tris.size()));
+  }
+  return r;
+}
+
+// The broadcasts of passes of `blocks` rays, in the order `order` (indices of the
+// batch's rays): per pass, the triangles some of its rays reach (all, without culling).
+// stamp (one entry per triangle) marks the pass that last counted a triangle; `pass`
+// numbers the passes across calls, so that it is never cleared.
+uint64_t broadcasts(const Reach& reach, const std::vector<size_t>& order, unsigned blocks, size_t tris, bool cull,
+                    std::vector<uint64_t>& stamp, uint64_t& pass) {
   uint64_t total = 0;
-  std::vector<char> reach(tris);
   for (size_t base = 0; base < order.size(); base += blocks) {
     if (!cull) {
       total += tris;
       continue;
     }
-    const size_t end = std::min(order.size(), base + blocks);
-    std::fill(reach.begin(), reach.end(), 0);
-    bvh.reached(fmpp::isect::make_packets(rays, order, base, end, 1, 0), reach, nullptr);
-    total += static_cast<uint64_t>(std::count(reach.begin(), reach.end(), 1));
+    ++pass;
+    for (size_t i = base; i < std::min(order.size(), base + blocks); ++i) {
+      for (uint32_t j = reach.start[order[i]]; j < reach.start[order[i] + 1]; ++j) {
+        const uint32_t k = reach.tris[j];
+        if (stamp[k] != pass) {
+          stamp[k] = pass;
+          ++total;
+        }
+      }
+    }
   }
   return total;
 }
@@ -95,61 +123,109 @@ std::string fmt_clocks(double c) {
 
 }  // namespace
 
-PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int max_depth,
-                               const fmpp::isect::KernelOptions& opt,
-                               const std::vector<unsigned>& candidates) {
-  PassCostModel m;
-  Recorder rec(scene.triangles, 0);  // exact hits: the reference's rays, the FMPP render's up to its t bounds
+FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth) {
+  Recorder rec(exact);
   RenderOptions ro;
   ro.width = width;
   ro.height = height;
   ro.max_depth = max_depth;
-  render(scene, rec, ro, nullptr);
+  FrameRecord f;
+  f.picture = render(scene, rec, ro, nullptr);
+  f.batches = std::move(rec.batches);
+  return f;
+}
 
-  // Per batch, the groups the kernels make (rays sharing an origin, rays of their own)
-  // with their clocks per broadcast and per ray.
-  struct Group {
-    const std::vector<Ray>* rays;
-    std::vector<size_t> coherent, own;
-    bool shared;  // rays sharing an origin (else rays of their own origins)
-  };
-  std::vector<Group> groups;
-  std::vector<Ray> shared_sample, general_sample;
-  for (const auto& [kind, rays] : rec.batches) {
-    (void)kind;
-    const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, candidates.back());
-    auto add = [&](const std::vector<size_t>& idx, bool shared) {
-      if (idx.empty()) return;
-      groups.push_back({&rays, fmpp::isect::coherent_order(rays, idx), idx, shared});
-      for (size_t i : idx) (shared ? shared_sample : general_sample).push_back(rays[i]);
-    };
-    for (const auto& g : routes.groups) add(g.second, true);
-    add(routes.general, false);
+PassRates rates_from(const fmpp::isect::KernelStats& st) {
+  double b[2] = {}, bc[2] = {}, io[2] = {}, rays[2] = {};
+  for (const fmpp::isect::FormInfo& f : fmpp::isect::all_forms()) {
+    if (f.mapping != fmpp::isect::Mapping::kRay) continue;
+    const int k = f.shared_origin ? 0 : 1;
+    b[k] += static_cast<double>(st.form_broadcasts[f.id]);
+    bc[k] += static_cast<double>(st.form_broadcast_cycles[f.id]);
+    io[k] += static_cast<double>(st.form_io_cycles[f.id]);
+    rays[k] += static_cast<double>(st.form_rays[f.id]);
   }
-  const auto [shared_b, shared_r] = measure(scene, shared_sample, opt);
-  const auto [general_b, general_r] = measure(scene, general_sample, opt);
+  PassRates r;
+  r.shared = rays[0] > 0;
+  r.general = rays[1] > 0;
+  r.shared_b = b[0] > 0 ? bc[0] / b[0] : 200.0;
+  r.general_b = b[1] > 0 ? bc[1] / b[1] : 200.0;
+  r.shared_r = r.shared ? io[0] / rays[0] : 0;
+  r.general_r = r.general ? io[1] / rays[1] : 0;
+  return r;
+}
+
+PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt,
+                               const std::vector<unsigned>& candidates, const PassRates* rates) {
+  PassCostModel m;
+  // The rates known, else measured on samples of the frame's rays, grouped as the
+  // kernels of the largest candidate group them.
+  PassRates r = rates ? *rates : PassRates{};
+  std::string from_sample;
+  if (!r.shared || !r.general) {
+    std::vector<Ray> shared_sample, general_sample;
+    for (const auto& batch : frame.batches) {
+      const std::vector<Ray>& rays = batch.second;
+      const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, candidates.back());
+      for (const auto& g : routes.groups) {
+        for (size_t i : g.second) shared_sample.push_back(rays[i]);
+      }
+      for (size_t i : routes.general) general_sample.push_back(rays[i]);
+    }
+    if (!r.shared && !shared_sample.empty()) {
+      std::tie(r.shared_b, r.shared_r) = measure(scene, shared_sample, opt);
+      from_sample = "rays sharing an origin";
+    }
+    if (!r.general && !general_sample.empty()) {
+      std::tie(r.general_b, r.general_r) = measure(scene, general_sample, opt);
+      from_sample += std::string(from_sample.empty() ? "" : " and ") + "rays of their own";
+    }
+  }
+  const double shared_b = r.shared_b, shared_r = r.shared_r, general_b = r.general_b, general_r = r.general_r;
   m.per_broadcast = shared_b;
   m.per_ray = shared_r;
 
   std::vector<Box> boxes;
   for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
   const Bvh bvh(boxes, {}, 1);
+  std::vector<Reach> reach;
+  for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
+  std::vector<uint64_t> stamp(scene.triangles.size(), 0);
+  uint64_t pass = 0;
+  // Per batch, the groups the kernels make on `blocks` blocks (rays sharing an origin,
+  // rays of their own: the routing depends on the blocks), each priced at its rates.
+  // A group's coherent order, kept for the other sizes that group the batch alike.
+  std::vector<std::vector<std::pair<std::vector<size_t>, std::vector<size_t>>>> orders(frame.batches.size());
+  auto coherent_order = [&](size_t k, const std::vector<size_t>& idx) -> const std::vector<size_t>& {
+    for (const auto& o : orders[k]) {
+      if (o.first == idx) return o.second;
+    }
+    orders[k].emplace_back(idx, fmpp::isect::coherent_order(frame.batches[k].second, idx));
+    return orders[k].back().second;
+  };
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc) {
     double clocks = 0;
     *bc = 0;
-    for (const Group& g : groups) {
-      const uint64_t b =
-          broadcasts(*g.rays, coherent ? g.coherent : g.own, blocks, bvh, scene.triangles.size(), opt.cull);
-      *bc += b;
-      clocks += static_cast<double>(b) * (g.shared ? shared_b : general_b) +
-                static_cast<double>(g.own.size()) * (g.shared ? shared_r : general_r);
+    for (size_t k = 0; k < frame.batches.size(); ++k) {
+      const std::vector<Ray>& rays = frame.batches[k].second;
+      const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, blocks);
+      auto add = [&](const std::vector<size_t>& idx, bool shared) {
+        if (idx.empty()) return;
+        const uint64_t b = broadcasts(reach[k], coherent ? coherent_order(k, idx) : idx, blocks,
+                                      scene.triangles.size(), opt.cull, stamp, pass);
+        *bc += b;
+        clocks += static_cast<double>(b) * (shared ? shared_b : general_b) +
+                  static_cast<double>(idx.size()) * (shared ? shared_r : general_r);
+      };
+      for (const auto& g : routes.groups) add(g.second, true);
+      add(routes.general, false);
     }
     return clocks;
   };
 
   double best = 0;
   size_t primary = 0;
-  for (const auto& b : rec.batches) primary += b.first == BatchKind::kPrimary ? b.second.size() : 0;
+  for (const auto& b : frame.batches) primary += b.first == BatchKind::kPrimary ? b.second.size() : 0;
   for (unsigned blocks : candidates) {
     PassSizeEstimate e;
     e.blocks = blocks;
@@ -175,7 +251,11 @@ PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int ma
          "its rays cross before their first hit, at "
       << std::lround(shared_b) << " clocks a broadcast for rays sharing an origin and " << std::lround(general_b)
       << " for the others, and " << std::lround(shared_r) << " and " << std::lround(general_r)
-      << " clocks a ray to load and read back, measured on samples):";
+      << " clocks a ray to load and read back, "
+      << (from_sample.empty() ? std::string("from the frame sample's golden-model render")
+          : !rates ? std::string("measured on samples")
+                   : "from the frame sample's golden-model render, " + from_sample + " measured on samples")
+      << "):";
   for (const PassSizeEstimate& e : m.sizes) {
     why << " " << e.blocks << " blocks, " << e.passes << (e.passes == 1 ? " pass " : " passes ") << "of primary rays, "
         << fmt_clocks(e.clocks) << ";";

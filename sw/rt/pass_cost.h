@@ -5,12 +5,16 @@
 // them. The model estimates the clocks of the whole frame for each candidate number of
 // blocks and each pass order, from
 //   - the frame's rays: the frame rendered on the host with exact hits (every primary,
-//     shadow and secondary batch, grouped as the kernels group them);
+//     shadow and secondary batch; record_frame), grouped as the kernels group them on
+//     each candidate number of blocks (rays sharing an origin that are too few for the
+//     blocks take the arbitrary-origin form: route_rays);
 //   - the broadcasts each pass needs: the triangles whose boxes some of its rays cross
 //     before their exact first hit (the walk of the culling, on the triangles' own
 //     boxes: what the front-to-back walk on the FMPP approaches), and
-//   - the measured clocks of a broadcast (its FMPP box test included) and of loading and
-//     reading back a ray, per form, from samples of those rays run on the golden model.
+//   - the clocks of a broadcast (its FMPP box test included) and of loading and reading
+//     back a ray, for rays sharing an origin and for the others: from the golden-model
+//     render of the plan's frame sample at the chosen n (rates_from), or, for a kind of
+//     ray that render did not have, measured on samples of the frame's rays.
 // The plan then takes the fewest blocks whose estimate is within kPassSizeSlack of the
 // best estimate, and the pass order with the fewer clocks there.
 #pragma once
@@ -20,6 +24,8 @@
 #include <vector>
 
 #include "sw/isect/kernels.h"
+#include "sw/rt/image.h"
+#include "sw/rt/render.h"
 #include "sw/rt/scene.h"
 
 namespace rt {
@@ -46,10 +52,30 @@ struct PassCostModel {
   std::string why_blocks, why_order;
 };
 
-// Estimates each candidate number of blocks (ascending, each >= 1) for a width x height
-// frame traced to max_depth, with `opt` (n set).
-PassCostModel model_pass_sizes(const Scene& scene, int width, int height, int max_depth,
-                               const fmpp::isect::KernelOptions& opt,
-                               const std::vector<unsigned>& candidates);
+// The frame rendered on the host with the exact reference's hits, every batch of rays
+// kept as the kernels get it, each ray cut at its exact nearest hit. Its picture is the
+// exact reference's render of the frame, which the plan's frame sample compares with.
+struct FrameRecord {
+  Image picture{1, 1};
+  std::vector<std::pair<BatchKind, std::vector<fmpp::isect::Ray>>> batches;
+};
+FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth);
+
+// Clocks of a broadcast (its box tests included) and of loading and reading back a ray,
+// for rays sharing an origin and for rays of their own; a kind with no ray is unknown.
+struct PassRates {
+  double shared_b = 0, shared_r = 0, general_b = 0, general_r = 0;
+  bool shared = false, general = false;  // known
+};
+// From the per-form counters of a golden-model render (KernelStats::form_*). A kind with
+// rays but no broadcast (all culled) is priced as a broadcast of the paper's form at
+// n = 24, 200 clocks.
+PassRates rates_from(const fmpp::isect::KernelStats& st);
+
+// Estimates each candidate number of blocks (ascending, each >= 1) for the recorded
+// frame, with `opt` (n set), at `rates` (nullptr: none known); a kind of ray the rates
+// do not know is measured on the golden model on up to 512 of the frame's rays.
+PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt,
+                               const std::vector<unsigned>& candidates, const PassRates* rates);
 
 }  // namespace rt

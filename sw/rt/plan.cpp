@@ -93,7 +93,8 @@ Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned b
 
 // Blocks and pass order from the cost model (pass_cost.h): on the golden model powers of
 // two from 1,024 to one pass; on the RTL its built configurations with the words.
-void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, int depth, Plan* plan) {
+void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, const FrameRecord& frame,
+                      const PassRates* rates, Plan* plan) {
   std::vector<unsigned> sizes;
   std::vector<std::string> names;
   if (req.rtl_configs.empty()) {
@@ -115,8 +116,8 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
     if (sizes.empty()) return;  // fit_rtl has refused already
   }
   Steps steps(req);
-  const PassCostModel m = model_pass_sizes(scene, req.width, req.height, depth, plan->options, sizes);
-  steps.say("pass size: the frame's rays traced exactly, " + std::to_string(sizes.size()) + " sizes priced");
+  const PassCostModel m = model_pass_sizes(scene, frame, plan->options, sizes, rates);
+  steps.say("pass size: " + std::to_string(sizes.size()) + " sizes priced");
   plan->pass_sizes = m.sizes;
   plan->options.coherent = m.coherent;
   plan->why_order = m.why_order;
@@ -197,10 +198,25 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   }
   plan.config.validate();
 
-  const Decision<unsigned> bits = decide_bits(scene, req, depth, plan);
+  // The pass-size model's exact render of the frame comes first: its picture is the
+  // reference the frame sample is compared with, and the frame sample at the chosen n
+  // prices the model's broadcasts and rays.
+  ReferenceIntersector exact(scene.triangles);
+  std::optional<FrameRecord> frame;
+  if (!req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay) {
+    Steps steps(req);
+    frame = record_frame(scene, exact, req.width, req.height, depth);
+    steps.say("the frame traced with exact hits (the reference's picture, the pass-size model's rays)");
+  }
+  fmpp::isect::KernelStats sample_stats;
+  const Decision<unsigned> bits =
+      decide_bits(scene, req, depth, exact, frame ? &frame->picture : nullptr, &sample_stats, plan);
   plan.options.n = bits.value;
   plan.why_bits = bits.why;
-  if (!req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay) decide_pass_size(scene, req, pixels, depth, &plan);
+  if (frame) {
+    const PassRates rates = rates_from(sample_stats);
+    decide_pass_size(scene, req, pixels, *frame, &rates, &plan);
+  }
   if (plan.pass_sizes.empty()) plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
   return plan;
 }

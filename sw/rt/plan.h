@@ -27,6 +27,7 @@
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -57,6 +58,9 @@ struct PlanRequest {
   // Called with a line on each step the plan takes (what it tries, what it found, how
   // long it took), for the console; nullptr for none.
   std::function<void(const std::string&)> progress;
+  // Where the plan's golden-model runs keep the forms they prepare (form_cache.h), for
+  // the frame to find those of the chosen n (fmpp-render); nullptr: a cache of its own.
+  fmpp::isect::FormCache* forms = nullptr;
 };
 
 // Rays redone on the host are a cost, not the error target, so an estimate refuses a
@@ -66,6 +70,12 @@ struct PlanRequest {
 // shipped scene but armadillo and scans at n = 24, where both were several times the
 // allowance (docs/raytracer.md, "The precision plan").
 inline constexpr double kCostlyRedone = 1.25;
+
+// The memory the plan's prepared forms may take (FormCache): about 512 MB, on
+// armadillo_soft, whose two area lights' 48 points each take a form at every depth, 19
+// forms of its 52,532 triangles (measured: the frame sample made 129 forms with 4 kept,
+// 104 with 19, 72 with 39).
+inline constexpr size_t kPlanFormBytes = size_t{512} << 20;
 
 struct PlanCandidate {
   unsigned n;

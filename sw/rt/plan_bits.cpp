@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -11,6 +12,7 @@
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/exact/reference.h"
+#include "sw/isect/form_cache.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/rt/plan_parts.h"
 #include "sw/rt/render.h"
@@ -39,7 +41,8 @@ std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
 
 // Precision: the smallest candidate n whose sampled primary rays and sampled frame
 // meet the target (see plan.h). Fills plan.candidates.
-Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan) {
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
+                               const Image* reference, fmpp::isect::KernelStats* sample_stats, Plan& plan) {
   if (req.bits) return {*req.bits, "set by the user"};
   Steps steps(req);
   const size_t pixels = static_cast<size_t>(req.width) * req.height;
@@ -48,12 +51,15 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
   std::vector<Ray> sample;
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
-  ReferenceIntersector ri(scene.triangles);
-  const std::vector<Hit> ref = ri.intersect(sample);
+  const std::vector<Hit> ref = exact.intersect(sample);
   std::vector<double> cond;
   for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
   steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays");
-  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 4096)), 32};
+  // Passes of 128 of the sample's rays, in the coherent order (image tiles): each pass
+  // broadcasts only what its part of the frame needs (measured, the golden model's time
+  // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
+  // passes of 128 rays 0.03 s and 0.19 s; the same answers and redone rays).
+  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 128)), 32};
   // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
   // plan is deterministic), in frame order, rendered whole (shadow, reflection and
   // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
@@ -77,28 +83,34 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   size_t first = std::max(kChunk, static_cast<size_t>(std::max(
                                       0.0, std::floor(std::log1p(-req.confidence) / std::log1p(-req.target_wrong_rate)) - 1)));
   while (first < sampled && upper_confidence_bound(0, first, req.confidence) > req.target_wrong_rate) first += 1;
-  std::vector<std::vector<uint32_t>> chunks;
-  if (frame.pixels.empty()) {
-    chunks.emplace_back();  // the whole frame
-  } else {
-    std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
-    std::mt19937_64 rng(0x5eed + 1);
-    std::shuffle(order.begin(), order.end(), rng);
-    for (size_t b = 0, step = first; b < order.size(); b += step, step = kChunk) {
-      const size_t e = std::min(order.size(), b + step);
-      std::vector<uint32_t> c(order.begin() + static_cast<std::ptrdiff_t>(b), order.begin() + static_cast<std::ptrdiff_t>(e));
-      std::sort(c.begin(), c.end());  // frame order: coherent passes
-      chunks.push_back(std::move(c));
-    }
-  }
-  std::vector<Image> ref_chunks;
+  // The sample in random order, and the ends of its chunks (prefixes of that order); a
+  // frame sampled whole is one chunk.
+  std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(0x5eed + 1));
+  std::vector<size_t> ends;
+  for (size_t e = first; e < sampled && !frame.pixels.empty(); e += kChunk) ends.push_back(e);
+  ends.push_back(sampled);
+  std::map<std::pair<size_t, size_t>, Image> ref_chunks;  // the reference's pixels of each chunk rendered
+  std::map<unsigned, fmpp::isect::KernelStats> frame_stats;  // of each n whose frame sample was rendered
+  // The decision, with the frame sample's counters at its n.
+  auto decided = [&](unsigned n, std::string why) {
+    if (frame_stats.count(n)) *sample_stats = frame_stats[n];
+    return Decision<unsigned>{n, std::move(why)};
+  };
   // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
   // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
   const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
+  // The shared-origin forms the plan's golden-model runs prepare, kept for the next run
+  // with the same form, n, options and origin (form_cache.h): the primary samples of one
+  // n, the frame sample's chunks and its shadow rays from one light at every depth
+  // (kPlanFormBytes, plan.h).
+  std::optional<fmpp::isect::FormCache> own_forms;
+  fmpp::isect::FormCache& forms = req.forms ? *req.forms : own_forms.emplace(scene.triangles, kPlanFormBytes);
   auto options = [&](unsigned n) {
     fmpp::isect::KernelOptions o = req.base;
     o.n = n;
     o.progress = nullptr;
+    o.forms = &forms;
     return o;
   };
   // The frame sample at n: what the rays the primary sample does not see (shadow rays
@@ -106,19 +118,43 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   auto render_frame = [&](PlanCandidate& c) {
     fmpp::isect::KernelStats st;
     size_t done = 0, over = 0;
-    for (size_t k = 0; k < chunks.size(); ++k) {
+    // The rule on the cost below refuses a candidate after 1,000 pixels; one whose primary
+    // sample already redoes more than a quarter of what it refuses (the frame sample has
+    // redone about four times the primary sample's share on every shipped scene) renders
+    // its first 1,000 pixels on their own, so that it can stop there.
+    std::vector<size_t> to = ends;
+    if (c.primary_redone * 4 > kCostlyRedone * req.max_flagged_share && 2 * kChunk < first && !frame.pixels.empty()) {
+      to.insert(to.begin(), 2 * kChunk);
+    }
+    for (size_t k = 0, from = 0; k < to.size(); from = to[k++]) {
       RenderOptions part = frame;
-      part.pixels = chunks[k];
+      if (!frame.pixels.empty()) {
+        const auto at = [&](size_t i) { return order.begin() + static_cast<std::ptrdiff_t>(i); };
+        part.pixels.assign(at(from), at(to[k]));
+        std::sort(part.pixels.begin(), part.pixels.end());  // frame order: coherent passes
+      }
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
-      if (ref_chunks.size() <= k) {
-        ref_chunks.push_back(render(scene, ri, part, nullptr));
+      Image* ref = nullptr;
+      if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) {
+        ref = &it->second;
+      } else if (reference) {
+        // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
+        Image chunk = part.pixels.empty() ? *reference : Image(frame.width, frame.height);
+        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
+        for (uint32_t i : part.pixels) {
+          const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
+          const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));
+          ref->at(x, y) = reference->at(x, y);
+        }
+      } else {
+        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), render(scene, exact, part, nullptr)).first->second;
         steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
       }
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
       // Pixels outside the chunk are black in both renders: they count as equal.
-      over += compare(render(scene, fi, part, nullptr), ref_chunks[k]).pixels_over;
+      over += compare(render(scene, fi, part, nullptr), *ref).pixels_over;
       st.add(fi.stats());
       done += count;
       c.pixels_sampled = done;
@@ -141,6 +177,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       if (keeps || fails) break;
     }
     c.sample_cycles += st.cycles;
+    frame_stats[c.n] = st;
   };
   auto frame_figure = [&](const PlanCandidate& c) {
     std::ostringstream f;
@@ -206,7 +243,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         }
         why << ")";
       }
-      return {n, why.str()};
+      return decided(n, why.str());
     }
   }
   // No n met every criterion. The frame's pixels are the target itself; the others
@@ -222,12 +259,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         << pct(req.target_wrong_rate) << ", at a cost: machine's own wrong triangles on primary rays "
         << pct(w.wrong_rate) << ", " << pct(w.host_share) << " of triangles beyond the conditioning limit, "
         << pct(w.flagged_share) << " of the sample's rays redone on the host";
-    return {32, why.str()};
+    return decided(32, why.str());
   }
   plan.met_target = false;
   why << "no n meets the error target " << pct(req.target_wrong_rate) << ": the widest, n = 32, leaves "
       << frame_figure(w);
-  return {32, why.str()};
+  return decided(32, why.str());
 }
 
 }  // namespace rt::plan_parts

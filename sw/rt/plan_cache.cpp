@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-2";
+constexpr const char* kPlanVersion = "plan-3";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "sw/isect/pass/options.h"
+#include "sw/rt/image.h"
 #include "sw/rt/plan.h"
+#include "sw/rt/render.h"
 #include "sw/rt/scene.h"
 
 namespace rt::plan_parts {
@@ -59,7 +61,12 @@ inline std::string pct(double v) {
 }
 
 // The multiplier bits n: the narrowest candidate whose sampled wrong-pixel rate meets the
-// target (plan_bits.cpp; docs/raytracer.md, "The precision plan").
-Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, Plan& plan);
+// target (plan_bits.cpp; docs/raytracer.md, "The precision plan"). `exact` answers with
+// the exact reference; `reference` is its render of the whole frame (nullptr: the frame
+// sample's pixels are rendered with it as needed). *sample_stats gets the counters of the
+// frame sample's golden-model render at the n chosen (none if no frame sample was
+// rendered: n set by the user).
+Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
+                               const Image* reference, fmpp::isect::KernelStats* sample_stats, Plan& plan);
 
 }  // namespace rt::plan_parts

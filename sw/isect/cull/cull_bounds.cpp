@@ -2,6 +2,7 @@
 #include "sw/isect/cull/cull_bounds.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -31,6 +32,22 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, c
     cb.normal.push_back(glm::length(nrm) > 0 ? glm::normalize(nrm) : glm::dvec3(0));
   }
   return cb;
+}
+
+void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
+                  unsigned leaf_items, bool probe) {
+  const auto t0 = std::chrono::steady_clock::now();
+  c->bounds = cull_bounds(tris, form, opt);
+  c->bvh = Bvh(c->bounds.boxes, c->bounds.rel, leaf_items);
+  if (probe) {
+    // The probe only guesses (the final broadcasts decide), so it walks the triangles'
+    // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
+    std::vector<Box> tight;
+    for (const Broadcast& b : form.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
+    c->probe_bvh = Bvh(tight);
+  }
+  c->ready = true;
+  c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const {

@@ -41,4 +41,17 @@ struct CullBounds {
 // says of its hits (RayForm::cull_model, cull_pad).
 CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt);
 
+// What culling prepares for a form over all its triangles: the bounds, the hierarchy
+// over the padded boxes (leaves of leaf_items) and, for the probe, one over the
+// triangles' own boxes. The same for every call with the same form (form_cache.h).
+struct PreparedCull {
+  bool ready = false;
+  CullBounds bounds;
+  Bvh bvh, probe_bvh;
+  double seconds = 0;  // preparing them took
+};
+// Fills *c (and sets ready); the probe's hierarchy only if `probe`.
+void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
+                  unsigned leaf_items, bool probe);
+
 }  // namespace fmpp::isect

@@ -1,22 +1,24 @@
 // The exact reference through a hierarchy (see reference_bvh.h).
 //
-// The walk only chooses candidates; the answer is nearest_reference_among's exact
-// comparisons among them, so it can differ from nearest_reference only if the walk left
-// out a triangle that the exact nearest hit needs: one the ray meets at a distance no
-// greater than the best candidate's. It cannot, because (1) every box is padded by 2^-30
-// of its triangle's extent and largest coordinate, far beyond the rounding of the box
-// and of the packet test (a few ulps of the coordinates), so a box the ray meets is
-// entered; and (2) a leaf is left only when its entry distance exceeds the best hit's
-// distance, taken one ulp up (the exact t is within one ulp below the returned one),
-// times 1 + 2^-30, plus 2^-30 of the origin's largest coordinate: the rounding of the
-// entry distance is far below that margin. tests/reference_bvh_test.cpp compares it with
-// nearest_reference on hard placements.
+// The walk only chooses candidates; the answer is the exact comparisons among them (as
+// nearest_reference_among makes them), so it can differ from nearest_reference only if
+// the walk left out a triangle that the exact nearest hit needs: one the ray meets at a
+// distance no greater than the best candidate's. It cannot, because (1) every box is
+// padded by 2^-30 of its triangle's extent and largest coordinate, far beyond the
+// rounding of the box and of the packet test (a few ulps of the coordinates), so a box
+// the ray meets is entered; and (2) a leaf is left only when its entry distance exceeds
+// an upper bound on the best hit's distance (the upper end of the filtered test's
+// enclosure of its t, exact.h: Candidate::hi), times 1 + 2^-30, plus 2^-30 of the
+// origin's largest coordinate: the rounding of the entry distance is far below that
+// margin. tests/reference_bvh_test.cpp compares it with nearest_reference on hard
+// placements.
 #include "sw/isect/exact/reference_bvh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "sw/isect/exact/exact.h"
 #include "sw/isect/exact/reference.h"
 
 namespace fmpp::isect {
@@ -51,21 +53,34 @@ Hit ReferenceBvh::nearest(const Ray& r) const {
   p.t1 = kInf;
   const double len = glm::length(r.d) * (1 + kRel);
   const double slack = kRel * max_abs(r.o);
-  double best = kInf;  // an upper bound on the best candidate's distance (length units)
-  std::vector<int> candidates;
+  double bound = kInf;  // an upper bound on the best candidate's distance (length units)
+  // The filtered test (exact.h) decides each hit exactly and encloses its t: the upper
+  // end bounds the distance, and two hits are compared exactly only where their
+  // enclosures overlap. The candidates are kept as nearest_reference_among keeps them, in
+  // the same order: the nearest, ties to the lower index, with its exact t.
+  exact::RayTest test(r);
+  exact::Candidate best, next;
   bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
-    if (entry > best) return true;  // leaves come in order of entry: none further is nearer
+    if (entry > bound) return true;  // leaves come in order of entry: none further is nearer
     for (uint32_t i = 0; i < n; ++i) {
       const int tri = static_cast<int>(items[i]);
-      if (tri == r.exclude) continue;
-      const double t = intersect_reference(r, tris_[items[i]]);
-      if (!(t < kInf)) continue;
-      candidates.push_back(tri);
-      best = std::min(best, std::nextafter(t, kInf) * len * (1 + kRel) + slack);
+      if (tri == r.exclude || !test.hits(tris_[items[i]], &next)) continue;
+      next.tri = tri;
+      bound = std::min(bound, next.hi * len * (1 + kRel) + slack);
+      if (best.tri >= 0) {
+        const int c = test.compare_hits(tris_[items[i]], &next, tris_[static_cast<size_t>(best.tri)], &best);
+        if (c > 0 || (c == 0 && tri > best.tri)) continue;
+      }
+      std::swap(best, next);
     }
     return false;
   });
-  return candidates.empty() ? Hit{} : nearest_reference_among(r, tris_, candidates);
+  Hit h;
+  if (best.tri < 0) return h;
+  if (!best.have_exact) test.exact_t(tris_[static_cast<size_t>(best.tri)], &best.exact);
+  h.tri = best.tri;
+  h.t = exact::to_double(best.exact, r.tmin);
+  return h;
 }
 
 std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {

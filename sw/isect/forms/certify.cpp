@@ -70,16 +70,19 @@ PaperBounds paper_bounds(const int64_t x[9], const double m[3][3], const double 
   // so |x v - P^-1 V|_i / U <= sum_j (2^(e-n) + dm_ij) 2^(vbits-e-1) + (|m_ij| + dm_ij)
   // (1/2 + 2^-24) 2^(-e-1); the floor adds at most 1.
   b.k = 0;
+  // The powers of two, once per triangle (the host prepares every triangle of a batch).
+  const double step = std::ldexp(1.0, e - static_cast<int>(n)), up = std::ldexp(1.0, static_cast<int>(vbits) - e - 1),
+               down = std::ldexp(1.0, -e - 1);
+  double two_k = 1;  // 2^k
   for (int i = 0; i < 3; ++i) {
     double s = 0;
     for (int j = 0; j < 3; ++j) {
-      const double dx = std::ldexp(1.0, e - static_cast<int>(n)) + dm[i][j];
-      s += dx * std::ldexp(1.0, static_cast<int>(vbits) - e - 1) +
-           (std::abs(m[i][j]) + dm[i][j]) * (0.5 + 0x1p-24) * std::ldexp(1.0, -e - 1);
+      const double dx = step + dm[i][j];
+      s += dx * up + (std::abs(m[i][j]) + dm[i][j]) * (0.5 + 0x1p-24) * down;
     }
     (void)x;
     b.row[i] = s * kUp + 1;
-    while (b.k < 31 && std::ldexp(1.0, b.k) < b.row[i]) ++b.k;
+    for (; b.k < 31 && two_k < b.row[i]; two_k *= 2) ++b.k;
   }
   // S' = T'_0 + T'_1 + T'_2 exactly; LSHIFTs scale it exactly, RSHIFTs floor once more.
   const double s = (b.row[0] + b.row[1] + b.row[2]) * kUp;

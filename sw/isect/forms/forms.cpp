@@ -64,6 +64,13 @@ double SharedOriginForm::t_rel_bound(uint32_t best, size_t k) const {
 }
 
 int SharedOriginForm::sum_exponent(const FormInputs& in) {
+  nearest_ = in.nearest ? *in.nearest : policy::nearest_for_exponent(distance_range(in.tris, in.origin));
+  sum_exp_ = exponent_for(in);
+  t_scale_ = std::ldexp(1.0, sum_exp_ + 1);
+  return sum_exp_;
+}
+
+int SharedOriginForm::exponent_for(const FormInputs& in) const {
   // Every ray's V_q has the same largest component 2^vbits; its length varies with the
   // direction's shape. S = 1/lambda <= |V_q| / dmin (lambda in units of V_q).
   double vq_len = 0;  // largest |V_q|
@@ -71,12 +78,9 @@ int SharedOriginForm::sum_exponent(const FormInputs& in) {
     const glm::dvec3& d = in.rays[i].d;
     vq_len = std::max(vq_len, glm::length(d) / max_component(d) * std::ldexp(1.0, static_cast<int>(opt_.vbits)));
   }
-  const double dmin = policy::nearest_for_exponent(distance_range(in.tris, in.origin));
-  const double e_real = std::ceil(std::log2(vq_len / (dmin * std::ldexp(1.0, policy::kSumBits))));
+  const double e_real = std::ceil(std::log2(vq_len / (nearest_ * std::ldexp(1.0, policy::kSumBits))));
   if (!std::isfinite(e_real)) throw std::logic_error("fmpp::isect: no finite scale for the compared sums");
-  const int E = static_cast<int>(e_real) - 1;
-  t_scale_ = std::ldexp(1.0, E + 1);
-  return E;
+  return static_cast<int>(e_real) - 1;
 }
 
 uint32_t SharedOriginForm::reach_word(const Ray& r) const {

@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -32,6 +34,9 @@ struct FormInputs {
   const std::vector<size_t>& idx;  // the batch: rays[idx[..]]
   glm::dvec3 origin;               // the shared origin (shared-origin forms)
   KernelStats* st;
+  // Shared-origin forms: policy::nearest_for_exponent of the triangles' distances from
+  // the origin, if the caller knows it (form_cache.h); nullptr: the form finds it.
+  const double* nearest = nullptr;
 };
 
 // Every form, by one identifier: the index of KernelStats' per-form counters and of the
@@ -98,8 +103,16 @@ class SharedOriginForm : public RayForm {
   double ray_scale(const glm::dvec3& d) const;
   // The common exponent E of the compared sums S_c = S / 2^(E+1) of the batch in.idx:
   // the nearest possible hit (policy::nearest_for_exponent) keeps S_c below
-  // 2^kSumBits. Sets t_scale_ = 2^(E+1).
+  // 2^kSumBits. Sets t_scale_ = 2^(E+1), and keeps E and that nearest distance.
   int sum_exponent(const FormInputs& in);
+  // The batch enters the form only through E, and the conditioning limit only through
+  // the triangles it sends to the host: another batch with the same E, under a limit
+  // that sends the same ones, makes the same form.
+  bool serves(const FormInputs& in) const override {
+    const double limit = policy::paper_cond_limit(in.opt);
+    return exponent_for(in) == sum_exp_ &&
+           (limit == cond_limit_ || (limit > cond_limit_ ? refused_cond_ > limit : sent_cond_ <= limit));
+  }
 
   // The farthest vertex of t from the rays' origin.
   double farthest(const Triangle& t) const;
@@ -114,13 +127,16 @@ class SharedOriginForm : public RayForm {
   // prepare(triangle, &broadcast) refuses (returns false); the others are broadcast.
   template <class Prepare>
   void prepare_all(const FormInputs& in, Prepare&& prepare) {
-    const double cond_limit = policy::paper_cond_limit(opt_);
+    cond_limit_ = policy::paper_cond_limit(opt_);
     for (size_t k = 0; k < in.tris.size(); ++k) {
       Broadcast b;
-      if (!(policy::condition(in.tris[k], in.origin) <= cond_limit) || !prepare(in.tris[k], &b)) {
+      const double cond = policy::condition(in.tris[k], in.origin);
+      if (!(cond <= cond_limit_)) refused_cond_ = std::min(refused_cond_, cond);  // not a NaN: host at any limit
+      if (!(cond <= cond_limit_) || !prepare(in.tris[k], &b)) {
         host.push_back(static_cast<int>(k));
         continue;
       }
+      sent_cond_ = std::max(sent_cond_, cond);
       b.tri = static_cast<int>(k);
       broadcasts.push_back(std::move(b));
     }
@@ -129,6 +145,15 @@ class SharedOriginForm : public RayForm {
   const KernelOptions& opt_;
   glm::dvec3 origin_;   // the rays' shared origin
   double t_scale_ = 1;  // 1/t = S_c t_scale sv
+  double nearest_ = 0;  // policy::nearest_for_exponent of the triangles' distances from the origin
+  int sum_exp_ = 0;     // E
+  // The conditioning limit, the largest condition among the triangles broadcast, and the
+  // smallest among those the limit sent to the host.
+  double cond_limit_ = 0, sent_cond_ = 0, refused_cond_ = std::numeric_limits<double>::infinity();
+
+ private:
+  // E for the batch in.idx, with nearest_ known.
+  int exponent_for(const FormInputs& in) const;
 };
 
 }  // namespace fmpp::isect

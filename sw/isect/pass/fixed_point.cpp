@@ -13,8 +13,12 @@ int mantissas(const double* v, int count, unsigned bits, int64_t* out) {
   const int64_t lim = (int64_t{1} << bits) - 1;
   for (;;) {
     bool ok = true;
+    // v 2^(bits - e): a product with the power of two rounds as ldexp does, once.
+    const int shift = static_cast<int>(bits) - e;
+    const double scale = std::ldexp(1.0, shift);
+    const bool normal = shift >= -1022 && shift <= 1023;
     for (int k = 0; k < count; ++k) {
-      out[k] = std::llround(std::ldexp(v[k], static_cast<int>(bits) - e));
+      out[k] = std::llround(normal ? v[k] * scale : std::ldexp(v[k], shift));
       ok = ok && std::llabs(out[k]) <= lim;
     }
     if (ok) return e;

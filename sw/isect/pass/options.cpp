@@ -58,6 +58,9 @@ void KernelStats::add(const KernelStats& o) {
     flagged_rays[f] += o.flagged_rays[f];
     t_bound_rays[f] += o.t_bound_rays[f];
     certify_tests[f] += o.certify_tests[f];
+    form_broadcasts[f] += o.form_broadcasts[f];
+    form_broadcast_cycles[f] += o.form_broadcast_cycles[f];
+    form_io_cycles[f] += o.form_io_cycles[f];
   }
   uncertified_rays += o.uncertified_rays;
 }

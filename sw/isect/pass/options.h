@@ -16,6 +16,7 @@
 namespace fmpp::isect {
 
 class PassShare;  // pass.h
+class FormCache;  // form_cache.h
 
 enum class Mapping { kRay, kObject };
 enum class MulMode { kGeneric, kConst };
@@ -82,6 +83,9 @@ struct KernelOptions {
   double t_accuracy = 0;
   // Several FMPPs: the passes of each call handed out among them (pass.h; nullptr: all here).
   PassShare* share = nullptr;
+  // Shared-origin forms prepared by earlier calls, kept for later ones (form_cache.h;
+  // nullptr: every call prepares its own). The same answers and clocks either way.
+  FormCache* forms = nullptr;
   // Checks every option and, with the words the forms need (form_table.cpp, where it is
   // defined: the registry knows them), the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
@@ -120,6 +124,12 @@ struct KernelStats {
   uint64_t flagged_rays[kForms] = {};    // rays the kernel marked uncertain: redone exactly on the host
   uint64_t t_bound_rays[kForms] = {};    // certified hits whose t bound exceeded t_accuracy: t computed exactly
   uint64_t certify_tests[kForms] = {};   // host ray-triangle tests of those redos (also in host_tests)
+  // Ray-parallel, per form: its broadcasts, their clocks (box tests included) and the
+  // clocks of loading and reading back its rays (also in the totals above): what the
+  // precision plan prices a pass with (sw/rt/pass_cost.h).
+  uint64_t form_broadcasts[kForms] = {};
+  uint64_t form_broadcast_cycles[kForms] = {};
+  uint64_t form_io_cycles[kForms] = {};
   uint64_t uncertified_rays = 0;         // rays answered by a form that does not certify its results
   uint64_t flagged_total() const {
     uint64_t n = 0;

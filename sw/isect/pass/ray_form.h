@@ -60,6 +60,8 @@ struct CullPad {
   double far = 0;  // the farthest vertex from the rays' shared origin (0 without one)
 };
 
+struct FormInputs;  // forms/forms.h
+
 // An intersection form of the ray-parallel mapping, prepared for one batch of rays.
 class RayForm {
  public:
@@ -100,6 +102,10 @@ class RayForm {
   // it the FMPP may report a hit.
   virtual CullModel cull_model(const std::vector<Triangle>& tris) const = 0;
   virtual CullPad cull_pad(const Triangle& t, const Broadcast& b, const CullModel& m) const = 0;
+  // Whether this form, prepared for another batch, is the one `in` would make, given the
+  // same form, triangles, origin and options but the conditioning limit (form_cache.h):
+  // false unless the form knows.
+  virtual bool serves(const FormInputs& /*in*/) const { return false; }
 };
 
 }  // namespace fmpp::isect

@@ -115,11 +115,11 @@ class PaperForm : public SharedOriginForm {
   // own rounding adds 2 units of S_c, S_c ~ 2^kSumBits dmin / d. The distance error is
   // not a pad: the ray crosses the triangle's plane where it does, and only the cut at
   // tmax must allow for it (CullPad::rel, the hierarchy's slack).
-  CullModel cull_model(const std::vector<Triangle>& tris) const override {
+  CullModel cull_model(const std::vector<Triangle>&) const override {
     CullModel m;
     m.distance = CullDistance::kRelative;
     m.use_tmax = true;
-    m.sum_floor = std::ldexp(1.0, policy::kSumBits) * policy::nearest_for_exponent(distance_range(tris, origin_));
+    m.sum_floor = std::ldexp(1.0, policy::kSumBits) * nearest_;  // dmin, as sum_exponent found it
     return m;
   }
   CullPad cull_pad(const Triangle& t, const Broadcast&, const CullModel& m) const override {
