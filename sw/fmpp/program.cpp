@@ -148,6 +148,16 @@ struct Step {
   int sign;
 };
 
+// The pair of `pairs` holding y_a and y_b, in either order (*flip: y_b is its first word), or
+// nullptr.
+const PairWords* find_pair(const std::vector<PairWords>& pairs, unsigned a, unsigned b, bool* flip) {
+  for (const PairWords& pw : pairs) {
+    if (pw.a == a && pw.b == b) return *flip = false, &pw;
+    if (pw.a == b && pw.b == a) return *flip = true, &pw;
+  }
+  return nullptr;
+}
+
 // The steps of one digit position: the non-zero digits of the row's terms there, two of
 // them folded into one step wherever `pairs` holds their sum or difference.
 std::vector<Step> position_steps(const Row& row, const std::vector<std::vector<int8_t>>& d, unsigned k,
@@ -160,23 +170,17 @@ std::vector<Step> position_steps(const Row& row, const std::vector<std::vector<i
   std::vector<bool> used(single.size(), false);
   for (size_t u = 0; u < single.size(); ++u) {
     if (used[u]) continue;
-    for (size_t v = u + 1; v < single.size() && !used[u]; ++v) {
-      if (used[v]) continue;
-      for (const PairWords& pw : pairs) {
-        const Step* first = nullptr;
-        const Step* second = nullptr;
-        if (pw.a == single[u].word && pw.b == single[v].word) first = &single[u], second = &single[v];
-        if (pw.a == single[v].word && pw.b == single[u].word) first = &single[v], second = &single[u];
-        if (first == nullptr) continue;
-        out.push_back(Step{first->sign == second->sign ? pw.sum : pw.diff, first->sign});
-        used[u] = used[v] = true;
-        break;
-      }
+    Step step = single[u];
+    for (size_t v = u + 1; v < single.size(); ++v) {
+      bool flip = false;
+      const PairWords* pw = used[v] ? nullptr : find_pair(pairs, single[u].word, single[v].word, &flip);
+      if (pw == nullptr) continue;
+      // d_a y_a + d_b y_b = d_a (y_a + d_a d_b y_b), a being the pair's first word.
+      step = Step{single[u].sign == single[v].sign ? pw->sum : pw->diff, (flip ? single[v] : single[u]).sign};
+      used[v] = true;
+      break;
     }
-    if (!used[u]) {
-      out.push_back(single[u]);
-      used[u] = true;
-    }
+    out.push_back(step);
   }
   return out;
 }

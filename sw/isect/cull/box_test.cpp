@@ -67,7 +67,7 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 
 void SharedBoxTest::clear() {
   classes_ = 0;
-  reach_fresh_ = reach_made_ = false;
+  reach_fresh_ = false;
   for (unsigned c = 0; c < 6; ++c) {
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::numeric_limits<int64_t>::max();
@@ -94,7 +94,8 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
 }
 
 SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
-                                             double pad) const {
+                                             double pad, bool* makes_reach) const {
+  if (makes_reach != nullptr) *makes_reach = false;
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
@@ -163,8 +164,9 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   for (const std::vector<Compare>& cmps : classes) {
     for (const Compare& k : cmps) dist = dist || (k.kind == Compare::kDist && k.word == kD);
   }
-  reach_made_ = dist && !reach_fresh_;
-  if (reach_made_) {
+  const bool make_reach = dist && !reach_fresh_;
+  if (makes_reach != nullptr) *makes_reach = make_reach;
+  if (make_reach) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
     // A flagged block's best may not be a hit at all (an uncertain inside test): its
     // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
@@ -213,14 +215,15 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
 }
 
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,
-                        double pad) const {
+                        double pad) {
   Program p;
   p.assume_mask(layout::kDataMask);
-  const Verdict v = append(b, p, hint, leaf, pad);
+  bool makes_reach = false;
+  const Verdict v = append(b, p, hint, leaf, pad, &makes_reach);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
-  reach_fresh_ = reach_fresh_ || reach_made_;
+  reach_fresh_ = reach_fresh_ || makes_reach;
   const bool hit = dev.responders().any;
   dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
   st->instructions += p.size() + 1;

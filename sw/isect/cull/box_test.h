@@ -62,15 +62,17 @@ class SharedBoxTest {
   // may report a hit of it lies within pad of it): the directions are tested against the
   // triangle's own slopes, narrower than the box's.
   enum class Verdict { kNone, kSome, kTest };
-  Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0) const;
+  // *makes_reach (if given): the appended test writes the blocks' reach word (below).
+  Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0,
+                 bool* makes_reach = nullptr) const;
   // Runs the test on the device and reads the ANY responder; SEL is restored after it.
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
-           double pad = 0) const;
+           double pad = 0);
   // The blocks' reach word (best - BB, unbounded where flagged: word kD) is made by the
   // first test after clear() or after a broadcast, and the tests after it reuse it. Every
   // broadcast uses kD as scratch: call this after sending one.
-  void broadcast_sent() { reach_fresh_ = reach_made_ = false; }
+  void broadcast_sent() { reach_fresh_ = false; }
 
  private:
   glm::dvec3 origin_;
@@ -80,8 +82,7 @@ class SharedBoxTest {
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
   bool has_cull_ = false, reach_ = false;
-  // kD holds the reach (reach_fresh_); the program append made last writes it (reach_made_).
-  mutable bool reach_fresh_ = false, reach_made_ = false;
+  bool reach_fresh_ = false;  // kD holds the reach
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
 };
 
