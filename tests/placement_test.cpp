@@ -7,6 +7,9 @@
 // far_ties).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -148,6 +151,67 @@ TEST_P(Placement, FarTiesGoToTheLowestIndex) {
   for (const glm::dvec3& p : {(a + b + c) / 3.0, 0.5 * (a + b), a}) rays.push_back({far, p - far});
   for (const Hit& h : nearest_reference(rays, tris)) ASSERT_EQ(h.tri, 0);
   expect_exact_everywhere(rays, tris);
+}
+
+// The gate (pass.h): the arbitrary-origin form asks the ANY responder whether some
+// block may be inside the triangle before the distance part of its broadcast, and skips
+// that part when none may. Every answer and counter must be the one of the whole
+// broadcasts, at every scale and distance from the origin, with fewer instructions.
+TEST_P(Placement, GatesChangeNoAnswerAnywhere) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int e : {-600, -20, 0, 40}) {
+    for (double far : {0.0, 0x1p40}) {
+      const auto at = [&](glm::dvec3 p) { return glm::dvec3(std::ldexp(p.x + far, e), std::ldexp(p.y, e), std::ldexp(p.z, e)); };
+      std::vector<Triangle> tris, local;  // local: before the scale and the shift
+      for (int k = 0; k < 40; ++k) {
+        const glm::dvec3 c(4 * u(rng), 4 * u(rng), 4 * u(rng));
+        local.push_back(Triangle{{c, c + glm::dvec3(u(rng), u(rng), u(rng)), c + glm::dvec3(u(rng), u(rng), u(rng))}});
+        tris.push_back(Triangle{{at(local.back().p[0]), at(local.back().p[1]), at(local.back().p[2])}});
+      }
+      // Two rays in three aimed into a triangle, the others anywhere.
+      std::vector<Ray> rays;
+      for (int k = 0; k < 96; ++k) {
+        const glm::dvec3 o(6 * u(rng), 6 * u(rng), 6 * u(rng));
+        const Triangle& t = local[static_cast<size_t>(k) % local.size()];
+        const double a = 0.5 * (u(rng) + 1), b = 0.5 * (u(rng) + 1) * (1 - a);
+        const glm::dvec3 d = k % 3 ? t.p[0] + a * (t.p[1] - t.p[0]) + b * (t.p[2] - t.p[0]) - o
+                                   : glm::dvec3(u(rng), u(rng), u(rng));
+        Ray r{at(o), d};
+        r.exclude = k % 5 == 0 ? (k + 7) % 40 : -1;
+        rays.push_back(r);
+      }
+      SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
+      KernelStats st[2];
+      std::vector<Hit> got[2];
+      for (int g = 0; g < 2; ++g) {
+        KernelOptions o;
+        o.origins = Origins::kGeneral;
+        o.gates = g == 1;
+        auto be = make_backend(GetParam(), Config{64, 32});
+        Device dev(be->bus());
+        ASSERT_NO_THROW(got[g] = intersect_fmpp(dev, rays, tris, o, &st[g]));
+        be->finish();
+      }
+      for (size_t i = 0; i < rays.size(); ++i) {
+        EXPECT_EQ(got[0][i].tri, got[1][i].tri) << "ray " << i;
+        EXPECT_EQ(got[0][i].t, got[1][i].t) << "ray " << i;
+        EXPECT_EQ(got[0][i].t_err, got[1][i].t_err) << "ray " << i;
+        EXPECT_EQ(got[0][i].redo, got[1][i].redo) << "ray " << i;
+      }
+      EXPECT_EQ(st[0].broadcasts, st[1].broadcasts);
+      EXPECT_EQ(st[0].flagged_total(), st[1].flagged_total());
+      EXPECT_EQ(st[0].host_tests, st[1].host_tests);
+      EXPECT_EQ(st[0].overflow_rays, st[1].overflow_rays);
+      EXPECT_EQ(st[0].gated, 0u);
+      EXPECT_GT(st[1].gated, 0u) << "some broadcast reaches no ray";
+      EXPECT_LT(st[1].gated, st[1].broadcasts) << "some broadcast reaches a ray";
+      EXPECT_GT(std::count_if(got[1].begin(), got[1].end(), [](const Hit& h) { return h.hit(); }), 10);
+      // Fewer instructions; clocks only where the tails skipped outweigh the responder
+      // reads (the frames of docs/perf.md).
+      EXPECT_LT(st[1].instructions, st[0].instructions);
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Model, Placement, ::testing::Values("cmodel"));

@@ -217,7 +217,7 @@ class RayParallelPlan : public PassPlan {
         if (!reach_[k]) continue;
         sent->push_back(k);
         number_of_[k] = static_cast<uint32_t>(sent->size());
-        send_broadcast(dev, *this, k, number_of_[k], st_);
+        send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
         boxes_->broadcast_sent();
       }
       return false;
@@ -243,10 +243,10 @@ class RayParallelPlan : public PassPlan {
     }
   }
 
-  const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) override {
+  const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) override {
     (void)number;  // the pass's own numbering (select), the same in the probe and after it
     const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
-    *test_steps = form_.broadcasts[k].test_steps();
+    *marks = form_.broadcasts[k].marks();
     return code;
   }
 

@@ -77,7 +77,7 @@ void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& 
                         const isect::KernelOptions& ko) const {
   uint64_t h = fnv1a(tris.data(), tris.size() * sizeof(isect::Triangle));
   s_.check_same(h, "the scene's triangles");
-  const unsigned machine[11] = {cfg.blocks,
+  const unsigned machine[12] = {cfg.blocks,
                                 cfg.words,
                                 ko.n,
                                 static_cast<unsigned>(ko.mapping),
@@ -87,7 +87,8 @@ void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& 
                                 ko.coherent,
                                 ko.cull_probe,
                                 ko.watertight,
-                                ko.fmpp_boxes};
+                                ko.fmpp_boxes,
+                                ko.gates};
   s_.check_same(fnv1a(&ko.t_accuracy, sizeof ko.t_accuracy, fnv1a(machine, sizeof machine)),
                 "the FMPP configuration or the kernel options (plan)");
 }

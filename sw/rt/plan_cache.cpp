@@ -55,6 +55,7 @@ nlohmann::json request_json(const PlanRequest& r) {
           {"cull_packet", o.cull_packet},
           {"cull_probe", o.cull_probe},
           {"fmpp_boxes", o.fmpp_boxes},
+          {"gates", o.gates},
           {"coherent", o.coherent},
           {"cond_bits", o.cond_bits}};
 }

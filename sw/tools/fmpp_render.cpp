@@ -146,10 +146,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"coherent", "batch"}));
   app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  bool no_probe = false, no_fmpp_boxes = false;
+  bool no_probe = false, no_fmpp_boxes = false, no_gates = false;
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
   app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
                "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
+  app.add_flag("--no-gates", no_gates,
+               "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
+               "triangle before its distance part (the same image and answers, more clocks)");
   double t_accuracy = 0;
   app.add_option("--t-accuracy", t_accuracy,
                  "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
@@ -321,6 +324,7 @@ int main(int argc, char** argv) {
       ko.oracle = oracle;
       ko.cull_probe = !no_probe;
       ko.fmpp_boxes = !no_fmpp_boxes;
+      ko.gates = !no_gates;
       ko.watertight = watertight;
       ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
@@ -337,7 +341,7 @@ int main(int argc, char** argv) {
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
-                     {"pass_order", pass_order}, {"watertight", watertight}};
+                     {"gates", !no_gates}, {"pass_order", pass_order}, {"watertight", watertight}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {

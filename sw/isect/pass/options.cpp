@@ -47,6 +47,7 @@ void KernelStats::add(const KernelStats& o) {
   box_tests += o.box_tests;
   fmpp_box_tests += o.fmpp_box_tests;
   box_cycles += o.box_cycles;
+  gated += o.gated;
   oracle_any += o.oracle_any;
   oracle_nearest += o.oracle_nearest;
   oracle_any_steps += o.oracle_any_steps;

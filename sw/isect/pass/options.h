@@ -58,6 +58,10 @@ struct KernelOptions {
   // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
   // place of the per-ray walk and the probe for those rays.
   bool fmpp_boxes = true;
+  // Gates (pass.h, ProgramMarks): a broadcast whose program has one sends its tail (the
+  // distance, the comparison with the best) only when the ANY responder says some block
+  // may be inside the triangle. Results are the same either way; off: every tail is sent.
+  bool gates = true;
   // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
   // square image tiles for primary rays, octant and origin for the others) rather than
   // in the caller's order. Results come back in the caller's order either way.
@@ -112,6 +116,7 @@ struct KernelStats {
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
   uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
+  uint64_t gated = 0;            // broadcasts whose tail a gate skipped (no block could use it)
   // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass
   // hits (any) or that are some ray's nearest hit (nearest), and their instructions.
   // (box: the triangles whose box some ray crosses before its nearest hit, oracle.h).

@@ -37,7 +37,7 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     bool sent = plan.walk(dev, base, count, &order);
     for (size_t first = 0;;) {
       for (size_t j = first; !sent && j < order.size(); ++j) {
-        send_broadcast(dev, plan, order[j], static_cast<uint32_t>(j + 1), st);
+        send_broadcast(dev, plan, order[j], static_cast<uint32_t>(j + 1), opt, st);
       }
       sent = false;
       c0 = dev.cycles();
@@ -59,14 +59,34 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
   if (opt.share) opt.share->finish(plan, blocks);
 }
 
-void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, KernelStats* st) {
-  size_t test_steps = 0;
-  const std::vector<uint64_t>& code = plan.code(k, number, &test_steps);
+size_t emit_gate(Program& p, unsigned flag, unsigned save) {
+  p << ins::flagop(save, map::kFlagSEL, map::kFlagSEL, lut::kA) << ins::flagop(map::kFlagSEL, flag, flag, lut::kA);
+  const size_t gate = p.size();
+  p << ins::flagop(map::kFlagSEL, save, save, lut::kA);
+  return gate;
+}
+
+void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, const KernelOptions& opt,
+                    KernelStats* st) {
+  ProgramMarks marks;
+  const std::vector<uint64_t>& code = plan.code(k, number, &marks);
   uint64_t c0 = dev.cycles();
-  push_counted(dev, code, st);
+  size_t pushed = code.size();
+  if (marks.gate != 0 && opt.gates) {
+    if (marks.gate >= code.size()) throw std::logic_error("fmpp::isect: a broadcast's gate past its code");
+    for (size_t i = 0; i < marks.gate; ++i) dev.push(code[i]);
+    if (!dev.responders().any) {
+      pushed = marks.gate + 1;
+      ++st->gated;
+    }
+    for (size_t i = marks.gate; i < pushed; ++i) dev.push(code[i]);
+  } else {
+    dev.push(code);
+  }
+  st->instructions += pushed;
   st->compute_cycles += dev.cycles() - c0;
-  st->broadcast_steps += code.size();
-  st->test_steps += test_steps;
+  st->broadcast_steps += pushed;
+  st->test_steps += marks.test_steps;
   ++st->broadcasts;
   c0 = dev.cycles();
   plan.after_broadcast(dev, k);

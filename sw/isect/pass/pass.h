@@ -18,6 +18,22 @@
 
 namespace fmpp::isect {
 
+// What the pass loop needs of a broadcast's program besides its code.
+//   test_steps: its instructions up to the inside test (the paper's step count);
+//   mark: an instruction the form patches per pass (the arbitrary-origin form's exclusion);
+//   gate: 0 for none; else code[gate] restores SEL after code[0, gate) left SEL = the
+//   blocks the rest of the program can change (emit_gate). The loop pushes code[0, gate),
+//   reads RESP.ANY and, when no block is selected, pushes code[gate] alone: the rest
+//   would change no word and no flag that outlives the broadcast.
+struct ProgramMarks {
+  size_t test_steps = 0, mark = 0, gate = 0;
+};
+
+// Ends a program's head with a gate (ProgramMarks::gate): `save` <- SEL, SEL <- `flag`,
+// and the instruction that restores SEL, which begins the tail. Returns the gate's
+// position. The tail must act only in blocks of `flag` (or on per-broadcast scratch).
+size_t emit_gate(Program& p, unsigned flag, unsigned save);
+
 // What a mapping tells the pass loop. Blocks [0, count) of a pass hold items
 // [base, base + count); broadcasts are numbered 1, 2, ... in the order select() returns.
 class PassPlan {
@@ -35,9 +51,8 @@ class PassPlan {
   virtual bool walk(Device& /*dev*/, size_t /*base*/, unsigned /*count*/, std::vector<size_t>* /*sent*/) {
     return false;
   }
-  // The code of broadcast k, sent as number `number` of the pass; *test_steps gets the
-  // instructions up to the inside test (the paper's step count).
-  virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, size_t* test_steps) = 0;
+  // The code of broadcast k, sent as number `number` of the pass, and its marks.
+  virtual const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) = 0;
   // After each broadcast (object-parallel: the responders name the nearest triangle).
   virtual void after_broadcast(Device& /*dev*/, size_t /*k*/) {}
   // After the broadcasts `done` of a pass: may read the blocks and return further
@@ -89,8 +104,10 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
 void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* st);
 
 // Sends broadcast k of the current pass as number `number` (1, 2, ...), counting its
-// clocks, steps and the broadcast.
-void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, KernelStats* st);
+// clocks, steps and the broadcast; at a gate (ProgramMarks), the tail only when
+// some block needs it (unless opt.gates is off).
+void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, const KernelOptions& opt,
+                    KernelStats* st);
 
 // Merges the host's results for triangles `host` into *hit (nearest wins, an exact tie
 // goes to the lower index), counting the host's tests. certain_current: *hit is known to

@@ -24,23 +24,23 @@ struct Broadcast {
   int tri = -1;          // the triangle
   double sum_bound = 0;  // certified forms: the bound on the compared value of its hits
   double edge_cond = 0;  // the arbitrary-origin form: its edge-test condition (culling pads)
-  // Builds the program; *test_steps gets its instructions up to the inside test, *mark
-  // an instruction the form patches per pass (the arbitrary-origin form's exclusion).
-  std::function<Program(size_t* test_steps, size_t* mark)> build;
+  // Builds the program and sets its marks (pass.h).
+  std::function<Program(ProgramMarks* marks)> build;
 
   const Program& program() const {
     if (!built_) {
-      program_ = build(&test_steps_, &mark_);
+      program_ = build(&marks_);
       built_ = true;
     }
     return program_;
   }
-  size_t test_steps() const { return program(), test_steps_; }
-  size_t mark() const { return program(), mark_; }
+  const ProgramMarks& marks() const { return program(), marks_; }
+  size_t test_steps() const { return marks().test_steps; }
+  size_t mark() const { return marks().mark; }
 
  private:
   mutable Program program_;
-  mutable size_t test_steps_ = 0, mark_ = 0;
+  mutable ProgramMarks marks_;
   mutable bool built_ = false;
 };
 

@@ -223,8 +223,8 @@ class GeneralForm : public RayForm {
     std::array<int64_t, 22> xs;  // xa, then xd
     std::copy(xa, xa + 18, xs.begin());
     std::copy(xd, xd + 4, xs.begin() + 18);
-    b.build = [this, xs, dshift, th](size_t* test_steps, size_t* excl_pos) {
-      return program(xs.data(), xs.data() + 18, dshift, th, test_steps, excl_pos);
+    b.build = [this, xs, dshift, th](ProgramMarks* marks) {
+      return program(xs.data(), xs.data() + 18, dshift, th, marks);
     };
     b.tri = k;
     b.edge_cond = cond;
@@ -262,9 +262,10 @@ class GeneralForm : public RayForm {
     p << flagop(layout::kUnc, layout::kUnc, layout::kTmp, lut::kOr);
   }
 
-  // *excl_pos gets the index of the REF whose key must be set to the broadcast's number.
-  Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th, size_t* test_steps,
-                  size_t* excl_pos) const {
+  // marks->mark gets the index of the REF whose key must be set to the broadcast's
+  // number; marks->gate the gate after the test "may be inside".
+  Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th,
+                  ProgramMarks* marks) const {
     constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
     const auto low = [](int bits) { return bits >= 32 ? 0xFFFFFFFFu : (uint32_t{1} << bits) - 1; };
     Program p;
@@ -273,7 +274,7 @@ class GeneralForm : public RayForm {
     // The ray's own triangle (a secondary ray leaving its surface) never counts:
     // kHit <- SEL and not excluded, the blocks every test below speaks for.
     p.mask(0);
-    *excl_pos = p.size();
+    marks->mark = p.size();
     p << ref(RefFn::kThrough, RefPart::kData, kExcl, 0, kT, kSel);
     p.mask(layout::kDataMask);
     p << flagop(kHit, kSel, kT, lut::kAndNotB);
@@ -303,7 +304,7 @@ class GeneralForm : public RayForm {
     p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kWin, kHit);
     p << ref(RefFn::kAnd, RefPart::kData, kA + 1, 0, kWin, kWin);
     p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kWin, kWin);  // kWin: certainly inside (det aside)
-    *test_steps = p.size();
+    marks->test_steps = p.size();
     // det within its bound of 0 (its sign, and t > 0, not certain): the ray may still
     // hit unless the A_i certainly differ in sign. Here: none certainly positive.
     p.mask(low(th.kd));
@@ -316,6 +317,9 @@ class GeneralForm : public RayForm {
     p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kX, kHit);
     p << ref(RefFn::kAnd, RefPart::kData, kA + 1, 0, kX, kX);
     p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kX, kX);
+    // The gate: everything below acts only in blocks that may be inside (kX), or on this
+    // broadcast's scratch. Where no block may be, the host skips it (pass.h).
+    marks->gate = emit_gate(p, kX, kT);
     // det to the quotient's scale (where the ray may be inside), then "strong": det >=
     // 2^jd and nv >= 2^jn, so that Q is within 2^-s of t / u. kT <- not strong.
     for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kX);

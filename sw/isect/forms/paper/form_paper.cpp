@@ -98,8 +98,8 @@ class PaperForm : public SharedOriginForm {
       if (pb.k > kMaxNearBits || !(pb.sum <= certify::kMaxSumBound)) return false;
       std::array<int64_t, 9> xs;
       std::copy(x, x + 9, xs.begin());
-      b->build = [this, xs, shift = e - E, pb](size_t* test_steps, size_t*) {
-        return program(xs.data(), shift, pb, test_steps);
+      b->build = [this, xs, shift = e - E, pb](ProgramMarks* marks) {
+        return program(xs.data(), shift, pb, &marks->test_steps);
       };
       b->sum_bound = pb.sum;
       return true;

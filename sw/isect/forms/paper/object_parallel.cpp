@@ -76,13 +76,13 @@ class ObjectParallelPlan : public PassPlan {
     push_counted(dev, init.code(), st_);
   }
 
-  const std::vector<uint64_t>& code(size_t r, uint32_t, size_t* test_steps) override {
+  const std::vector<uint64_t>& code(size_t r, uint32_t, ProgramMarks* marks) override {
     const glm::dvec3& d = rays_[idx_[r]].d;
     const double sv = ray_scale(d);
     const std::vector<int32_t> v = {quantize(d.x, sv, vlim(), "ray component"),
                                     quantize(d.y, sv, vlim(), "ray component"),
                                     quantize(d.z, sv, vlim(), "ray component")};
-    program_ = paper_object_program(v, policy::object_search_bits(opt_), opt_, test_steps);
+    program_ = paper_object_program(v, policy::object_search_bits(opt_), opt_, &marks->test_steps);
     return program_.code();
   }
 

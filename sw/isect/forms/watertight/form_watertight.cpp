@@ -78,9 +78,9 @@ class WatertightForm : public SharedOriginForm {
     std::array<int64_t, 12> xy;  // x row by row, then y
     for (int i = 0; i < 3; ++i) std::copy(x[i], x[i] + 3, xy.begin() + 3 * i);
     std::copy(y, y + 3, xy.begin() + 9);
-    b->build = [this, xy, shift = f - E, wb](size_t* test_steps, size_t*) {
+    b->build = [this, xy, shift = f - E, wb](ProgramMarks* marks) {
       const int64_t xs[3][3] = {{xy[0], xy[1], xy[2]}, {xy[3], xy[4], xy[5]}, {xy[6], xy[7], xy[8]}};
-      return program(xs, xy.data() + 9, shift, wb, test_steps);
+      return program(xs, xy.data() + 9, shift, wb, &marks->test_steps);
     };
     b->sum_bound = wb.sum;
     return true;
