@@ -254,6 +254,50 @@ TEST(CullHint, ShadowRaysLeaveTheirOwnTriangleOut) {
   EXPECT_EQ(narrow.broadcasts, without.broadcasts);
 }
 
+// Occlusion queries (KernelOptions::occlusion): shadow rays from a light to points of
+// every triangle, at several scales and distances from the origin. Each ray is occluded
+// (a hit before tmax) exactly when it is without the stop; the hit it returns is one the
+// exact reference confirms before tmax; and the stop saves broadcasts.
+TEST(Occlusion, StopsAtACertifiedOccluderWithTheSameAnswer) {
+  const std::vector<Triangle> base = test_scene();
+  for (const auto& [e, shift] : {std::pair<int, double>{0, 0.0}, {-30, 0x1p20}, {40, -0x1p12}}) {
+    SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(shift));
+    const auto at = [&](const glm::dvec3& p) { return std::ldexp(1.0, e) * (p + glm::dvec3(shift, 0, 0)); };
+    std::vector<Triangle> tris;
+    for (const Triangle& t : base) tris.push_back(Triangle{{at(t.p[0]), at(t.p[1]), at(t.p[2])}});
+    const glm::dvec3 light = at({0.3, 6, 0.2});
+    std::vector<Ray> rays;
+    for (size_t k = 0; k < base.size(); ++k) {
+      for (const glm::dvec3& w : {glm::dvec3(0.2, 0.3, 0.5), glm::dvec3(0.6, 0.2, 0.2)}) {
+        const glm::dvec3 p = w.x * tris[k].p[0] + w.y * tris[k].p[1] + w.z * tris[k].p[2];
+        Ray r{light, p - light};
+        r.tmax = 1 - 1e-4;
+        r.hint = static_cast<int>(k);
+        rays.push_back(r);
+      }
+    }
+    KernelStats st[2];
+    std::vector<Hit> got[2];
+    for (int stop = 0; stop < 2; ++stop) {
+      auto be = make_backend("cmodel", Config{64, 32});
+      Device dev(be->bus());
+      KernelOptions o;
+      o.occlusion = stop == 1;
+      got[stop] = intersect_fmpp(dev, rays, tris, o, &st[stop]);
+    }
+    size_t occluded = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const auto blocked = [&](const Hit& h) { return h.hit() && h.tri != rays[i].hint && h.t < rays[i].tmax; };
+      EXPECT_EQ(blocked(got[0][i]), blocked(got[1][i])) << "ray " << i;
+      if (!blocked(got[1][i])) continue;
+      ++occluded;
+      EXPECT_LT(intersect_reference(rays[i], tris[static_cast<size_t>(got[1][i].tri)]), rays[i].tmax) << "ray " << i;
+    }
+    EXPECT_GT(occluded, rays.size() / 4) << "the scene must shadow itself";
+    EXPECT_LT(st[1].broadcasts, st[0].broadcasts);
+  }
+}
+
 // A stand-in for several FMPPs that runs every pass itself, recording the order.
 class EveryPass : public PassShare {
  public:

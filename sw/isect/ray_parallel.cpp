@@ -42,6 +42,7 @@ class RayParallelPlan : public PassPlan {
         if (words >= cw.words) {
           cull_words_ = cw;
           boxes_->set_cull_words(cw);
+          boxes_->set_stop(opt_.occlusion);
         }
         origin_ = *origin;
       }

@@ -47,7 +47,9 @@ double float_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
 
 std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
   fmpp::isect::KernelStats st;
-  std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, rays, tris_, opt_, &st);
+  fmpp::isect::KernelOptions o = opt_;
+  o.occlusion = shadow_stop_ && kind_ == BatchKind::kShadow;
+  std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, rays, tris_, o, &st);
   stats_.add(st);
   by_kind_[static_cast<int>(kind_)].add(st);
   return hits;

@@ -77,6 +77,10 @@ class FmppIntersector : public Intersector {
                   const fmpp::isect::KernelOptions& opt);
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
   void set_batch_kind(BatchKind k) override { kind_ = k; }
+  // Shadow batches run as occlusion queries (KernelOptions::occlusion: a shadow ray
+  // stops at its first certified occluder; the shading only asks whether one exists),
+  // unless this is off: then as nearest-hit queries like the others. The same image.
+  void set_shadow_stop(bool on) { shadow_stop_ = on; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 
@@ -87,6 +91,7 @@ class FmppIntersector : public Intersector {
   fmpp::isect::KernelStats stats_;
   fmpp::isect::KernelStats by_kind_[kNumBatchKinds];
   BatchKind kind_ = BatchKind::kPrimary;
+  bool shadow_stop_ = true;
 };
 
 struct RenderOptions {

@@ -146,13 +146,16 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"coherent", "batch"}));
   app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  bool no_probe = false, no_fmpp_boxes = false, no_gates = false;
+  bool no_probe = false, no_fmpp_boxes = false, no_gates = false, no_shadow_stop = false;
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
   app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
                "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
   app.add_flag("--no-gates", no_gates,
                "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
                "triangle before its distance part (the same image and answers, more clocks)");
+  app.add_flag("--no-shadow-stop", no_shadow_stop,
+               "shadow rays as nearest-hit queries, not stopped at their first certified occluder (the same image, "
+               "more clocks)");
   double t_accuracy = 0;
   app.add_option("--t-accuracy", t_accuracy,
                  "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
@@ -332,6 +335,7 @@ int main(int argc, char** argv) {
       chips.agree(scene.triangles, cfg, ko);
       ko.share = chips.attach(dev, rank0 == "work");
       rt::FmppIntersector fi(dev, scene.triangles, ko);
+      fi.set_shadow_stop(!no_shadow_stop);
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
@@ -341,7 +345,7 @@ int main(int argc, char** argv) {
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
-                     {"gates", !no_gates}, {"pass_order", pass_order}, {"watertight", watertight}};
+                     {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {

@@ -52,6 +52,11 @@ class SharedBoxTest {
   // finite tmax: a box beyond it is cut too).
   void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
   void set_reach(bool on) { reach_ = on && has_cull_; }
+  // Occlusion queries (KernelOptions::occlusion): a block whose best is a certified hit
+  // certainly before its ray's tmax needs no further box (its reach word is then made
+  // unreachable), so that a shadow ray stops at its first certified occluder. Needs the
+  // reach words (set_reach).
+  void set_stop(bool on) { stop_ = on; }
 
   // Appends the test of box b: SEL <- the block's ray may meet b before its best
   // (unselected blocks: 0), the selection saved in flag kTmp. Unless the host decides
@@ -69,7 +74,8 @@ class SharedBoxTest {
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
            double pad = 0);
-  // The blocks' reach word (best - BB, unbounded where flagged: word kD) is made by the
+  // The blocks' reach word (best - BB, unbounded where flagged, unreachable where the
+  // stop above holds: word kD) is made by the
   // first test after clear() or after a broadcast, and the tests after it reuse it. Every
   // broadcast uses kD as scratch: call this after sending one.
   void broadcast_sent() { reach_fresh_ = false; }
@@ -81,7 +87,7 @@ class SharedBoxTest {
   double angle_;
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
-  bool has_cull_ = false, reach_ = false;
+  bool has_cull_ = false, reach_ = false, stop_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
 };

@@ -58,6 +58,11 @@ struct KernelOptions {
   // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
   // place of the per-ray walk and the probe for those rays.
   bool fmpp_boxes = true;
+  // Occlusion queries (shadow rays): for a ray with a finite tmax, any certified hit
+  // certainly before tmax may come back instead of the nearest, so that the FMPP's box
+  // tests stop sending a ray further boxes once it has one (box_test.h). A ray without
+  // such a hit gets the nearest as always.
+  bool occlusion = false;
   // Gates (pass.h, ProgramMarks): a broadcast whose program has one sends its tail (the
   // distance, the comparison with the best) only when the ANY responder says some block
   // may be inside the triangle. Results are the same either way; off: every tail is sent.
