@@ -71,6 +71,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "group", "general"}));
   bool watertight = false;
   app.add_flag("--watertight", watertight, "certified edge functions for rays sharing an origin (no cracks, no vertex moved)");
+  bool no_gates = false;
+  app.add_flag("--no-gates", no_gates,
+               "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
+               "triangle before its distance part (the same answers, more clocks)");
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
       ->capture_default_str()
       ->check(int_range(4, 28));
@@ -119,6 +123,7 @@ int main(int argc, char** argv) {
       opt.origins = parse_origins(origins);
       opt.qbits = qbits;
       opt.watertight = watertight;
+      opt.gates = !no_gates;
       const size_t general = route_rays(rays, opt, config.empty() ? blocks : named_config(config).blocks).general.size();
       const unsigned need = std::max((words_needed(opt) + 1) & ~1u, general ? own_origin_words(opt) : 0u);
       Config cfg{blocks, words ? words : need};

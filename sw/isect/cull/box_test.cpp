@@ -173,10 +173,10 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
       // cull_.reach is at least that less 3 (SharedOriginForm::reach_word), so
       // best - BB - reach >= 4 puts every S_c the best may have beyond tmax's: a hit
       // certainly before tmax. Such a block wants no further box (kD above any
-      // constant). Both words lie within +-2^30: the difference cannot overflow.
+      // constant; a flagged one's reach is made unbounded below all the same). Both
+      // words lie within +-2^30: the difference cannot overflow.
       p << sub(kT + 0, kD, cull_.reach, kSel);
       p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
-      p << flagop(kWin, kWin, layout::kUnc, lut::kAndNotB);
       p.mask(0);
       p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
     }
