@@ -84,9 +84,12 @@ class GeneralForm : public RayForm {
       dev.write_word(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl_, lim, "ray moment")));
       dev.write_word(b, kO + j, static_cast<uint32_t>(quantize(o[j], so_, lim, "ray origin")));
     }
-    // No tmin: a quotient far below every Q, so that Q >= Qmin is never in doubt.
-    const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
-    dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
+    // Only a batch with a tmin tests it (program): the others write no Qmin. No tmin: a
+    // quotient far below every Q, so that Q >= Qmin is never in doubt.
+    if (has_tmin_) {
+      const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
+      dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
+    }
     const auto excl = broadcast_of_.find(r.exclude);  // its number in this pass, 0 for none
     dev.write_word(b, kExcl, excl == broadcast_of_.end() ? 0u : number_of[excl->second]);
   }
