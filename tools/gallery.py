@@ -101,12 +101,20 @@ def fpga_mhz(path=FPGA_CSV):
 
 
 def asic_clock(path=ASIC_CSV):
-    """(MHz, 'B x W') of the largest size of tools/asic.sh's summary.csv."""
+    """(MHz, 'B x W, RTL of commit C') of the largest size of tools/asic.sh's summary.csv:
+    the commit its header names, since the standard-cell flow is not re-run with every
+    change of the RTL."""
     timed = [r for r in _csv_rows(path) if r.get("fmax_mhz")]
     if not timed:
         sys.exit("%s: no timed size" % path)
     best = max(timed, key=lambda r: int(r["blocks"]) * int(r["words"]))
-    return float(best["fmax_mhz"]), "%s x %s" % (best["blocks"], best["words"])
+    label = "%s x %s" % (best["blocks"], best["words"])
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("# commit "):
+                label += ", RTL of commit %s" % line[len("# commit "):].split(",")[0].strip()
+                break
+    return float(best["fmax_mhz"]), label
 
 
 def projected_clock(asic_mhz=None):
