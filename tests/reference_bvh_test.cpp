@@ -83,6 +83,36 @@ TEST(ReferenceBvh, RandomScenes) {
   expect_same(rays, tris);
 }
 
+// A batch of many chunks goes to the machine's cores: every answer is the one of the
+// ray alone, in the caller's order, far from the origin and with excluded triangles.
+TEST(ReferenceBvh, LargeBatchesGiveEachRaysOwnAnswer) {
+  std::mt19937_64 g(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const glm::dvec3 far(0x1p30, -0x1p29, 3);
+  std::vector<Triangle> tris;
+  for (int k = 0; k < 3000; ++k) {
+    const glm::dvec3 c = far + glm::dvec3(10 * u(g), 10 * u(g), 10 * u(g));
+    tris.push_back({{c + glm::dvec3(u(g), u(g), u(g)), c + glm::dvec3(u(g), u(g), u(g)), c + glm::dvec3(u(g), u(g), u(g))}});
+  }
+  std::vector<Ray> rays;
+  for (int k = 0; k < 5000; ++k) {
+    Ray r{far + glm::dvec3(12 * u(g), 12 * u(g), 12 * u(g)), glm::dvec3(u(g), u(g), u(g))};
+    r.exclude = k % 3 == 0 ? k % 3000 : -1;
+    rays.push_back(r);
+  }
+  const ReferenceBvh bvh(tris);
+  const std::vector<Hit> batch = bvh.nearest(rays);
+  ASSERT_EQ(batch.size(), rays.size());
+  size_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Hit one = bvh.nearest(rays[i]);
+    EXPECT_EQ(batch[i].tri, one.tri) << "ray " << i;
+    EXPECT_EQ(batch[i].t, one.t) << "ray " << i;
+    hits += one.hit();
+  }
+  EXPECT_GT(hits, rays.size() / 10);
+}
+
 TEST(ReferenceBvh, EmptySceneMisses) {
   const std::vector<Triangle> none;
   const Hit h = ReferenceBvh(none).nearest(Ray{glm::dvec3(0), glm::dvec3(0, 0, 1)});

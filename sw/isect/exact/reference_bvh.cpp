@@ -15,8 +15,11 @@
 #include "sw/isect/exact/reference_bvh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "sw/isect/exact/exact.h"
 #include "sw/isect/exact/reference.h"
@@ -85,9 +88,33 @@ Hit ReferenceBvh::nearest(const Ray& r) const {
 
 std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   validate_input(rays, {});
-  std::vector<Hit> out;
-  out.reserve(rays.size());
-  for (const Ray& r : rays) out.push_back(nearest(r));
+  std::vector<Hit> out(rays.size());
+  // Each ray's answer is its own (the exact arithmetic keeps its workspace per thread),
+  // so the rays are shared among the machine's cores in chunks taken in turn: the same
+  // answers in any order. A batch too small to repay a thread runs here alone.
+  constexpr size_t kChunk = 256;
+  const size_t n = rays.size();
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = static_cast<unsigned>(std::min<size_t>({cores, kMaxThreads, (n + kChunk - 1) / kChunk}));
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> failed(std::max(1u, threads));
+  const auto work = [&](unsigned t) {
+    try {
+      for (size_t b = next.fetch_add(kChunk); b < n; b = next.fetch_add(kChunk)) {
+        for (size_t i = b; i < std::min(n, b + kChunk); ++i) out[i] = nearest(rays[i]);
+      }
+    } catch (...) {
+      failed[t] = std::current_exception();
+      next.store(n);  // the others stop at their next chunk
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& th : pool) th.join();
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
   return out;
 }
 

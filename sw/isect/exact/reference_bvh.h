@@ -4,6 +4,7 @@
 // --compare-reference measure against, and the reference backend of fmpp-render.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "sw/isect/geometry/hierarchy.h"
@@ -16,8 +17,10 @@ class ReferenceBvh {
   // The triangles must outlive it. Input outside the limits of geometry.h throws
   // std::invalid_argument (validate_input).
   explicit ReferenceBvh(const std::vector<Triangle>& tris);
-  // Nearest hit of each ray, exactly as nearest_reference decides it.
+  // Nearest hit of each ray, exactly as nearest_reference decides it; a large batch on
+  // up to kMaxThreads of the machine's cores (the same answers).
   std::vector<Hit> nearest(const std::vector<Ray>& rays) const;
+  static constexpr size_t kMaxThreads = 8;
   Hit nearest(const Ray& r) const;
 
  private:
