@@ -62,16 +62,11 @@ class GeneralForm : public RayForm {
   // edges move by at most 27 cond 2^-(n-1) of the triangle. Distances: within an error
   // set by the angle of incidence and the frame's reach (CullBounds::reach_for).
   CullModel cull_model(const std::vector<Triangle>&) const override {
-    CullModel m;
-    m.distance = CullDistance::kGeneral;
-    m.reach = reach_;
-    return m;
+    return CullModel{CullDistance::kGeneral, false, 1, reach_};
   }
   CullPad cull_pad(const Triangle& t, const Broadcast& b, const CullModel&) const override {
     const double delta = 32 * b.edge_cond * std::ldexp(1.0, 1 - static_cast<int>(opt_.n));
-    CullPad p;
-    p.pad = 2 * extent(t) * delta;
-    return p;
+    return CullPad{2 * extent(t) * delta, 0, 0};
   }
 
   BestWords best_words() const override { return {kBest, kIdx, 0x7FFFFFFFu}; }
@@ -84,8 +79,7 @@ class GeneralForm : public RayForm {
       dev.write_word(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl_, lim, "ray moment")));
       dev.write_word(b, kO + j, static_cast<uint32_t>(quantize(o[j], so_, lim, "ray origin")));
     }
-    // Only a batch with a tmin tests it (program): the others write no Qmin. No tmin: a
-    // quotient far below every Q, so that Q >= Qmin is never in doubt.
+    // Only a batch with a tmin tests it (program). No tmin: a quotient far below every Q.
     if (has_tmin_) {
       const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
       dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
@@ -265,8 +259,7 @@ class GeneralForm : public RayForm {
     p << flagop(layout::kUnc, layout::kUnc, layout::kTmp, lut::kOr);
   }
 
-  // marks->mark gets the index of the REF whose key must be set to the broadcast's
-  // number; marks->gate the gate after the test "may be inside".
+  // marks->mark: the REF whose key is the broadcast's number; marks->gate: see below.
   Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th,
                   ProgramMarks* marks) const {
     constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
