@@ -72,9 +72,7 @@ int main(int argc, char** argv) {
   bool watertight = false;
   app.add_flag("--watertight", watertight, "certified edge functions for rays sharing an origin (no cracks, no vertex moved)");
   bool no_gates = false;
-  app.add_flag("--no-gates", no_gates,
-               "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
-               "triangle before its distance part (the same answers, more clocks)");
+  add_no_gates_flag(app, no_gates);
   app.add_option("--qbits", qbits, "general formulation: bits of the distance quotient")
       ->capture_default_str()
       ->check(int_range(4, 28));

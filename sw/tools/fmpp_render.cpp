@@ -150,9 +150,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
   app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
                "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
-  app.add_flag("--no-gates", no_gates,
-               "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
-               "triangle before its distance part (the same image and answers, more clocks)");
+  add_no_gates_flag(app, no_gates);
   app.add_flag("--no-shadow-stop", no_shadow_stop,
                "shadow rays as nearest-hit queries, not stopped at their first certified occluder (the same image, "
                "more clocks)");

@@ -35,7 +35,6 @@ struct Broadcast {
     return program_;
   }
   const ProgramMarks& marks() const { return program(), marks_; }
-  size_t test_steps() const { return marks().test_steps; }
   size_t mark() const { return marks().mark; }
 
  private:
