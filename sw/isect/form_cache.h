@@ -68,6 +68,10 @@ class FormCache {
   // earlier call or now (its KernelStats as a fresh form's).
   Prepared form(const FormInfo& info, const FormInputs& in, int s);
 
+  // The shapes of culling's hierarchies over these triangles, for every form and batch
+  // (the arbitrary-origin form's too: cull_bounds.h).
+  BvhShapes& shapes() { return shapes_; }
+
   // Forms prepared, and calls that found theirs prepared.
   uint64_t made() const { return made_; }
   uint64_t reused() const { return reused_; }
@@ -75,9 +79,9 @@ class FormCache {
   // Work handed on (fmpp-render: the precision plan's forms to the frame). next_phase()
   // starts a new phase; carried_seconds() is what preparing the forms made in earlier
   // phases and found by calls of the current one took (the form, its culling), each
-  // form counted once.
-  void next_phase() { ++phase_; }
-  double carried_seconds() const { return carried_seconds_; }
+  // form counted once, and building the hierarchy shapes so found.
+  void next_phase() { shapes_.set_phase(++phase_); }
+  double carried_seconds() const { return carried_seconds_ + shapes_.carried_seconds(); }
 
  private:
   struct Entry {
@@ -101,6 +105,7 @@ class FormCache {
   int scaled_s_ = 0;
   std::vector<Triangle> scaled_;
   std::list<Entry> cache_;  // the last used first
+  BvhShapes shapes_;
   uint64_t made_ = 0, reused_ = 0;
   unsigned phase_ = 0;
   double carried_seconds_ = 0;

@@ -136,7 +136,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
       f.run_object(dev, rays, idx, tris, origin, opt, out, &st);
     } else if (cache) {
       const FormCache::Prepared p = cache->form(f, FormInputs{opt, tris, rays, idx, origin, &st}, s);
-      run_ray_parallel(dev, rays, idx, tris, *p.form, opt, out, &st, &origin, p.cull);
+      run_ray_parallel(dev, rays, idx, tris, *p.form, opt, out, &st, &origin, p.cull, &cache->shapes());
     } else {
       const std::unique_ptr<RayForm> form = f.make(FormInputs{opt, tris, rays, idx, origin, &st});
       run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);
@@ -149,7 +149,8 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
     }
     const std::unique_ptr<RayForm> form =
         form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st});
-    run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr);
+    run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr, nullptr,
+                     cache ? &cache->shapes() : nullptr);
   }
   for (size_t i : tmin_rounded) {
     out[i] = nearest_reference(std::vector<Ray>{in_rays[i]}, in_tris)[0];

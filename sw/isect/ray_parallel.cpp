@@ -28,13 +28,13 @@ class RayParallelPlan : public PassPlan {
  public:
   RayParallelPlan(const std::vector<Ray>& rays, const std::vector<size_t>& idx, const std::vector<Triangle>& tris,
                   RayForm& form, const KernelOptions& opt, std::vector<Hit>& out, KernelStats* st,
-                  const glm::dvec3* origin, unsigned words, PreparedCull* prepared)
+                  const glm::dvec3* origin, unsigned words, PreparedCull* prepared, BvhShapes* shapes)
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st),
         cull_(prepared ? *prepared : own_), bounds_(cull_.bounds), bvh_(cull_.bvh), probe_bvh_(cull_.probe_bvh) {
     if (opt_.cull) {
       const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
       const bool fmpp_boxes = opt_.fmpp_boxes && origin && shared && form_.fmpp_box_test();
-      if (!cull_.ready) prepare_cull(&cull_, tris, form, opt, kCullLeafItems, !fmpp_boxes);
+      if (!cull_.ready) prepare_cull(&cull_, tris, form, opt, kCullLeafItems, !fmpp_boxes, shapes);
       if (fmpp_boxes) {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
         shared_ = shared;
@@ -375,11 +375,12 @@ class RayParallelPlan : public PassPlan {
 
 void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
                       const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
-                      std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin, PreparedCull* cull) {
+                      std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin, PreparedCull* cull,
+                      BvhShapes* shapes) {
   st->host_triangles += form.host.size();
   // Passes take consecutive rays of this order; results land at the caller's indices.
   const std::vector<size_t> order = opt.coherent ? coherent_order(rays, idx) : idx;
-  RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words, cull);
+  RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words, cull, shapes);
   const KernelStats before = *st;
   run_passes(dev, plan, opt, st);
   const int f = form.id();

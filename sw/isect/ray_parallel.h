@@ -19,10 +19,11 @@ namespace fmpp::isect {
 // Intersects rays[idx[..]] with `tris` through `form`, writing out[idx[..]]. `origin` is
 // the rays' shared origin for a shared-origin form, nullptr for the arbitrary-origin
 // form (culling pads each triangle by the error bound of its form). `cull`, if given,
-// holds what culling prepared for this form and these triangles (ready), or gets it.
+// holds what culling prepared for this form and these triangles (ready), or gets it;
+// `shapes`, if given, keeps its hierarchies' shapes for these triangles.
 void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx,
                       const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
                       std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin,
-                      PreparedCull* cull = nullptr);
+                      PreparedCull* cull = nullptr, BvhShapes* shapes = nullptr);
 
 }  // namespace fmpp::isect

@@ -11,6 +11,7 @@
 #include "sw/fmpp/device.h"
 #include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/cull/order.h"
+#include "sw/isect/form_cache.h"
 #include "sw/isect/forms/forms.h"
 #include "sw/rt/render.h"
 
@@ -187,7 +188,9 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
 
   std::vector<Box> boxes;
   for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
-  const Bvh bvh(boxes, {}, 1);
+  // The triangles' own hierarchy: the one culling keeps where the options carry its cache.
+  fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
+  const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
   std::vector<Reach> reach;
   for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
   std::vector<uint64_t> stamp(scene.triangles.size(), 0);

@@ -116,7 +116,9 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
     if (sizes.empty()) return;  // fit_rtl has refused already
   }
   Steps steps(req);
-  const PassCostModel m = model_pass_sizes(scene, frame, plan->options, sizes, rates);
+  fmpp::isect::KernelOptions with_forms = plan->options;  // the plan's forms and shapes, for its runs
+  with_forms.forms = req.forms;
+  const PassCostModel m = model_pass_sizes(scene, frame, with_forms, sizes, rates);
   steps.say("pass size: " + std::to_string(sizes.size()) + " sizes priced");
   plan->pass_sizes = m.sizes;
   plan->options.coherent = m.coherent;

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 
 namespace fmpp::isect {
@@ -34,17 +36,54 @@ CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, c
   return cb;
 }
 
+Bvh triangle_shape(const std::vector<Triangle>& tris, unsigned leaf_items) {
+  std::vector<Box> own;
+  own.reserve(tris.size());
+  for (const Triangle& t : tris) own.push_back(padded_box(t, 0));
+  return Bvh(own, {}, leaf_items);
+}
+
+const Bvh& BvhShapes::shape(const std::vector<Triangle>& tris, unsigned leaf_items) {
+  if (!kept_.empty() && tris.size() != triangles_) {
+    throw std::logic_error("fmpp::isect::BvhShapes: kept for " + std::to_string(triangles_) + " triangles, asked for " +
+                           std::to_string(tris.size()));
+  }
+  triangles_ = tris.size();
+  auto it = kept_.find(leaf_items);
+  if (it != kept_.end()) {
+    ++reused_;
+    Kept& k = it->second;
+    if (k.phase < phase_ && !k.carried) {
+      k.carried = true;
+      carried_seconds_ += k.seconds;
+    }
+    return k.shape;
+  }
+  ++built_;
+  const auto t0 = std::chrono::steady_clock::now();
+  Bvh shape = triangle_shape(tris, leaf_items);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return kept_.emplace(leaf_items, Kept{std::move(shape), phase_, seconds}).first->second.shape;
+}
+
 void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
-                  unsigned leaf_items, bool probe) {
+                  unsigned leaf_items, bool probe, BvhShapes* shapes) {
   const auto t0 = std::chrono::steady_clock::now();
   c->bounds = cull_bounds(tris, form, opt);
-  c->bvh = Bvh(c->bounds.boxes, c->bounds.rel, leaf_items);
+  // Broadcast k is triangle form.broadcasts[k].tri: the subset of the triangles' shape.
+  std::vector<int> keep(tris.size(), -1);
+  for (size_t k = 0; k < form.broadcasts.size(); ++k) keep[static_cast<size_t>(form.broadcasts[k].tri)] = static_cast<int>(k);
+  const auto hierarchy = [&](unsigned leaf, const std::vector<Box>& boxes, const std::vector<double>& slack) {
+    return (shapes ? shapes->shape(tris, leaf) : triangle_shape(tris, leaf)).subset(keep, boxes, slack);
+  };
+  c->bvh = hierarchy(leaf_items, c->bounds.boxes, c->bounds.rel);
   if (probe) {
-    // The probe only guesses (the final broadcasts decide), so it walks the triangles'
-    // own boxes: a few ill-conditioned triangles' padded boxes would come first for all.
-    std::vector<Box> tight;
-    for (const Broadcast& b : form.broadcasts) tight.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
-    c->probe_bvh = Bvh(tight);
+    // The probe only guesses (the final broadcasts decide), so it walks the triangles' own
+    // boxes: a few ill-conditioned triangles' padded boxes would come first for all.
+    std::vector<Box> own;
+    own.reserve(form.broadcasts.size());
+    for (const Broadcast& b : form.broadcasts) own.push_back(padded_box(tris[static_cast<size_t>(b.tri)], 0));
+    c->probe_bvh = hierarchy(Bvh::kLeafItems, own, {});
   }
   c->ready = true;
   c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <map>
 #include <vector>
 
 #include "sw/isect/geometry/hierarchy.h"
@@ -41,6 +43,45 @@ struct CullBounds {
 // says of its hits (RayForm::cull_model, cull_pad).
 CullBounds cull_bounds(const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt);
 
+// The shapes of culling's hierarchies, kept between calls on the same triangles (by a
+// FormCache). Each is built once over the own boxes of all the triangles; a form's
+// hierarchy is its subset: the triangles it broadcasts, with its padded boxes
+// (Bvh::subset). So the hierarchies depend only on the triangles and on which of them a
+// form broadcasts, and a form or batch does not build one (a general-form batch does
+// for every batch, and the precision plan's samples are many batches).
+class BvhShapes {
+ public:
+  // The hierarchy over the own boxes of every triangle of `tris` (item k: tris[k]), leaves
+  // of leaf_items: built on the first call with that leaf size, then kept (its node boxes
+  // are that call's). Every call gives the same triangles, perhaps scaled by a power of
+  // two, which moves no split.
+  const Bvh& shape(const std::vector<Triangle>& tris, unsigned leaf_items);
+  // Shapes built, and found kept.
+  uint64_t built() const { return built_; }
+  uint64_t reused() const { return reused_; }
+  // Work handed on, as FormCache counts it: set_phase() starts a phase; carried_seconds()
+  // is what building the shapes made in earlier phases and found in a later one took.
+  void set_phase(unsigned phase) { phase_ = phase; }
+  double carried_seconds() const { return carried_seconds_; }
+
+ private:
+  struct Kept {
+    Bvh shape;
+    unsigned phase;        // in which it was built
+    double seconds;        // building it took
+    bool carried = false;  // found in a later phase
+  };
+  std::map<unsigned, Kept> kept_;  // by leaf size
+  size_t triangles_ = 0;
+  uint64_t built_ = 0, reused_ = 0;
+  unsigned phase_ = 0;
+  double carried_seconds_ = 0;
+};
+
+// The hierarchy over the own boxes of every triangle of `tris` (BvhShapes::shape without
+// keeping it).
+Bvh triangle_shape(const std::vector<Triangle>& tris, unsigned leaf_items);
+
 // What culling prepares for a form over all its triangles: the bounds, the hierarchy
 // over the padded boxes (leaves of leaf_items) and, for the probe, one over the
 // triangles' own boxes. The same for every call with the same form (form_cache.h).
@@ -50,8 +91,9 @@ struct PreparedCull {
   Bvh bvh, probe_bvh;
   double seconds = 0;  // preparing them took
 };
-// Fills *c (and sets ready); the probe's hierarchy only if `probe`.
+// Fills *c (and sets ready); the probe's hierarchy only if `probe`. The hierarchies'
+// shapes come from `shapes` where given (the same hierarchies either way).
 void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayForm& form, const KernelOptions& opt,
-                  unsigned leaf_items, bool probe);
+                  unsigned leaf_items, bool probe, BvhShapes* shapes = nullptr);
 
 }  // namespace fmpp::isect

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace fmpp::isect {
 
@@ -150,6 +151,92 @@ void Bvh::build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t e
   box.grow(nodes_[left + 1].box);
   nodes_[self].box = box;
   nodes_[self].slack = std::max(nodes_[left].slack, nodes_[left + 1].slack);
+}
+
+Bvh Bvh::subset(const std::vector<int>& keep, const std::vector<Box>& boxes, const std::vector<double>& slack) const {
+  for (uint32_t item : items_) {
+    if (item >= keep.size()) throw std::invalid_argument("fmpp::isect::Bvh::subset: no entry for item " + std::to_string(item));
+  }
+  Bvh out;
+  out.leaf_items_ = leaf_items_;
+  if (nodes_.empty()) return out;
+  // Which nodes keep an item (children come after their parent).
+  std::vector<char> alive(nodes_.size(), 0);
+  std::vector<char> used(boxes.size(), 0);
+  for (size_t id = nodes_.size(); id-- > 0;) {
+    const Node& n = nodes_[id];
+    if (n.count == 0) {
+      alive[id] = alive[n.first] | alive[n.first + 1];
+      continue;
+    }
+    for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const int k = keep[items_[i]];
+      if (k < 0) continue;
+      const auto item = static_cast<size_t>(k);
+      if (item >= boxes.size() || boxes[item].empty()) {
+        throw std::invalid_argument("fmpp::isect::Bvh::subset: item " + std::to_string(item) + " has no box");
+      }
+      if (used[item]) throw std::invalid_argument("fmpp::isect::Bvh::subset: two items become item " +
+                                                  std::to_string(item));
+      used[item] = 1;
+      alive[id] = 1;
+    }
+  }
+  if (!alive[0]) return out;
+  out.nodes_.reserve(nodes_.size());
+  out.items_.reserve(items_.size());
+  out.nodes_.emplace_back();
+  out.take(*this, 0, 0, keep, alive);
+  for (size_t id = out.nodes_.size(); id-- > 0;) {  // the boxes, children first
+    Node& n = out.nodes_[id];
+    Box box;
+    double most = 0;
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        box.grow(boxes[out.items_[i]]);
+        if (!slack.empty()) most = std::max(most, slack[out.items_[i]]);
+      }
+    } else {
+      box = out.nodes_[n.first].box;
+      box.grow(out.nodes_[n.first + 1].box);
+      most = std::max(out.nodes_[n.first].slack, out.nodes_[n.first + 1].slack);
+    }
+    n.box = box;
+    n.slack = most;
+  }
+  return out;
+}
+
+// The nodes are laid out as build() lays them out: a pair of children appended, then the
+// first child's subtree, then the second's; so a subset of every item is a copy.
+void Bvh::take(const Bvh& src, uint32_t from, uint32_t self, const std::vector<int>& keep,
+               const std::vector<char>& alive) {
+  const Node& n = src.nodes_[from];
+  if (n.count > 0) {
+    nodes_[self].first = static_cast<uint32_t>(items_.size());
+    for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+      if (keep[src.items_[i]] >= 0) items_.push_back(static_cast<uint32_t>(keep[src.items_[i]]));
+    }
+    nodes_[self].count = static_cast<uint32_t>(items_.size() - nodes_[self].first);
+    return;
+  }
+  if (!alive[n.first] || !alive[n.first + 1]) {  // one child left: it takes the node's place
+    take(src, alive[n.first] ? n.first : n.first + 1, self, keep, alive);
+    return;
+  }
+  const auto left = static_cast<uint32_t>(nodes_.size());
+  nodes_[self].first = left;
+  nodes_[self].count = 0;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  take(src, n.first, left, keep, alive);
+  take(src, n.first + 1, left + 1, keep, alive);
+}
+
+Bvh Bvh::refit(const std::vector<Box>& boxes, const std::vector<double>& slack) const {
+  std::vector<int> every(items_.empty() ? 0 : *std::max_element(items_.begin(), items_.end()) + size_t{1}, -1);
+  for (uint32_t item : items_) every[item] = static_cast<int>(item);
+  return subset(every, boxes, slack);
 }
 
 void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {

@@ -84,6 +84,17 @@ class Bvh {
   // error of the distance the FMPP reports for it.
   explicit Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack = {}, unsigned leaf_items = kLeafItems);
 
+  // The hierarchy of some of the items, in the same shape: item i becomes item keep[i]
+  // (-1: left out; no two items may become one), a node left without items is removed
+  // and one left with a single child is replaced by it, and each node's box and slack are
+  // taken from `boxes` and `slack` (by the new items, as the constructor takes them; every
+  // kept item needs a non-empty box). O(nodes), against the constructor's O(items log
+  // items): culling's hierarchies are built once over all the triangles' own boxes and
+  // taken for each form and batch (cull_bounds.h).
+  Bvh subset(const std::vector<int>& keep, const std::vector<Box>& boxes, const std::vector<double>& slack = {}) const;
+  // Every item kept as it is: the same nodes and leaves, with new boxes.
+  Bvh refit(const std::vector<Box>& boxes, const std::vector<double>& slack = {}) const;
+
   // Sets reach[i] for every item of every leaf that some packet may enter (reach must
   // have one entry per item); adds the node-packet tests made to *tests.
   void reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const;
@@ -121,6 +132,8 @@ class Bvh {
   };
   void build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end, const std::vector<Box>& boxes,
              const std::vector<double>& slack);
+  // subset(): node `from` of `src` (which has kept items) into node `self` of this one.
+  void take(const Bvh& src, uint32_t from, uint32_t self, const std::vector<int>& keep, const std::vector<char>& alive);
   std::vector<Node> nodes_;
   std::vector<uint32_t> items_;
   unsigned leaf_items_ = kLeafItems;
