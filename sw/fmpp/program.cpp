@@ -158,31 +158,39 @@ const PairWords* find_pair(const std::vector<PairWords>& pairs, unsigned a, unsi
   return nullptr;
 }
 
-// The steps of one digit position: the non-zero digits of the row's terms there, two of
-// them folded into one step wherever `pairs` holds their sum or difference.
-std::vector<Step> position_steps(const Row& row, const std::vector<std::vector<int8_t>>& d, unsigned k,
-                                 const std::vector<PairWords>& pairs) {
-  std::vector<Step> single;
+// The steps of one digit position into *out: the non-zero digits of the row's terms
+// there, two of them folded into one step wherever `pairs` holds their sum or
+// difference. *single and *used are scratch (kept by the caller: no allocation per
+// position).
+void position_steps(const Row& row, const std::vector<std::vector<int8_t>>& d, unsigned k,
+                    const std::vector<PairWords>& pairs, std::vector<Step>* out, std::vector<Step>* single,
+                    std::vector<char>* used) {
+  single->clear();
+  out->clear();
   for (size_t j = 0; j < row.terms.size(); ++j) {
-    if (d[j][k] != 0) single.push_back(Step{row.terms[j].y, d[j][k]});
+    if (d[j][k] != 0) single->push_back(Step{row.terms[j].y, d[j][k]});
   }
-  std::vector<Step> out;
-  std::vector<bool> used(single.size(), false);
-  for (size_t u = 0; u < single.size(); ++u) {
-    if (used[u]) continue;
-    Step step = single[u];
-    for (size_t v = u + 1; v < single.size(); ++v) {
+  if (pairs.empty()) {
+    out->swap(*single);
+    return;
+  }
+  used->assign(single->size(), 0);
+  for (size_t u = 0; u < single->size(); ++u) {
+    if ((*used)[u]) continue;
+    const Step& a = (*single)[u];
+    Step step = a;
+    for (size_t v = u + 1; v < single->size(); ++v) {
       bool flip = false;
-      const PairWords* pw = used[v] ? nullptr : find_pair(pairs, single[u].word, single[v].word, &flip);
+      const Step& b = (*single)[v];
+      const PairWords* pw = (*used)[v] ? nullptr : find_pair(pairs, a.word, b.word, &flip);
       if (pw == nullptr) continue;
       // d_a y_a + d_b y_b = d_a (y_a + d_a d_b y_b), a being the pair's first word.
-      step = Step{single[u].sign == single[v].sign ? pw->sum : pw->diff, (flip ? single[v] : single[u]).sign};
-      used[v] = true;
+      step = Step{a.sign == b.sign ? pw->sum : pw->diff, (flip ? b : a).sign};
+      (*used)[v] = 1;
       break;
     }
-    out.push_back(step);
+    out->push_back(step);
   }
-  return out;
 }
 
 }  // namespace
@@ -190,6 +198,8 @@ std::vector<Step> position_steps(const Row& row, const std::vector<std::vector<i
 void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsigned active,
                     const std::vector<PairWords>& pairs) {
   check_n(n, "fmpp::dot_rows_const");
+  std::vector<Step> steps, single;
+  std::vector<char> used;
   for (const Row& row : rows) {
     std::vector<std::vector<int8_t>> d;
     unsigned kmin = n;
@@ -214,7 +224,8 @@ void dot_rows_const(Program& p, const std::vector<Row>& rows, unsigned n, unsign
     bool zero = true;  // R not yet written: the first positive step copies instead of adding
     unsigned at = kmin;
     for (unsigned k = kmin; k < n; ++k) {
-      for (const Step& s : position_steps(row, d, k, pairs)) {
+      position_steps(row, d, k, pairs, &steps, &single, &used);
+      for (const Step& s : steps) {
         if (zero && s.sign > 0) {
           p << func(FuncFn::kOr, row.r, s.word, s.word, active);
         } else {
