@@ -11,6 +11,7 @@
 #include <random>
 
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -71,6 +72,19 @@ class Placement : public ::testing::TestWithParam<const char*> {
         EXPECT_EQ(st.uncertified_rays, 0u);
       }
     }
+  }
+  // The rays through the arbitrary-origin form on 64 blocks, with what `set` changes of
+  // the options.
+  std::vector<Hit> run_general(const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                               const std::function<void(KernelOptions&)>& set, KernelStats* st) {
+    KernelOptions o;
+    o.origins = Origins::kGeneral;
+    set(o);
+    auto be = make_backend(GetParam(), Config{64, 32});
+    Device dev(be->bus());
+    std::vector<Hit> got = intersect_fmpp(dev, rays, tris, o, st);
+    be->finish();
+    return got;
   }
 };
 
@@ -185,13 +199,7 @@ TEST_P(Placement, GatesChangeNoAnswerAnywhere) {
       KernelStats st[2];
       std::vector<Hit> got[2];
       for (int g = 0; g < 2; ++g) {
-        KernelOptions o;
-        o.origins = Origins::kGeneral;
-        o.gates = g == 1;
-        auto be = make_backend(GetParam(), Config{64, 32});
-        Device dev(be->bus());
-        ASSERT_NO_THROW(got[g] = intersect_fmpp(dev, rays, tris, o, &st[g]));
-        be->finish();
+        ASSERT_NO_THROW(got[g] = run_general(rays, tris, [&](KernelOptions& o) { o.gates = g == 1; }, &st[g]));
       }
       for (size_t i = 0; i < rays.size(); ++i) {
         EXPECT_EQ(got[0][i].tri, got[1][i].tri) << "ray " << i;
@@ -210,6 +218,56 @@ TEST_P(Placement, GatesChangeNoAnswerAnywhere) {
       // Fewer instructions; clocks only where the tails skipped outweigh the responder
       // reads (the frames of docs/perf.md).
       EXPECT_LT(st[1].instructions, st[0].instructions);
+    }
+  }
+}
+
+// Rays of their own origins probe the hierarchy in rounds (cull/tuning.h): each round
+// sends the next leaf of each ray's front among the triangles left and reads back the
+// rays that probed, before the rest is sent. Through five walls with holes, at every
+// scale and distance from the origin, the answers are those without culling and the
+// exact reference's.
+TEST_P(Placement, ProbeRoundsChangeNoAnswerAnywhere) {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int e : {-600, 0, 40}) {
+    for (double far : {0.0, 0x1p40}) {
+      const auto at = [&](glm::dvec3 p) { return glm::dvec3(std::ldexp(p.x + far, e), std::ldexp(p.y, e), std::ldexp(p.z, e)); };
+      std::vector<Triangle> tris;
+      for (int w = 0; w < 5; ++w) {
+        for (int i = 0; i < 8; ++i) {
+          for (int j = 0; j < 8; ++j) {
+            if (u(rng) < -0.4) continue;  // a hole: the rays through it go on to the next wall
+            const glm::dvec3 a(2.0 * w, i - 4.0, j - 4.0), b = a + glm::dvec3(0, 1, 0), c = a + glm::dvec3(0, 0, 1);
+            tris.push_back(Triangle{{at(a), at(b), at(c)}});
+            tris.push_back(Triangle{{at(b), at(b + glm::dvec3(0, 0, 1)), at(c)}});
+          }
+        }
+      }
+      std::vector<Ray> rays;
+      for (int k = 0; k < 200; ++k) {
+        Ray r{at(glm::dvec3(12 + u(rng), 3 * u(rng), 3 * u(rng))), {-1, 0.2 * u(rng), 0.2 * u(rng)}};
+        r.exclude = k % 7 == 0 ? static_cast<int>(static_cast<size_t>(k) % tris.size()) : -1;
+        rays.push_back(r);
+      }
+      SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
+      KernelStats st[2];
+      std::vector<Hit> got[2];
+      for (int c = 0; c < 2; ++c) {
+        ASSERT_NO_THROW(got[c] = run_general(rays, tris, [&](KernelOptions& o) { o.cull = c == 1; }, &st[c]));
+      }
+      const std::vector<Hit> ref = nearest_reference(rays, tris);
+      for (size_t i = 0; i < rays.size(); ++i) {
+        EXPECT_EQ(got[1][i].tri, ref[i].tri) << "ray " << i;
+        EXPECT_EQ(got[0][i].tri, got[1][i].tri) << "ray " << i;
+        if (got[0][i].redo == got[1][i].redo) {
+          EXPECT_EQ(got[0][i].t, got[1][i].t) << "ray " << i;
+        }
+      }
+      EXPECT_GT(st[1].probe_rounds, 0u) << "the rays probed in rounds";
+      EXPECT_EQ(st[0].probe_rounds, 0u);
+      EXPECT_LT(st[1].broadcasts, st[0].broadcasts);
+      EXPECT_GT(std::count_if(ref.begin(), ref.end(), [](const Hit& h) { return h.hit(); }), 100);
     }
   }
 }

@@ -110,6 +110,7 @@ class RayParallelPlan : public PassPlan {
       return all;
     }
     phase_ = Phase::kProbe;
+    rounds_ = 1;
     return order;
   }
 
@@ -124,17 +125,36 @@ class RayParallelPlan : public PassPlan {
     phase_ = Phase::kFinal;
     const bool general = bounds_.distance == CullDistance::kGeneral;
     constexpr double kInf = std::numeric_limits<double>::infinity();
-    std::vector<double> best(count, kInf);
-    std::vector<size_t> winner(count, SIZE_MAX);
-    read_best(dev, count, form_.best_words(), done.size(), [&](unsigned b, uint32_t v, size_t pos) {
+    // The first read-back reads every ray; a later round's only the rays that probed in it.
+    // Another ray keeps its best of the round before: its blocks' best only falls, and any
+    // best read is an upper bound on the ray's nearest distance, so its reach stays safe.
+    const bool every_ray = rounds_ == 1;
+    if (every_ray) {
+      best_.assign(count, kInf);
+      winner_.assign(count, SIZE_MAX);
+    }
+    const std::vector<bool> ovf = read_overflow(dev, count);
+    const BestWords words = form_.best_words();
+    for (unsigned b = 0; b < count; ++b) {
+      if (ovf[b] || !(every_ray || probed_[b])) continue;
+      const uint32_t v = dev.read_word(b, words.best_word);
+      if (v == words.none) continue;
+      const uint32_t number = dev.read_word(b, words.idx_word);
+      if (number < 1 || number > done.size()) bad_broadcast_number(b, number, done.size());
+      const size_t k = done[number - 1];
       const Ray& r = rays_[idx_[base + b]];
-      best[b] = form_.t_of(v, r) * glm::length(r.d);
+      best_[b] = form_.t_of(v, r) * glm::length(r.d);
       // A certified arbitrary-origin best is within its bound of the exact distance: the
       // reach is taken from the farthest the exact distance can be (the P^-1 form's
       // reach_for allows for its relative bound itself).
-      if (general && form_.certified()) best[b] *= 1 + form_.t_rel_bound_at(dev, b, v, done[pos]);
-      winner[b] = done[pos];
-    });
+      if (general && form_.certified()) best_[b] *= 1 + form_.t_rel_bound_at(dev, b, v, k);
+      winner_[b] = k;
+    }
+    std::vector<double> best = best_;
+    const std::vector<size_t>& winner = winner_;
+    for (unsigned b = 0; b < count; ++b) {
+      if (ovf[b]) best[b] = kInf;  // its words are not to be trusted: its whole reach
+    }
     if (form_.certified()) {
       // A flagged ray's best may be no hit at all: it keeps its whole reach, so that the
       // host's exact redo sees every triangle it may hit.
@@ -180,6 +200,40 @@ class RayParallelPlan : public PassPlan {
     std::vector<size_t> order;
     for (size_t k = 0; k < nb; ++k) {
       if (keep[k]) order.push_back(k);
+    }
+    // Rays of their own origins: another probe round (tuning.h), if it sends less than
+    // what is left. It sends, of each ray's front, the next leaves among the triangles
+    // left, which would all be sent anyway: it adds no broadcast, only a read-back of the
+    // rays that probed, and those that find their hit in it cut their reach before the
+    // rest is sent.
+    if (general && *appended && rounds_ < kProbeRoundsOwn) {
+      std::vector<char> probe(nb, 0);
+      probed_.assign(count, 0);
+      for (unsigned b = 0; b < count; ++b) {
+        int leaves = 0;
+        probe_bvh_.visit_near_first(one[b], [&](const uint32_t* items, uint32_t n, double entry) {
+          if (!(entry > 0)) return false;
+          bool some = false;
+          for (uint32_t i = 0; i < n; ++i) {
+            if (keep[items[i]]) {
+              probe[items[i]] = 1;
+              some = true;
+            }
+          }
+          return some && ++leaves == kProbeLeavesOwn;
+        });
+        probed_[b] = leaves > 0;
+      }
+      std::vector<size_t> next;
+      for (size_t k : order) {
+        if (probe[k]) next.push_back(k);
+      }
+      if (!next.empty() && next.size() < order.size()) {
+        ++rounds_;
+        ++st_->probe_rounds;
+        phase_ = Phase::kProbe;
+        return next;
+      }
     }
     st_->culled += nb - order.size() - (*appended ? done.size() : 0);
     return order;
@@ -362,6 +416,13 @@ class RayParallelPlan : public PassPlan {
   glm::dvec3 origin_{0};
   std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it
   Phase phase_ = Phase::kAll;
+  int rounds_ = 0;  // probe rounds of the pass so far
+  // Between probe rounds: each ray's best distance so far (an upper bound on its nearest,
+  // +infinity for none) and the broadcast that gave it, and whether it probed in the
+  // last round.
+  std::vector<double> best_;
+  std::vector<size_t> winner_;
+  std::vector<char> probed_;
   std::vector<char> reach_;  // of each broadcast: some packet of the pass may reach it
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
