@@ -15,6 +15,7 @@
 #include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/cull/oracle.h"
+#include "sw/isect/cull/probe.h"
 #include "sw/isect/cull/order.h"
 #include "sw/isect/cull/pass_hints.h"
 #include "sw/isect/pass/policy.h"
@@ -125,73 +126,41 @@ class RayParallelPlan : public PassPlan {
     phase_ = Phase::kFinal;
     const bool general = bounds_.distance == CullDistance::kGeneral;
     constexpr double kInf = std::numeric_limits<double>::infinity();
-    // The first read-back reads every ray; a later round's only the rays that probed in it.
-    // Another ray keeps its best of the round before: its blocks' best only falls, and any
-    // best read is an upper bound on the ray's nearest distance, so its reach stays safe.
+    // The first read-back reads every ray, a later round's the rays that probed in it; the
+    // others keep their best: a block's only falls, and any read bounds the nearest above.
     const bool every_ray = rounds_ == 1;
     if (every_ray) {
       best_.assign(count, kInf);
       winner_.assign(count, SIZE_MAX);
     }
-    const std::vector<bool> ovf = read_overflow(dev, count);
-    const BestWords words = form_.best_words();
-    for (unsigned b = 0; b < count; ++b) {
-      if (ovf[b] || !(every_ray || probed_[b])) continue;
-      const uint32_t v = dev.read_word(b, words.best_word);
-      if (v == words.none) continue;
-      const uint32_t number = dev.read_word(b, words.idx_word);
-      if (number < 1 || number > done.size()) bad_broadcast_number(b, number, done.size());
-      const size_t k = done[number - 1];
-      const Ray& r = rays_[idx_[base + b]];
-      best_[b] = form_.t_of(v, r) * glm::length(r.d);
-      // A certified arbitrary-origin best is within its bound of the exact distance: the
-      // reach is taken from the farthest the exact distance can be (the P^-1 form's
-      // reach_for allows for its relative bound itself).
-      if (general && form_.certified()) best_[b] *= 1 + form_.t_rel_bound_at(dev, b, v, k);
-      winner_[b] = k;
-    }
+    const std::vector<bool> ovf = read_best(
+        dev, count, form_.best_words(), done.size(),
+        [&](unsigned b, uint32_t v, size_t pos) {
+          const Ray& r = rays_[idx_[base + b]];
+          best_[b] = form_.t_of(v, r) * glm::length(r.d);
+          // A certified arbitrary-origin best is within its bound of the exact distance:
+          // the reach is taken from the farthest the exact distance can be (the P^-1
+          // form's reach_for allows for its relative bound itself).
+          if (general && form_.certified()) best_[b] *= 1 + form_.t_rel_bound_at(dev, b, v, done[pos]);
+          winner_[b] = done[pos];
+        },
+        every_ray ? nullptr : &probed_);
+    // An overflowed ray's words are not to be trusted, and a flagged ray's best may be no
+    // hit at all: each keeps its whole reach, so that the host's redo sees every triangle
+    // it may hit.
     std::vector<double> best = best_;
-    const std::vector<size_t>& winner = winner_;
+    const std::vector<bool> unc = form_.certified() ? dev.read_flag_all(layout::kUnc) : std::vector<bool>(count);
     for (unsigned b = 0; b < count; ++b) {
-      if (ovf[b]) best[b] = kInf;  // its words are not to be trusted: its whole reach
-    }
-    if (form_.certified()) {
-      // A flagged ray's best may be no hit at all: it keeps its whole reach, so that the
-      // host's exact redo sees every triangle it may hit.
-      const std::vector<bool> unc = dev.read_flag_all(layout::kUnc);
-      for (unsigned b = 0; b < count; ++b) {
-        if (unc[b]) best[b] = kInf;
-      }
+      if (ovf[b] || unc[b]) best[b] = kInf;
     }
     *appended = form_.certified();
-    if (!*appended) {
-      Program init;
-      init.mask(0);
-      form_.init(init);
-      init.mask(layout::kDataMask);
-      push_counted(dev, init.code(), st_);
-    }
-
+    if (!*appended) push_init(dev, Program());
     const size_t nb = form_.broadcasts.size();
     std::vector<char> keep(nb, 0);
     const std::vector<RayPacket> one = packets(base, count, 1);
     for (unsigned b = 0; b < count; ++b) {
-      const Ray& r = rays_[idx_[base + b]];
-      // One step of the arbitrary-origin form's quotient (the P^-1 form's rounding of its
-      // sums is in its relative bound).
-      const double len = glm::length(r.d);
-      const double quantum =
-          bounds_.distance == CullDistance::kGeneral ? std::abs(form_.t_of(1, r) - form_.t_of(0, r)) * len : 0;
-      const glm::dvec3 u = r.d / len;
-      if (winner[b] != SIZE_MAX) keep[winner[b]] = 1;
-      bvh_.visit(one[b], [&](uint32_t k) {
-        if (keep[k] || !reach_[k]) return;
-        ++st_->box_tests;
-        RayPacket q = one[b];
-        q.t1 *= 1 + bounds_.rel[k];  // the tmax cut allows for the distance's error
-        const double entry = entry_distance(q, bounds_.boxes[k]);
-        keep[k] = entry <= bounds_.reach_for(k, u, best[b], quantum);
-      });
+      if (winner_[b] != SIZE_MAX) keep[winner_[b]] = 1;
+      keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], best[b], &keep, &st_->box_tests);
     }
     // Kept blocks already hold the probe's triangles: only the others are sent.
     if (*appended) {
@@ -201,33 +170,10 @@ class RayParallelPlan : public PassPlan {
     for (size_t k = 0; k < nb; ++k) {
       if (keep[k]) order.push_back(k);
     }
-    // Rays of their own origins: another probe round (tuning.h), if it sends less than
-    // what is left. It sends, of each ray's front, the next leaves among the triangles
-    // left, which would all be sent anyway: it adds no broadcast, only a read-back of the
-    // rays that probed, and those that find their hit in it cut their reach before the
-    // rest is sent.
+    // Rays of their own origins: another probe round (probe.h), if it sends less than what
+    // is left (all of which would be sent anyway: it adds only a read-back).
     if (general && *appended && rounds_ < kProbeRoundsOwn) {
-      std::vector<char> probe(nb, 0);
-      probed_.assign(count, 0);
-      for (unsigned b = 0; b < count; ++b) {
-        int leaves = 0;
-        probe_bvh_.visit_near_first(one[b], [&](const uint32_t* items, uint32_t n, double entry) {
-          if (!(entry > 0)) return false;
-          bool some = false;
-          for (uint32_t i = 0; i < n; ++i) {
-            if (keep[items[i]]) {
-              probe[items[i]] = 1;
-              some = true;
-            }
-          }
-          return some && ++leaves == kProbeLeavesOwn;
-        });
-        probed_[b] = leaves > 0;
-      }
-      std::vector<size_t> next;
-      for (size_t k : order) {
-        if (probe[k]) next.push_back(k);
-      }
+      const std::vector<size_t> next = next_probe_round(probe_bvh_, one, keep, order, &probed_);
       if (!next.empty() && next.size() < order.size()) {
         ++rounds_;
         ++st_->probe_rounds;
@@ -286,10 +232,7 @@ class RayParallelPlan : public PassPlan {
     Program init;
     select_below(init, count, dev.config().blocks);
     init << ins::flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
-    init.mask(0);
-    form_.init(init);
-    init.mask(layout::kDataMask);  // the broadcasts keep this mask throughout
-    push_counted(dev, init.code(), st_);
+    push_init(dev, std::move(init));
     // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
     if (boxes_ && cull_words_) {
       hints_.write(dev, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
@@ -334,7 +277,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<size_t> pass_order(unsigned blocks) override {
     if (!opt_.cull) return {};  // every pass broadcasts every triangle
     const size_t passes = (idx_.size() + blocks - 1) / blocks;
-    std::vector<size_t> reached(passes, 0), order(passes);
+    std::vector<size_t> reached(passes, 0);
     std::vector<char> reach(form_.broadcasts.size());
     uint64_t tests = 0;
     for (size_t p = 0; p < passes; ++p) {
@@ -344,10 +287,8 @@ class RayParallelPlan : public PassPlan {
                            opt_.cull_packet),
                    reach, &tests);
       reached[p] = static_cast<size_t>(std::count(reach.begin(), reach.end(), 1));
-      order[p] = p;
     }
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return reached[a] > reached[b]; });
-    return order;
+    return largest_first(reached);
   }
   void results(size_t base, unsigned count, std::vector<std::pair<size_t, Hit>>* out) const override {
     for (unsigned b = 0; b < count; ++b) out->emplace_back(idx_[base + b], out_[idx_[base + b]]);
@@ -397,6 +338,13 @@ class RayParallelPlan : public PassPlan {
   const KernelOptions& opt_;
   std::vector<Hit>& out_;
   KernelStats* st_;
+  // `p`, then the form's init and the data mask, which the broadcasts keep throughout.
+  void push_init(Device& dev, Program p) {
+    p.mask(0);
+    form_.init(p);
+    p.mask(layout::kDataMask);
+    push_counted(dev, p.code(), st_);
+  }
   std::vector<RayPacket> packets(size_t base, unsigned count, size_t size) const {
     std::vector<RayPacket> p = make_packets(rays_, idx_, base, base + count, size, bounds_.angle);
     if (!bounds_.use_tmax) {
@@ -416,10 +364,9 @@ class RayParallelPlan : public PassPlan {
   glm::dvec3 origin_{0};
   std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it
   Phase phase_ = Phase::kAll;
-  int rounds_ = 0;  // probe rounds of the pass so far
-  // Between probe rounds: each ray's best distance so far (an upper bound on its nearest,
-  // +infinity for none) and the broadcast that gave it, and whether it probed in the
-  // last round.
+  // Between probe rounds: their count in the pass, each ray's best distance so far (an upper
+  // bound on its nearest; +infinity: none), the broadcast that gave it, whether it probed.
+  int rounds_ = 0;
   std::vector<double> best_;
   std::vector<size_t> winner_;
   std::vector<char> probed_;

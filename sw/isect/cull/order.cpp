@@ -120,4 +120,11 @@ std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vect
   return out;
 }
 
+std::vector<size_t> largest_first(const std::vector<size_t>& size) {
+  std::vector<size_t> order(size.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return size[a] > size[b]; });
+  return order;
+}
+
 }  // namespace fmpp::isect

@@ -29,4 +29,8 @@ uint32_t morton3(uint32_t x, uint32_t y, uint32_t z);
 // Ties keep the order of idx, so the result is deterministic.
 std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vector<size_t>& idx);
 
+// The indices of `size` by decreasing size, ties in increasing index (the costliest
+// passes first: ray_parallel.cpp).
+std::vector<size_t> largest_first(const std::vector<size_t>& size);
+
 }  // namespace fmpp::isect

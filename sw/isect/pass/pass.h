@@ -122,22 +122,25 @@ std::vector<int> all_triangles(const std::vector<Triangle>& tris);
 // The ray-parallel read-back of `count` blocks: the overflow flags, then the best word of
 // every block without overflow and, when it is not `none`, the 1-based number of the
 // broadcast that set it (idx_word). Calls on_hit(block, best, position in the pass);
-// returns the overflow flag of each block.
+// returns the overflow flag of each block. With `only`, the blocks b with (*only)[b]
+// unset are not read (as if they had no best).
 struct BestWords {
   unsigned best_word, idx_word;
   uint32_t none;
 };
 template <class OnHit>
-std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit);
+std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit,
+                            const std::vector<char>* only = nullptr);
 
 std::vector<bool> read_overflow(Device& dev, unsigned count);
 [[noreturn]] void bad_broadcast_number(unsigned block, uint32_t number, size_t broadcasts);
 
 template <class OnHit>
-std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit) {
+std::vector<bool> read_best(Device& dev, unsigned count, const BestWords& w, size_t broadcasts, OnHit&& on_hit,
+                            const std::vector<char>* only) {
   const std::vector<bool> ovf = read_overflow(dev, count);
   for (unsigned b = 0; b < count; ++b) {
-    if (ovf[b]) continue;
+    if (ovf[b] || (only && !(*only)[b])) continue;
     const uint32_t best = dev.read_word(b, w.best_word);
     if (best == w.none) continue;
     const uint32_t number = dev.read_word(b, w.idx_word);
