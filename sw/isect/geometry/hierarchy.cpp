@@ -106,25 +106,16 @@ Bvh::Bvh(const std::vector<Box>& boxes, const std::vector<double>& slack, unsign
   nodes_.reserve(4 * items.size() / leaf_items_ + 2);  // leaves hold at least half of leaf_items_
   items_.reserve(items.size());
   nodes_.emplace_back();
-  build(0, items, 0, items.size(), boxes, slack);
+  build(0, items, 0, items.size());
+  fit(boxes, slack);
 }
 
-// Fills node `self` with the subtree of items[begin, end); an inner node's children are
-// appended as a pair. Every split halves the items, so the depth stays below 40. A
-// node's box and slack are its children's, joined after they are built: the same values
-// as over its items (min and max are exact), read once per item rather than once per level.
-void Bvh::build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end, const std::vector<Box>& boxes,
-                const std::vector<double>& slack) {
+// Fills node `self` with the subtree of items[begin, end) (its shape; fit() gives the
+// boxes); an inner node's children are appended as a pair. Every split halves the items,
+// so the depth stays below 40.
+void Bvh::build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end) {
   if (end - begin <= leaf_items_) {
-    Box box;
-    double most = 0;
-    for (size_t i = begin; i < end; ++i) {
-      box.grow(boxes[items[i].id]);
-      if (!slack.empty()) most = std::max(most, slack[items[i].id]);
-      items_.push_back(items[i].id);
-    }
-    nodes_[self].box = box;
-    nodes_[self].slack = most;
+    for (size_t i = begin; i < end; ++i) items_.push_back(items[i].id);
     nodes_[self].first = static_cast<uint32_t>(items_.size() - (end - begin));
     nodes_[self].count = static_cast<uint32_t>(end - begin);
     return;
@@ -145,12 +136,8 @@ void Bvh::build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t e
   nodes_[self].first = left;
   nodes_.emplace_back();
   nodes_.emplace_back();
-  build(left, items, begin, mid, boxes, slack);
-  build(left + 1, items, mid, end, boxes, slack);
-  Box box = nodes_[left].box;
-  box.grow(nodes_[left + 1].box);
-  nodes_[self].box = box;
-  nodes_[self].slack = std::max(nodes_[left].slack, nodes_[left + 1].slack);
+  build(left, items, begin, mid);
+  build(left + 1, items, mid, end);
 }
 
 Bvh Bvh::subset(const std::vector<int>& keep, const std::vector<Box>& boxes, const std::vector<double>& slack) const {
@@ -187,24 +174,31 @@ Bvh Bvh::subset(const std::vector<int>& keep, const std::vector<Box>& boxes, con
   out.items_.reserve(items_.size());
   out.nodes_.emplace_back();
   out.take(*this, 0, 0, keep, alive);
-  for (size_t id = out.nodes_.size(); id-- > 0;) {  // the boxes, children first
-    Node& n = out.nodes_[id];
+  out.fit(boxes, slack);
+  return out;
+}
+
+// A node's box and slack are its children's, joined after theirs (children come after
+// their parent): the same values as over its items (min and max are exact), each item's
+// read once rather than once per level.
+void Bvh::fit(const std::vector<Box>& boxes, const std::vector<double>& slack) {
+  for (size_t id = nodes_.size(); id-- > 0;) {
+    Node& n = nodes_[id];
     Box box;
     double most = 0;
     if (n.count > 0) {
       for (uint32_t i = n.first; i < n.first + n.count; ++i) {
-        box.grow(boxes[out.items_[i]]);
-        if (!slack.empty()) most = std::max(most, slack[out.items_[i]]);
+        box.grow(boxes[items_[i]]);
+        if (!slack.empty()) most = std::max(most, slack[items_[i]]);
       }
     } else {
-      box = out.nodes_[n.first].box;
-      box.grow(out.nodes_[n.first + 1].box);
-      most = std::max(out.nodes_[n.first].slack, out.nodes_[n.first + 1].slack);
+      box = nodes_[n.first].box;
+      box.grow(nodes_[n.first + 1].box);
+      most = std::max(nodes_[n.first].slack, nodes_[n.first + 1].slack);
     }
     n.box = box;
     n.slack = most;
   }
-  return out;
 }
 
 // The nodes are laid out as build() lays them out: a pair of children appended, then the

@@ -130,8 +130,9 @@ class Bvh {
     glm::dvec3 centre;
     uint32_t id;
   };
-  void build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end, const std::vector<Box>& boxes,
-             const std::vector<double>& slack);
+  void build(uint32_t self, std::vector<Entry>& items, size_t begin, size_t end);
+  // Every node's box and slack from its items' `boxes` and `slack`.
+  void fit(const std::vector<Box>& boxes, const std::vector<double>& slack);
   // subset(): node `from` of `src` (which has kept items) into node `self` of this one.
   void take(const Bvh& src, uint32_t from, uint32_t self, const std::vector<int>& keep, const std::vector<char>& alive);
   std::vector<Node> nodes_;
