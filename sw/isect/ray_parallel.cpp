@@ -2,7 +2,6 @@
 #include "sw/isect/ray_parallel.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -228,17 +227,17 @@ class RayParallelPlan : public PassPlan {
   }
 
   void load(Device& dev, size_t base, unsigned count) override {
-    for (unsigned b = 0; b < count; ++b) form_.load_ray(dev, b, rays_[idx_[base + b]], number_of_);
-    Program init;
-    select_below(init, count, dev.config().blocks);
-    init << ins::flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
-    push_init(dev, std::move(init));
+    // SEL <- the pass's blocks first: a word most rays share goes out as one WRITES.
+    Program pre;
+    select_below(pre, count, dev.config().blocks);
+    pre << ins::flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
+    words_.begin(count);
+    for (unsigned b = 0; b < count; ++b) form_.load_ray(words_, b, rays_[idx_[base + b]], number_of_);
     // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
-    if (boxes_ && cull_words_) {
-      hints_.write(dev, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
-    } else {
-      hints_.clear();
-    }
+    hints_.clear();
+    if (boxes_ && cull_words_) hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
+    words_.flush(dev, std::move(pre), st_);
+    push_init(dev, Program());
   }
 
   const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) override {
@@ -375,6 +374,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
   std::vector<bool> ovf_, unc_, t_loose_;
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
+  PassWords words_;                // the pass's ray words, gathered before they are written
   std::vector<int> all_, candidates_;
   const double t_acc_ = policy::t_accuracy(opt_);
 };

@@ -11,7 +11,7 @@ void PassHints::clear() {
   list_.clear();
 }
 
-void PassHints::write(Device& dev, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
+void PassHints::write(PassWords& out, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
                       unsigned count, const std::vector<Triangle>& tris, const SharedOriginForm& form,
                       const layout::ray::CullWords& words, SharedBoxTest& boxes) {
   clear();
@@ -32,11 +32,8 @@ void PassHints::write(Device& dev, const std::vector<Ray>& rays, const std::vect
     cut = false;
   }
   boxes.set_reach(cut);
-  if (cut) {
-    for (unsigned b = 0; b < count; ++b) dev.write_word(b, words.reach, reach[b]);
-  }
-  if (list_.empty()) return;
-  for (unsigned b = 0; b < count; ++b) dev.write_word(b, words.hint, hint[b]);
+  for (unsigned b = 0; cut && b < count; ++b) out.set(b, words.reach, reach[b]);
+  for (unsigned b = 0; !list_.empty() && b < count; ++b) out.set(b, words.hint, hint[b]);
 }
 
 }  // namespace fmpp::isect

@@ -37,11 +37,11 @@ double SharedOriginForm::ray_scale(const glm::dvec3& d) const {
   return max_component(d) / std::ldexp(1.0, static_cast<int>(opt_.vbits));
 }
 
-void SharedOriginForm::load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>&) const {
+void SharedOriginForm::load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>&) const {
   const int64_t lim = int64_t{1} << opt_.vbits;
   const double sv = ray_scale(r.d);
   for (unsigned j = 0; j < 3; ++j) {
-    dev.write_word(b, kV + j, static_cast<uint32_t>(quantize(r.d[static_cast<int>(j)], sv, lim, "ray component")));
+    w.set(b, kV + j, static_cast<uint32_t>(quantize(r.d[static_cast<int>(j)], sv, lim, "ray component")));
   }
 }
 

@@ -88,7 +88,7 @@ class SharedOriginForm : public RayForm {
  public:
   SharedOriginForm(const KernelOptions& opt, const glm::dvec3& origin) : opt_(opt), origin_(origin) {}
   BestWords best_words() const override { return {layout::ray::kBest, layout::ray::kIdx, 0}; }
-  void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override;
+  void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override;
   void init(Program& p) const override;
   double t_of(uint32_t best, const Ray& r) const override;
   bool certified() const override { return true; }

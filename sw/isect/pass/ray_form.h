@@ -14,6 +14,7 @@
 #include "sw/isect/geometry/geometry.h"
 #include "sw/isect/pass/options.h"
 #include "sw/isect/pass/pass.h"
+#include "sw/isect/pass/pass_words.h"
 
 namespace fmpp::isect {
 
@@ -71,9 +72,9 @@ class RayForm {
 
   // Where each block keeps its best and the number of the broadcast that set it.
   virtual BestWords best_words() const = 0;
-  // Writes one ray into block b. number_of[k] is broadcast k's number in this pass
-  // (0: culled).
-  virtual void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const = 0;
+  // Sets the words of one ray in block b (written with the pass's others: pass_words.h).
+  // number_of[k] is broadcast k's number in this pass (0: culled).
+  virtual void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const = 0;
   // The per-pass WRITES of the selected blocks (run with mask 0; kDataMask follows).
   virtual void init(Program& p) const = 0;
   // Broadcast k's code, sent as number `number` (a form may patch it in).

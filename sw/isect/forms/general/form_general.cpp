@@ -71,21 +71,21 @@ class GeneralForm : public RayForm {
 
   BestWords best_words() const override { return {kBest, kIdx, 0x7FFFFFFFu}; }
 
-  void load_ray(Device& dev, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override {
+  void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override {
     const int64_t lim = int64_t{1} << policy::kGeneralRayBits;
     const glm::dvec3 o = r.o - c_, l = glm::cross(o, r.d);
     for (int j = 0; j < 3; ++j) {
-      dev.write_word(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sv_, lim, "ray direction")));
-      dev.write_word(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl_, lim, "ray moment")));
-      dev.write_word(b, kO + j, static_cast<uint32_t>(quantize(o[j], so_, lim, "ray origin")));
+      w.set(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sv_, lim, "ray direction")));
+      w.set(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl_, lim, "ray moment")));
+      w.set(b, kO + j, static_cast<uint32_t>(quantize(o[j], so_, lim, "ray origin")));
     }
     // Only a batch with a tmin tests it (program). No tmin: a quotient far below every Q.
     if (has_tmin_) {
       const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
-      dev.write_word(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
+      w.set(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
     }
     const auto excl = broadcast_of_.find(r.exclude);  // its number in this pass, 0 for none
-    dev.write_word(b, kExcl, excl == broadcast_of_.end() ? 0u : number_of[excl->second]);
+    w.set(b, kExcl, excl == broadcast_of_.end() ? 0u : number_of[excl->second]);
   }
 
   void init(Program& p) const override {
