@@ -244,6 +244,8 @@ class RayParallelPlan : public PassPlan {
     (void)number;  // the pass's own numbering (select), the same in the probe and after it
     const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
     *marks = form_.broadcasts[k].marks();
+    const int tri = form_.broadcasts[k].tri;
+    if (boxes_ && marks->gate) marks->skip_gate = boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
     return code;
   }
 

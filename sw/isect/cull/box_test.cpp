@@ -69,6 +69,7 @@ void SharedBoxTest::clear() {
   classes_ = 0;
   reach_fresh_ = false;
   for (unsigned c = 0; c < 6; ++c) {
+    count_[c] = 0;
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::numeric_limits<int64_t>::max();
       vmax_[c][j] = std::numeric_limits<int64_t>::min();
@@ -86,6 +87,7 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
     if (std::abs(static_cast<double>(v[i])) < unit_) continue;
     const unsigned c = static_cast<unsigned>(2 * i + (v[i] < 0 ? 1 : 0));
     classes_ |= 1u << c;
+    ++count_[c];
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::min(vmin_[c][j], v[j]);
       vmax_[c][j] = std::max(vmax_[c][j], v[j]);
@@ -224,6 +226,27 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   }
   p.mask(layout::kDataMask);
   return Verdict::kTest;
+}
+
+double SharedBoxTest::rays_through(const Triangle& t) const {
+  double rays = 0;
+  for (unsigned c = 0; c < 6; ++c) {
+    if (count_[c] == 0) continue;
+    const int i = static_cast<int>(c / 2), j = (i + 1) % 3, k = (i + 2) % 3;
+    const double s = (c & 1) ? -1.0 : 1.0;
+    double a[3], b[3];
+    for (int v = 0; v < 3; ++v) {
+      const glm::dvec3 q = t.p[v] - origin_;
+      const double u = s * q[i];
+      if (!(u > 0)) return 0;
+      a[v] = q[j] / u * unit_;
+      b[v] = q[k] / u * unit_;
+    }
+    const double area = 0.5 * std::abs((a[1] - a[0]) * (b[2] - b[0]) - (a[2] - a[0]) * (b[1] - b[0]));
+    const double span = static_cast<double>(vmax_[c][j] - vmin_[c][j] + 1) * static_cast<double>(vmax_[c][k] - vmin_[c][k] + 1);
+    rays += area * count_[c] / span;
+  }
+  return std::isfinite(rays) ? rays : 0;
 }
 
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,

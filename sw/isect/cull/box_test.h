@@ -70,6 +70,11 @@ class SharedBoxTest {
   // *makes_reach (if given): the appended test writes the blocks' reach word (below).
   Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0,
                  bool* makes_reach = nullptr) const;
+  // About how many of the pass's rays pass through triangle t: its area in the slopes of
+  // each class times the class's rays over the range of slopes they span. A guess for
+  // deciding whether a gate may pay (0 where t reaches behind a class's rays), never a
+  // bound: the results do not depend on it.
+  double rays_through(const Triangle& t) const;
   // Runs the test on the device and reads the ANY responder; SEL is restored after it.
   // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
@@ -90,6 +95,7 @@ class SharedBoxTest {
   bool has_cull_ = false, reach_ = false, stop_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
+  unsigned count_[6];                // per class: the pass's rays of it
 };
 
 }  // namespace fmpp::isect

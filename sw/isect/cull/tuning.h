@@ -1,5 +1,6 @@
 // The measured tuning of culling in the ray-parallel passes (ray_parallel.cpp): the
-// probe's reach and the hierarchy's leaf size, each with the measurement that chose it.
+// probe's reach, the hierarchy's leaf size and where a gate pays, each with the
+// measurement that chose it.
 #pragma once
 
 #include <cstddef>
@@ -37,5 +38,10 @@ inline constexpr int kProbeLeavesOwn = 1, kProbeRoundsOwn = 8;
 // them, after the host's walk); for rays of their own origins leaves of 1, 2, 4 gave
 // 1.13, 1.33, 1.52 M clocks.
 inline constexpr unsigned kCullLeafItems = 1;
+// The shared-origin forms' gate (forms/certify.h: inside_certain) costs its three
+// instructions and a read of RESP.ANY after the pipeline drains; it is left out of a
+// broadcast whose triangle about kGateRays or more of the pass's rays pass through
+// (SharedBoxTest::rays_through), where some block will almost surely pass it.
+inline constexpr double kGateRays = 8;
 
 }  // namespace fmpp::isect

@@ -92,7 +92,7 @@ PaperBounds paper_bounds(const int64_t x[9], const double m[3][3], const double 
   return b;
 }
 
-size_t inside_certain(Program& p, unsigned t0, int k) {
+void inside_certain(Program& p, unsigned t0, int k, ProgramMarks* marks) {
   using layout::kHit;
   using layout::kSel;
   using layout::kTmp;
@@ -114,6 +114,8 @@ size_t inside_certain(Program& p, unsigned t0, int k) {
   p << ref(RefFn::kOr, RefPart::kData, t0 + 1, 0xFFFFFFFFu, kAux, kAux);
   p << ref(RefFn::kOr, RefPart::kData, t0 + 2, 0xFFFFFFFFu, kC, kC);
   p << flagop(kWin, kWin, kAux, lut::kAnd) << flagop(kWin, kWin, kC, lut::kAnd);
+  // The gate: what follows acts only in blocks that may hit (kWin), or on scratch.
+  marks->gate = emit_gate(p, kWin, kTmp);
   // Certain hit = nominal hit and no T'_i in [0, 2^k); uncertain = possible and not that.
   p << ref(RefFn::kThrough, RefPart::kData, t0 + 0, 0, kTmp, kSel);
   p << ref(RefFn::kOr, RefPart::kData, t0 + 1, 0, kTmp, kTmp);
@@ -121,7 +123,7 @@ size_t inside_certain(Program& p, unsigned t0, int k) {
   p << flagop(kTmp, kTmp, kHit, kLutOrNotB) << flagop(kTmp, kTmp, kWin, lut::kAnd);
   p << flagop(kUnc, kUnc, kTmp, lut::kOr);
   p.mask(layout::kDataMask);
-  return test_steps;
+  marks->test_steps = test_steps;
 }
 
 void keep_nearest_certain(Program& p) {

@@ -18,6 +18,7 @@
 
 #include "sw/fmpp/program.h"
 #include "sw/isect/geometry/geometry.h"
+#include "sw/isect/pass/pass.h"
 #include "sw/isect/forms/shared_origin_layout.h"
 
 namespace fmpp::isect::certify {
@@ -50,9 +51,10 @@ inline constexpr double kMaxSumBound = 1 << 26;
 // Microcode. After three rows T_0..T_2 (words t0, t0+1, t0+2) under mask kDataMask:
 // kHit <- SEL and every T'_i >= 0 (the nominal decision), and kUnc |= "the decision
 // is not certain": every T'_i >= -2^k and not every T'_i >= 2^k. Uses kWin, kTmp, flag
-// 4 and C as scratch; leaves the mask at kDataMask. Returns the index after the
-// nominal test (the paper's step count).
-size_t inside_certain(Program& p, unsigned t0, int k);
+// 4 and C as scratch; leaves the mask at kDataMask. Sets marks->test_steps to the index
+// after the nominal test (the paper's step count) and marks->gate (pass.h) after the
+// "every T'_i >= -2^k" test: the rest acts only in blocks that may hit.
+void inside_certain(Program& p, unsigned t0, int k, ProgramMarks* marks);
 
 // The keep-nearest step with its certainty, in blocks with kHit: D = best - S; the block
 // wins iff D < 0 (S > best); kUnc |= |D| <= kBB + kBN (the best's bound plus this

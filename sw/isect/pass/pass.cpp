@@ -72,7 +72,13 @@ void send_broadcast(Device& dev, PassPlan& plan, size_t k, uint32_t number, cons
   const std::vector<uint64_t>& code = plan.code(k, number, &marks);
   uint64_t c0 = dev.cycles();
   size_t pushed = code.size();
-  if (marks.gate != 0 && opt.gates) {
+  if (marks.gate != 0 && opt.gates && marks.skip_gate) {
+    if (marks.gate < 2 || marks.gate >= code.size()) throw std::logic_error("fmpp::isect: a broadcast's gate out of its code");
+    for (size_t i = 0; i < code.size(); ++i) {
+      if (i + 2 < marks.gate || i > marks.gate) dev.push(code[i]);
+    }
+    pushed = code.size() - 3;
+  } else if (marks.gate != 0 && opt.gates) {
     if (marks.gate >= code.size()) throw std::logic_error("fmpp::isect: a broadcast's gate past its code");
     for (size_t i = 0; i < marks.gate; ++i) dev.push(code[i]);
     if (!dev.responders().any) {

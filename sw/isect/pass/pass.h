@@ -24,14 +24,20 @@ namespace fmpp::isect {
 //   gate: 0 for none; else code[gate] restores SEL after code[0, gate) left SEL = the
 //   blocks the rest of the program can change (emit_gate). The loop pushes code[0, gate),
 //   reads RESP.ANY and, when no block is selected, pushes code[gate] alone: the rest
-//   would change no word and no flag that outlives the broadcast.
+//   would change no word and no flag that outlives the broadcast;
+//   skip_gate: set by the plan where some block will almost surely pass the gate (a
+//   guess: it changes clocks, never a result): the loop then leaves the gate's three
+//   instructions code[gate - 2, gate] out and reads nothing.
 struct ProgramMarks {
   size_t test_steps = 0, mark = 0, gate = 0;
+  bool skip_gate = false;
 };
 
 // Ends a program's head with a gate (ProgramMarks::gate): `save` <- SEL, SEL <- `flag`,
 // and the instruction that restores SEL, which begins the tail. Returns the gate's
-// position. The tail must act only in blocks of `flag` (or on per-broadcast scratch).
+// position. The tail must act only in blocks of `flag` (or on per-broadcast scratch),
+// and must write flag `save` before it reads it (so that the three instructions can be
+// left out: skip_gate).
 size_t emit_gate(Program& p, unsigned flag, unsigned save);
 
 // What a mapping tells the pass loop. Blocks [0, count) of a pass hold items

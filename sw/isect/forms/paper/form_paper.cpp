@@ -99,7 +99,7 @@ class PaperForm : public SharedOriginForm {
       std::array<int64_t, 9> xs;
       std::copy(x, x + 9, xs.begin());
       b->build = [this, xs, shift = e - E, pb](ProgramMarks* marks) {
-        return program(xs.data(), shift, pb, &marks->test_steps);
+        return program(xs.data(), shift, pb, marks);
       };
       b->sum_bound = pb.sum;
       return true;
@@ -139,7 +139,7 @@ class PaperForm : public SharedOriginForm {
 
   // One triangle broadcast: T = X V, inside test, S = T_1 + T_2 + T_3 shifted by 2^shift
   // to the common exponent, then keep_nearest.
-  Program program(const int64_t x[9], int shift, const certify::PaperBounds& pb, size_t* test_steps) const {
+  Program program(const int64_t x[9], int shift, const certify::PaperBounds& pb, ProgramMarks* marks) const {
     using namespace layout::ray;
     using layout::kHit;
     using layout::kSel;
@@ -158,7 +158,7 @@ class PaperForm : public SharedOriginForm {
     } else {
       dot_rows_const(p, rows, opt_.n, kSel, pairs());
     }
-    *test_steps = certify::inside_certain(p, kT, pb.k);
+    certify::inside_certain(p, kT, pb.k, marks);
     p << add(kS, kT + 0, kT + 1, kHit) << add(kS, kS, kT + 2, kHit);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
     if (shift < 0) p << rshift(kS, kS, kHit, static_cast<unsigned>(std::min(-shift, 32)));  // >>> 32: the sign

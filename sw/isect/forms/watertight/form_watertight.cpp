@@ -80,7 +80,7 @@ class WatertightForm : public SharedOriginForm {
     std::copy(y, y + 3, xy.begin() + 9);
     b->build = [this, xy, shift = f - E, wb](ProgramMarks* marks) {
       const int64_t xs[3][3] = {{xy[0], xy[1], xy[2]}, {xy[3], xy[4], xy[5]}, {xy[6], xy[7], xy[8]}};
-      return program(xs, xy.data() + 9, shift, wb, &marks->test_steps);
+      return program(xs, xy.data() + 9, shift, wb, marks);
     };
     b->sum_bound = wb.sum;
     return true;
@@ -89,7 +89,7 @@ class WatertightForm : public SharedOriginForm {
   // One broadcast: A_0..A_2 and S' in one fused constant multiply, the certain inside
   // test, S' shifted left to the common exponent, the certain keep-nearest.
   Program program(const int64_t x[3][3], const int64_t y[3], int shift, const certify::WatertightBounds& wb,
-                  size_t* test_steps) const {
+                  ProgramMarks* marks) const {
     using namespace layout::ray;
     using layout::kHit;
     using layout::kSel;
@@ -102,7 +102,7 @@ class WatertightForm : public SharedOriginForm {
       for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, i < 3 ? x[i][j] : y[j], 0});
     }
     dot_rows_const(p, rows, opt_.n, kSel, pairs());
-    *test_steps = certify::inside_certain(p, kT, wb.k);
+    certify::inside_certain(p, kT, wb.k, marks);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
     certify::keep_nearest_certain(p);
     return p;
