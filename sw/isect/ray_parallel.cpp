@@ -252,6 +252,10 @@ class RayParallelPlan : public PassPlan {
   void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
     for (unsigned b = 0; b < count; ++b) out_[idx_[base + b]] = Hit{};
     t_loose_.assign(count, false);
+    // A ray whose best is certainly beyond its tmax is not read: a miss to the caller.
+    const std::vector<bool> beyond = boxes_ ? boxes_->beyond_reach(dev, count, st_) : std::vector<bool>();
+    std::vector<char> read(count, 1);
+    for (size_t b = 0; b < beyond.size(); ++b) read[b] = !beyond[b];
     ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
       const Ray& r = rays_[idx_[base + b]];
       Hit& h = out_[idx_[base + b]];
@@ -260,7 +264,7 @@ class RayParallelPlan : public PassPlan {
       // Every form certifies (an uncertified one would have no bound to give).
       h.t_err = form_.t_rel_bound_at(dev, b, best, order[pos]);
       t_loose_[b] = form_.certified() && !(h.t_err <= t_acc_);
-    });
+    }, &read);
     unc_.assign(count, false);
     if (form_.certified()) {
       const std::vector<bool> u = dev.read_flag_all(layout::kUnc);

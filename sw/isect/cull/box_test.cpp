@@ -9,6 +9,7 @@
 
 #include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/pass/layout.h"
+#include "sw/isect/pass/pass.h"
 #include "sw/isect/forms/shared_origin_layout.h"
 
 namespace fmpp::isect {
@@ -247,6 +248,20 @@ double SharedBoxTest::rays_through(const Triangle& t) const {
     rays += area * count_[c] / span;
   }
   return std::isfinite(rays) ? rays : 0;
+}
+
+std::vector<bool> SharedBoxTest::beyond_reach(Device& dev, unsigned count, KernelStats* st) const {
+  if (!reach_) return {};
+  // Both words lie within [0, 2^30] and BB is a small bound: no overflow.
+  Program p;
+  p.assume_mask(layout::kDataMask);
+  p << sub(kT + 0, cull_.reach, kBest, kSel) << sub(kT + 0, kT + 0, kBB, kSel);
+  p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
+  p << flagop(kWin, kWin, layout::kUnc, lut::kAndNotB);
+  push_counted(dev, p.code(), st);
+  std::vector<bool> beyond = dev.read_flag_all(kWin);
+  beyond.resize(count);
+  return beyond;
 }
 
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,

@@ -29,7 +29,6 @@ void PassHints::write(PassWords& out, const std::vector<Ray>& rays, const std::v
   }
   if (list_.size() * kHintShare < count) {
     clear();
-    cut = false;
   }
   boxes.set_reach(cut);
   for (unsigned b = 0; cut && b < count; ++b) out.set(b, words.reach, reach[b]);

@@ -22,8 +22,10 @@ class PassHints {
   explicit PassHints(size_t triangles) : hinted_(triangles, 0) {}
 
   // Sets the words of rays[idx[base .. base + count)] for blocks 0 .. count - 1 in `out`
-  // (pass_words.h) and tells `boxes` whether the reach is there. Nothing is written (and nothing hinted)
-  // where the pass's proven hints are few different triangles: see kHintShare.
+  // (pass_words.h) and tells `boxes` whether the reach is there. The reach goes in
+  // wherever some ray has a finite tmax (it also spares the host reading the rays whose
+  // best lies beyond it: SharedBoxTest::beyond_reach); the hints only where they are
+  // many different triangles (see kHintShare).
   void write(PassWords& out, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
              unsigned count, const std::vector<Triangle>& tris, const SharedOriginForm& form,
              const layout::ray::CullWords& words, SharedBoxTest& boxes);
@@ -33,13 +35,12 @@ class PassHints {
   // it, else -1.
   int hint_for(int tri) const { return hinted_[static_cast<size_t>(tri)] ? tri : -1; }
 
-  // The two words cost up to two bus writes a ray (a value most blocks share goes out as
-  // one WRITES: pass_words.h); they are written only where the proven hints are many
+  // The hint word costs up to a bus write a ray (a value most blocks share goes out as
+  // one WRITES: pass_words.h); it is written only where the proven hints are many
   // different triangles (one in kHintShare rays or more): a triangle that is the
   // hint of many rays (a large wall) is broadcast for the rays that do not end on it
-  // anyway, and the reach matters little without the hints (a ray's own triangle, sent,
-  // cuts the boxes beyond it). Measured at 128 x 128 (4096 blocks, n = 24; clocks of the
-  // frame): without the words, in every pass, and with kHintShare 8, 16, 32, 64: the
+  // anyway. Measured at 128 x 128 (4096 blocks, n = 24; clocks of the frame; the reach
+  // written with the hints or not at all, as it then was): without the words, in every pass, and with kHintShare 8, 16, 32, 64: the
   // Cornell box 1,571,313, 1,606,334, 1,554,779, 1,568,069, 1,568,069, 1,578,101;
   // armadillo 5,985,452, 5,768,022, 5,806,729, 5,755,695, 5,750,122, 5,759,830; scans
   // 8,174,883, 7,662,250, 7,790,352, then 7,662,250 from 16 on. With the shared values
@@ -47,6 +48,8 @@ class PassHints {
   // Cornell box 1,026,745, 1,029,946, 1,039,108; spheres_1k 380,666, 378,919, 392,837;
   // spheres_10k 1,456,395, 1,449,903, 1,449,989; armadillo 2,757,411, 2,606,397,
   // 2,554,463; scans 3,763,809, 3,530,358, 3,412,343 (32 the fewest over the five).
+  // Writing the reach in every pass with a tmax then saved 2,788 (Cornell) to 5,017
+  // (armadillo) more, spheres_1k 35 clocks more.
   static constexpr unsigned kHintShare = 32;
 
  private:
