@@ -148,7 +148,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
                                   " words per block; the FMPP has " + std::to_string(dev.config().words));
     }
     const std::unique_ptr<RayForm> form =
-        form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st});
+        form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st, nullptr, dev.config().words});
     run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr, nullptr,
                      cache ? &cache->shapes() : nullptr);
   }

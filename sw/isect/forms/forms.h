@@ -37,6 +37,9 @@ struct FormInputs {
   // Shared-origin forms: policy::nearest_for_exponent of the triangles' distances from
   // the origin, if the caller knows it (form_cache.h); nullptr: the form finds it.
   const double* nearest = nullptr;
+  // The FMPP's words per block (0: not known). The arbitrary-origin form uses the words
+  // beyond its own for the sums and differences of the direction's components.
+  unsigned words = 0;
 };
 
 // Every form, by one identifier: the index of KernelStats' per-form counters and of the

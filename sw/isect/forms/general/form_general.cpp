@@ -36,13 +36,15 @@ constexpr uint8_t kLutOrNotB = 0xD;  // a | ~b
 class GeneralForm : public RayForm {
  public:
   explicit GeneralForm(const FormInputs& in) : opt_(in.opt), st_(in.st) {
+    if (in.words >= kWordsPaired) {
+      pairs_ = {{kV + 0, kV + 1, kPair + 0, kPair + 1}, {kV + 0, kV + 2, kPair + 2, kPair + 3},
+                {kV + 1, kV + 2, kPair + 4, kPair + 5}};
+    }
     const unsigned q = opt_.qbits;
     in.st->general_rays += in.idx.size();
     const GeneralFrame fr = general_frame(in.tris, in.rays, in.idx);
-    lo_ = fr.box.lo;
-    hi_ = fr.box.hi;
     const std::vector<char>& outlier = fr.outlier;
-    scales(in);
+    sc_ = general_scales(in.rays, in.idx, fr.box, opt_.qbits);
     const double cond_limit = policy::general_cond_limit(opt_);
     for (size_t k = 0; k < in.tris.size(); ++k) {
       if (outlier[k]) {
@@ -62,7 +64,7 @@ class GeneralForm : public RayForm {
   // edges move by at most 27 cond 2^-(n-1) of the triangle. Distances: within an error
   // set by the angle of incidence and the frame's reach (CullBounds::reach_for).
   CullModel cull_model(const std::vector<Triangle>&) const override {
-    return CullModel{CullDistance::kGeneral, false, 1, reach_};
+    return CullModel{CullDistance::kGeneral, false, 1, sc_.reach};
   }
   CullPad cull_pad(const Triangle& t, const Broadcast& b, const CullModel&) const override {
     const double delta = 32 * b.edge_cond * std::ldexp(1.0, 1 - static_cast<int>(opt_.n));
@@ -73,15 +75,15 @@ class GeneralForm : public RayForm {
 
   void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override {
     const int64_t lim = int64_t{1} << policy::kGeneralRayBits;
-    const glm::dvec3 o = r.o - c_, l = glm::cross(o, r.d);
+    const glm::dvec3 o = r.o - sc_.c, l = glm::cross(o, r.d);
     for (int j = 0; j < 3; ++j) {
-      w.set(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sv_, lim, "ray direction")));
-      w.set(b, kL + j, static_cast<uint32_t>(quantize(l[j], sl_, lim, "ray moment")));
-      w.set(b, kO + j, static_cast<uint32_t>(quantize(o[j], so_, lim, "ray origin")));
+      w.set(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sc_.sv, lim, "ray direction")));
+      w.set(b, kL + j, static_cast<uint32_t>(quantize(l[j], sc_.sl, lim, "ray moment")));
+      w.set(b, kO + j, static_cast<uint32_t>(quantize(o[j], sc_.so, lim, "ray origin")));
     }
     // Only a batch with a tmin tests it (program). No tmin: a quotient far below every Q.
-    if (has_tmin_) {
-      const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / u_), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
+    if (sc_.has_tmin) {
+      const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / sc_.u), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
       w.set(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
     }
     const auto excl = broadcast_of_.find(r.exclude);  // its number in this pass, 0 for none
@@ -92,6 +94,7 @@ class GeneralForm : public RayForm {
     p << writes(kBest, 0x7FFFFFFFu, kSel) << writes(kIdx, 0, kSel) << writes(kCnt, 0, kSel) << writes(kOne, 1, kSel)
       << writes(kZero, 0, kSel) << writes(kUnit, 1u << policy::kGeneralRayBits, kSel)
       << flagop(layout::kUnc, 0, 0, lut::kZero);
+    pair_words(p, pairs_, kSel);
   }
 
   // The exclusion test compares with the broadcast's number in the pass.
@@ -102,7 +105,7 @@ class GeneralForm : public RayForm {
     return code_;
   }
 
-  double t_of(uint32_t best, const Ray&) const override { return (best + 0.5) * u_; }
+  double t_of(uint32_t best, const Ray&) const override { return (best + 0.5) * sc_.u; }
   int id() const override { return kFormGeneral; }
   bool certified() const override { return true; }
   double t_rel_bound_at(Device& dev, unsigned b, uint32_t best, size_t k) const override {
@@ -112,50 +115,13 @@ class GeneralForm : public RayForm {
   }
 
  private:
-  // The batch's scales: direction sv, moment sl, origin so (each the largest of its kind
-  // over 2^kGeneralRayBits) and the quotient unit u; and the bounds on the ray words.
-  void scales(const FormInputs& in) {
-    // Work relative to the frame's centre: smaller coordinates, less cancellation.
-    const glm::dvec3 lo = lo_, hi = hi_;
-    c_ = 0.5 * (lo + hi);
-    double vmax = 0, lmax = 0, omax = 0, lambda_max = 0;
-    for (size_t i : in.idx) {
-      const Ray& r = in.rays[i];
-      const glm::dvec3 o = r.o - c_, l = glm::cross(o, r.d);
-      o_reach_ = std::max(o_reach_, glm::length(o));
-      vmax = std::max(vmax, max_component(r.d));
-      lmax = std::max(lmax, max_component(l));
-      omax = std::max(omax, max_component(o));
-      has_tmin_ = has_tmin_ || r.tmin > 0;
-      // No hit is farther than the farthest corner of the scene box.
-      double far = 0;
-      for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-        far = std::max(far, glm::length(corner - r.o));
-      }
-      lambda_max = std::max(lambda_max, policy::kGeneralReachMargin * far / glm::length(r.d));
-    }
-    unit_ = std::ldexp(1.0, policy::kGeneralRayBits);
-    // A batch whose moments (or origins) are all 0 still needs scales of their natural
-    // size: a far larger one would crowd the triangle's other coefficients out of the
-    // shared exponent (rays along a line through the centre would all miss).
-    const double span = std::max(max_component(hi - lo), std::numeric_limits<double>::min());
-    sv_ = vmax / unit_;
-    sl_ = (lmax > 0 ? lmax : vmax * span) / unit_;
-    so_ = (omax > 0 ? omax : span) / unit_;
-    u_ = lambda_max / std::ldexp(1.0, static_cast<int>(opt_.qbits));
-    for (size_t i : in.idx) word_err_.add(in.rays[i].o - c_, in.rays[i].d, sl_, so_);
-    reach_ = o_reach_;
-    for (const glm::dvec3& p : {lo, hi}) reach_ = std::max(reach_, glm::length(p - c_));
-  }
-
   // Triangle k's program, or the host if its edge tests are too ill-conditioned.
   void triangle(const Triangle& t, int k, unsigned q, double cond_limit) {
-    const glm::dvec3 p[3] = {t.p[0] - c_, t.p[1] - c_, t.p[2] - c_};
+    const glm::dvec3 p[3] = {t.p[0] - sc_.c, t.p[1] - sc_.c, t.p[2] - sc_.c};
     const glm::dvec3 ee[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
     // The coefficients: edge rows a and the normal, then the det row pre-scaled by K so
     // that its value N makes floor(N 2^(q-1) / nv) = t / u.
-    certify::GeneralCoeffs g = certify::general_coeffs(p, sv_, sl_);
+    certify::GeneralCoeffs g = certify::general_coeffs(p, sc_.sv, sc_.sl);
     const glm::dvec3& nrm = g.nrm;
     // Exactly degenerate (collinear vertices): no ray meets it, in exact arithmetic as in
     // the reference. Decided exactly, never on the rounded normal: a small or thin
@@ -175,7 +141,7 @@ class GeneralForm : public RayForm {
       emax = std::max(emax, glm::length(e));
       emin = std::min(emin, glm::length(e));
     }
-    const double reach = std::max({glm::length(p[0]), glm::length(p[1]), glm::length(p[2]), o_reach_});
+    const double reach = std::max({glm::length(p[0]), glm::length(p[1]), glm::length(p[2]), sc_.o_reach});
     const double cond = emax * emax * reach / (emin * glm::length(nrm));  // (e_max/e_min) reach / h_min
     if (!(cond <= cond_limit)) {
       host.push_back(k);
@@ -183,17 +149,17 @@ class GeneralForm : public RayForm {
     }
     int64_t xa[18];
     const int ea = mantissas(g.a, 18, opt_.n - 1, xa);
-    const double K = std::ldexp(1.0, 1 - static_cast<int>(q) - (1 + ea)) / u_;
-    certify::general_det_row(&g, p[0], so_, unit_, K);
+    const double K = std::ldexp(1.0, 1 - static_cast<int>(q) - (1 + ea)) / sc_.u;
+    certify::general_det_row(&g, p[0], sc_.so, sc_.unit, K);
     int64_t xd[4];
     const int ed = mantissas(g.d, 4, opt_.n - 1, xd);
     // The rows' bounds (certify_general.h) and the thresholds of the certainty tests.
     const double wmax = std::ldexp(1.0, policy::kGeneralRayBits);
     double ew_row[6], ew_det[4];
     for (int j = 0; j < 3; ++j) {
-      ew_row[j] = word_err_.ev;
-      ew_row[3 + j] = word_err_.el;
-      ew_det[j] = word_err_.eo;
+      ew_row[j] = sc_.word_err.ev;
+      ew_row[3 + j] = sc_.word_err.el;
+      ew_det[j] = sc_.word_err.eo;
     }
     ew_det[3] = 0;  // the unit word is exact
     Bounds bd;
@@ -285,7 +251,7 @@ class GeneralForm : public RayForm {
     rows[3].r = kDet;
     for (unsigned j = 0; j < 3; ++j) rows[3].terms.push_back(Term{kO + j, xd[j], 0});
     rows[3].terms.push_back(Term{kUnit, xd[3], 0});
-    dot_rows_const(p, rows, opt_.n, kSel);
+    dot_rows_const(p, rows, opt_.n, kSel, pairs_);
     p << add(kNv, kA + 0, kA + 1, kSel) << add(kNv, kNv, kA + 2, kSel);
     // Where det < 0, negate det, the A_i and nv: then a hit is A_i >= 0, det > 0.
     p.mask(layout::kDataMask);
@@ -351,7 +317,7 @@ class GeneralForm : public RayForm {
       if (j > 0) p << lshift(kDet, kDet, kHit);
     }
     // Beyond the ray's tmin (only batches with one need the test).
-    if (has_tmin_) {
+    if (sc_.has_tmin) {
       p << sub(kTmp, kQ, kQmin, kHit);
       near_uncertain(p, kHit, kQmin);
       nonneg(p, kHit, kHit, kTmp);
@@ -379,16 +345,12 @@ class GeneralForm : public RayForm {
   }
 
   const KernelOptions& opt_;
-  glm::dvec3 lo_{0}, hi_{0};  // the frame's box
-  glm::dvec3 c_{0};           // its centre
-  double reach_ = 0;          // the farthest of its corners and of the origins from c_
   KernelStats* st_;
-  double o_reach_ = 0, unit_ = 1, sv_ = 1, sl_ = 1, so_ = 1, u_ = 1;
-  bool has_tmin_ = false;               // some ray of the batch has tmin > 0
-  certify::GeneralRayErrors word_err_;  // bounds on the batch's ray words
+  GeneralScales sc_;  // the batch's scales and word bounds (general_frame.h)
   std::vector<Bounds> bounds_;          // of each broadcast
   std::unordered_map<int, size_t> broadcast_of_;  // triangle -> its broadcast (load_ray's exclusion)
   std::vector<uint64_t> code_;
+  std::vector<PairWords> pairs_;  // where the FMPP has the words (general_layout.h)
 };
 
 }  // namespace

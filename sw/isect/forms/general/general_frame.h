@@ -8,6 +8,7 @@
 #include "sw/isect/geometry/geometry.h"
 #include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/pass/fixed_point.h"
+#include "sw/isect/forms/general/certify_general.h"
 
 namespace fmpp::isect {
 
@@ -27,5 +28,19 @@ struct GeneralFrame {
 inline constexpr size_t kMaxOutliers = 64;
 GeneralFrame general_frame(const std::vector<Triangle>& tris, const std::vector<Ray>& rays,
                            const std::vector<size_t>& idx);
+
+// The batch's scales in the frame `box`, relative to its centre c (smaller coordinates,
+// less cancellation): direction sv, moment sl, origin so (each the largest of its kind
+// over 2^kGeneralRayBits = unit) and the quotient unit u (qbits-bit quotients reach past
+// the scene's farthest corner); the farthest origin from c (o_reach), and of the origins
+// and the box's corners (reach); whether a ray has a tmin; and the bounds on the words.
+struct GeneralScales {
+  glm::dvec3 c{0};
+  double sv = 1, sl = 1, so = 1, u = 1, unit = 1, o_reach = 0, reach = 0;
+  bool has_tmin = false;
+  certify::GeneralRayErrors word_err;
+};
+GeneralScales general_scales(const std::vector<Ray>& rays, const std::vector<size_t>& idx, const Box& box,
+                             unsigned qbits);
 
 }  // namespace fmpp::isect
