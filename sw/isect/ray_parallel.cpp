@@ -101,10 +101,7 @@ class RayParallelPlan : public PassPlan {
         return ++leaves == (general ? kProbeLeavesOwn : kProbeLeavesShared);
       });
     }
-    std::vector<size_t> order;
-    for (size_t k = 0; k < nb; ++k) {
-      if (probe[k]) order.push_back(k);
-    }
+    std::vector<size_t> order = marked(probe);
     if (order.empty() || order.size() * (general ? kProbeShareOwn : kProbeShareShared) >= all.size()) {
       st_->culled += nb - all.size();
       return all;
@@ -165,10 +162,7 @@ class RayParallelPlan : public PassPlan {
     if (*appended) {
       for (size_t k : done) keep[k] = 0;
     }
-    std::vector<size_t> order;
-    for (size_t k = 0; k < nb; ++k) {
-      if (keep[k]) order.push_back(k);
-    }
+    std::vector<size_t> order = marked(keep);
     // Rays of their own origins: another probe round (probe.h), if it sends less than what
     // is left (all of which would be sent anyway: it adds only a read-back).
     if (general && *appended && rounds_ < kProbeRoundsOwn) {
@@ -253,9 +247,7 @@ class RayParallelPlan : public PassPlan {
     for (unsigned b = 0; b < count; ++b) out_[idx_[base + b]] = Hit{};
     t_loose_.assign(count, false);
     // A ray whose best is certainly beyond its tmax is not read: a miss to the caller.
-    const std::vector<bool> beyond = boxes_ ? boxes_->beyond_reach(dev, count, st_) : std::vector<bool>();
-    std::vector<char> read(count, 1);
-    for (size_t b = 0; b < beyond.size(); ++b) read[b] = !beyond[b];
+    const std::vector<char> read = boxes_ ? boxes_->to_read(dev, count, st_) : std::vector<char>(count, 1);
     ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
       const Ray& r = rays_[idx_[base + b]];
       Hit& h = out_[idx_[base + b]];

@@ -250,8 +250,9 @@ double SharedBoxTest::rays_through(const Triangle& t) const {
   return std::isfinite(rays) ? rays : 0;
 }
 
-std::vector<bool> SharedBoxTest::beyond_reach(Device& dev, unsigned count, KernelStats* st) const {
-  if (!reach_) return {};
+std::vector<char> SharedBoxTest::to_read(Device& dev, unsigned count, KernelStats* st) const {
+  std::vector<char> read(count, 1);
+  if (!reach_) return read;
   // Both words lie within [0, 2^30] and BB is a small bound: no overflow.
   Program p;
   p.assume_mask(layout::kDataMask);
@@ -259,9 +260,12 @@ std::vector<bool> SharedBoxTest::beyond_reach(Device& dev, unsigned count, Kerne
   p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
   p << flagop(kWin, kWin, layout::kUnc, lut::kAndNotB);
   push_counted(dev, p.code(), st);
-  std::vector<bool> beyond = dev.read_flag_all(kWin);
-  beyond.resize(count);
-  return beyond;
+  const std::vector<bool> beyond = dev.read_flag_all(kWin);
+  for (unsigned b = 0; b < count; ++b) {
+    read[b] = !beyond[b];
+    st->unread_rays += beyond[b] ? 1 : 0;
+  }
+  return read;
 }
 
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,

@@ -52,13 +52,13 @@ class SharedBoxTest {
   // finite tmax: a box beyond it is cut too).
   void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
   void set_reach(bool on) { reach_ = on && has_cull_; }
-  // After a pass whose blocks hold their reach: per block b < count, whether its best is
-  // certainly no hit before its ray's tmax (reach - best - BB >= 4, the occlusion stop's
-  // margin turned round; a block without a best has best = BB = 0) and not flagged
-  // uncertain. Such a ray's answer is of no interest to the caller (Ray::tmax), so the
-  // host need not read it. Costs four instructions and one flag plane read per 64
-  // blocks; empty (nothing to skip) when the pass has no reach words.
-  std::vector<bool> beyond_reach(Device& dev, unsigned count, KernelStats* st) const;
+  // After a pass: per block b < count, 0 where its best is certainly no hit before its
+  // ray's tmax (reach - best - BB >= 4, the occlusion stop's margin turned round; a
+  // block without a best has best = BB = 0) and not flagged uncertain, else 1. Such a
+  // ray's answer is of no interest to the caller (Ray::tmax), so the host need not read
+  // it (counted in st->unread_rays). Costs four instructions and one flag plane read per
+  // 64 blocks where the pass's blocks hold their reach (set_reach); all 1 otherwise.
+  std::vector<char> to_read(Device& dev, unsigned count, KernelStats* st) const;
   // Occlusion queries (KernelOptions::occlusion): a block whose best is a certified hit
   // certainly before its ray's tmax needs no further box (its reach word is then made
   // unreachable), so that a shadow ray stops at its first certified occluder. Needs the

@@ -24,7 +24,7 @@ class PassHints {
   // Sets the words of rays[idx[base .. base + count)] for blocks 0 .. count - 1 in `out`
   // (pass_words.h) and tells `boxes` whether the reach is there. The reach goes in
   // wherever some ray has a finite tmax (it also spares the host reading the rays whose
-  // best lies beyond it: SharedBoxTest::beyond_reach); the hints only where they are
+  // best lies beyond it: SharedBoxTest::to_read); the hints only where they are
   // many different triangles (see kHintShare).
   void write(PassWords& out, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
              unsigned count, const std::vector<Triangle>& tris, const SharedOriginForm& form,

@@ -52,4 +52,12 @@ std::vector<size_t> next_probe_round(const Bvh& probe_bvh, const std::vector<Ray
   return next;
 }
 
+std::vector<size_t> marked(const std::vector<char>& flags) {
+  std::vector<size_t> out;
+  for (size_t k = 0; k < flags.size(); ++k) {
+    if (flags[k]) out.push_back(k);
+  }
+  return out;
+}
+
 }  // namespace fmpp::isect

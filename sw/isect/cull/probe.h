@@ -30,4 +30,7 @@ std::vector<size_t> next_probe_round(const Bvh& probe_bvh, const std::vector<Ray
                                      const std::vector<char>& left, const std::vector<size_t>& order,
                                      std::vector<char>* probed);
 
+// The indices k with flags[k] set, in increasing order.
+std::vector<size_t> marked(const std::vector<char>& flags);
+
 }  // namespace fmpp::isect

@@ -41,7 +41,12 @@ inline constexpr unsigned kCullLeafItems = 1;
 // The shared-origin forms' gate (forms/certify.h: inside_certain) costs its three
 // instructions and a read of RESP.ANY after the pipeline drains; it is left out of a
 // broadcast whose triangle about kGateRays or more of the pass's rays pass through
-// (SharedBoxTest::rays_through), where some block will almost surely pass it.
-inline constexpr double kGateRays = 8;
+// (SharedBoxTest::rays_through), where some block will almost surely pass it. Measured
+// with 4096 blocks of 32 words, n = 24, the five frames of docs/perf.md together
+// (2026-11-27): at 128 x 128 no gate 8,848,696 clocks, a gate in every broadcast
+// 8,487,767, kGateRays 0.5, 2, 8: 8,495,775, 8,465,549, 8,477,095; at 256 x 256 (with
+// the unread rays and the arbitrary-origin form's pair words) kGateRays 2 and 8:
+// 22,280,175 and 22,298,583.
+inline constexpr double kGateRays = 2;
 
 }  // namespace fmpp::isect
