@@ -125,6 +125,37 @@ TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
   EXPECT_GT(rs.flagged[static_cast<int>(RayKind::kShadow)], 0u);
 }
 
+// The estimate from the primary sample (plan.h, kFrameOverPrimary): a candidate whose
+// primary sample redoes a share p of its rays, within the allowance, is refused without a
+// frame sample where 2.8 p would exceed it, and rendered where it would not.
+TEST(Plan, PrimarySampleEstimatesTheFramesRaysRedone) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream obj(dir + "/plan_quad2.obj");
+    obj << "v -1 -1 -3\nv 1 -1 -3\nv 1 1 -3\nv -1 1 -3\nf 1 2 3 4\n";
+    std::ofstream json(dir + "/plan_quad2.json");
+    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 60},
+               "background": [0.1, 0.1, 0.15], "ambient": [0.2, 0.2, 0.2], "max_depth": 1,
+               "lights": [{"position": [0.5, 1.0, 1.0], "color": [1, 1, 1]}],
+               "materials": {"orange": {"diffuse": [0.9, 0.5, 0.1]}},
+               "meshes": [{"file": "plan_quad2.obj", "material": "orange"}]})";
+  }
+  const Scene s = load_scene(dir + "/plan_quad2.json");
+  PlanRequest r;
+  r.width = r.height = 32;
+  r.max_flagged_share = 1;
+  const double p = make_plan(s, r).candidates.front().primary_redone;
+  ASSERT_GT(p, 0.01) << "the rays through the diagonal are redone at n = 8";
+  r.max_flagged_share = 1.5 * p;  // p within it, 2.8 p (at most 1) beyond it
+  const Plan refused = make_plan(s, r);
+  EXPECT_EQ(refused.candidates.front().n, 8u);
+  EXPECT_EQ(refused.candidates.front().pixels_sampled, 0u) << "refused on the estimate, no frame sample";
+  EXPECT_GT(refused.options.n, 8u);
+  r.max_flagged_share = std::max(3.5 * p, 1.0);  // 2.8 p (at most 1) within it: the frame sample decides
+  const Plan rendered = make_plan(s, r);
+  EXPECT_GT(rendered.candidates.front().pixels_sampled, 0u);
+}
+
 // A mirror on the floor reflecting a checkered wall: every primary ray is right (large
 // triangles seen from the eye, the certified form), but near the checker squares' edges
 // many rays are uncertain and the host redoes them. At n = 12 and 16 the primary sample

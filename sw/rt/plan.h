@@ -70,6 +70,15 @@ struct PlanRequest {
 // shipped scene but armadillo and scans at n = 24, where both were several times the
 // allowance (docs/raytracer.md, "The precision plan").
 inline constexpr double kCostlyRedone = 1.25;
+// And the frame sample's share of rays redone has been at least 2.8 times its primary
+// sample's on every shipped scene at the n chosen or refused (docs/raytracer.md, "The
+// precision plan": from 2.8 on spheres_10k and armadillo_soft to 4.1 on armadillo and
+// scans, every one with the primary sample's share below 0.4 %): a candidate whose
+// primary sample is within the allowance but times kFrameOverPrimary (at most 1) exceeds
+// it is refused without its frame sample (spheres_10k at n = 24: 0.391 % of the primary
+// sample's rays, 1.09 % of the frame sample's). One above the allowance renders its
+// frame sample as before (or is refused by kCostlyRedone).
+inline constexpr double kFrameOverPrimary = 2.8;
 
 // The memory the plan's prepared forms may take (FormCache): about 512 MB, on
 // armadillo_soft, whose two area lights' 48 points each take a form at every depth, 19

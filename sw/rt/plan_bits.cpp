@@ -37,6 +37,13 @@ std::vector<uint32_t> sample_pixels(size_t pixels, size_t count) {
   return all;
 }
 
+// Whether a candidate's primary sample already redoes too many rays for its frame
+// sample to be worth rendering (plan.h: kCostlyRedone, kFrameOverPrimary).
+bool costly_primary(const PlanCandidate& c, const PlanRequest& req) {
+  const double p = c.primary_redone, allowed = req.max_flagged_share;
+  return p > kCostlyRedone * allowed || (p <= allowed && std::min(1.0, p * kFrameOverPrimary) > allowed);
+}
+
 }  // namespace
 
 // Precision: the smallest candidate n whose sampled primary rays and sampled frame
@@ -218,7 +225,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
     c.sample_cycles = st.cycles;
     c.primary_redone = flagged_share(st);
-    const bool costly = c.primary_redone > kCostlyRedone * req.max_flagged_share && n != 32;
+    const bool costly = costly_primary(c, req) && n != 32;
     const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share && !costly;
     steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
               " of triangles ill-conditioned, " + pct(c.primary_redone) + " of its rays redone" +
@@ -238,7 +245,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         if (p.pixel_rate >= 0) why << ", " << pct(p.pixel_rate) << " of the sampled pixels off";
         if (p.flagged_share >= 0) {
           why << ", " << pct(p.flagged_share) << " of its rays redone";
-        } else if (p.primary_redone > kCostlyRedone * req.max_flagged_share) {
+        } else if (costly_primary(p, req)) {
           why << ", " << pct(p.primary_redone) << " of its primary sample's rays redone";
         }
         why << ")";
