@@ -267,18 +267,25 @@ TEST(KernelsNumerics, RaysAreGroupedByOrigin) {
   }
 }
 
+// `count` rays with their own origins around the scene of random_scene, looking down +z;
+// every third with tmin 4 if `tmin`, every fifth excluding a triangle below `tris`.
+std::vector<Ray> own_origin_rays(int count, uint64_t seed, bool tmin, int tris) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Ray r{{3 * u(rng), 3 * u(rng), 2 * u(rng)}, {0.4 * u(rng), 0.4 * u(rng), 1}};
+    if (tmin && i % 3 == 0) r.tmin = 4.0;
+    if (i % 5 == 0) r.exclude = i % tris;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
 // Rays with their own origins, tmin and an excluded triangle: the general formulation.
 TEST(KernelsGeneral, ArbitraryOriginsMatchTheReference) {
   Scene s = random_scene(200, 1, 37);
-  std::mt19937_64 rng(41);
-  std::uniform_real_distribution<double> u(-1, 1);
-  s.rays.clear();
-  for (int i = 0; i < 300; ++i) {
-    Ray r{{3 * u(rng), 3 * u(rng), 2 * u(rng)}, {0.4 * u(rng), 0.4 * u(rng), 1}};
-    if (i % 3 == 0) r.tmin = 4.0;
-    if (i % 5 == 0) r.exclude = i % 200;
-    s.rays.push_back(r);
-  }
+  s.rays = own_origin_rays(300, 41, true, 200);
   const auto ref = nearest_reference(s.rays, s.tris);
   for (unsigned n : {20u, 24u}) {
     KernelOptions o;
@@ -323,14 +330,7 @@ TEST(KernelsGeneral, RtlAgreesWithTheModel) {
 // numbers, so every answer, t and bound is too, in fewer steps (golden model and RTL).
 TEST(KernelsGeneral, PairWordsChangeNoAnswer) {
   Scene s = random_scene(120, 1, 53);
-  std::mt19937_64 rng(59);
-  std::uniform_real_distribution<double> u(-1, 1);
-  s.rays.clear();
-  for (int i = 0; i < 100; ++i) {
-    Ray r{{3 * u(rng), 3 * u(rng), 2 * u(rng)}, {0.4 * u(rng), 0.4 * u(rng), 1}};
-    if (i % 5 == 0) r.exclude = i % 120;
-    s.rays.push_back(r);
-  }
+  s.rays = own_origin_rays(100, 59, false, 120);
   KernelOptions o;
   o.n = 20;
   KernelStats without, with, rtl;

@@ -68,28 +68,33 @@ TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
   EXPECT_GE(make_plan(s, r).options.n, loose.options.n);
 }
 
-// A quad (two triangles sharing a diagonal) lit from the side: a shadow ray cast to a
-// point on the diagonal ends on the neighbouring triangle's edge. Before the kernels
-// certified their results, its rounded t fell short of the point at low n: a dark line
-// across the quad that primary rays did not show, and the plan had to move up until
-// its sampled frame was clean. Now such a ray is flagged (its edge value is within the
+// A quad (two triangles sharing a diagonal) lit from the side, as scene files named
+// `name` in the test's folder.
+Scene quad_scene(const std::string& name) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream obj(dir + "/" + name + ".obj");
+    obj << "v -1 -1 -3\nv 1 -1 -3\nv 1 1 -3\nv -1 1 -3\nf 1 2 3 4\n";
+    std::ofstream json(dir + "/" + name + ".json");
+    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 60},
+               "background": [0.1, 0.1, 0.15], "ambient": [0.2, 0.2, 0.2], "max_depth": 1,
+               "lights": [{"position": [0.5, 1.0, 1.0], "color": [1, 1, 1]}],
+               "materials": {"orange": {"diffuse": [0.9, 0.5, 0.1]}},
+               "meshes": [{"file": ")" << name << R"(.obj", "material": "orange"}]})";
+  }
+  return load_scene(dir + "/" + name + ".json");
+}
+
+// The quad: a shadow ray cast to a point on the diagonal ends on the neighbouring
+// triangle's edge. Before the kernels certified their results, its rounded t fell short
+// of the point at low n: a dark line across the quad that primary rays did not show, and
+// the plan had to move up until its sampled frame was clean. Now such a ray is flagged (its edge value is within the
 // bound of 0) and redone exactly on the host: n = 8 already gives the reference's
 // frame, and the full render at the chosen n matches the reference. (The pixel centres
 // on the diagonal make exact ties that are flagged at every n: the share of redone rays
 // is not limited here.)
 TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
-  const std::string dir = ::testing::TempDir();
-  {
-    std::ofstream obj(dir + "/plan_quad.obj");
-    obj << "v -1 -1 -3\nv 1 -1 -3\nv 1 1 -3\nv -1 1 -3\nf 1 2 3 4\n";
-    std::ofstream json(dir + "/plan_quad.json");
-    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 60},
-               "background": [0.1, 0.1, 0.15], "ambient": [0.2, 0.2, 0.2], "max_depth": 1,
-               "lights": [{"position": [0.5, 1.0, 1.0], "color": [1, 1, 1]}],
-               "materials": {"orange": {"diffuse": [0.9, 0.5, 0.1]}},
-               "meshes": [{"file": "plan_quad.obj", "material": "orange"}]})";
-  }
-  const Scene s = load_scene(dir + "/plan_quad.json");
+  const Scene s = quad_scene("plan_quad");
   PlanRequest r;
   r.width = r.height = 32;
   r.max_flagged_share = 1;
@@ -129,18 +134,7 @@ TEST(Plan, CertifiedShadowRaysNeedNoExtraBits) {
 // primary sample redoes a share p of its rays, within the allowance, is refused without a
 // frame sample where 2.8 p would exceed it, and rendered where it would not.
 TEST(Plan, PrimarySampleEstimatesTheFramesRaysRedone) {
-  const std::string dir = ::testing::TempDir();
-  {
-    std::ofstream obj(dir + "/plan_quad2.obj");
-    obj << "v -1 -1 -3\nv 1 -1 -3\nv 1 1 -3\nv -1 1 -3\nf 1 2 3 4\n";
-    std::ofstream json(dir + "/plan_quad2.json");
-    json << R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 60},
-               "background": [0.1, 0.1, 0.15], "ambient": [0.2, 0.2, 0.2], "max_depth": 1,
-               "lights": [{"position": [0.5, 1.0, 1.0], "color": [1, 1, 1]}],
-               "materials": {"orange": {"diffuse": [0.9, 0.5, 0.1]}},
-               "meshes": [{"file": "plan_quad2.obj", "material": "orange"}]})";
-  }
-  const Scene s = load_scene(dir + "/plan_quad2.json");
+  const Scene s = quad_scene("plan_quad2");
   PlanRequest r;
   r.width = r.height = 32;
   r.max_flagged_share = 1;
