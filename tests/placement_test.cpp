@@ -86,6 +86,14 @@ class Placement : public ::testing::TestWithParam<const char*> {
     be->finish();
     return got;
   }
+  // The same with `set(o, false)` into got[0], st[0] and `set(o, true)` into got[1], st[1].
+  void run_general_both(const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
+                        const std::function<void(KernelOptions&, bool)>& set, std::vector<Hit> got[2],
+                        KernelStats st[2]) {
+    for (int on = 0; on < 2; ++on) {
+      ASSERT_NO_THROW(got[on] = run_general(rays, tris, [&](KernelOptions& o) { set(o, on == 1); }, &st[on]));
+    }
+  }
 };
 
 // Two triangles: a 3-unit one at z = 4 and a sliver 2^29 from the origin whose normal,
@@ -198,9 +206,8 @@ TEST_P(Placement, GatesChangeNoAnswerAnywhere) {
       SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
       KernelStats st[2];
       std::vector<Hit> got[2];
-      for (int g = 0; g < 2; ++g) {
-        ASSERT_NO_THROW(got[g] = run_general(rays, tris, [&](KernelOptions& o) { o.gates = g == 1; }, &st[g]));
-      }
+      run_general_both(rays, tris, [](KernelOptions& o, bool on) { o.gates = on; }, got, st);
+      if (HasFatalFailure()) return;
       for (size_t i = 0; i < rays.size(); ++i) {
         EXPECT_EQ(got[0][i].tri, got[1][i].tri) << "ray " << i;
         EXPECT_EQ(got[0][i].t, got[1][i].t) << "ray " << i;
@@ -253,9 +260,8 @@ TEST_P(Placement, ProbeRoundsChangeNoAnswerAnywhere) {
       SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
       KernelStats st[2];
       std::vector<Hit> got[2];
-      for (int c = 0; c < 2; ++c) {
-        ASSERT_NO_THROW(got[c] = run_general(rays, tris, [&](KernelOptions& o) { o.cull = c == 1; }, &st[c]));
-      }
+      run_general_both(rays, tris, [](KernelOptions& o, bool on) { o.cull = on; }, got, st);
+      if (HasFatalFailure()) return;
       const std::vector<Hit> ref = nearest_reference(rays, tris);
       for (size_t i = 0; i < rays.size(); ++i) {
         EXPECT_EQ(got[1][i].tri, ref[i].tri) << "ray " << i;

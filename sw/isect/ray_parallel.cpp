@@ -228,8 +228,8 @@ class RayParallelPlan : public PassPlan {
     words_.begin(count);
     for (unsigned b = 0; b < count; ++b) form_.load_ray(words_, b, rays_[idx_[base + b]], number_of_);
     // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
-    hints_.clear();
     if (boxes_ && cull_words_) hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
+    else hints_.clear();
     words_.flush(dev, std::move(pre), st_);
     push_init(dev, Program());
   }
