@@ -55,6 +55,23 @@ class RayParallelPlan : public PassPlan {
   // The triangles some packet of the pass may reach (all without culling), then either
   // all of them or, with the probe, the nearest leaves of each ray first.
   std::vector<size_t> select(size_t base, unsigned count) override {
+    refused_.clear();
+    return usable(pick(base, count));
+  }
+  std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done,
+                             bool* appended) override {
+    return usable(refine_pick(dev, base, count, done, appended));
+  }
+
+ private:
+  // Without what the form refused as it prepared it: this pass's host merges those.
+  std::vector<size_t> usable(std::vector<size_t> order) {
+    const size_t n = order.size();
+    order = form_.usable(std::move(order), &refused_);
+    st_->culled += n - order.size();
+    return order;
+  }
+  std::vector<size_t> pick(size_t base, unsigned count) {
     const size_t nb = form_.broadcasts.size();
     reach_.assign(nb, 1);
     phase_ = Phase::kAll;
@@ -116,8 +133,8 @@ class RayParallelPlan : public PassPlan {
   // blocks keep the probe's results and get only the triangles the probe did not send:
   // its answer is the certain nearest of what it was sent, or the ray is flagged, in any
   // order (an uncertain order is flagged). Otherwise they start afresh.
-  std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done,
-                             bool* appended) override {
+  std::vector<size_t> refine_pick(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done,
+                                  bool* appended) {
     if (phase_ != Phase::kProbe) return {};
     phase_ = Phase::kFinal;
     const bool general = bounds_.distance == CullDistance::kGeneral;
@@ -178,6 +195,7 @@ class RayParallelPlan : public PassPlan {
     return order;
   }
 
+ public:
   // Culling on the FMPP (box_test.h): the hierarchy front to back from the shared origin,
   // through the nodes the host's walk reached; each leaf (one triangle) is tested by every
   // block against its ray's current best, and broadcast at once if some ray may still
@@ -208,7 +226,7 @@ class RayParallelPlan : public PassPlan {
       leaf.assign(items, items + n);
       std::sort(leaf.begin(), leaf.end());
       for (uint32_t k : leaf) {
-        if (!reach_[k]) continue;
+        if (!reach_[k] || !form_.usable(k, &refused_)) continue;
         sent->push_back(k);
         number_of_[k] = static_cast<uint32_t>(sent->size());
         send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
@@ -263,6 +281,7 @@ class RayParallelPlan : public PassPlan {
       for (unsigned b = 0; b < count; ++b) unc_[b] = u[b];
       // A flagged ray is redone against what the pass tested: its broadcasts and the host's.
       candidates_ = form_.host;
+      candidates_.insert(candidates_.end(), refused_.begin(), refused_.end());
       for (size_t k : order) candidates_.push_back(form_.broadcasts[k].tri);
     }
   }
@@ -322,6 +341,7 @@ class RayParallelPlan : public PassPlan {
           out_[i].t_err = 0;
         }
         merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
+        merge_host(r, tris_, refused_, &out_[i], st_, form_.certified());
         if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;
       }
     }
@@ -374,6 +394,7 @@ class RayParallelPlan : public PassPlan {
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
   PassWords words_;                // the pass's ray words, gathered before they are written
   std::vector<int> all_, candidates_;
+  std::vector<int> refused_;  // this pass's triangles refused by the form's preparation
   const double t_acc_ = policy::t_accuracy(opt_);
 };
 
@@ -383,12 +404,13 @@ void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vect
                       const std::vector<Triangle>& tris, RayForm& form, const KernelOptions& opt,
                       std::vector<Hit>& out, KernelStats* st, const glm::dvec3* origin, PreparedCull* cull,
                       BvhShapes* shapes) {
-  st->host_triangles += form.host.size();
   // Passes take consecutive rays of this order; results land at the caller's indices.
   const std::vector<size_t> order = opt.coherent ? coherent_order(rays, idx) : idx;
   RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words, cull, shapes);
   const KernelStats before = *st;
   run_passes(dev, plan, opt, st);
+  st->host_triangles += form.host.size();
+  for (const Broadcast& b : form.broadcasts) st->host_triangles += b.host;  // refused as prepared
   const int f = form.id();
   st->form_broadcasts[f] += st->broadcasts - before.broadcasts;
   st->form_broadcast_cycles[f] += st->compute_cycles + st->box_cycles - before.compute_cycles - before.box_cycles;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <future>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -200,24 +202,47 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   }
   plan.config.validate();
 
-  // The pass-size model's exact render of the frame comes first: its picture is the
-  // reference the frame sample is compared with, and the frame sample at the chosen n
-  // prices the model's broadcasts and rays.
+  // The pass-size model's exact render of the frame: its picture is the reference the
+  // frame sample is compared with, and the frame sample at the chosen n prices the
+  // model's broadcasts and rays. It depends on nothing the samples decide, so it is
+  // traced on a thread of its own beside them (the golden model's samples take one core),
+  // and the frame sample waits for it only when it compares its first chunk. The
+  // reference is thread-safe (reference_bvh.h: every ray's arithmetic is its own).
   ReferenceIntersector exact(scene.triangles);
+  std::future<FrameRecord> tracing;
   std::optional<FrameRecord> frame;
+  std::optional<double> traced_seconds;
+  const auto started = std::chrono::steady_clock::now();
   if (!req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay) {
-    Steps steps(req);
-    frame = record_frame(scene, exact, req.width, req.height, depth);
-    steps.say("the frame traced with exact hits (the reference's picture, the pass-size model's rays)");
+    tracing = std::async(std::launch::async, [&scene, &exact, &req, depth, started, &traced_seconds] {
+      FrameRecord f = record_frame(scene, exact, req.width, req.height, depth);
+      traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      return f;
+    });
   }
+  // The traced frame, once (the progress line from this thread: the console's order).
+  const auto traced = [&]() -> const FrameRecord* {
+    if (!frame && tracing.valid()) {
+      frame = tracing.get();
+      if (req.progress) {
+        std::ostringstream o;
+        o.precision(2);
+        o << std::fixed << "plan: the frame traced with exact hits beside the samples (the reference's picture, "
+          << "the pass-size model's rays; " << *traced_seconds << " s)";
+        req.progress(o.str());
+      }
+    }
+    return frame ? &*frame : nullptr;
+  };
   fmpp::isect::KernelStats sample_stats;
-  const Decision<unsigned> bits =
-      decide_bits(scene, req, depth, exact, frame ? &frame->picture : nullptr, &sample_stats, plan);
+  std::function<const Image*()> reference;
+  if (tracing.valid()) reference = [&] { return &traced()->picture; };
+  const Decision<unsigned> bits = decide_bits(scene, req, depth, exact, reference, &sample_stats, plan);
   plan.options.n = bits.value;
   plan.why_bits = bits.why;
-  if (frame) {
+  if (const FrameRecord* f = traced()) {
     const PassRates rates = rates_from(sample_stats);
-    decide_pass_size(scene, req, pixels, *frame, &rates, &plan);
+    decide_pass_size(scene, req, pixels, *f, &rates, &plan);
   }
   if (plan.pass_sizes.empty()) plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
   return plan;

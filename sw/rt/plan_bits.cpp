@@ -49,7 +49,8 @@ bool costly_primary(const PlanCandidate& c, const PlanRequest& req) {
 // Precision: the smallest candidate n whose sampled primary rays and sampled frame
 // meet the target (see plan.h). Fills plan.candidates.
 Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
-                               const Image* reference, fmpp::isect::KernelStats* sample_stats, Plan& plan) {
+                               const std::function<const Image*()>& reference,
+                               fmpp::isect::KernelStats* sample_stats, Plan& plan) {
   if (req.bits) return {*req.bits, "set by the user"};
   Steps steps(req);
   const size_t pixels = static_cast<size_t>(req.width) * req.height;
@@ -141,27 +142,34 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         std::sort(part.pixels.begin(), part.pixels.end());  // frame order: coherent passes
       }
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
-      Image* ref = nullptr;
-      if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) {
-        ref = &it->second;
-      } else if (reference) {
+      // The reference's pixels of the chunk: rendered with `exact` before the golden
+      // model's, or taken from the whole frame after it (which may still be being traced
+      // beside it).
+      const auto chunk_reference = [&]() -> const Image& {
+        if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) return it->second;
+        if (!reference) {
+          const Image& r =
+              ref_chunks.emplace(std::make_pair(from, to[k]), render(scene, exact, part, nullptr)).first->second;
+          steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
+          return r;
+        }
         // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
-        Image chunk = part.pixels.empty() ? *reference : Image(frame.width, frame.height);
-        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
+        const Image& whole = *reference();
+        Image chunk = part.pixels.empty() ? whole : Image(frame.width, frame.height);
         for (uint32_t i : part.pixels) {
           const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
           const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));
-          ref->at(x, y) = reference->at(x, y);
+          chunk.at(x, y) = whole.at(x, y);
         }
-      } else {
-        ref = &ref_chunks.emplace(std::make_pair(from, to[k]), render(scene, exact, part, nullptr)).first->second;
-        steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
-      }
+        return ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
+      };
+      if (!reference) chunk_reference();
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
+      const Image got = render(scene, fi, part, nullptr);
       // Pixels outside the chunk are black in both renders: they count as equal.
-      over += compare(render(scene, fi, part, nullptr), *ref).pixels_over;
+      over += compare(got, chunk_reference()).pixels_over;
       st.add(fi.stats());
       done += count;
       c.pixels_sampled = done;

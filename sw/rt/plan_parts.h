@@ -62,11 +62,14 @@ inline std::string pct(double v) {
 
 // The multiplier bits n: the narrowest candidate whose sampled wrong-pixel rate meets the
 // target (plan_bits.cpp; docs/raytracer.md, "The precision plan"). `exact` answers with
-// the exact reference; `reference` is its render of the whole frame (nullptr: the frame
-// sample's pixels are rendered with it as needed). *sample_stats gets the counters of the
-// frame sample's golden-model render at the n chosen (none if no frame sample was
-// rendered: n set by the user).
+// the exact reference; `reference` gives its render of the whole frame, waiting for it
+// if it is still being traced (make_plan traces it beside the samples), asked only after
+// a chunk's golden-model render; empty: the frame sample's pixels are rendered with
+// `exact` as needed. *sample_stats gets the counters of the frame
+// sample's golden-model render at the n chosen (none if no frame sample was rendered: n
+// set by the user).
 Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
-                               const Image* reference, fmpp::isect::KernelStats* sample_stats, Plan& plan);
+                               const std::function<const Image*()>& reference, fmpp::isect::KernelStats* sample_stats,
+                               Plan& plan);
 
 }  // namespace rt::plan_parts

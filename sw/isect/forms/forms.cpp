@@ -27,6 +27,17 @@ Program SharedOriginForm::begin_broadcast() {
   return p;
 }
 
+Program SharedOriginForm::prepare_late(size_t k, ProgramMarks* marks) {
+  Broadcast& b = broadcasts[k];
+  const Prepared p = prepare_(own_[k]);
+  if (!p.build) {
+    b.host = true;  // the passes merge it on the host (Broadcast::refused)
+    return begin_broadcast();
+  }
+  b.sum_bound = p.sum_bound;
+  return p.build(marks);
+}
+
 double SharedOriginForm::farthest(const Triangle& t) const {
   double far = 0;
   for (const glm::dvec3& p : t.p) far = std::max(far, glm::length(p - origin_));

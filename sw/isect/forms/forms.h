@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -125,23 +126,37 @@ class SharedOriginForm : public RayForm {
   // The start of every broadcast of a shared-origin form: under the pass's data mask
   // (set by its init, kept by every broadcast), the broadcast counter counts it.
   static Program begin_broadcast();
-  // Prepares every triangle of the batch: one too ill-conditioned for the format (the
-  // paper form's measure, policy::paper_cond_limit) goes to the host, as does one that
-  // prepare(triangle, &broadcast) refuses (returns false); the others are broadcast.
-  template <class Prepare>
-  void prepare_all(const FormInputs& in, Prepare&& prepare) {
+  // A triangle's preparation: its broadcast's program builder and its bound on S_c, or
+  // no builder where the host must take the triangle (its bounds could certify nothing).
+  struct Prepared {
+    std::function<Program(ProgramMarks* marks)> build;
+    double sum_bound = 0;
+  };
+  using Prepare = std::function<Prepared(const Triangle& t)>;
+  // Every triangle of the batch: one too ill-conditioned for the format (the paper
+  // form's measure, policy::paper_cond_limit) goes to the host; the others are
+  // broadcasts, each prepared by `prepare` when its program is first asked for. A culled
+  // batch sends a small share of its triangles (the scanned meshes' shadow and secondary
+  // batches a few per cent), and culling needs of a broadcast only its triangle and
+  // condition (cull_pad), so the rest is never prepared. One that `prepare` refuses is
+  // marked (Broadcast::host): every pass that would send it merges its triangle on the
+  // host instead, as the host's own; a pass that would not send it does not need it.
+  void prepare_all(const FormInputs& in, Prepare prepare) {
     cond_limit_ = policy::paper_cond_limit(opt_);
+    prepare_ = std::move(prepare);
     for (size_t k = 0; k < in.tris.size(); ++k) {
-      Broadcast b;
       const double cond = policy::condition(in.tris[k], in.origin);
-      if (!(cond <= cond_limit_)) refused_cond_ = std::min(refused_cond_, cond);  // not a NaN: host at any limit
-      if (!(cond <= cond_limit_) || !prepare(in.tris[k], &b)) {
+      if (!(cond <= cond_limit_)) {
+        refused_cond_ = std::min(refused_cond_, cond);  // not a NaN: host at any limit
         host.push_back(static_cast<int>(k));
         continue;
       }
       sent_cond_ = std::max(sent_cond_, cond);
+      Broadcast b;
       b.tri = static_cast<int>(k);
+      b.build = [this, at = broadcasts.size()](ProgramMarks* marks) { return prepare_late(at, marks); };
       broadcasts.push_back(std::move(b));
+      own_.push_back(in.tris[k]);
     }
   }
 
@@ -157,6 +172,11 @@ class SharedOriginForm : public RayForm {
  private:
   // E for the batch in.idx, with nearest_ known.
   int exponent_for(const FormInputs& in) const;
+  // Broadcast k's program, prepared now (prepare_all).
+  Program prepare_late(size_t k, ProgramMarks* marks);
+
+  Prepare prepare_;
+  std::vector<Triangle> own_;  // each broadcast's triangle, for prepare_
 };
 
 }  // namespace fmpp::isect

@@ -25,8 +25,15 @@ struct Broadcast {
   int tri = -1;          // the triangle
   double sum_bound = 0;  // certified forms: the bound on the compared value of its hits
   double edge_cond = 0;  // the arbitrary-origin form: its edge-test condition (culling pads)
-  // Builds the program and sets its marks (pass.h).
+  // Builds the program and sets its marks (pass.h). A form that prepares its triangles
+  // as their programs are first asked for may find one it cannot certify: it then sets
+  // `host`, and the program only counts itself; the passes leave such a broadcast out
+  // and merge its triangle on the host (refused).
   std::function<Program(ProgramMarks* marks)> build;
+  bool host = false;
+
+  // Whether the form refused it (prepares it first).
+  bool refused() const { return program(), host; }
 
   const Program& program() const {
     if (!built_) {
@@ -69,6 +76,12 @@ class RayForm {
   // The triangles on the FMPP, and those every ray tests on the host instead.
   std::vector<Broadcast> broadcasts;
   std::vector<int> host;
+
+  // Whether broadcast k goes to the FMPP: false if the form refused it as it prepared it
+  // (Broadcast::host), whose triangle then joins *refused, once: the pass that would send
+  // it merges it on the host instead. The same for every broadcast of `order`, in order.
+  bool usable(size_t k, std::vector<int>* refused) const;
+  std::vector<size_t> usable(std::vector<size_t> order, std::vector<int>* refused) const;
 
   // Where each block keeps its best and the number of the broadcast that set it.
   virtual BestWords best_words() const = 0;

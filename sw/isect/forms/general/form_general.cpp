@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
+#include <vector>
 
 #include "sw/isect/forms/general/certify_general.h"
 #include "sw/isect/forms/general/general_frame.h"
@@ -40,12 +40,12 @@ class GeneralForm : public RayForm {
       pairs_ = {{kV + 0, kV + 1, kPair + 0, kPair + 1}, {kV + 0, kV + 2, kPair + 2, kPair + 3},
                 {kV + 1, kV + 2, kPair + 4, kPair + 5}};
     }
-    const unsigned q = opt_.qbits;
     in.st->general_rays += in.idx.size();
     const GeneralFrame fr = general_frame(in.tris, in.rays, in.idx);
     const std::vector<char>& outlier = fr.outlier;
     sc_ = general_scales(in.rays, in.idx, fr.box, opt_.qbits);
     const double cond_limit = policy::general_cond_limit(opt_);
+    broadcast_of_.assign(in.tris.size(), 0);
     for (size_t k = 0; k < in.tris.size(); ++k) {
       if (outlier[k]) {
         if (exact::degenerate(in.tris[k])) {
@@ -55,7 +55,7 @@ class GeneralForm : public RayForm {
         }
         continue;
       }
-      triangle(in.tris[k], static_cast<int>(k), q, cond_limit);
+      screen(in.tris[k], static_cast<int>(k), cond_limit);
     }
   }
 
@@ -86,8 +86,11 @@ class GeneralForm : public RayForm {
       const double qmin = r.tmin > 0 ? std::min(std::ceil(r.tmin / sc_.u), std::ldexp(1.0, 30)) : -std::ldexp(1.0, 30);
       w.set(b, kQmin, static_cast<uint32_t>(static_cast<int32_t>(qmin)));
     }
-    const auto excl = broadcast_of_.find(r.exclude);  // its number in this pass, 0 for none
-    w.set(b, kExcl, excl == broadcast_of_.end() ? 0u : number_of[excl->second]);
+    // The excluded triangle's number in this pass, 0 for none.
+    const uint32_t excl = r.exclude >= 0 && static_cast<size_t>(r.exclude) < broadcast_of_.size()
+                              ? broadcast_of_[static_cast<size_t>(r.exclude)]
+                              : 0;
+    w.set(b, kExcl, excl == 0 ? 0u : number_of[excl - 1]);
   }
 
   void init(Program& p) const override {
@@ -101,7 +104,7 @@ class GeneralForm : public RayForm {
   const std::vector<uint64_t>& code(size_t k, uint32_t number) override {
     const Broadcast& b = broadcasts[k];
     code_ = b.program().code();
-    code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
+    if (!b.host) code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
     return code_;
   }
 
@@ -115,14 +118,11 @@ class GeneralForm : public RayForm {
   }
 
  private:
-  // Triangle k's program, or the host if its edge tests are too ill-conditioned.
-  void triangle(const Triangle& t, int k, unsigned q, double cond_limit) {
-    const glm::dvec3 p[3] = {t.p[0] - sc_.c, t.p[1] - sc_.c, t.p[2] - sc_.c};
-    const glm::dvec3 ee[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
-    // The coefficients: edge rows a and the normal, then the det row pre-scaled by K so
-    // that its value N makes floor(N 2^(q-1) / nv) = t / u.
-    certify::GeneralCoeffs g = certify::general_coeffs(p, sc_.sv, sc_.sl);
-    const glm::dvec3& nrm = g.nrm;
+  // Triangle k: none if degenerate, the host if its edge tests are too ill-conditioned,
+  // else a broadcast, prepared when its program is first asked for (prepare_late). A
+  // culled batch sends a small share of its triangles, and culling needs of a broadcast
+  // only its triangle and condition (cull_pad).
+  void screen(const Triangle& t, int k, double cond_limit) {
     // Exactly degenerate (collinear vertices): no ray meets it, in exact arithmetic as in
     // the reference. Decided exactly, never on the rounded normal: a small or thin
     // triangle far from the centre can round to nrm = 0 and still be hit. Such a one
@@ -131,6 +131,10 @@ class GeneralForm : public RayForm {
       ++st_->degenerate_triangles;
       return;
     }
+    const glm::dvec3 p[3] = {t.p[0] - sc_.c, t.p[1] - sc_.c, t.p[2] - sc_.c};
+    const glm::dvec3 ee[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
+    // The normal as general_coeffs makes it: c_1 + c_2 + c_3, c_i = p_j x p_k.
+    const glm::dvec3 nrm = glm::cross(p[1], p[2]) + glm::cross(p[2], p[0]) + glm::cross(p[0], p[1]);
     // Conditioning of the edge tests: A_i is quantized with one step for the triangle's
     // 18 coefficients, about 2^-(n-1) of |V| e_max max(R, O) (R: the farthest vertex
     // from the centre, O: the farthest origin), while a ray through the triangle has
@@ -147,6 +151,27 @@ class GeneralForm : public RayForm {
       host.push_back(k);
       return;
     }
+    Broadcast b;
+    b.tri = k;
+    b.edge_cond = cond;
+    b.build = [this, at = broadcasts.size()](ProgramMarks* marks) { return prepare_late(at, marks); };
+    broadcast_of_[static_cast<size_t>(k)] = static_cast<uint32_t>(broadcasts.size() + 1);
+    broadcasts.push_back(std::move(b));
+    bounds_.emplace_back();
+    own_.push_back(t);
+  }
+
+  // Broadcast `at`'s program: its coefficients, rounded, with their bounds. One whose
+  // bounds leave no hit certain is refused (Broadcast::host: the passes merge it on the
+  // host, as the shared-origin forms' prepare_all explains), and its program only counts
+  // itself.
+  Program prepare_late(size_t at, ProgramMarks* marks) {
+    const Triangle& t = own_[at];
+    const unsigned q = opt_.qbits;
+    const glm::dvec3 p[3] = {t.p[0] - sc_.c, t.p[1] - sc_.c, t.p[2] - sc_.c};
+    // The coefficients: edge rows a and the normal, then the det row pre-scaled by K so
+    // that its value N makes floor(N 2^(q-1) / nv) = t / u.
+    certify::GeneralCoeffs g = certify::general_coeffs(p, sc_.sv, sc_.sl);
     int64_t xa[18];
     const int ea = mantissas(g.a, 18, opt_.n - 1, xa);
     const double K = std::ldexp(1.0, 1 - static_cast<int>(q) - (1 + ea)) / sc_.u;
@@ -179,21 +204,14 @@ class GeneralForm : public RayForm {
     th.jd = certify::bits_above(bd.det) + s + 1;
     th.jn = certify::bits_above(bd.nv) + s + 1;
     if (th.ka > 26 || th.kd > 26 || th.jd > policy::kGeneralMaxDetBits || th.jn > policy::kGeneralMaxNvBits) {
-      host.push_back(k);  // no hit of it could be certain
-      return;
+      broadcasts[at].host = true;  // no hit of it could be certain: the passes merge it on the host
+      Program none;
+      none.assume_mask(layout::kDataMask);
+      none << add(kCnt, kCnt, kOne, kSel);
+      return none;
     }
-    Broadcast b;
-    std::array<int64_t, 22> xs;  // xa, then xd
-    std::copy(xa, xa + 18, xs.begin());
-    std::copy(xd, xd + 4, xs.begin() + 18);
-    b.build = [this, xs, dshift, th](ProgramMarks* marks) {
-      return program(xs.data(), xs.data() + 18, dshift, th, marks);
-    };
-    b.tri = k;
-    b.edge_cond = cond;
-    broadcast_of_.emplace(k, broadcasts.size());
-    broadcasts.push_back(std::move(b));
-    bounds_.push_back(bd);
+    bounds_[at] = bd;
+    return program(xa, xd, dshift, th, marks);
   }
 
   // The certainty tests' powers of two (docs/intersection.md): 2^ka above every edge
@@ -347,8 +365,9 @@ class GeneralForm : public RayForm {
   const KernelOptions& opt_;
   KernelStats* st_;
   GeneralScales sc_;  // the batch's scales and word bounds (general_frame.h)
-  std::vector<Bounds> bounds_;          // of each broadcast
-  std::unordered_map<int, size_t> broadcast_of_;  // triangle -> its broadcast (load_ray's exclusion)
+  std::vector<Bounds> bounds_;       // of each broadcast, once prepared
+  std::vector<Triangle> own_;        // each broadcast's triangle, for prepare_late
+  std::vector<uint32_t> broadcast_of_;  // triangle -> its broadcast + 1, 0 for none (load_ray's exclusion)
   std::vector<uint64_t> code_;
   std::vector<PairWords> pairs_;  // where the FMPP has the words (general_layout.h)
 };

@@ -89,20 +89,17 @@ class PaperForm : public SharedOriginForm {
     // P^-1 with a rigorous bound on its error (certify.h); the host takes a triangle
     // that is singular, too ill-conditioned for the format, or whose bounds would leave
     // its decisions uncertain for nearly every ray.
-    prepare_all(in, [&](const Triangle& t, Broadcast* b) {
+    prepare_all(in, [this, E, origin = in.origin](const Triangle& t) {
       double m[3][3], dm[3][3];
       int64_t x[9];
-      if (!certify::certified_inverse(t, in.origin, m, dm)) return false;
+      if (!certify::certified_inverse(t, origin, m, dm)) return Prepared{};
       const int e = mantissas(&m[0][0], 9, opt_.n - 1, x);
       const certify::PaperBounds pb = certify::paper_bounds(x, m, dm, e, opt_.n, opt_.vbits, e - E);
-      if (pb.k > kMaxNearBits || !(pb.sum <= certify::kMaxSumBound)) return false;
+      if (pb.k > kMaxNearBits || !(pb.sum <= certify::kMaxSumBound)) return Prepared{};
       std::array<int64_t, 9> xs;
       std::copy(x, x + 9, xs.begin());
-      b->build = [this, xs, shift = e - E, pb](ProgramMarks* marks) {
-        return program(xs.data(), shift, pb, marks);
-      };
-      b->sum_bound = pb.sum;
-      return true;
+      return Prepared{[this, xs, shift = e - E, pb](ProgramMarks* marks) { return program(xs.data(), shift, pb, marks); },
+                      pb.sum};
     });
   }
 

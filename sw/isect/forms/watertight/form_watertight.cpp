@@ -36,9 +36,9 @@ class WatertightForm : public SharedOriginForm {
     // for the rays through it are a share of about 1 / cond of the constants) would leave
     // most of its rays uncertain: the host takes it, as it takes one whose orientation is
     // not certain (the origin in or near its plane) or whose bounds are too wide.
-    prepare_all(in, [&](const Triangle& t, Broadcast* b) {
+    prepare_all(in, [this, E, origin = in.origin](const Triangle& t) {
       certify::EdgeConstants ec;
-      return certify::certified_edges(t, in.origin, &ec) && prepare(ec, E, b);
+      return certify::certified_edges(t, origin, &ec) ? prepare(ec, E) : Prepared{};
     });
   }
 
@@ -59,9 +59,9 @@ class WatertightForm : public SharedOriginForm {
   // every ray of the triangle uncertain.
   static constexpr int kMaxNearBits = 26;
 
-  // Quantizes one triangle's constants and builds its broadcast; false if its bounds
+  // Quantizes one triangle's constants into its broadcast's builder; none if its bounds
   // are too wide to certify anything (the host takes it).
-  bool prepare(const certify::EdgeConstants& ec, int E, Broadcast* b) const {
+  Prepared prepare(const certify::EdgeConstants& ec, int E) const {
     const unsigned n = opt_.n;
     int64_t x[3][3], y[3];
     int e[3];
@@ -74,16 +74,15 @@ class WatertightForm : public SharedOriginForm {
       for (int j = 0; j < 3; ++j) y[j] = std::llround(std::ldexp(ec.w[j], static_cast<int>(n) - 1 - f));
     }
     const certify::WatertightBounds wb = certify::watertight_bounds(ec, e, f, n, opt_.vbits, f - E);
-    if (wb.k > kMaxNearBits || !(wb.sum <= certify::kMaxSumBound)) return false;
+    if (wb.k > kMaxNearBits || !(wb.sum <= certify::kMaxSumBound)) return Prepared{};
     std::array<int64_t, 12> xy;  // x row by row, then y
     for (int i = 0; i < 3; ++i) std::copy(x[i], x[i] + 3, xy.begin() + 3 * i);
     std::copy(y, y + 3, xy.begin() + 9);
-    b->build = [this, xy, shift = f - E, wb](ProgramMarks* marks) {
-      const int64_t xs[3][3] = {{xy[0], xy[1], xy[2]}, {xy[3], xy[4], xy[5]}, {xy[6], xy[7], xy[8]}};
-      return program(xs, xy.data() + 9, shift, wb, marks);
-    };
-    b->sum_bound = wb.sum;
-    return true;
+    return Prepared{[this, xy, shift = f - E, wb](ProgramMarks* marks) {
+                      const int64_t xs[3][3] = {{xy[0], xy[1], xy[2]}, {xy[3], xy[4], xy[5]}, {xy[6], xy[7], xy[8]}};
+                      return program(xs, xy.data() + 9, shift, wb, marks);
+                    },
+                    wb.sum};
   }
 
   // One broadcast: A_0..A_2 and S' in one fused constant multiply, the certain inside

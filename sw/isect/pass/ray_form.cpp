@@ -1,0 +1,20 @@
+// What every ray-parallel form shares (see ray_form.h).
+#include "sw/isect/pass/ray_form.h"
+
+#include <algorithm>
+
+namespace fmpp::isect {
+
+bool RayForm::usable(size_t k, std::vector<int>* refused) const {
+  const Broadcast& b = broadcasts[k];
+  if (!b.refused()) return true;
+  if (std::find(refused->begin(), refused->end(), b.tri) == refused->end()) refused->push_back(b.tri);
+  return false;
+}
+
+std::vector<size_t> RayForm::usable(std::vector<size_t> order, std::vector<int>* refused) const {
+  order.erase(std::remove_if(order.begin(), order.end(), [&](size_t k) { return !usable(k, refused); }), order.end());
+  return order;
+}
+
+}  // namespace fmpp::isect
