@@ -237,5 +237,41 @@ TEST(Hierarchy, TheTrianglesShapeIsBuiltOncePerLeafSize) {
   EXPECT_THROW(shapes.shape(tris, 1), std::logic_error);  // other triangles: not these shapes
 }
 
+// The shapes keep the last subsets' nodes and leaves by their keep: a kept one is only
+// fitted again, and gives the hierarchy a new subset would, for every keep and boxes.
+TEST(Hierarchy, KeptSubsetLayoutsGiveTheSameHierarchy) {
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Triangle> tris(300);
+  for (Triangle& t : tris) {
+    for (glm::dvec3& p : t.p) p = glm::dvec3(u(g), u(g), u(g));
+  }
+  // Keeps leaving out every m-th triangle (m = 0: none), renumbered in order.
+  const auto keep_of = [&](size_t m) {
+    std::vector<int> keep(tris.size(), -1);
+    int next = 0;
+    for (size_t k = 0; k < tris.size(); ++k) {
+      if (m == 0 || k % m != 0) keep[k] = next++;
+    }
+    return std::make_pair(keep, static_cast<size_t>(next));
+  };
+  BvhShapes shapes;
+  for (int round = 0; round < 3; ++round) {
+    for (size_t m : {0, 2, 3, 5, 7, 11, 2, 0}) {  // more keeps than are kept, and repeats
+      const auto [keep, kept] = keep_of(m);
+      std::vector<Box> boxes(kept);
+      std::vector<double> slack(kept);
+      for (size_t k = 0; k < tris.size(); ++k) {
+        if (keep[k] < 0) continue;
+        boxes[static_cast<size_t>(keep[k])] = padded_box(tris[k], 0.01 * (round + 1) * std::abs(u(g)));
+        slack[static_cast<size_t>(keep[k])] = 0.001 * round * (1 + u(g));
+      }
+      for (unsigned leaf : {1u, 4u}) {
+        expect_same(shapes.subset(tris, leaf, keep, boxes, slack), triangle_shape(tris, leaf).subset(keep, boxes, slack));
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fmpp::isect

@@ -54,14 +54,17 @@ FormCache::FormCache(const std::vector<Triangle>& tris, size_t bytes)
 
 const std::vector<Triangle>& FormCache::scaled(int s) {
   if (s == 0) return tris_;
-  if (scaled_s_ != s) {
-    scaled_ = tris_;
-    for (Triangle& t : scaled_) {
-      for (glm::dvec3& p : t.p) p = glm::dvec3(std::ldexp(p.x, s), std::ldexp(p.y, s), std::ldexp(p.z, s));
-    }
-    scaled_s_ = s;
+  for (auto it = scaled_.begin(); it != scaled_.end(); ++it) {
+    if (it->first != s) continue;
+    scaled_.splice(scaled_.begin(), scaled_, it);
+    return scaled_.front().second;
   }
-  return scaled_;
+  if (scaled_.size() >= kScales) scaled_.pop_back();
+  scaled_.emplace_front(s, tris_);
+  for (Triangle& t : scaled_.front().second) {
+    for (glm::dvec3& p : t.p) p = glm::dvec3(std::ldexp(p.x, s), std::ldexp(p.y, s), std::ldexp(p.z, s));
+  }
+  return scaled_.front().second;
 }
 
 FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, int s) {

@@ -56,7 +56,9 @@ class FormCache {
   bool holds(const std::vector<Triangle>& tris) const { return &tris == &tris_; }
   // The triangles' share of scene_exponent.
   const CoordinateRange& range() const { return range_; }
-  // The triangles scaled by 2^s (as intersect_fmpp scales a call), kept for the last s.
+  // The triangles scaled by 2^s (as intersect_fmpp scales a call), kept for the last
+  // kScales values of s (a frame's calls alternate: the eye or a light far out, or only
+  // the surfaces' own points).
   const std::vector<Triangle>& scaled(int s);
 
   // A prepared form and what culling prepared for it.
@@ -102,8 +104,8 @@ class FormCache {
   // by origin and scale: the same for every form and n.
   std::map<std::tuple<double, double, double, int>, double> nearest_;
   CoordinateRange range_;
-  int scaled_s_ = 0;
-  std::vector<Triangle> scaled_;
+  static constexpr size_t kScales = 4;
+  std::list<std::pair<int, std::vector<Triangle>>> scaled_;  // the last used first
   std::list<Entry> cache_;  // the last used first
   BvhShapes shapes_;
   uint64_t made_ = 0, reused_ = 0;

@@ -74,7 +74,7 @@ void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayF
   std::vector<int> keep(tris.size(), -1);
   for (size_t k = 0; k < form.broadcasts.size(); ++k) keep[static_cast<size_t>(form.broadcasts[k].tri)] = static_cast<int>(k);
   const auto hierarchy = [&](unsigned leaf, const std::vector<Box>& boxes, const std::vector<double>& slack) {
-    return (shapes ? shapes->shape(tris, leaf) : triangle_shape(tris, leaf)).subset(keep, boxes, slack);
+    return shapes ? shapes->subset(tris, leaf, keep, boxes, slack) : triangle_shape(tris, leaf).subset(keep, boxes, slack);
   };
   c->bvh = hierarchy(leaf_items, c->bounds.boxes, c->bounds.rel);
   if (probe) {
@@ -87,6 +87,20 @@ void prepare_cull(PreparedCull* c, const std::vector<Triangle>& tris, const RayF
   }
   c->ready = true;
   c->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Bvh BvhShapes::subset(const std::vector<Triangle>& tris, unsigned leaf_items, const std::vector<int>& keep,
+                      const std::vector<Box>& boxes, const std::vector<double>& slack) {
+  const Bvh& whole = shape(tris, leaf_items);
+  for (auto it = layouts_.begin(); it != layouts_.end(); ++it) {
+    if (it->leaf_items != leaf_items || it->keep != keep) continue;
+    layouts_.splice(layouts_.begin(), layouts_, it);
+    return it->subset.refit(boxes, slack);
+  }
+  Bvh out = whole.subset(keep, boxes, slack);
+  layouts_.push_front(Layout{leaf_items, keep, out});
+  if (layouts_.size() > kLayouts) layouts_.pop_back();
+  return out;
 }
 
 double CullBounds::reach_for(size_t k, const glm::dvec3& u, double t_best, double quantum) const {

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <list>
 #include <map>
 #include <vector>
 
@@ -56,6 +57,14 @@ class BvhShapes {
   // are that call's). Every call gives the same triangles, perhaps scaled by a power of
   // two, which moves no split.
   const Bvh& shape(const std::vector<Triangle>& tris, unsigned leaf_items);
+  // shape(tris, leaf_items).subset(keep, boxes, slack). The subset's nodes and leaves
+  // depend only on `keep`, so the last kLayouts subsets' are kept with it, and a call
+  // with a kept `keep` only fits the boxes again (Bvh::refit): the same hierarchy. Batch
+  // after batch of one scene often broadcasts the same triangles (every one the host
+  // does not take), under new pads.
+  Bvh subset(const std::vector<Triangle>& tris, unsigned leaf_items, const std::vector<int>& keep,
+             const std::vector<Box>& boxes, const std::vector<double>& slack);
+  static constexpr size_t kLayouts = 4;
   // Shapes built, and found kept.
   uint64_t built() const { return built_; }
   uint64_t reused() const { return reused_; }
@@ -72,6 +81,12 @@ class BvhShapes {
     bool carried = false;  // found in a later phase
   };
   std::map<unsigned, Kept> kept_;  // by leaf size
+  struct Layout {
+    unsigned leaf_items;
+    std::vector<int> keep;
+    Bvh subset;
+  };
+  std::list<Layout> layouts_;  // the last used first
   size_t triangles_ = 0;
   uint64_t built_ = 0, reused_ = 0;
   unsigned phase_ = 0;

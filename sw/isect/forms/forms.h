@@ -144,6 +144,8 @@ class SharedOriginForm : public RayForm {
   void prepare_all(const FormInputs& in, Prepare prepare) {
     cond_limit_ = policy::paper_cond_limit(opt_);
     prepare_ = std::move(prepare);
+    broadcasts.reserve(in.tris.size());
+    own_.reserve(in.tris.size());
     for (size_t k = 0; k < in.tris.size(); ++k) {
       const double cond = policy::condition(in.tris[k], in.origin);
       if (!(cond <= cond_limit_)) {

@@ -228,9 +228,15 @@ void Bvh::take(const Bvh& src, uint32_t from, uint32_t self, const std::vector<i
 }
 
 Bvh Bvh::refit(const std::vector<Box>& boxes, const std::vector<double>& slack) const {
-  std::vector<int> every(items_.empty() ? 0 : *std::max_element(items_.begin(), items_.end()) + size_t{1}, -1);
-  for (uint32_t item : items_) every[item] = static_cast<int>(item);
-  return subset(every, boxes, slack);
+  for (uint32_t item : items_) {
+    if (item >= boxes.size() || boxes[item].empty()) {
+      throw std::invalid_argument("fmpp::isect::Bvh::refit: item " + std::to_string(item) + " has no box");
+    }
+  }
+  // A subset of every item is a copy (take): the same nodes and items, fitted again.
+  Bvh out = *this;
+  out.fit(boxes, slack);
+  return out;
 }
 
 void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {

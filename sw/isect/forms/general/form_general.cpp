@@ -46,6 +46,9 @@ class GeneralForm : public RayForm {
     sc_ = general_scales(in.rays, in.idx, fr.box, opt_.qbits);
     const double cond_limit = policy::general_cond_limit(opt_);
     broadcast_of_.assign(in.tris.size(), 0);
+    broadcasts.reserve(in.tris.size());
+    bounds_.reserve(in.tris.size());
+    own_.reserve(in.tris.size());
     for (size_t k = 0; k < in.tris.size(); ++k) {
       if (outlier[k]) {
         if (exact::degenerate(in.tris[k])) {
