@@ -2,6 +2,7 @@
 // mappings and both multiplies against it, on the golden model and on the RTL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -232,6 +233,39 @@ TEST(KernelsNumerics, RaysAreGroupedByOrigin) {
     expect_close_to_reference(got, ref, 1e-4);
     EXPECT_EQ(st.groups, 6u);
     EXPECT_EQ(st.general_rays, 0u);
+  }
+}
+
+// Merged batches (KernelOptions::merge_below): the origins shared by fewer rays than the
+// threshold go to the arbitrary-origin batch, with the same answers.
+TEST(KernelsNumerics, SmallOriginGroupsMergeBelowTheThreshold) {
+  Scene s = random_scene(60, 0, 29);
+  const std::vector<size_t> sizes = {3, 9, 20, 40, 70};  // rays per origin
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  for (size_t g = 0; g < sizes.size(); ++g) {
+    const glm::dvec3 o(0.25 * static_cast<double>(g), -0.1, 0.05 * static_cast<double>(g));
+    for (size_t i = 0; i < sizes[g]; ++i) s.rays.push_back(Ray{o, {u(rng), u(rng), 1}});
+  }
+  const auto ref = nearest_reference(s.rays, s.tris);
+  std::vector<Hit> first;
+  for (unsigned below : {1u, 10u, 41u, 71u, 0u}) {
+    KernelOptions o;
+    o.merge_below = below;
+    const RayRoutes rr = route_rays(s.rays, o, 64);
+    size_t merged = 0;
+    for (size_t n : sizes) merged += below == 0 ? (n < 16 ? n : 0) : (n < below ? n : 0);
+    EXPECT_EQ(rr.general.size(), merged) << below;
+    EXPECT_EQ(rr.groups.size(), static_cast<size_t>(std::count_if(sizes.begin(), sizes.end(), [&](size_t n) {
+                                  return n >= (below == 0 ? 16 : below);
+                                })))
+        << below;
+    KernelStats st;
+    const auto got = run("cmodel", Config{64, 32}, s, o, &st);
+    EXPECT_EQ(st.general_rays, merged) << below;
+    expect_close_to_reference(got, ref, 1e-4);
+    if (first.empty()) first = got;
+    for (size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].tri, first[i].tri) << below << " ray " << i;
   }
 }
 

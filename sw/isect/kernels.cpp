@@ -36,7 +36,7 @@ RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, uns
   }
   if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
     // Small groups would leave most blocks idle: send them through the general kernel.
-    const size_t min_group = std::max<size_t>(16, blocks / 8);
+    const size_t min_group = opt.merge_below ? opt.merge_below : std::max<size_t>(16, blocks / 8);
     const bool several = rr.groups.size() > 1 || !rr.general.empty();
     for (auto it = rr.groups.begin(); it != rr.groups.end();) {
       if (it->second.size() < min_group && several) {

@@ -33,7 +33,8 @@ namespace fmpp::isect {
 // matrices, by origin), and the rest (the arbitrary-origin kernel, ray-parallel):
 // rays with tmin > 0 or an excluded triangle in either mapping; every ray with
 // --origins general in the ray-parallel mapping; with auto, when there is more than one
-// origin, the rays of origins shared by fewer than max(16, blocks / 8) rays.
+// origin, the rays of origins shared by fewer than KernelOptions::merge_below rays (by
+// default max(16, blocks / 8)).
 struct RayRoutes {
   std::map<std::tuple<double, double, double>, std::vector<size_t>> groups;
   std::vector<size_t> general;

@@ -122,6 +122,56 @@ std::string fmt_clocks(double c) {
   return o.str();
 }
 
+// Which origins' rays to merge (pass_cost.h: kMergeFractions, kMergeSlack), at `blocks`
+// blocks: each threshold priced by estimate(below, &broadcasts, &merged rays). Nothing to
+// choose where the kernels do not merge (origins other than auto, the object mapping) or
+// where no threshold moves a ray.
+template <class Estimate>
+void choose_merge(PassCostModel* m, unsigned blocks, bool merging, Estimate&& estimate) {
+  if (!merging) return;
+  std::vector<unsigned> below = {1, 16};
+  for (double f : kMergeFractions) below.push_back(std::max(1u, static_cast<unsigned>(std::lround(f * blocks))));
+  const unsigned fallback = std::max(16u, blocks / 8);  // the kernels' default
+  below.push_back(fallback);
+  std::sort(below.begin(), below.end());
+  below.erase(std::unique(below.begin(), below.end()), below.end());
+  size_t best = 0, def = 0;
+  bool moves = false;
+  for (unsigned b : below) {
+    MergeEstimate e;
+    e.below = b;
+    e.clocks = estimate(b, &e.broadcasts, &e.merged_rays);
+    moves = moves || e.merged_rays != 0;
+    if (b == fallback) def = m->merges.size();
+    if (m->merges.empty() || e.clocks < m->merges[best].clocks) best = m->merges.size();
+    m->merges.push_back(e);
+  }
+  if (!moves) {
+    m->merges.clear();
+    m->why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
+    return;
+  }
+  const MergeEstimate& d = m->merges[def];
+  const MergeEstimate& b = m->merges[best];
+  const bool keep = b.clocks >= (1 - kMergeSlack) * d.clocks;
+  m->merge_below = keep ? 0 : b.below;
+  std::ostringstream why;
+  why << (keep ? "the default, origins shared by fewer than " + std::to_string(fallback) + " rays merged"
+               : "origins shared by fewer than " + std::to_string(b.below) + " rays merged")
+      << " into the arbitrary-origin batch: estimated " << fmt_clocks(keep ? d.clocks : b.clocks);
+  if (keep) {
+    why << " (the best threshold, " << b.below << ", not " << 100 * kMergeSlack << " % better: " << fmt_clocks(b.clocks)
+        << ")";
+  } else {
+    why << " against " << fmt_clocks(d.clocks) << " for the default (" << fallback << ")";
+  }
+  why << "; priced at " << blocks << " blocks:";
+  for (const MergeEstimate& e : m->merges) {
+    why << " below " << e.below << ", " << e.merged_rays << " rays merged, " << fmt_clocks(e.clocks) << ";";
+  }
+  m->why_merge = why.str();
+}
+
 }  // namespace
 
 FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth) {
@@ -206,18 +256,27 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     orders[k].emplace_back(idx, fmpp::isect::coherent_order(frame.batches[k].second, idx));
     return orders[k].back().second;
   };
-  auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc) {
+  // merged (if not null) counts the rays of shared origins routed to the arbitrary-origin
+  // batch under `below` (KernelOptions::merge_below).
+  // general_over_box scales the arbitrary-origin form's broadcasts (kGeneralOverBox).
+  auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
+                      double general_over_box = 1) {
     double clocks = 0;
     *bc = 0;
+    fmpp::isect::KernelOptions o = opt;
+    o.merge_below = below;
+    fmpp::isect::KernelOptions never = opt;
+    never.merge_below = 1;
     for (size_t k = 0; k < frame.batches.size(); ++k) {
       const std::vector<Ray>& rays = frame.batches[k].second;
-      const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, opt, blocks);
+      const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, o, blocks);
+      if (merged) *merged += routes.general.size() - fmpp::isect::route_rays(rays, never, blocks).general.size();
       auto add = [&](const std::vector<size_t>& idx, bool shared) {
         if (idx.empty()) return;
         const uint64_t b = broadcasts(reach[k], coherent ? coherent_order(k, idx) : idx, blocks,
                                       scene.triangles.size(), opt.cull, stamp, pass);
         *bc += b;
-        clocks += static_cast<double>(b) * (shared ? shared_b : general_b) +
+        clocks += static_cast<double>(b) * (shared ? shared_b : general_over_box * general_b) +
                   static_cast<double>(idx.size()) * (shared ? shared_r : general_r);
       };
       for (const auto& g : routes.groups) add(g.second, true);
@@ -247,6 +306,10 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   PassSizeEstimate& c = m.sizes[m.chosen];
   c.batch_clocks = estimate(c.blocks, false, &c.batch_broadcasts);
   m.coherent = c.clocks <= c.batch_clocks;
+  choose_merge(&m, c.blocks, opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay,
+               [&](unsigned below, uint64_t* bc, size_t* merged) {
+                 return estimate(c.blocks, m.coherent, bc, below, merged, kGeneralOverBox);
+               });
 
   std::ostringstream why;
   why << "the fewest blocks whose frame is estimated within " << 100 * kPassSizeSlack

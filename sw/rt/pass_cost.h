@@ -16,7 +16,12 @@
 //     render of the plan's frame sample at the chosen n (rates_from), or, for a kind of
 //     ray that render did not have, measured on samples of the frame's rays.
 // The plan then takes the fewest blocks whose estimate is within kPassSizeSlack of the
-// best estimate, and the pass order with the fewer clocks there.
+// best estimate, and the pass order with the fewer clocks there; and there, which origins'
+// rays to merge into the arbitrary-origin batch (KernelOptions::merge_below: an origin
+// shared by few rays fills few blocks of its passes, and each of its passes broadcasts
+// what its rays need; merged, those rays share passes, at the dearer broadcast of the
+// arbitrary-origin form): the threshold with the fewest estimated clocks among
+// kMergeThresholds, the kernels' default where it is within kMergeSlack of that.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +38,19 @@ namespace rt {
 // A candidate pass size may cost this share more clocks than the best one and still be
 // chosen for being smaller.
 inline constexpr double kPassSizeSlack = 0.10;
+// The thresholds priced, as fractions of the blocks (and 1: no origin merged; 16, the
+// default's floor), and how much better than the default one must be to be chosen.
+inline constexpr double kMergeFractions[] = {1.0 / 32, 1.0 / 8, 1.0 / 2, 1.0, 2.0};
+inline constexpr double kMergeSlack = 0.01;
+// The model counts a pass's broadcasts as the triangles whose boxes its rays cross before
+// their exact hits (the box oracle); the arbitrary-origin form's passes send more (its
+// probe and refinement stop short of the oracle), 1.03 to 1.54 times on the shipped
+// scenes' secondary passes, where the shared-origin passes, culled on the FMPP, send
+// 0.76 to 1.05 times (the gallery's --oracle reports, 128 x 128 and 256 x 256,
+// 2026-11-27). The merge thresholds are priced with the arbitrary-origin form's
+// broadcasts scaled by this, near the middle of its range: merging moves rays from the
+// one kind of pass to the other.
+inline constexpr double kGeneralOverBox = 1.3;
 
 struct PassSizeEstimate {
   unsigned blocks = 0;
@@ -43,13 +61,24 @@ struct PassSizeEstimate {
   double batch_clocks = -1;
 };
 
+// Merged batches: with origins shared by fewer rays than `below` in the arbitrary-origin
+// batch (KernelOptions::merge_below), at the chosen size and order.
+struct MergeEstimate {
+  unsigned below = 0;
+  uint64_t broadcasts = 0;
+  double clocks = 0;
+  size_t merged_rays = 0;  // rays of shared origins moved to the arbitrary-origin batch
+};
+
 struct PassCostModel {
   double per_broadcast = 0;  // clocks of a broadcast, its share of box tests included
   double per_ray = 0;        // clocks to load and read back a ray
   std::vector<PassSizeEstimate> sizes;
   size_t chosen = 0;   // index into sizes
   bool coherent = true;  // the pass order chosen
-  std::string why_blocks, why_order;
+  std::vector<MergeEstimate> merges;  // the thresholds priced (empty: one origin per batch)
+  unsigned merge_below = 0;           // the one chosen (0: the kernels' default)
+  std::string why_blocks, why_order, why_merge;
 };
 
 // The frame rendered on the host with the exact reference's hits, every batch of rays

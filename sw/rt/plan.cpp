@@ -125,6 +125,9 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   plan->pass_sizes = m.sizes;
   plan->options.coherent = m.coherent;
   plan->why_order = m.why_order;
+  plan->options.merge_below = m.merge_below;
+  plan->merges = m.merges;
+  plan->why_merge = m.why_merge;
   if (names.empty()) {
     plan->config.blocks = sizes[m.chosen];
     plan->why_blocks = m.why_blocks;
@@ -244,7 +247,10 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     const PassRates rates = rates_from(sample_stats);
     decide_pass_size(scene, req, pixels, *f, &rates, &plan);
   }
-  if (plan.pass_sizes.empty()) plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
+  if (plan.pass_sizes.empty()) {
+    plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
+    plan.why_merge = "the default (not modelled)";
+  }
   return plan;
 }
 

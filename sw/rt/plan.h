@@ -24,6 +24,8 @@
 //     configurations) whose frame clocks are estimated within 10 % of the fewest any
 //     candidate reaches, and the order (image tiles or rows) with the fewer clocks there.
 //     The object-parallel mapping keeps one pass of primary rays where the map allows it.
+//   - Merged batches, at that size and order: which origins' rays go into the
+//     arbitrary-origin batch (KernelOptions::merge_below), from the same cost model.
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
@@ -104,7 +106,8 @@ struct Plan {
   fmpp::isect::KernelOptions options;  // base with n (and cond_bits) set
   std::vector<PlanCandidate> candidates;
   std::vector<PassSizeEstimate> pass_sizes;  // the cost model's candidates (empty: not run)
-  std::string why_bits, why_words, why_blocks, why_order;
+  std::vector<MergeEstimate> merges;          // the merge thresholds priced (empty: not run, or none moves a ray)
+  std::string why_bits, why_words, why_blocks, why_order, why_merge;
   // False if no candidate n keeps the error target on the frame sample (why_bits says by
   // how much): a render at the plan's n may then be off by more than the target.
   bool met_target = true;

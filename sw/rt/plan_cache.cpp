@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-3";
+constexpr const char* kPlanVersion = "plan-4";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -97,6 +97,8 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.config.validate();
     p.options.n = j.at("bits").get<unsigned>();
     p.options.coherent = j.at("coherent").get<bool>();
+    p.options.merge_below = j.at("merge_below").get<unsigned>();
+    p.why_merge = j.at("why_merge").get<std::string>();
     p.met_target = j.at("met_target").get<bool>();
     p.why_bits = j.at("why_bits").get<std::string>();
     p.why_words = j.at("why_words").get<std::string>();
@@ -123,6 +125,14 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       s.clocks = e.at("clocks").get<double>();
       p.pass_sizes.push_back(s);
     }
+    for (const auto& e : j.at("merges")) {
+      MergeEstimate m;
+      m.below = e.at("below").get<unsigned>();
+      m.broadcasts = e.at("broadcasts").get<uint64_t>();
+      m.clocks = e.at("clocks").get<double>();
+      m.merged_rays = e.at("merged_rays").get<size_t>();
+      p.merges.push_back(m);
+    }
     if (p.options.n < 2 || p.options.n > 32) return std::nullopt;
     return p;
   } catch (const std::exception&) {
@@ -135,7 +145,9 @@ bool store_plan(const std::string& dir, const std::string& key, const Plan& p, s
   nlohmann::json j = {{"blocks", p.config.blocks},     {"words", p.config.words},       {"bits", p.options.n},
                       {"coherent", p.options.coherent}, {"met_target", p.met_target},   {"why_bits", p.why_bits},
                       {"why_words", p.why_words},       {"why_blocks", p.why_blocks},   {"why_order", p.why_order},
-                      {"candidates", nlohmann::json::array()}, {"pass_sizes", nlohmann::json::array()}};
+                      {"merge_below", p.options.merge_below}, {"why_merge", p.why_merge},
+                      {"candidates", nlohmann::json::array()}, {"pass_sizes", nlohmann::json::array()},
+                      {"merges", nlohmann::json::array()}};
   for (const PlanCandidate& c : p.candidates) {
     j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
                                {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
@@ -145,6 +157,10 @@ bool store_plan(const std::string& dir, const std::string& key, const Plan& p, s
   for (const PassSizeEstimate& s : p.pass_sizes) {
     j["pass_sizes"].push_back(
         {{"blocks", s.blocks}, {"passes", s.passes}, {"broadcasts", s.broadcasts}, {"clocks", s.clocks}});
+  }
+  for (const MergeEstimate& m : p.merges) {
+    j["merges"].push_back(
+        {{"below", m.below}, {"broadcasts", m.broadcasts}, {"clocks", m.clocks}, {"merged_rays", m.merged_rays}});
   }
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

@@ -146,6 +146,11 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"coherent", "batch"}));
   app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
+  unsigned merge_below = 0;
+  app.add_option("--merge-below", merge_below,
+                 "rays of an origin shared by fewer rays than this join the arbitrary-origin batch (1: none; 0: "
+                 "max(16, blocks / 8)); default: the plan's choice, from its cost model")
+      ->check(int_range(0, 1 << 24));
   bool no_probe = false, no_fmpp_boxes = false, no_gates = false, no_shadow_stop = false;
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
   app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
@@ -291,7 +296,12 @@ int main(int argc, char** argv) {
                      {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
                      {"met_target", plan.met_target}, {"accepted_miss", !plan.met_target && accept_miss},
                      {"cached", from_cache}, {"key", key}, {"seconds", plan_seconds},
-                     {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order}};
+                     {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order},
+                     {"merge_below", plan.options.merge_below}, {"why_merge", plan.why_merge}};
+      for (const auto& e : plan.merges) {
+        rep["plan"]["merges"].push_back({{"below", e.below}, {"merged_rays", e.merged_rays},
+                                         {"estimated_broadcasts", e.broadcasts}, {"estimated_cycles", e.clocks}});
+      }
       for (const auto& e : plan.pass_sizes) {
         rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},
                                              {"estimated_broadcasts", e.broadcasts}, {"estimated_cycles", e.clocks}});
@@ -322,6 +332,7 @@ int main(int argc, char** argv) {
       ko.cull = !no_cull;
       ko.cull_packet = cull_packet;
       ko.coherent = app.count("--pass-order") ? pass_order == "coherent" : plan.options.coherent;
+      ko.merge_below = app.count("--merge-below") ? merge_below : plan.options.merge_below;
       ko.oracle = oracle;
       ko.cull_probe = !no_probe;
       ko.fmpp_boxes = !no_fmpp_boxes;
@@ -343,7 +354,8 @@ int main(int argc, char** argv) {
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
-                     {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight}};
+                     {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
+                     {"merge_below", ko.merge_below}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {

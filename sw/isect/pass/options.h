@@ -42,6 +42,12 @@ struct KernelOptions {
   unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
   unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
   Origins origins = Origins::kAuto;
+  // With origins auto and several origins in a call: an origin shared by fewer rays than
+  // this goes, with its rays, into the call's arbitrary-origin batch, whose passes it then
+  // shares with the other such rays (merged batches: fuller passes, each broadcast dearer).
+  // 0: max(16, blocks / 8); 1: no origin's rays are merged. The precision plan chooses it
+  // from its cost model (docs/raytracer.md). The same answers for any value.
+  unsigned merge_below = 0;
   // Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach
   // (cull.h: a hierarchy over the triangles against packets of cull_packet consecutive
   // rays, padded by the fixed point's error). Culling can only drop triangles for which
