@@ -52,25 +52,160 @@ class RayParallelPlan : public PassPlan {
 
   size_t items() const override { return idx_.size(); }
 
-  // The triangles some packet of the pass may reach (all without culling), then either
-  // all of them or, with the probe, the nearest leaves of each ray first.
+  // pick's and refine_pick's, without the broadcasts the form refused as it prepared them:
+  // this pass's host merges their triangles (refused_), counted with the culled.
   std::vector<size_t> select(size_t base, unsigned count) override {
     refused_.clear();
-    return usable(pick(base, count));
+    return form_.usable(pick(base, count), &refused_, &st_->culled);
   }
   std::vector<size_t> refine(Device& dev, size_t base, unsigned count, const std::vector<size_t>& done,
                              bool* appended) override {
-    return usable(refine_pick(dev, base, count, done, appended));
+    return form_.usable(refine_pick(dev, base, count, done, appended), &refused_, &st_->culled);
+  }
+
+  // Culling on the FMPP (box_test.h): the hierarchy front to back from the shared origin,
+  // through the nodes the host's walk reached; each leaf (one triangle) is tested by every
+  // block against its ray's current best, and broadcast at once if some ray may still
+  // need it, so its hits shorten the rays' reach for the leaves after it.
+  bool walk(Device& dev, size_t base, unsigned count, std::vector<size_t>* sent) override {
+    if (!boxes_) return false;
+    sent->clear();
+    boxes_->clear();
+    for (unsigned b = 0; b < count; ++b) boxes_->add_ray(rays_[idx_[base + b]].d);
+    // Front to back from the shared origin: a node's key is its box's distance from it.
+    const auto gap = [&](const Bvh::Node& n) {
+      return glm::length(glm::max(glm::max(n.box.lo - origin_, glm::dvec3(0)), origin_ - n.box.hi));
+    };
+    const std::vector<Bvh::Node>& nodes = bvh_.nodes();
+    const auto enter = [&](uint32_t id) {
+      const Bvh::Node& n = nodes[id];
+      if (!node_reach_[id]) return false;
+      if (n.count == 0) return true;
+      // A one-triangle leaf is tested against the triangle's own slopes, and left out for
+      // the blocks whose proven hint it is.
+      if (n.count != 1) return boxes_->any(dev, n.box, st_);
+      const size_t k = bvh_.item(n.first);
+      const int tri = form_.broadcasts[k].tri;
+      return boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
+    };
+    std::vector<uint32_t> leaf;
+    bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
+      leaf.assign(items, items + n);
+      std::sort(leaf.begin(), leaf.end());
+      for (uint32_t k : leaf) {
+        if (!reach_[k] || !form_.usable(k, &refused_)) continue;
+        sent->push_back(k);
+        number_of_[k] = static_cast<uint32_t>(sent->size());
+        send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
+        boxes_->broadcast_sent();
+      }
+      return false;
+    });
+    st_->culled += form_.broadcasts.size() - sent->size();
+    return true;
+  }
+
+  void load(Device& dev, size_t base, unsigned count) override {
+    // SEL <- the pass's blocks first: a word most rays share goes out as one WRITES.
+    Program pre;
+    select_below(pre, count, dev.config().blocks);
+    pre << ins::flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
+    words_.begin(count);
+    for (unsigned b = 0; b < count; ++b) form_.load_ray(words_, b, rays_[idx_[base + b]], number_of_);
+    // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
+    if (boxes_ && cull_words_) hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
+    else hints_.clear();
+    words_.flush(dev, std::move(pre), st_);
+    push_init(dev, Program());
+  }
+
+  const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) override {
+    (void)number;  // the pass's own numbering (select), the same in the probe and after it
+    const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
+    *marks = form_.broadcasts[k].marks();
+    const int tri = form_.broadcasts[k].tri;
+    if (boxes_ && marks->gate) marks->skip_gate = boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
+    return code;
+  }
+
+  void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
+    for (unsigned b = 0; b < count; ++b) out_[idx_[base + b]] = Hit{};
+    t_loose_.assign(count, false);
+    // A ray whose best is certainly beyond its tmax is not read: a miss to the caller.
+    const std::vector<char> read = boxes_ ? boxes_->to_read(dev, count, st_) : std::vector<char>(count, 1);
+    ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
+      const Ray& r = rays_[idx_[base + b]];
+      Hit& h = out_[idx_[base + b]];
+      h.tri = form_.broadcasts[order[pos]].tri;
+      h.t = form_.t_of(best, r);
+      // Every form certifies (an uncertified one would have no bound to give).
+      h.t_err = form_.t_rel_bound_at(dev, b, best, order[pos]);
+      t_loose_[b] = form_.certified() && !(h.t_err <= t_acc_);
+    }, &read);
+    unc_.assign(count, false);
+    if (form_.certified()) {
+      const std::vector<bool> u = dev.read_flag_all(layout::kUnc);
+      for (unsigned b = 0; b < count; ++b) unc_[b] = u[b];
+      // A flagged ray is redone against what the pass tested: its broadcasts and the host's.
+      candidates_ = form_.host;
+      candidates_.insert(candidates_.end(), refused_.begin(), refused_.end());
+      for (size_t k : order) candidates_.push_back(form_.broadcasts[k].tri);
+    }
+  }
+
+  // Each pass decides its own rays' hits alone: the passes can run on several FMPPs.
+  bool shareable() const override { return true; }
+  // Costliest first, by the triangles the host's walk of each pass reaches (a pass's
+  // clocks grow with its broadcasts; the walk is the first step of select()).
+  std::vector<size_t> pass_order(unsigned blocks) override {
+    if (!opt_.cull) return {};  // every pass broadcasts every triangle
+    return passes_by_reach(bvh_, idx_.size(), blocks, form_.broadcasts.size(),
+                           [&](size_t base, unsigned count) { return packets(base, count, opt_.cull_packet); });
+  }
+  void results(size_t base, unsigned count, std::vector<std::pair<size_t, Hit>>* out) const override {
+    for (unsigned b = 0; b < count; ++b) out->emplace_back(idx_[base + b], out_[idx_[base + b]]);
+  }
+  void set_result(size_t index, const Hit& h) override { out_[index] = h; }
+
+  // Overflowed rays are redone against every triangle, uncertain ones against the pass's
+  // triangles, loose t exactly; the others get the host's share.
+  void host(size_t base, unsigned count) override {
+    const int f = form_.id();
+    for (unsigned b = 0; b < count; ++b) {
+      const size_t i = idx_[base + b];
+      const Ray& r = rays_[i];
+      st_->form_rays[f] += 1;
+      if (!form_.certified()) ++st_->uncertified_rays;
+      if (ovf_[b]) {
+        ++st_->overflow_rays;
+        if (all_.empty()) all_ = all_triangles(tris_);
+        out_[i] = Hit{};
+        merge_host(r, tris_, all_, &out_[i], st_);
+        out_[i].redo = HostRedo::kOverflow;
+      } else if (unc_[b]) {
+        ++st_->flagged_rays[f];
+        out_[i] = nearest_reference_among(r, tris_, candidates_);
+        out_[i].redo = HostRedo::kFlagged;
+        st_->host_tests += candidates_.size();
+        st_->certify_tests[f] += candidates_.size();
+      } else {
+        if (t_loose_[b]) {  // the triangle is certain, its t not precise enough
+          ++st_->t_bound_rays[f];
+          ++st_->certify_tests[f];
+          ++st_->host_tests;
+          out_[i].t = intersect_reference(r, tris_[out_[i].tri]);
+          out_[i].t_err = 0;
+        }
+        merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
+        merge_host(r, tris_, refused_, &out_[i], st_, form_.certified());
+        if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;
+      }
+    }
   }
 
  private:
-  // Without what the form refused as it prepared it: this pass's host merges those.
-  std::vector<size_t> usable(std::vector<size_t> order) {
-    const size_t n = order.size();
-    order = form_.usable(std::move(order), &refused_);
-    st_->culled += n - order.size();
-    return order;
-  }
+  // The triangles some packet of the pass may reach (all without culling), then either
+  // all of them or, with the probe, the nearest leaves of each ray first.
   std::vector<size_t> pick(size_t base, unsigned count) {
     const size_t nb = form_.broadcasts.size();
     reach_.assign(nb, 1);
@@ -195,159 +330,6 @@ class RayParallelPlan : public PassPlan {
     return order;
   }
 
- public:
-  // Culling on the FMPP (box_test.h): the hierarchy front to back from the shared origin,
-  // through the nodes the host's walk reached; each leaf (one triangle) is tested by every
-  // block against its ray's current best, and broadcast at once if some ray may still
-  // need it, so its hits shorten the rays' reach for the leaves after it.
-  bool walk(Device& dev, size_t base, unsigned count, std::vector<size_t>* sent) override {
-    if (!boxes_) return false;
-    sent->clear();
-    boxes_->clear();
-    for (unsigned b = 0; b < count; ++b) boxes_->add_ray(rays_[idx_[base + b]].d);
-    // Front to back from the shared origin: a node's key is its box's distance from it.
-    const auto gap = [&](const Bvh::Node& n) {
-      return glm::length(glm::max(glm::max(n.box.lo - origin_, glm::dvec3(0)), origin_ - n.box.hi));
-    };
-    const std::vector<Bvh::Node>& nodes = bvh_.nodes();
-    const auto enter = [&](uint32_t id) {
-      const Bvh::Node& n = nodes[id];
-      if (!node_reach_[id]) return false;
-      if (n.count == 0) return true;
-      // A one-triangle leaf is tested against the triangle's own slopes, and left out for
-      // the blocks whose proven hint it is.
-      if (n.count != 1) return boxes_->any(dev, n.box, st_);
-      const size_t k = bvh_.item(n.first);
-      const int tri = form_.broadcasts[k].tri;
-      return boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
-    };
-    std::vector<uint32_t> leaf;
-    bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
-      leaf.assign(items, items + n);
-      std::sort(leaf.begin(), leaf.end());
-      for (uint32_t k : leaf) {
-        if (!reach_[k] || !form_.usable(k, &refused_)) continue;
-        sent->push_back(k);
-        number_of_[k] = static_cast<uint32_t>(sent->size());
-        send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
-        boxes_->broadcast_sent();
-      }
-      return false;
-    });
-    st_->culled += form_.broadcasts.size() - sent->size();
-    return true;
-  }
-
-  void load(Device& dev, size_t base, unsigned count) override {
-    // SEL <- the pass's blocks first: a word most rays share goes out as one WRITES.
-    Program pre;
-    select_below(pre, count, dev.config().blocks);
-    pre << ins::flagop(map::kFlagV, 0, 0, lut::kZero);  // overflow is judged per pass
-    words_.begin(count);
-    for (unsigned b = 0; b < count; ++b) form_.load_ray(words_, b, rays_[idx_[base + b]], number_of_);
-    // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
-    if (boxes_ && cull_words_) hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
-    else hints_.clear();
-    words_.flush(dev, std::move(pre), st_);
-    push_init(dev, Program());
-  }
-
-  const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) override {
-    (void)number;  // the pass's own numbering (select), the same in the probe and after it
-    const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
-    *marks = form_.broadcasts[k].marks();
-    const int tri = form_.broadcasts[k].tri;
-    if (boxes_ && marks->gate) marks->skip_gate = boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
-    return code;
-  }
-
-  void read_back(Device& dev, size_t base, unsigned count, const std::vector<size_t>& order) override {
-    for (unsigned b = 0; b < count; ++b) out_[idx_[base + b]] = Hit{};
-    t_loose_.assign(count, false);
-    // A ray whose best is certainly beyond its tmax is not read: a miss to the caller.
-    const std::vector<char> read = boxes_ ? boxes_->to_read(dev, count, st_) : std::vector<char>(count, 1);
-    ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
-      const Ray& r = rays_[idx_[base + b]];
-      Hit& h = out_[idx_[base + b]];
-      h.tri = form_.broadcasts[order[pos]].tri;
-      h.t = form_.t_of(best, r);
-      // Every form certifies (an uncertified one would have no bound to give).
-      h.t_err = form_.t_rel_bound_at(dev, b, best, order[pos]);
-      t_loose_[b] = form_.certified() && !(h.t_err <= t_acc_);
-    }, &read);
-    unc_.assign(count, false);
-    if (form_.certified()) {
-      const std::vector<bool> u = dev.read_flag_all(layout::kUnc);
-      for (unsigned b = 0; b < count; ++b) unc_[b] = u[b];
-      // A flagged ray is redone against what the pass tested: its broadcasts and the host's.
-      candidates_ = form_.host;
-      candidates_.insert(candidates_.end(), refused_.begin(), refused_.end());
-      for (size_t k : order) candidates_.push_back(form_.broadcasts[k].tri);
-    }
-  }
-
-  // Each pass decides its own rays' hits alone: the passes can run on several FMPPs.
-  bool shareable() const override { return true; }
-  // Costliest first, by the triangles the host's walk of each pass reaches (a pass's
-  // clocks grow with its broadcasts; the walk is the first step of select()).
-  std::vector<size_t> pass_order(unsigned blocks) override {
-    if (!opt_.cull) return {};  // every pass broadcasts every triangle
-    const size_t passes = (idx_.size() + blocks - 1) / blocks;
-    std::vector<size_t> reached(passes, 0);
-    std::vector<char> reach(form_.broadcasts.size());
-    uint64_t tests = 0;
-    for (size_t p = 0; p < passes; ++p) {
-      const size_t base = p * blocks;
-      std::fill(reach.begin(), reach.end(), 0);
-      bvh_.reached(packets(base, static_cast<unsigned>(std::min<size_t>(blocks, idx_.size() - base)),
-                           opt_.cull_packet),
-                   reach, &tests);
-      reached[p] = static_cast<size_t>(std::count(reach.begin(), reach.end(), 1));
-    }
-    return largest_first(reached);
-  }
-  void results(size_t base, unsigned count, std::vector<std::pair<size_t, Hit>>* out) const override {
-    for (unsigned b = 0; b < count; ++b) out->emplace_back(idx_[base + b], out_[idx_[base + b]]);
-  }
-  void set_result(size_t index, const Hit& h) override { out_[index] = h; }
-
-  // Overflowed rays are redone against every triangle, uncertain ones against the pass's
-  // triangles, loose t exactly; the others get the host's share.
-  void host(size_t base, unsigned count) override {
-    const int f = form_.id();
-    for (unsigned b = 0; b < count; ++b) {
-      const size_t i = idx_[base + b];
-      const Ray& r = rays_[i];
-      st_->form_rays[f] += 1;
-      if (!form_.certified()) ++st_->uncertified_rays;
-      if (ovf_[b]) {
-        ++st_->overflow_rays;
-        if (all_.empty()) all_ = all_triangles(tris_);
-        out_[i] = Hit{};
-        merge_host(r, tris_, all_, &out_[i], st_);
-        out_[i].redo = HostRedo::kOverflow;
-      } else if (unc_[b]) {
-        ++st_->flagged_rays[f];
-        out_[i] = nearest_reference_among(r, tris_, candidates_);
-        out_[i].redo = HostRedo::kFlagged;
-        st_->host_tests += candidates_.size();
-        st_->certify_tests[f] += candidates_.size();
-      } else {
-        if (t_loose_[b]) {  // the triangle is certain, its t not precise enough
-          ++st_->t_bound_rays[f];
-          ++st_->certify_tests[f];
-          ++st_->host_tests;
-          out_[i].t = intersect_reference(r, tris_[out_[i].tri]);
-          out_[i].t_err = 0;
-        }
-        merge_host(r, tris_, form_.host, &out_[i], st_, form_.certified());
-        merge_host(r, tris_, refused_, &out_[i], st_, form_.certified());
-        if (t_loose_[b]) out_[i].redo = HostRedo::kTFromHost;
-      }
-    }
-  }
-
- private:
   const std::vector<Ray>& rays_;
   const std::vector<size_t>& idx_;
   const std::vector<Triangle>& tris_;
@@ -393,8 +375,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<bool> ovf_, unc_, t_loose_;
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
   PassWords words_;                // the pass's ray words, gathered before they are written
-  std::vector<int> all_, candidates_;
-  std::vector<int> refused_;  // this pass's triangles refused by the form's preparation
+  std::vector<int> all_, candidates_, refused_;  // refused_: this pass's, see select
   const double t_acc_ = policy::t_accuracy(opt_);
 };
 
@@ -409,8 +390,7 @@ void run_ray_parallel(Device& dev, const std::vector<Ray>& rays, const std::vect
   RayParallelPlan plan(rays, order, tris, form, opt, out, st, origin, dev.config().words, cull, shapes);
   const KernelStats before = *st;
   run_passes(dev, plan, opt, st);
-  st->host_triangles += form.host.size();
-  for (const Broadcast& b : form.broadcasts) st->host_triangles += b.host;  // refused as prepared
+  st->host_triangles += form.host_triangles();
   const int f = form.id();
   st->form_broadcasts[f] += st->broadcasts - before.broadcasts;
   st->form_broadcast_cycles[f] += st->compute_cycles + st->box_cycles - before.compute_cycles - before.box_cycles;

@@ -127,4 +127,19 @@ std::vector<size_t> largest_first(const std::vector<size_t>& size) {
   return order;
 }
 
+std::vector<size_t> passes_by_reach(const Bvh& bvh, size_t items, unsigned blocks, size_t broadcasts,
+                                    const std::function<std::vector<RayPacket>(size_t, unsigned)>& packets) {
+  const size_t passes = (items + blocks - 1) / blocks;
+  std::vector<size_t> reached(passes, 0);
+  std::vector<char> reach(broadcasts);
+  uint64_t tests = 0;
+  for (size_t p = 0; p < passes; ++p) {
+    const size_t base = p * blocks;
+    std::fill(reach.begin(), reach.end(), 0);
+    bvh.reached(packets(base, static_cast<unsigned>(std::min<size_t>(blocks, items - base))), reach, &tests);
+    reached[p] = static_cast<size_t>(std::count(reach.begin(), reach.end(), 1));
+  }
+  return largest_first(reached);
+}
+
 }  // namespace fmpp::isect

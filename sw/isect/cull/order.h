@@ -8,9 +8,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sw/isect/geometry/geometry.h"
+#include "sw/isect/geometry/hierarchy.h"
 
 namespace fmpp::isect {
 
@@ -32,5 +34,11 @@ std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vect
 // The indices of `size` by decreasing size, ties in increasing index (the costliest
 // passes first: ray_parallel.cpp).
 std::vector<size_t> largest_first(const std::vector<size_t>& size);
+
+// The passes of `items` rays, `blocks` to a pass, costliest first (largest_first): by the
+// items of `bvh` (broadcasts of `broadcasts` in all) that the packets of each pass reach,
+// packets(base, count) giving those of the pass's rays [base, base + count).
+std::vector<size_t> passes_by_reach(const Bvh& bvh, size_t items, unsigned blocks, size_t broadcasts,
+                                    const std::function<std::vector<RayPacket>(size_t, unsigned)>& packets);
 
 }  // namespace fmpp::isect

@@ -12,9 +12,17 @@ bool RayForm::usable(size_t k, std::vector<int>* refused) const {
   return false;
 }
 
-std::vector<size_t> RayForm::usable(std::vector<size_t> order, std::vector<int>* refused) const {
+std::vector<size_t> RayForm::usable(std::vector<size_t> order, std::vector<int>* refused, uint64_t* dropped) const {
+  const size_t n = order.size();
   order.erase(std::remove_if(order.begin(), order.end(), [&](size_t k) { return !usable(k, refused); }), order.end());
+  *dropped += n - order.size();
   return order;
+}
+
+size_t RayForm::host_triangles() const {
+  size_t n = host.size();
+  for (const Broadcast& b : broadcasts) n += b.host;
+  return n;
 }
 
 }  // namespace fmpp::isect

@@ -79,9 +79,12 @@ class RayForm {
 
   // Whether broadcast k goes to the FMPP: false if the form refused it as it prepared it
   // (Broadcast::host), whose triangle then joins *refused, once: the pass that would send
-  // it merges it on the host instead. The same for every broadcast of `order`, in order.
+  // it merges it on the host instead. The same for every broadcast of `order`, in order,
+  // adding those left out to *dropped.
   bool usable(size_t k, std::vector<int>* refused) const;
-  std::vector<size_t> usable(std::vector<size_t> order, std::vector<int>* refused) const;
+  std::vector<size_t> usable(std::vector<size_t> order, std::vector<int>* refused, uint64_t* dropped) const;
+  // The host's triangles and those refused so far.
+  size_t host_triangles() const;
 
   // Where each block keeps its best and the number of the broadcast that set it.
   virtual BestWords best_words() const = 0;
