@@ -36,6 +36,7 @@ fails "--out -: the image needs a file name" "$render" --scene "$scene" --backen
 fails "--spp: value 0 not in \[1, 1024\]" "$render" --scene "$scene" --backend reference --spp 0
 fails "--spp: value 2000 not in \[1, 1024\]" "$render" --scene "$scene" --backend reference --spp 2000
 fails "--seed: value -1 is negative" "$render" --scene "$scene" --backend reference --seed -1
+fails "--merge-below: value 16777217 not in \[0, 16777216\]" "$render" --scene "$scene" --backend cmodel --merge-below 16777217
 # --spp and --seed replace the scene's, and the report says which were used.
 "$render" --scene "$scene" --backend reference --width 4 --height 4 --spp 4 --seed 5 --out "$dir/s.png" --report - \
   --quiet > "$dir/s.json"
