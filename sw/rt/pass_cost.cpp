@@ -306,7 +306,21 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   PassSizeEstimate& c = m.sizes[m.chosen];
   c.batch_clocks = estimate(c.blocks, false, &c.batch_broadcasts);
   m.coherent = c.clocks <= c.batch_clocks;
-  choose_merge(&m, c.blocks, opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay,
+  // Thresholds only matter where the largest one priced moves some rays (a batch with
+  // several origins): otherwise none is priced.
+  bool merging = opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay;
+  if (merging) {
+    fmpp::isect::KernelOptions most = opt, none = opt;
+    most.merge_below = 2 * c.blocks;  // kMergeFractions' largest
+    none.merge_below = 1;
+    merging = false;
+    for (const auto& batch : frame.batches) {
+      merging = merging || fmpp::isect::route_rays(batch.second, most, c.blocks).general.size() !=
+                               fmpp::isect::route_rays(batch.second, none, c.blocks).general.size();
+    }
+    if (!merging) m.why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
+  }
+  choose_merge(&m, c.blocks, merging,
                [&](unsigned below, uint64_t* bc, size_t* merged) {
                  return estimate(c.blocks, m.coherent, bc, below, merged, kGeneralOverBox);
                });
