@@ -15,7 +15,8 @@ namespace {
 
 // Whether forms prepared under a and b are the same: every option but the ones that only
 // steer a call (the pass order, which origins' rays are merged, the oracle's counts,
-// gates, occlusion, progress, sharing, this cache) and the conditioning limit, which the form compares itself (RayForm::serves).
+// gates, occlusion, progress, sharing, this cache) and the conditioning limit, which the
+// form compares itself (RayForm::serves).
 // A field added to KernelOptions must be placed on one side or the other: the size below
 // is that of the fields known here.
 static_assert(sizeof(void*) != 8 || sizeof(KernelOptions) == 112,

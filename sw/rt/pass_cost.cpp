@@ -123,12 +123,10 @@ std::string fmt_clocks(double c) {
 }
 
 // Which origins' rays to merge (pass_cost.h: kMergeFractions, kMergeSlack), at `blocks`
-// blocks: each threshold priced by estimate(below, &broadcasts, &merged rays). Nothing to
-// choose where the kernels do not merge (origins other than auto, the object mapping) or
-// where no threshold moves a ray.
+// blocks: each threshold priced by estimate(below, &broadcasts, &merged rays). Called
+// only where the largest threshold moves some rays.
 template <class Estimate>
-void choose_merge(PassCostModel* m, unsigned blocks, bool merging, Estimate&& estimate) {
-  if (!merging) return;
+void choose_merge(PassCostModel* m, unsigned blocks, Estimate&& estimate) {
   std::vector<unsigned> below = {1, 16};
   for (double f : kMergeFractions) below.push_back(std::max(1u, static_cast<unsigned>(std::lround(f * blocks))));
   const unsigned fallback = std::max(16u, blocks / 8);  // the kernels' default
@@ -136,20 +134,13 @@ void choose_merge(PassCostModel* m, unsigned blocks, bool merging, Estimate&& es
   std::sort(below.begin(), below.end());
   below.erase(std::unique(below.begin(), below.end()), below.end());
   size_t best = 0, def = 0;
-  bool moves = false;
   for (unsigned b : below) {
     MergeEstimate e;
     e.below = b;
     e.clocks = estimate(b, &e.broadcasts, &e.merged_rays);
-    moves = moves || e.merged_rays != 0;
     if (b == fallback) def = m->merges.size();
     if (m->merges.empty() || e.clocks < m->merges[best].clocks) best = m->merges.size();
     m->merges.push_back(e);
-  }
-  if (!moves) {
-    m->merges.clear();
-    m->why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
-    return;
   }
   const MergeEstimate& d = m->merges[def];
   const MergeEstimate& b = m->merges[best];
@@ -256,21 +247,31 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     orders[k].emplace_back(idx, fmpp::isect::coherent_order(frame.batches[k].second, idx));
     return orders[k].back().second;
   };
-  // merged (if not null) counts the rays of shared origins routed to the arbitrary-origin
-  // batch under `below` (KernelOptions::merge_below).
-  // general_over_box scales the arbitrary-origin form's broadcasts (kGeneralOverBox).
+  // Each batch's rays routed to the arbitrary-origin form when no origin's are merged
+  // (KernelOptions::merge_below = 1): the base of the merged rays counted below.
+  std::vector<size_t> own_general(frame.batches.size(), 0);
+  const bool merging = opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay;
+  if (merging) {
+    fmpp::isect::KernelOptions none = opt;
+    none.merge_below = 1;
+    for (size_t k = 0; k < frame.batches.size(); ++k) {
+      own_general[k] = fmpp::isect::route_rays(frame.batches[k].second, none, 0).general.size();
+    }
+  }
+  // With origins shared by fewer than `below` rays merged (0: the kernels' default);
+  // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
+  // general_over_box scales that form's broadcasts (kGeneralOverBox).
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
                       double general_over_box = 1) {
     double clocks = 0;
     *bc = 0;
     fmpp::isect::KernelOptions o = opt;
     o.merge_below = below;
-    fmpp::isect::KernelOptions never = opt;
-    never.merge_below = 1;
+    if (merged) *merged = 0;
     for (size_t k = 0; k < frame.batches.size(); ++k) {
       const std::vector<Ray>& rays = frame.batches[k].second;
       const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, o, blocks);
-      if (merged) *merged += routes.general.size() - fmpp::isect::route_rays(rays, never, blocks).general.size();
+      if (merged) *merged += routes.general.size() - own_general[k];
       auto add = [&](const std::vector<size_t>& idx, bool shared) {
         if (idx.empty()) return;
         const uint64_t b = broadcasts(reach[k], coherent ? coherent_order(k, idx) : idx, blocks,
@@ -306,24 +307,22 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   PassSizeEstimate& c = m.sizes[m.chosen];
   c.batch_clocks = estimate(c.blocks, false, &c.batch_broadcasts);
   m.coherent = c.clocks <= c.batch_clocks;
-  // Thresholds only matter where the largest one priced moves some rays (a batch with
-  // several origins): otherwise none is priced.
-  bool merging = opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay;
-  if (merging) {
-    fmpp::isect::KernelOptions most = opt, none = opt;
-    most.merge_below = 2 * c.blocks;  // kMergeFractions' largest
-    none.merge_below = 1;
-    merging = false;
-    for (const auto& batch : frame.batches) {
-      merging = merging || fmpp::isect::route_rays(batch.second, most, c.blocks).general.size() !=
-                               fmpp::isect::route_rays(batch.second, none, c.blocks).general.size();
-    }
-    if (!merging) m.why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
+  // Merged batches, where the largest threshold priced (kMergeFractions') moves some rays:
+  // a batch with several origins (the kernels merge only then, with origins auto, in the
+  // ray-parallel mapping).
+  fmpp::isect::KernelOptions most = opt;
+  most.merge_below = 2 * c.blocks;
+  bool moves = false;
+  for (size_t k = 0; k < frame.batches.size() && merging && !moves; ++k) {
+    moves = fmpp::isect::route_rays(frame.batches[k].second, most, c.blocks).general.size() != own_general[k];
   }
-  choose_merge(&m, c.blocks, merging,
-               [&](unsigned below, uint64_t* bc, size_t* merged) {
-                 return estimate(c.blocks, m.coherent, bc, below, merged, kGeneralOverBox);
-               });
+  if (moves) {
+    choose_merge(&m, c.blocks, [&](unsigned below, uint64_t* bc, size_t* merged) {
+      return estimate(c.blocks, m.coherent, bc, below, merged, kGeneralOverBox);
+    });
+  } else {
+    m.why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
+  }
 
   std::ostringstream why;
   why << "the fewest blocks whose frame is estimated within " << 100 * kPassSizeSlack

@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-4";
+constexpr const char* kPlanVersion = "plan-5";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -96,15 +96,19 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.config = fmpp::Config{j.at("blocks").get<unsigned>(), j.at("words").get<unsigned>()};
     p.config.validate();
     p.options.n = j.at("bits").get<unsigned>();
-    p.options.coherent = j.at("coherent").get<bool>();
+    const std::string order = j.at("pass_order").get<std::string>();
+    if (order != "coherent" && order != "batch") return std::nullopt;
+    p.options.coherent = order == "coherent";
     p.options.merge_below = j.at("merge_below").get<unsigned>();
     p.why_merge = j.at("why_merge").get<std::string>();
     p.met_target = j.at("met_target").get<bool>();
     p.why_bits = j.at("why_bits").get<std::string>();
     p.why_words = j.at("why_words").get<std::string>();
     p.why_blocks = j.at("why_blocks").get<std::string>();
-    p.why_order = j.at("why_order").get<std::string>();
-    for (const auto& c : j.at("candidates")) {
+    p.why_order = j.at("why_pass_order").get<std::string>();
+    // The lists, as plan_report writes them (a list with no entry is left out).
+    const auto list = [&](const char* name) { return j.contains(name) ? j.at(name) : nlohmann::json::array(); };
+    for (const auto& c : list("candidates")) {
       PlanCandidate pc;
       pc.n = c.at("n").get<unsigned>();
       pc.wrong_rate = c.at("wrong_rate").get<double>();
@@ -117,19 +121,19 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
       p.candidates.push_back(pc);
     }
-    for (const auto& e : j.at("pass_sizes")) {
+    for (const auto& e : list("pass_sizes")) {
       PassSizeEstimate s;
       s.blocks = e.at("blocks").get<unsigned>();
       s.passes = e.at("passes").get<size_t>();
-      s.broadcasts = e.at("broadcasts").get<uint64_t>();
-      s.clocks = e.at("clocks").get<double>();
+      s.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
+      s.clocks = e.at("estimated_cycles").get<double>();
       p.pass_sizes.push_back(s);
     }
-    for (const auto& e : j.at("merges")) {
+    for (const auto& e : list("merges")) {
       MergeEstimate m;
       m.below = e.at("below").get<unsigned>();
-      m.broadcasts = e.at("broadcasts").get<uint64_t>();
-      m.clocks = e.at("clocks").get<double>();
+      m.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
+      m.clocks = e.at("estimated_cycles").get<double>();
       m.merged_rays = e.at("merged_rays").get<size_t>();
       p.merges.push_back(m);
     }
@@ -142,26 +146,7 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
 
 bool store_plan(const std::string& dir, const std::string& key, const Plan& p, std::string* why) {
   if (dir.empty()) return false;
-  nlohmann::json j = {{"blocks", p.config.blocks},     {"words", p.config.words},       {"bits", p.options.n},
-                      {"coherent", p.options.coherent}, {"met_target", p.met_target},   {"why_bits", p.why_bits},
-                      {"why_words", p.why_words},       {"why_blocks", p.why_blocks},   {"why_order", p.why_order},
-                      {"merge_below", p.options.merge_below}, {"why_merge", p.why_merge},
-                      {"candidates", nlohmann::json::array()}, {"pass_sizes", nlohmann::json::array()},
-                      {"merges", nlohmann::json::array()}};
-  for (const PlanCandidate& c : p.candidates) {
-    j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
-                               {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
-                               {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
-                               {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
-  }
-  for (const PassSizeEstimate& s : p.pass_sizes) {
-    j["pass_sizes"].push_back(
-        {{"blocks", s.blocks}, {"passes", s.passes}, {"broadcasts", s.broadcasts}, {"clocks", s.clocks}});
-  }
-  for (const MergeEstimate& m : p.merges) {
-    j["merges"].push_back(
-        {{"below", m.below}, {"broadcasts", m.broadcasts}, {"clocks", m.clocks}, {"merged_rays", m.merged_rays}});
-  }
+  const nlohmann::json j = plan_report(p);  // the report's "plan" is the cached plan
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   const std::string path = dir + "/" + key + ".json", tmp = path + ".tmp";
@@ -179,6 +164,29 @@ bool store_plan(const std::string& dir, const std::string& key, const Plan& p, s
     return false;
   }
   return true;
+}
+
+nlohmann::json plan_report(const Plan& p) {
+  nlohmann::json j = {{"bits", p.options.n}, {"why_bits", p.why_bits}, {"blocks", p.config.blocks},
+                      {"why_blocks", p.why_blocks}, {"words", p.config.words}, {"why_words", p.why_words},
+                      {"met_target", p.met_target}, {"pass_order", p.options.coherent ? "coherent" : "batch"},
+                      {"why_pass_order", p.why_order}, {"merge_below", p.options.merge_below},
+                      {"why_merge", p.why_merge}};
+  for (const MergeEstimate& e : p.merges) {
+    j["merges"].push_back({{"below", e.below}, {"merged_rays", e.merged_rays}, {"estimated_broadcasts", e.broadcasts},
+                           {"estimated_cycles", e.clocks}});
+  }
+  for (const PassSizeEstimate& e : p.pass_sizes) {
+    j["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes}, {"estimated_broadcasts", e.broadcasts},
+                               {"estimated_cycles", e.clocks}});
+  }
+  for (const PlanCandidate& c : p.candidates) {
+    j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
+                               {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
+                               {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
+                               {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
+  }
+  return j;
 }
 
 }  // namespace rt

@@ -4,6 +4,8 @@
 // plan, named by a 64-bit hash of everything the plan depends on.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <optional>
 #include <string>
 
@@ -28,5 +30,9 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
 // Stores the plan (creating the directory); a cache that cannot be written is skipped,
 // with the reason in *why.
 bool store_plan(const std::string& dir, const std::string& key, const Plan& plan, std::string* why);
+
+// The plan as fmpp-render's report gives it (its "plan": every choice with its reason,
+// every candidate and every estimate of the cost model).
+nlohmann::json plan_report(const Plan& plan);
 
 }  // namespace rt

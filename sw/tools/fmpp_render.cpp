@@ -292,26 +292,9 @@ int main(int argc, char** argv) {
       }
       const Config cfg = plan.config;
       bits = plan.options.n;
-      rep["plan"] = {{"bits", bits}, {"why_bits", plan.why_bits}, {"blocks", cfg.blocks}, {"why_blocks", plan.why_blocks},
-                     {"words", cfg.words}, {"why_words", plan.why_words}, {"error_target", target},
-                     {"met_target", plan.met_target}, {"accepted_miss", !plan.met_target && accept_miss},
-                     {"cached", from_cache}, {"key", key}, {"seconds", plan_seconds},
-                     {"pass_order", plan.options.coherent ? "coherent" : "batch"}, {"why_pass_order", plan.why_order},
-                     {"merge_below", plan.options.merge_below}, {"why_merge", plan.why_merge}};
-      for (const auto& e : plan.merges) {
-        rep["plan"]["merges"].push_back({{"below", e.below}, {"merged_rays", e.merged_rays},
-                                         {"estimated_broadcasts", e.broadcasts}, {"estimated_cycles", e.clocks}});
-      }
-      for (const auto& e : plan.pass_sizes) {
-        rep["plan"]["pass_sizes"].push_back({{"blocks", e.blocks}, {"passes", e.passes},
-                                             {"estimated_broadcasts", e.broadcasts}, {"estimated_cycles", e.clocks}});
-      }
-      for (const auto& c : plan.candidates) {
-        rep["plan"]["candidates"].push_back(
-            {{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share}, {"pixel_rate", c.pixel_rate},
-             {"pixel_bound", c.pixel_bound}, {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
-             {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
-      }
+      rep["plan"] = rt::plan_report(plan);
+      rep["plan"].update({{"error_target", target}, {"accepted_miss", !plan.met_target && accept_miss},
+                          {"cached", from_cache}, {"key", key}, {"seconds", plan_seconds}});
       if (!quiet) {
         // One short line; the reasons, every candidate and the cost model's estimates are
         // in the report's "plan".

@@ -47,6 +47,7 @@ void Oracle::count(const std::vector<Ray>& rays, const std::vector<size_t>& orde
   std::vector<char> any(tris_.size(), 0), nearest(tris_.size(), 0), box(tris_.size(), 0);
   mark(rays, order, begin, end, any, nearest, box);
   for (const Broadcast& b : broadcasts) {
+    if (b.refused()) continue;  // the host's, never broadcast
     const size_t t = static_cast<size_t>(b.tri), steps = b.program().size();
     if (any[t]) ++st->oracle_any, st->oracle_any_steps += steps;
     if (box[t]) ++st->oracle_box, st->oracle_box_steps += steps;

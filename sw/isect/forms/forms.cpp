@@ -31,8 +31,8 @@ Program SharedOriginForm::prepare_late(size_t k, ProgramMarks* marks) {
   Broadcast& b = broadcasts[k];
   const Prepared p = prepare_(own_[k]);
   if (!p.build) {
-    b.host = true;  // the passes merge it on the host (Broadcast::refused)
-    return begin_broadcast();
+    b.host = true;  // the passes merge it on the host and never send it (Broadcast::refused)
+    return Program();
   }
   b.sum_bound = p.sum_bound;
   return p.build(marks);

@@ -27,8 +27,8 @@ struct Broadcast {
   double edge_cond = 0;  // the arbitrary-origin form: its edge-test condition (culling pads)
   // Builds the program and sets its marks (pass.h). A form that prepares its triangles
   // as their programs are first asked for may find one it cannot certify: it then sets
-  // `host`, and the program only counts itself; the passes leave such a broadcast out
-  // and merge its triangle on the host (refused).
+  // `host` and builds no program; the passes never send such a broadcast and merge its
+  // triangle on the host instead (RayForm::usable).
   std::function<Program(ProgramMarks* marks)> build;
   bool host = false;
 

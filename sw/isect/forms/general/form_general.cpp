@@ -107,7 +107,7 @@ class GeneralForm : public RayForm {
   const std::vector<uint64_t>& code(size_t k, uint32_t number) override {
     const Broadcast& b = broadcasts[k];
     code_ = b.program().code();
-    if (!b.host) code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
+    code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
     return code_;
   }
 
@@ -166,8 +166,8 @@ class GeneralForm : public RayForm {
 
   // Broadcast `at`'s program: its coefficients, rounded, with their bounds. One whose
   // bounds leave no hit certain is refused (Broadcast::host: the passes merge it on the
-  // host, as the shared-origin forms' prepare_all explains), and its program only counts
-  // itself.
+  // host and never send its empty program, as the shared-origin forms' prepare_all
+  // explains).
   Program prepare_late(size_t at, ProgramMarks* marks) {
     const Triangle& t = own_[at];
     const unsigned q = opt_.qbits;
@@ -208,10 +208,7 @@ class GeneralForm : public RayForm {
     th.jn = certify::bits_above(bd.nv) + s + 1;
     if (th.ka > 26 || th.kd > 26 || th.jd > policy::kGeneralMaxDetBits || th.jn > policy::kGeneralMaxNvBits) {
       broadcasts[at].host = true;  // no hit of it could be certain: the passes merge it on the host
-      Program none;
-      none.assume_mask(layout::kDataMask);
-      none << add(kCnt, kCnt, kOne, kSel);
-      return none;
+      return Program();
     }
     bounds_[at] = bd;
     return program(xa, xd, dshift, th, marks);

@@ -1,0 +1,112 @@
+// The plan's cost model (pass_cost.h): the pass size and the merged batches it chooses,
+// each within its rule, and the same picture whichever it takes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "fmpp/model_bus.h"
+#include "sw/rt/plan.h"
+#include "sw/rt/render.h"
+
+#ifndef FMPP_SOURCE_DIR
+#define FMPP_SOURCE_DIR "."
+#endif
+
+namespace rt {
+namespace {
+
+Scene scene(const char* name) { return load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/" + name + ".json"); }
+
+TEST(Plan, PassSizeFromTheCostModel) {
+  PlanRequest r;
+  r.width = r.height = 300;
+  r.bits = 24;
+  const Plan p = make_plan(scene("one_triangle"), r);
+  ASSERT_FALSE(p.pass_sizes.empty());
+  EXPECT_EQ(p.pass_sizes.front().blocks, 1024u);
+  EXPECT_EQ(p.pass_sizes.back().blocks, fmpp::map::kMaxBlocks);
+  EXPECT_EQ(p.pass_sizes.back().passes, 2u);
+  EXPECT_NE(p.why_blocks.find("65536 blocks, 2 passes"), std::string::npos) << p.why_blocks;
+  double best = p.pass_sizes.front().clocks;
+  for (const PassSizeEstimate& e : p.pass_sizes) best = std::min(best, e.clocks);
+  for (const PassSizeEstimate& e : p.pass_sizes) {
+    if (e.blocks < p.config.blocks) {
+      EXPECT_GT(e.clocks, (1 + kPassSizeSlack) * best) << e.blocks;
+    } else if (e.blocks == p.config.blocks) {
+      EXPECT_LE(e.clocks, (1 + kPassSizeSlack) * best);
+    }
+  }
+  EXPECT_EQ(p.why_order.find("not modelled"), std::string::npos) << p.why_order;
+  // One triangle: every pass broadcasts it once, so the smallest machine is as good.
+  EXPECT_EQ(p.config.blocks, 1024u);
+  // Where every pass needs nearly every triangle (the Cornell box), passes cost: the
+  // model's estimate falls with the blocks, and the choice is not the smallest.
+  r.width = r.height = 96;
+  const Plan c = make_plan(scene("cornell"), r);
+  ASSERT_GE(c.pass_sizes.size(), 3u);
+  EXPECT_GT(c.pass_sizes.front().clocks, 1.2 * c.pass_sizes.back().clocks);
+  EXPECT_GT(c.config.blocks, 1024u);
+}
+
+// Merged batches: where a call has several origins (an area light's points), the cost
+// model prices the thresholds below which an origin's rays join the arbitrary-origin
+// batch, and the plan takes the cheapest unless the default is within kMergeSlack; the
+// frame is the same picture at any threshold.
+TEST(Plan, MergedBatchesFromTheCostModel) {
+  Scene sc = scene("cornell");
+  Light area;
+  area.type = LightType::kRect;
+  area.position = sc.lights[0].position;
+  area.edge1 = glm::dvec3(0.6, 0, 0);
+  area.edge2 = glm::dvec3(0, 0, 0.6);
+  area.samples = 4;
+  area.pool = 4;
+  sc.lights = {area};
+  PlanRequest r;
+  r.width = r.height = 40;
+  r.bits = 24;
+  const Plan p = make_plan(sc, r);
+  ASSERT_GE(p.merges.size(), 3u) << p.why_merge;
+  const unsigned fallback = std::max(16u, p.config.blocks / 8);
+  const MergeEstimate* def = nullptr;
+  const MergeEstimate* best = &p.merges.front();
+  for (const MergeEstimate& e : p.merges) {
+    if (e.below == fallback) def = &e;
+    if (e.clocks < best->clocks) best = &e;
+    if (e.below == 1) {
+      EXPECT_EQ(e.merged_rays, 0u);
+    }
+  }
+  ASSERT_NE(def, nullptr);
+  EXPECT_GT(p.merges.back().merged_rays, 0u) << "the largest threshold merges some origin's rays";
+  if (best->clocks >= (1 - kMergeSlack) * def->clocks) {
+    EXPECT_EQ(p.options.merge_below, 0u) << p.why_merge;
+  } else {
+    EXPECT_EQ(p.options.merge_below, best->below) << p.why_merge;
+  }
+  EXPECT_NE(p.why_merge.find("priced at"), std::string::npos) << p.why_merge;
+  Image first(1, 1);
+  uint64_t cycles_none = 0, cycles_all = 0;
+  for (unsigned below : {1u, 0u, p.merges.back().below}) {
+    fmpp::ModelBus bus(p.config);
+    fmpp::Device dev(bus);
+    fmpp::isect::KernelOptions o = p.options;
+    o.merge_below = below;
+    FmppIntersector fi(dev, sc.triangles, o);
+    RenderOptions ro;
+    ro.width = r.width;
+    ro.height = r.height;
+    const Image img = render(sc, fi, ro, nullptr);
+    if (below == 1) {
+      first = img;
+      cycles_none = fi.stats().cycles;
+    } else {
+      EXPECT_EQ(compare(img, first).pixels, 0u) << below;
+    }
+    if (below == p.merges.back().below) cycles_all = fi.stats().cycles;
+  }
+  EXPECT_NE(cycles_none, cycles_all) << "merging changes the passes";
+}
+
+}  // namespace
+}  // namespace rt
