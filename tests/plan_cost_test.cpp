@@ -7,21 +7,16 @@
 #include "fmpp/model_bus.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/render.h"
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
+#include "tests/shipped_scene.h"
 
 namespace rt {
 namespace {
-
-Scene scene(const char* name) { return load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/" + name + ".json"); }
 
 TEST(Plan, PassSizeFromTheCostModel) {
   PlanRequest r;
   r.width = r.height = 300;
   r.bits = 24;
-  const Plan p = make_plan(scene("one_triangle"), r);
+  const Plan p = make_plan(shipped_scene("one_triangle"), r);
   ASSERT_FALSE(p.pass_sizes.empty());
   EXPECT_EQ(p.pass_sizes.front().blocks, 1024u);
   EXPECT_EQ(p.pass_sizes.back().blocks, fmpp::map::kMaxBlocks);
@@ -42,7 +37,7 @@ TEST(Plan, PassSizeFromTheCostModel) {
   // Where every pass needs nearly every triangle (the Cornell box), passes cost: the
   // model's estimate falls with the blocks, and the choice is not the smallest.
   r.width = r.height = 96;
-  const Plan c = make_plan(scene("cornell"), r);
+  const Plan c = make_plan(shipped_scene("cornell"), r);
   ASSERT_GE(c.pass_sizes.size(), 3u);
   EXPECT_GT(c.pass_sizes.front().clocks, 1.2 * c.pass_sizes.back().clocks);
   EXPECT_GT(c.config.blocks, 1024u);
@@ -53,7 +48,7 @@ TEST(Plan, PassSizeFromTheCostModel) {
 // batch, and the plan takes the cheapest unless the default is within kMergeSlack; the
 // frame is the same picture at any threshold.
 TEST(Plan, MergedBatchesFromTheCostModel) {
-  Scene sc = scene("cornell");
+  Scene sc = shipped_scene("cornell");
   Light area;
   area.type = LightType::kRect;
   area.position = sc.lights[0].position;

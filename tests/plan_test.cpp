@@ -10,35 +10,30 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/rt/render.h"
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
+#include "tests/shipped_scene.h"
 
 namespace rt {
 namespace {
-
-Scene scene(const char* name) { return load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/" + name + ".json"); }
 
 TEST(Plan, WordsFollowTheMaterials) {
   PlanRequest r;
   r.width = r.height = 32;
   r.sample_rays = 256;
-  const Plan glassy = make_plan(scene("cornell"), r);
+  const Plan glassy = make_plan(shipped_scene("cornell"), r);
   EXPECT_EQ(glassy.config.words, fmpp::isect::own_origin_words({}));
   EXPECT_NE(glassy.why_words.find("mirrors or glass"), std::string::npos);
-  const Plan plain = make_plan(scene("one_triangle"), r);
+  const Plan plain = make_plan(shipped_scene("one_triangle"), r);
   EXPECT_EQ(plain.config.words, fmpp::isect::words_needed({}));
   EXPECT_EQ(plain.config.blocks, 32u * 32u);
   r.max_depth = 1;  // no secondary rays at depth 1
-  EXPECT_EQ(make_plan(scene("cornell"), r).config.words, fmpp::isect::words_needed({}));
+  EXPECT_EQ(make_plan(shipped_scene("cornell"), r).config.words, fmpp::isect::words_needed({}));
 }
 
 TEST(Plan, PrecisionMeetsTheTargetAndTighterTargetsCostBits) {
   PlanRequest r;
   r.width = r.height = 64;
   r.sample_rays = 512;
-  const Scene s = scene("spheres_1k");
+  const Scene s = shipped_scene("spheres_1k");
   const Plan loose = make_plan(s, r);
   ASSERT_FALSE(loose.candidates.empty());
   const PlanCandidate& chosen = loose.candidates.back();
@@ -231,7 +226,7 @@ TEST(Plan, UpperConfidenceBoundIsClopperPearson) {
 }
 
 TEST(Plan, SampledPixelsAreTracedAsInTheWholeFrame) {
-  const Scene s = scene("cornell");
+  const Scene s = shipped_scene("cornell");
   ReferenceIntersector ri(s.triangles);
   RenderOptions all;
   all.width = all.height = 24;
@@ -256,7 +251,7 @@ TEST(Plan, OverridesWin) {
   r.bits = 13;
   r.blocks = 64;
   r.words = 30;
-  const Plan p = make_plan(scene("cornell"), r);
+  const Plan p = make_plan(shipped_scene("cornell"), r);
   EXPECT_EQ(p.options.n, 13u);
   EXPECT_EQ(p.config.blocks, 64u);
   EXPECT_EQ(p.config.words, 30u);
@@ -269,11 +264,11 @@ TEST(Plan, RtlChoosesABuiltConfiguration) {
   r.width = r.height = 30;  // 900 rays: the 1024-block machine
   r.rtl_configs = {"tiny", "small", "medium", "large"};  // as if only these were built
   r.bits = 24;
-  const Plan p = make_plan(scene("cornell"), r);
+  const Plan p = make_plan(shipped_scene("cornell"), r);
   EXPECT_EQ(p.config.blocks, 1024u);
   EXPECT_EQ(p.config.words, 32u);
   r.width = r.height = 200;  // more than the largest: passes
-  const Plan q = make_plan(scene("cornell"), r);
+  const Plan q = make_plan(shipped_scene("cornell"), r);
   EXPECT_NE(q.why_blocks.find("passes"), std::string::npos) << q.why_blocks;
 }
 
@@ -287,7 +282,7 @@ TEST(PlanMiss, CostsMissedButTargetKeptTakesTheWidest) {
   r.width = r.height = 16;
   r.sample_rays = 128;
   r.max_host_share = -1;
-  const Plan p = make_plan(scene("one_triangle"), r);
+  const Plan p = make_plan(shipped_scene("one_triangle"), r);
   EXPECT_TRUE(p.met_target);
   EXPECT_EQ(p.options.n, 32u);
   EXPECT_NE(p.why_bits.find("keeps the error target"), std::string::npos) << p.why_bits;
@@ -303,7 +298,7 @@ TEST(PlanMiss, UnreachableTargetIsSaid) {
   r.sample_rays = 128;
   r.sample_pixels = 64;
   r.target_wrong_rate = 0;
-  const Plan p = make_plan(scene("one_triangle"), r);
+  const Plan p = make_plan(shipped_scene("one_triangle"), r);
   EXPECT_FALSE(p.met_target);
   EXPECT_NE(p.why_bits.find("no n meets the error target"), std::string::npos) << p.why_bits;
   EXPECT_NE(p.why_bits.find("upper bound"), std::string::npos) << p.why_bits;
