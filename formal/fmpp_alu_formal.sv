@@ -1,4 +1,4 @@
-// Formal harness: the block ALU's adder, subtracter, right shift and compare (fmpp_alu: the
+// Formal harness: the block ALU's adder, subtracter, right shift, compare and division step (fmpp_alu: the
 // stage-2 shifter and addend and the stage-3 parallel-prefix carry network) against the
 // arithmetic of `>>>`, `+` and `-` on whole words, in every lane, for every SHR_A. Combinational: one step of yosys's SAT solver
 // covers every operand and immediate, so the check is a proof for the given Lanes (z3
@@ -17,7 +17,7 @@ module fmpp_alu_formal #(
   logic [W*Lanes-1:0] r;
   logic [Lanes-1:0]   c, v, ge;
   logic               wr_c, wr_v;
-  logic [Lanes-1:0]   ok_add, ok_sub, ok_rsh, ok_cmp, carried;
+  logic [Lanes-1:0]   ok_add, ok_sub, ok_rsh, ok_cmp, ok_div, carried;
   logic [fmpp_pkg::SHR_A_W-1:0] shr;
   assign shr = imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W];
   fmpp_alu #(.Lanes(Lanes)) u_dut (
@@ -26,8 +26,8 @@ module fmpp_alu_formal #(
   );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_lane
-    logic [W-1:0] a, sa, b, rr, sum, dif, rsh;
-    logic         co, bo;
+    logic [W-1:0] a, sa, b, rr, sum, dif, rsh, a2, dst;
+    logic         co, bo, dco;
     for (genvar k = 0; k < W; k++) begin : g_bit
       assign a[k]  = a_i[k*Lanes + l];
       assign b[k]  = b_i[k*Lanes + l];
@@ -37,6 +37,10 @@ module fmpp_alu_formal #(
     assign rsh = $signed(sa) >>> 1;
     assign {co, sum} = {1'b0, sa} + {1'b0, b};
     assign {bo, dif} = {1'b0, sa} - {1'b0, b};
+    // DIVSTEP: 2A - B where A >= 0 (C = no borrow), 2A + B where A < 0 (C = carry out); V
+    // = signed overflow of that sum or of the doubling.
+    assign a2 = a << 1;
+    assign {dco, dst} = a[W-1] ? {1'b0, a2} + {1'b0, b} : {1'b1, a2} - {1'b0, b};
     // With A' = A >>> SHR_A: ADD writes A' + B, C = the carry out, V = signed overflow; SUB
     // writes A' - B, C = no borrow (A' >= B unsigned), V = signed overflow; RSHIFT writes
     // A' >>> 1, C = the last bit out (bit 0 of A'); CMP answers A >= IMM, both signed.
@@ -44,6 +48,10 @@ module fmpp_alu_formal #(
     assign ok_sub[l] = rr == dif && c[l] == !bo && v[l] == ((sa[W-1] != b[W-1]) && (dif[W-1] != sa[W-1]));
     assign ok_rsh[l] = rr == rsh && c[l] == sa[0];
     assign ok_cmp[l] = ge[l] == ($signed(a) >= $signed(imm_i));
+    assign ok_div[l] = rr == dst && c[l] == dco &&
+                       v[l] == ((a[W-1] != a[W-2]) ||
+                                (a[W-1] ? ((a2[W-1] == b[W-1]) && (dst[W-1] != a2[W-1]))
+                                        : ((a2[W-1] != b[W-1]) && (dst[W-1] != a2[W-1]))));
     assign carried[l] = co;
   end
   always @(*) begin
@@ -51,6 +59,7 @@ module fmpp_alu_formal #(
     if (op_i == fmpp_pkg::OP_SUB) p_sub: assert (&ok_sub && wr_c && wr_v);
     if (op_i == fmpp_pkg::OP_RSHIFT) p_rsh: assert (&ok_rsh && wr_c && !wr_v);
     if (op_i == fmpp_pkg::OP_CMP) p_cmp: assert (&ok_cmp && !wr_c && !wr_v);
+    if (op_i == fmpp_pkg::OP_DIVSTEP) p_div: assert (&ok_div && wr_c && wr_v);
   end
   // Non-vacuity: a carry out of every lane at once, an overflow, both compare answers, an
   // overflow after the longest shift.

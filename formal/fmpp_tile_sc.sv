@@ -241,7 +241,7 @@ module fmpp_tile_sc #(
                 end
               end
             end
-            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_BITCOPY,
+            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP, fmpp_pkg::OP_BITCOPY,
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin

@@ -26,7 +26,7 @@ module fmpp_alu #(
   output logic [Lanes-1:0]                  ge_o       // CMP: word A >= IMM (signed)
 );
   logic [fmpp_pkg::WordW*Lanes-1:0] a, y;
-  logic cin;
+  logic [Lanes-1:0] cin;
 
   fmpp_alu_addend #(.Lanes(Lanes)) u_addend (
     .op_i(op_i), .imm_i(imm_i), .a_i(a_i), .b_i(b_i), .a_o(a), .y_o(y), .cin_o(cin)

@@ -3,8 +3,12 @@
 //   - word A shifted right (arithmetic) by SHR_A for ADD, SUB and RSHIFT, unshifted for
 //     every other operation: a barrel shifter of log2(32) = 5 levels of 2:1 multiplexers,
 //     each level moving whole planes (plane k takes plane k + 2^j, the sign plane fills);
+//   - word A shifted left by one for DIVSTEP (plane k takes plane k - 1, plane 0 is 0);
 //   - the addend: word B for ADD and FUNC, not B for SUB, not IMM (the same in every
-//     lane) for CMP; the carry-in is 1 for SUB and CMP.
+//     lane) for CMP; the carry-in is 1 for SUB and CMP. DIVSTEP subtracts B where A is
+//     non-negative and adds it where A is negative: per lane, not B and carry-in 1 where
+//     A's sign bit is 0, B and carry-in 0 where it is 1 (so the execute stage finds A's
+//     sign as not cin).
 // The pipelined tile makes the same function in stage 2, after the operand read and its
 // forwarding (written out in its clocked block, rtl/fmpp_tile.sv says why), and registers
 // it with the operands, so that the execute stage's adder starts from registers: the
@@ -19,7 +23,7 @@ module fmpp_alu_addend #(
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  b_i,    // word B of every lane
   output logic [fmpp_pkg::WordW*Lanes-1:0]  a_o,    // word A as the execute stage takes it
   output logic [fmpp_pkg::WordW*Lanes-1:0]  y_o,    // the addend
-  output logic                              cin_o   // the carry-in
+  output logic [Lanes-1:0]                  cin_o   // the carry-in of every lane
 );
   localparam int unsigned W = fmpp_pkg::WordW;
   localparam int unsigned S = fmpp_pkg::SHR_A_W;
@@ -39,12 +43,17 @@ module fmpp_alu_addend #(
       assign y[k*Lanes +: Lanes] = shr[j] ? x[From*Lanes +: Lanes] : x[k*Lanes +: Lanes];
     end
   end
-  assign a_o = g_level[S-1].y;
+  logic              divstep;
+  logic [Lanes-1:0]  subs;  // DIVSTEP: the lanes that subtract (A >= 0)
+  assign divstep = op_i == fmpp_pkg::OP_DIVSTEP;
+  assign subs    = ~a_i[(W-1)*Lanes +: Lanes];
+  assign a_o = divstep ? {a_i[(W-1)*Lanes-1:0], {Lanes{1'b0}}} : g_level[S-1].y;
 
-  assign cin_o = op_i == fmpp_pkg::OP_SUB || op_i == fmpp_pkg::OP_CMP;
+  assign cin_o = (op_i == fmpp_pkg::OP_SUB || op_i == fmpp_pkg::OP_CMP) ? {Lanes{1'b1}} : divstep ? subs : '0;
   for (genvar k = 0; k < W; k++) begin : g_bit
     assign y_o[k*Lanes +: Lanes] = (op_i == fmpp_pkg::OP_CMP) ? {Lanes{~imm_i[k]}}
-                                 : (op_i == fmpp_pkg::OP_SUB) ? ~b_i[k*Lanes +: Lanes] : b_i[k*Lanes +: Lanes];
+                                 : (op_i == fmpp_pkg::OP_SUB) ? ~b_i[k*Lanes +: Lanes]
+                                 : divstep ? b_i[k*Lanes +: Lanes] ^ subs : b_i[k*Lanes +: Lanes];
   end
 
 endmodule

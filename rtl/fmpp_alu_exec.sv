@@ -18,6 +18,10 @@
 // of A - IMM corrected by its overflow: A >= IMM signed.
 // CMP writes no word and neither C nor V: wr_c_o and wr_v_o stay 0, and the tile takes
 // only ge_o.
+// DIVSTEP (a non-restoring division step) is the adder on A << 1 and, per lane, not B
+// with carry-in 1 where A >= 0, or B with carry-in 0 where A < 0 (both made by
+// fmpp_alu_addend): A's sign is not cin, and the shift overflows where it differs from
+// the shifted A's sign (A[30]).
 // Plain `case` (distinct constant items, with default) for the reason given in
 // fmpp_tile.sv: every tile must compile to the same C++ body.
 module fmpp_alu_exec #(
@@ -29,7 +33,7 @@ module fmpp_alu_exec #(
   input  logic [fmpp_pkg::BIT_J_W-1:0]      bit_j_i,   // BITCOPY destination bit
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  a_i,       // word A of every lane
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  y_i,       // the addend (fmpp_alu_addend): word B for FUNC and ADD
-  input  logic                              cin_i,     // the adder's carry-in (fmpp_alu_addend)
+  input  logic [Lanes-1:0]                  cin_i,     // the adder's carry-in per lane (fmpp_alu_addend)
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
   output logic [fmpp_pkg::WordW*Lanes-1:0]  r_o,       // value for word D
   output logic [Lanes-1:0]                  carry_o,   // new C flag
@@ -60,7 +64,7 @@ module fmpp_alu_exec #(
 `define FMPP_RIPPLE_ADDER
 `endif
   logic [Lanes-1:0]   cin;
-  assign cin = {Lanes{cin_i}};
+  assign cin = cin_i;
 `ifdef FMPP_RIPPLE_ADDER
 `elsif FMPP_CARRY_CHAIN_ADDER
   logic [W*Lanes-1:0] carry;  // only the top two planes are used: out of bits 30 and 31
@@ -73,7 +77,7 @@ module fmpp_alu_exec #(
       assign y[k] = y_i[k*Lanes + l];
       assign sum[k*Lanes + l] = s[k+1];
     end
-    assign s = {1'b0, a, 1'b1} + {1'b0, y, cin_i};
+    assign s = {1'b0, a, 1'b1} + {1'b0, y, cin_i[l]};
     assign carry[(W-1)*Lanes + l] = s[W+1];
     assign carry[(W-2)*Lanes + l] = a[W-1] ^ y[W-1] ^ s[W];  // the carry into the sign bit
   end
@@ -121,7 +125,7 @@ module fmpp_alu_exec #(
           default:               r_o = a_i ^ y_i;  // FUNC_FN_XOR; undefined codes never get here (ILLEGAL at push)
         endcase
       end
-      fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_CMP: begin
+      fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_CMP, fmpp_pkg::OP_DIVSTEP: begin
 `ifdef FMPP_RIPPLE_ADDER
         // Simulation text: one full adder per bit.
         c = cin;
@@ -149,6 +153,8 @@ module fmpp_alu_exec #(
           // (r_o, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
           ge_o    = ~(r_o[(W-1)*Lanes +: Lanes] ^ ovf_o);
         end else begin
+          // DIVSTEP: the shift A << 1 overflows where A[31] (not cin) differs from A[30].
+          if (op_i == fmpp_pkg::OP_DIVSTEP) ovf_o = ovf_o | (~cin ^ a_i[(W-1)*Lanes +: Lanes]);
           wr_c_o  = 1'b1;
           wr_v_o  = 1'b1;
         end

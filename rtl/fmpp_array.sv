@@ -272,8 +272,8 @@ module fmpp_array #(
     if (retire && s3_kind_q == fmpp_pkg::QE_FLAGS) s3_wr_flag = 1'b1;
     if (ex_instr) begin
       case (s3_op_q)
-        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT,
-        fmpp_pkg::OP_RSHIFT, fmpp_pkg::OP_WRITES: s3_wr_word = 1'b1;
+        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP, fmpp_pkg::OP_BITCOPY,
+        fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT, fmpp_pkg::OP_WRITES: s3_wr_word = 1'b1;
         fmpp_pkg::OP_REF, fmpp_pkg::OP_CMP, fmpp_pkg::OP_SETS, fmpp_pkg::OP_RESETS, fmpp_pkg::OP_SETSADR,
         fmpp_pkg::OP_FLAGOP: s3_wr_flag = 1'b1;
         default: ;
@@ -281,7 +281,7 @@ module fmpp_array #(
     end
     if (s2_instr) begin
       case (s2_op_q)
-        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB: begin
+        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP: begin
           s2_rd_a = 1'b1;
           s2_rd_b = 1'b1;
         end
@@ -329,6 +329,7 @@ module fmpp_array #(
   c_op_setsadr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SETSADR);
   c_op_flagop: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP);
   c_op_cmp: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP);
+  c_op_divstep: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_DIVSTEP);
   c_ref_through_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_THROUGH && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA);
   c_ref_through_addr: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_THROUGH && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_ADDR);
   c_ref_and_data: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_REF && x[fmpp_pkg::REF_FN_LSB +: fmpp_pkg::REF_FN_W] == fmpp_pkg::REF_FN_AND && x[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA);

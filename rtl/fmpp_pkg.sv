@@ -186,7 +186,8 @@ package fmpp_pkg;
     OP_RESETS = 5'd11,  // SEL <- 0 in every block
     OP_SETSADR = 5'd12,  // SEL <- (block index == imm) in every block
     OP_FLAGOP = 5'd13,  // v <- FLAG_LUT[2 * flag FLAG_FA + flag FLAG_FB]; flag F <- v in every block, or, with FLAG_ANY set, only if some block has v = 1
-    OP_CMP = 5'd14  // signed compare of word A with IMM (A >= IMM, or A < IMM by CMP_LT), combined with flag CMP_FS by CMP_FN into flag F, in every block
+    OP_CMP = 5'd14,  // signed compare of word A with IMM (A >= IMM, or A < IMM by CMP_LT), combined with flag CMP_FS by CMP_FN into flag F, in every block
+    OP_DIVSTEP = 5'd15  // non-restoring division step: D <- (A << 1) - B where A >= 0, (A << 1) + B where A < 0; C <- carry out; V |= signed overflow of the sum or of the shift (A[31] xor A[30]); where flag F is set
   } opcode_e;
 
   // Sub-fields: [lsb +: width] of the field named in the comment; their values, and
@@ -263,15 +264,15 @@ package fmpp_pkg;
   // Reserved instruction bits of each opcode: fields it does not use, and bits of a
   // used field that none of its sub-fields covers. A push with one of them set is ILLEGAL;
   // a field is used by the opcode exactly when its bits are not reserved.
-  parameter int unsigned NumOpcodes = 15;
+  parameter int unsigned NumOpcodes = 16;
   // OpReserved[op*64 +: 64]
-  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h00FC0FC000000000, 64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFE0, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFE0, 64'h0000003FFFFFFFE0, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
+  parameter logic [NumOpcodes*64-1:0] OpReserved = {64'h0000003FFFFFFFFF, 64'h00FC0FC000000000, 64'h00FFFFC0FFFFFEF0, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF, 64'h07FFFFFFFFFFFFFF, 64'h0003FFFF00000000, 64'h00000FFFFFFFFFE0, 64'h00000FFFFFFFFFFF, 64'h00000FFFFFFFE0E0, 64'h0000003FFFFFFFE0, 64'h0000003FFFFFFFE0, 64'h0000003CFFFFFFFF, 64'h00FC0FC000000000, 64'h07FFFFFF00000000, 64'h07FFFFFFFFFFFFFF};
   // The same, grouped for a cheap check: bits reserved for the same opcodes form one
   // segment; RsvSegMask[s*64 +: 64] are its bits, RsvSegOps[op*NumRsvSegs + s] = 1
   // if opcode op reserves segment s.
   parameter int unsigned NumRsvSegs = 11;
   parameter logic [NumRsvSegs*64-1:0] RsvSegMask = {64'h000000000000000F, 64'h0000000000000010, 64'h0000000000000100, 64'h0000000000001E00, 64'h00000000FFFFE0E0, 64'h0000000300000000, 64'h0000003C00000000, 64'h00000FC000000000, 64'h0003F00000000000, 64'h00FC000000000000, 64'h0700000000000000};
-  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {11'b00000001010, 11'b01011001110, 11'b00000111111, 11'b11111111111, 11'b11111111111, 11'b00000111100, 11'b00111111000, 11'b11111111000, 11'b00001111000, 11'b00111110000, 11'b00111110000, 11'b11111010000, 11'b00000001010, 11'b00000111111, 11'b11111111111};
+  parameter logic [NumOpcodes*NumRsvSegs-1:0] RsvSegOps = {11'b11111110000, 11'b00000001010, 11'b01011001110, 11'b00000111111, 11'b11111111111, 11'b11111111111, 11'b00000111100, 11'b00111111000, 11'b11111111000, 11'b00001111000, 11'b00111110000, 11'b00111110000, 11'b11111010000, 11'b00000001010, 11'b00000111111, 11'b11111111111};
 
   // The rest of the legality rules, as masks (entry k at [k*64 +: 64]; an empty table
   // holds one entry that never applies): ILLEGAL when (instr & IllegalMask) ==

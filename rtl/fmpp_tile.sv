@@ -92,7 +92,7 @@ module fmpp_tile #(
   // not IMM) and its carry-in, made in stage 2 so that stage 3's adder starts from registers.
   // Word D, the flags and the mask are read in stage 3, when every earlier entry wrote them.
   word_t opa_q, opb_q, opd;
-  logic  cin_q;
+  lane_t cin_q;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
@@ -110,6 +110,7 @@ module fmpp_tile #(
   assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
   always_ff @(posedge clk_i) begin
     word_t opa_rd, opb_rd, addend;  // stage 2's A and B (forwarded or read), the addend from B
+    lane_t subs;
     logic [fmpp_pkg::SHR_A_W-1:0] shr;
     if (opr_en_i) begin
       opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
@@ -120,15 +121,20 @@ module fmpp_tile #(
           if (shr[j]) opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
         end
       end
+      subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
+      if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
       opa_q <= opa_rd;
       opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
       for (int k = 0; k < W; k++) begin
         if (opr_op_i == fmpp_pkg::OP_CMP) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
         else if (opr_op_i == fmpp_pkg::OP_SUB) addend[k*Lanes +: Lanes] = ~opb_rd[k*Lanes +: Lanes];
+        else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
         else addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes];
       end
       opb_q <= addend;
-      cin_q <= opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP;
+      if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
+      else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) cin_q <= subs;
+      else cin_q <= '0;
     end
   end
   if (WIdxW < 6) begin : g_unused_hi
@@ -284,7 +290,7 @@ module fmpp_tile #(
                 end
               end
             end
-            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_BITCOPY,
+            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP, fmpp_pkg::OP_BITCOPY,
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin

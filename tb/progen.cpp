@@ -127,6 +127,7 @@ uint64_t ProgramGenerator::random_instruction() {
       break;
     }
     case Op::kLshift: i = lshift(word_index(), word_index(), pred); break;
+    case Op::kDivstep: i = divstep(word_index(), word_index(), word_index(), pred); break;
     case Op::kRshift: i = rshift(word_index(), word_index(), pred, shift_amount() + 1); break;
     case Op::kWrites: i = writes(word_index(), edge_value(), pred); break;
     case Op::kSets: i = sets(); break;

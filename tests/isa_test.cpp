@@ -28,6 +28,7 @@ TEST(Isa, EncodeDecodeRoundTrip) {
                          sub(0, 1, 2, 0, 17),
                          bitcopy(3, 31, 4, 0, 1),
                          lshift(6, 6),
+                         divstep(13, 13, 14, 5),
                          rshift(7, 2, 5),
                          rshift(7, 2, 5, 32),
                          writes(9, 0x12345678, 2),
@@ -74,6 +75,8 @@ TEST(Isa, BuildersRejectOversizedOperands) {
   EXPECT_THROW(bitcopy(0, 0, 0, 261), std::invalid_argument);
   EXPECT_THROW(bitcopy(0, 32, 0, 0), std::invalid_argument);
   EXPECT_THROW(lshift(0, 64), std::invalid_argument);
+  EXPECT_THROW(divstep(0, 0, 64), std::invalid_argument);
+  EXPECT_THROW(divstep(0, 0, 0, 8), std::invalid_argument);
   EXPECT_THROW(rshift(0, 0, 9), std::invalid_argument);
   EXPECT_THROW(rshift(0, 0, 0, 0), std::invalid_argument) << "a shift by 0";
   EXPECT_THROW(rshift(0, 0, 0, 33), std::invalid_argument);
@@ -139,7 +142,7 @@ TEST(Isa, WithImmReplacesTheImmediateOnly) {
 }
 
 TEST(Isa, LegalityRules) {
-  EXPECT_FALSE(is_legal(uint64_t{15} << 59, 32)) << "unknown opcode";
+  EXPECT_FALSE(is_legal(uint64_t{map::kNumOpcodes} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(uint64_t{31} << 59, 32)) << "unknown opcode";
   EXPECT_FALSE(is_legal(nop().encode() | 1, 32)) << "NOP with an immediate";
   EXPECT_FALSE(is_legal(sets().encode() | (uint64_t{1} << 56), 32)) << "SETS with a flag";
@@ -154,6 +157,9 @@ TEST(Isa, LegalityRules) {
   EXPECT_FALSE(is_legal(lshift(0, 0).encode() | 1, 8)) << "LSHIFT has no shift amount";
   EXPECT_FALSE(is_legal(add(0, 0, 0).encode() | (uint64_t{1} << 32), 8)) << "ADD with X set";
   EXPECT_FALSE(is_legal(lshift(0, 0).encode() | (uint64_t{1} << 38), 8)) << "LSHIFT with B set";
+  EXPECT_FALSE(is_legal(divstep(0, 0, 0).encode() | 1, 8)) << "DIVSTEP has no shift amount";
+  EXPECT_FALSE(is_legal(divstep(0, 0, 8).encode(), 8)) << "DIVSTEP's B beyond the words";
+  EXPECT_TRUE(is_legal(divstep(7, 6, 5, 7).encode(), 8));
   EXPECT_TRUE(is_legal(writes(7, ~0u).encode(), 8));
   EXPECT_FALSE(is_legal(writes(8, 0).encode(), 8));
   // REF: function code 3 is undefined; the address part names no word.
@@ -221,6 +227,7 @@ Instr random_legal(Op op, std::mt19937_64& rng) {
     case Op::kSub: return sub(u(W), u(W), u(W), u(F), u(32));
     case Op::kBitcopy: return bitcopy(u(W), u(32), u(W), u(32), u(F));
     case Op::kLshift: return lshift(u(W), u(W), u(F));
+    case Op::kDivstep: return divstep(u(W), u(W), u(W), u(F));
     case Op::kRshift: return rshift(u(W), u(W), u(F), 1 + u(32));
     case Op::kWrites: return writes(u(W), imm, u(F));
     case Op::kSets: return sets();
@@ -282,6 +289,7 @@ TEST(Isa, Disassembly) {
   EXPECT_EQ(disasm(cmp(CmpFn::kThrough, CmpLt::kGe, 4, -7, 2, 0).encode()), "CMP.through f2 = f0, w4 >= -7");
   EXPECT_EQ(disasm(cmp(CmpFn::kAnd, CmpLt::kLt, 9, INT32_MIN, 3, 5).encode()), "CMP.and f3 = f5, w9 < -2147483648");
   EXPECT_EQ(disasm(cmp(CmpFn::kOr, CmpLt::kLt, 0, INT32_MAX, 1, 1).encode()), "CMP.or f1 = f1, w0 < 2147483647");
+  EXPECT_EQ(disasm(divstep(3, 3, 12, 2).encode()), "DIVSTEP w3 = (w3 << 1) -+ w12 ?f2");
   EXPECT_EQ(disasm(uint64_t{20} << 59), "ILLEGAL(op=20 raw=0xa000000000000000)");
 }
 

@@ -95,6 +95,11 @@ TEST_P(Kernels, MatchReferenceOnTheModelInOneAndManyPasses) {
   EXPECT_EQ(one.overflow_rays + one.overflow_triangles + one.host_triangles, 0u);
   EXPECT_EQ(one.cycles, one.load_cycles + one.compute_cycles + one.readback_cycles + one.box_cycles);
   EXPECT_GT(many.load_cycles, one.load_cycles) << "reloading costs cycles";
+  if (std::get<0>(GetParam()) == Mapping::kObject) {
+    // The maximum search runs only for a ray two or more blocks may hit.
+    EXPECT_GT(one.object_searches, 0u);
+    EXPECT_LT(one.object_searches, one.broadcasts);
+  }
 }
 
 TEST_P(Kernels, RtlGivesTheModelsResultsAndCycles) {

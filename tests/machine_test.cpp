@@ -236,6 +236,34 @@ TEST_F(MachineTest, ShiftsAndBitcopy) {
   EXPECT_EQ(m.word(1, 3), 0xAAAAAAAAu);
 }
 
+// DIVSTEP: 2A - B where A >= 0, 2A + B where A < 0; C the adder's carry out, V the
+// overflow of the sum or of the doubling; only where the predicate is set.
+TEST_F(MachineTest, DivisionStep) {
+  const uint32_t a[4] = {5, 0xFFFFFFFEu, 0x40000000u, 7};
+  const uint32_t b[4] = {3, 3, 1, 1};
+  for (unsigned k = 0; k < 4; ++k) {
+    m.write_word(k, 0, a[k]);
+    m.write_word(k, 1, b[k]);
+    m.write_word(k, 2, 0xABCDu);
+  }
+  select(0b0111);
+  run(divstep(2, 0, 1));
+  EXPECT_EQ(m.word(0, 2), 7u) << "2 * 5 - 3";
+  EXPECT_TRUE(m.flag(0, kC)) << "no borrow";
+  EXPECT_FALSE(m.flag(0, kV));
+  EXPECT_EQ(m.word(1, 2), 0xFFFFFFFFu) << "2 * -2 + 3";
+  EXPECT_FALSE(m.flag(1, kC)) << "no carry out of -4 + 3";
+  EXPECT_FALSE(m.flag(1, kV));
+  EXPECT_EQ(m.word(2, 2), 0x7FFFFFFFu) << "2^31 wraps, minus 1";
+  EXPECT_TRUE(m.flag(2, kV)) << "the doubling overflows";
+  EXPECT_EQ(m.word(3, 2), 0xABCDu) << "not selected";
+  EXPECT_FALSE(m.flag(3, kC));
+  // In place, as the quotient loop runs it: -1 doubles to -2, plus 3 (A < 0).
+  run(divstep(2, 2, 1, kSel));
+  EXPECT_EQ(m.word(1, 2), 1u);
+  EXPECT_TRUE(m.flag(1, kC)) << "carry out of -2 + 3";
+}
+
 // ADD, SUB and RSHIFT with word A through the shifter (SHR_A): floor division of A by
 // 2^shr, then the operation, with C and V from that operation.
 TEST_F(MachineTest, ShiftedOperandA) {

@@ -263,6 +263,44 @@ TEST_P(Microcode, SignTestAndMaximumSearch) {
   EXPECT_EQ(resp.count, count);
 }
 
+// fmpp::quotient (DIVSTEP): Q = floor(X 2^(bits-1) / D) for 0 <= X < 2 D, 0 < D < 2^30,
+// exactly, in 2 bits + 1 instructions; X kept, no overflow, blocks without the predicate
+// unchanged.
+TEST_P(Microcode, QuotientIsTheExactFloor) {
+  Rig r(GetParam());
+  const unsigned B = r.cfg.blocks;
+  std::mt19937_64 rng(31);
+  for (unsigned bits : {1u, 2u, 9u, 20u, 28u, 31u}) {
+    std::vector<uint32_t> x(B), d(B), q0(B);
+    for (unsigned b = 0; b < B; ++b) {
+      const unsigned pick = static_cast<unsigned>(rng() % 6);
+      d[b] = pick == 0 ? 1u : pick == 1 ? (1u << 30) - 1 : 1u + static_cast<uint32_t>(rng() % ((1u << 30) - 1));
+      const uint32_t pick_x = static_cast<uint32_t>(rng() % 5);
+      x[b] = pick_x == 0 ? 0u : pick_x == 1 ? 2 * d[b] - 1 : pick_x == 2 ? d[b] : pick_x == 3 ? d[b] - 1
+                                                                          : static_cast<uint32_t>(rng() % (2 * uint64_t{d[b]}));
+      q0[b] = bits == 31 ? 0u : static_cast<uint32_t>(rng()) & ((1u << bits) - 1);  // low bits are overwritten
+      r.dev->write_word(b, 1, q0[b]);
+      r.dev->write_word(b, 3, x[b]);
+      r.dev->write_word(b, 4, d[b]);
+    }
+    Program p;
+    p << sets() << maskset(0) << writes(5, (1u << bits) - 1);
+    p << ref(RefFn::kThrough, RefPart::kAddr, 0, 0, 2) << flagop(2, 2, 2, lut::kNotA);  // f2: every block but 0
+    Program q;
+    quotient(q, 1, 6, 3, 4, bits, 2, 5);
+    EXPECT_EQ(q.size(), 2u * bits + 1);
+    r.dev->push(p.code());
+    r.dev->push(q.code());
+    for (unsigned b = 0; b < B; ++b) {
+      const uint64_t want = (uint64_t{x[b]} << (bits - 1)) / d[b];
+      EXPECT_EQ(r.dev->read_word(b, 1), b == 0 ? q0[b] : static_cast<uint32_t>(want))
+          << "bits " << bits << " block " << b << ": " << x[b] << " / " << d[b];
+      EXPECT_EQ(r.dev->read_word(b, 3), x[b]);
+    }
+    EXPECT_FALSE(r.dev->overflow());
+  }
+}
+
 TEST_P(Microcode, OverflowIsDetectedNotSilent) {
   Rig r(GetParam());
   r.dev->write_word(0, 1, 0x007FFFFFu);  // x = 2^23 - 1, the largest 24-bit multiplier

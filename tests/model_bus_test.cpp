@@ -76,7 +76,7 @@ struct BadAccess {
 TEST(ModelBus, BadAccessesAnswerSlverrAndAreRecorded) {
   const Config c{100, 6};
   const BadAccess cases[] = {
-      {"unknown opcode", true, map::kRegQueue, uint64_t{15} << 59, 0xFF, Err::kIllegal},
+      {"unknown opcode", true, map::kRegQueue, uint64_t{map::kNumOpcodes} << 59, 0xFF, Err::kIllegal},
       {"word operand out of range", true, map::kRegQueue, add(6, 0, 0).encode(), 0xFF, Err::kIllegal},
       {"partial queue strobe", true, map::kRegQueue, 0, 0x0F, Err::kStrobe},
       {"write ID", true, map::kRegId, 0, 0xFF, Err::kReadonly},

@@ -117,6 +117,26 @@ TEST_P(RtlDirected, ShiftedOperandA) {
   EXPECT_EQ(flags(0) >> map::kFlagC & 1, 1u) << "the sign bit shifted out last";
 }
 
+// DIVSTEP back to back in place (each takes its predecessor's result through the
+// forwarding), against the non-restoring recurrence; then the doubling's overflow.
+TEST_P(RtlDirected, DivisionStepsBackToBack) {
+  put(0, 0, 1000);
+  put(0, 1, 7 << 5);
+  push(sets());
+  push(sub(2, 0, 1));
+  int64_t r = 1000 - (7 << 5);
+  for (int k = 0; k < 9; ++k) {
+    push(divstep(2, 2, 1));
+    r = r >= 0 ? 2 * r - (7 << 5) : 2 * r + (7 << 5);
+  }
+  EXPECT_EQ(get(0, 2), static_cast<uint32_t>(r));
+  EXPECT_EQ(flags(0) >> map::kFlagV & 1, 0u);
+  put(0, 3, 0x60000000);
+  push(divstep(4, 3, 1));
+  EXPECT_EQ(get(0, 4), 0xC0000000u - (7 << 5));
+  EXPECT_EQ(flags(0) >> map::kFlagV & 1, 1u) << "the doubling overflows";
+}
+
 TEST_P(RtlDirected, RespondersNoneOneAllLast) {
   push(resets());
   EXPECT_EQ(rd(map::kRegResp), 0u);
@@ -188,7 +208,7 @@ TEST_P(RtlDirected, BadAccessesAnswerSlverr) {
     Err cause;
   };
   const Bad cases[] = {
-      {true, map::kRegQueue, uint64_t{15} << 59, 0xFF, Err::kIllegal},
+      {true, map::kRegQueue, uint64_t{map::kNumOpcodes} << 59, 0xFF, Err::kIllegal},
       {true, map::kRegQueue, add(cfg.words, 0, 0).encode(), 0xFF, Err::kIllegal},
       {true, map::kRegQueue, 0, 0x7F, Err::kStrobe},
       {true, map::kRegConfig, 0, 0xFF, Err::kReadonly},

@@ -46,7 +46,9 @@ def area_md(build, out):
          "--baseline-dir", os.path.join(data, "synth", "before_shr"),
          "--baseline-label", "the RTL before the shifted operand A, SHR_A (commit 4709c66)",
          "--baseline-dir", os.path.join(data, "synth", "before_cmp"),
-         "--baseline-label", "the RTL before CMP (commit b28488d)", "--out", base])
+         "--baseline-label", "the RTL before CMP (commit b28488d)",
+         "--baseline-dir", os.path.join(data, "synth", "before_divstep"),
+         "--baseline-label", "the RTL before DIVSTEP (commit 1f73d13)", "--out", base])
     run([sys.executable, os.path.join(ROOT, "tools", "asic_report.py"), "doc", "--area-md", base,
          "--dir", os.path.join(ROOT, "docs", "asic"), "--out", out])
     os.remove(base)

@@ -154,6 +154,9 @@ std::string disasm(uint64_t raw) {
     case Op::kLshift:
       std::snprintf(buf, sizeof buf, "LSHIFT w%u = w%u << 1 ?f%u", i.d, i.a, i.f);
       break;
+    case Op::kDivstep:
+      std::snprintf(buf, sizeof buf, "DIVSTEP w%u = (w%u << 1) -+ w%u ?f%u", i.d, i.a, i.b, i.f);
+      break;
     case Op::kRshift:
       std::snprintf(buf, sizeof buf, "RSHIFT w%u = w%u >>> %u ?f%u", i.d, i.a,
                     static_cast<unsigned>(kShrA.get(i.imm)) + 1, i.f);
@@ -254,6 +257,10 @@ Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred) {
 }
 Instr lshift(unsigned d, unsigned a, unsigned pred) {
   return make(Op::kLshift, flag("lshift", "pred", pred), word("lshift", "d", d), word("lshift", "a", a), 0, 0, 0);
+}
+Instr divstep(unsigned d, unsigned a, unsigned b, unsigned pred) {
+  return make(Op::kDivstep, flag("divstep", "pred", pred), word("divstep", "d", d), word("divstep", "a", a),
+              word("divstep", "b", b), 0, 0);
 }
 Instr rshift(unsigned d, unsigned a, unsigned pred, unsigned by) {
   if (by < 1) throw std::invalid_argument("fmpp::ins::rshift: by = 0 is not a shift (1 .. 32)");

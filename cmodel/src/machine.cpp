@@ -69,6 +69,23 @@ FMPP_KERNEL void k_addsub(uint32_t* d, const uint32_t* a, const uint32_t* b, uin
   }
 }
 
+// DIVSTEP: 2A - B where A >= 0, 2A + B where A < 0 (the adder on A << 1 with not B and
+// carry-in 1, or B and carry-in 0); C <- carry out, V |= overflow of the sum or of 2A.
+FMPP_KERNEL void k_divstep(uint32_t* d, const uint32_t* a, const uint32_t* b, uint8_t* fl, size_t n, unsigned p) {
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t neg = a[i] >> 31;
+    const uint32_t x = a[i] << 1, y = b[i] ^ (neg - 1u), cin = neg ^ 1u;
+    const uint32_t r = x + y + cin;
+    const uint32_t carry = ((x & y) | ((x | y) & ~r)) >> 31;
+    const uint32_t ovf = ((((x ^ r) & (y ^ r)) >> 31) | (neg ^ (x >> 31))) & 1u;
+    const uint8_t f = fl[i];
+    const uint32_t pr = (f >> p) & 1u;
+    const uint32_t m = 0u - pr;
+    d[i] = (r & m) | (d[i] & ~m);
+    fl[i] = static_cast<uint8_t>((f & ~(pr << kC)) | ((carry & pr) << kC) | ((ovf & pr) << kV));
+  }
+}
+
 // LSHIFT (left, by one) or RSHIFT (by shr + 1, arithmetic; C <- the last bit shifted out).
 FMPP_KERNEL void k_shift(uint32_t* d, const uint32_t* a, uint8_t* fl, size_t n, unsigned p, bool left, unsigned shr) {
   for (size_t i = 0; i < n; ++i) {
@@ -189,6 +206,9 @@ void Machine::execute(uint64_t raw) {
     case Op::kAdd:
     case Op::kSub:
       k_addsub(row(in.d), row(in.a), row(in.b), fl, n, in.f, in.op == Op::kSub, map::kShrA.get(in.imm));
+      break;
+    case Op::kDivstep:
+      k_divstep(row(in.d), row(in.a), row(in.b), fl, n, in.f);
       break;
     case Op::kBitcopy:
       k_bitcopy(row(in.d), row(in.a), fl, n, in.f, static_cast<unsigned>(map::kBitI.get(in.imm)),

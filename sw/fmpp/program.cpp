@@ -92,6 +92,24 @@ void nonneg(Program& p, unsigned dst, unsigned src, unsigned w) {
   p << ref(RefFn::kAnd, RefPart::kData, w, 0, dst, src);
 }
 
+void quotient(Program& p, unsigned q, unsigned r, unsigned x, unsigned d, unsigned bits, unsigned active,
+              unsigned ones) {
+  if (bits < 1 || bits > 31) throw std::invalid_argument("fmpp::quotient: bits = " + std::to_string(bits));
+  const unsigned w[5] = {q, r, x, d, ones};
+  for (int i = 0; i < 5; ++i) {
+    for (int j = i + 1; j < 5; ++j) {
+      if (w[i] == w[j]) throw std::invalid_argument("fmpp::quotient: the quotient, remainder, dividend, divisor and constant words must differ");
+    }
+  }
+  // X - D decides the top bit; then each DIVSTEP doubles the partial remainder and
+  // subtracts D where it is >= 0, adds D where it is negative.
+  p << sub(r, x, d, active) << bitcopy(q, bits - 1, r, 31, active);
+  for (int j = static_cast<int>(bits) - 2; j >= 0; --j) {
+    p << divstep(r, r, d, active) << bitcopy(q, static_cast<unsigned>(j), r, 31, active);
+  }
+  p << func(FuncFn::kXor, q, q, ones, active);
+}
+
 void max_search(Program& p, unsigned cand, unsigned tmp, unsigned w, unsigned bits) {
   if (bits < 1 || bits > 32) throw std::invalid_argument("fmpp::max_search: bits = " + std::to_string(bits));
   // From the most significant bit down: candidates with a 1 there beat those with a 0,

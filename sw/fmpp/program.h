@@ -64,6 +64,15 @@ void mul_const(Program& p, unsigned r, int64_t c, unsigned y, unsigned n, unsign
 // F_dst <- F_src and (W >= 0): a sign test (MASKSET, REF).
 void nonneg(Program& p, unsigned dst, unsigned src, unsigned w);
 
+// Q <- floor(X 2^(bits-1) / D) in the blocks with flag `active`, for 0 <= X < 2 D and
+// 0 < D < 2^30 (a bits-bit quotient, 1 <= bits <= 31), where Q's bits from `bits` up are 0
+// and word `ones` holds 2^bits - 1: non-restoring division, one SUB R = X - D, then one
+// DIVSTEP and one BITCOPY per further quotient bit (quotient bit j is 1 where the partial
+// remainder R after step j is >= 0, so R's sign bit is the bit's complement) and one XOR
+// with `ones`: 2 bits + 1 instructions. X is kept, R is scratch; Q, R, X, D and `ones` differ.
+void quotient(Program& p, unsigned q, unsigned r, unsigned x, unsigned d, unsigned bits, unsigned active,
+              unsigned ones);
+
 // Among the blocks with flag `cand`, keep only those whose word W, read as an unsigned
 // `bits`-bit number (bits above are zero), is largest: 3 * bits + 1 instructions with
 // no host round trip (FLAGOP.any keeps a candidate set only if it is not empty).

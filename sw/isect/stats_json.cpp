@@ -28,6 +28,7 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"fmpp_box_tests", st.fmpp_box_tests},
           {"box_cycles", st.box_cycles},
           {"gated_broadcasts", st.gated},
+          {"object_searches", st.object_searches},
           {"unread_rays", st.unread_rays},
           {"probe_rounds", st.probe_rounds},
           {"steps_per_broadcast", st.steps_per_broadcast()},

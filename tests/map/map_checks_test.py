@@ -23,7 +23,7 @@ def reg(m, name):
 CASES = [
     ("overlapping fields", lambda m: m["fields"][1].update(lsb=57), "overlaps another field"),
     ("field past bit 63", lambda m: m["fields"][0].update(lsb=60), "does not fit in 64 bits"),
-    ("sparse opcodes", lambda m: m["opcodes"][3].update(code=20), "codes must be 0 .. 14"),
+    ("sparse opcodes", lambda m: m["opcodes"][3].update(code=20), "codes must be 0 .. 15"),
     ("sparse error codes", lambda m: m["errors"][2].update(code=9), "codes must be 0 .. 6"),
     ("value too wide", lambda m: sub(m, "REF_FN")["values"].update(OR=5), "REF_FN.OR = 5 does not fit 2 bits"),
     ("two names, one value", lambda m: sub(m, "FUNC_FN")["values"].update(OR=0), "gives two names one value"),

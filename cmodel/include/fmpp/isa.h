@@ -63,6 +63,11 @@ Instr add(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL, uns
 Instr sub(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL, unsigned shr = 0);
 Instr bitcopy(unsigned d, unsigned j, unsigned a, unsigned i, unsigned pred = map::kFlagSEL);
 Instr lshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL);
+// A non-restoring division step: d <- (word a << 1) - word b where word a >= 0, and
+// (word a << 1) + word b where it is negative; C <- the adder's carry out, V |= signed
+// overflow of the sum or of the doubling. One step per quotient bit (division_steps in
+// sw/fmpp/program.h).
+Instr divstep(unsigned d, unsigned a, unsigned b, unsigned pred = map::kFlagSEL);
 // d <- word a >>> by (arithmetic), by = 1 .. 32 (encoded as SHR_A = by - 1).
 Instr rshift(unsigned d, unsigned a, unsigned pred = map::kFlagSEL, unsigned by = 1);
 Instr writes(unsigned d, uint32_t data, unsigned pred = map::kFlagSEL);

@@ -134,8 +134,9 @@ enum class Op : uint8_t {
   kSetsadr = 12,  // SEL <- (block index == imm) in every block
   kFlagop = 13,  // v <- FLAG_LUT[2 * flag FLAG_FA + flag FLAG_FB]; flag F <- v in every block, or, with FLAG_ANY set, only if some block has v = 1
   kCmp = 14,  // signed compare of word A with IMM (A >= IMM, or A < IMM by CMP_LT), combined with flag CMP_FS by CMP_FN into flag F, in every block
+  kDivstep = 15,  // non-restoring division step: D <- (A << 1) - B where A >= 0, (A << 1) + B where A < 0; C <- carry out; V |= signed overflow of the sum or of the shift (A[31] xor A[30]); where flag F is set
 };
-inline constexpr unsigned kNumOpcodes = 15;
+inline constexpr unsigned kNumOpcodes = 16;
 inline constexpr const char* kOpNames[kNumOpcodes] = {
     "NOP",
     "MASKSET",
@@ -152,6 +153,7 @@ inline constexpr const char* kOpNames[kNumOpcodes] = {
     "SETSADR",
     "FLAGOP",
     "CMP",
+    "DIVSTEP",
 };
 // Reserved instruction bits of each opcode: fields it does not use, and bits of a used
 // field that none of its sub-fields covers. A push with one of them set is ILLEGAL; a
@@ -172,6 +174,7 @@ inline constexpr uint64_t kOpReserved[kNumOpcodes] = {
     0x07FFFFFF00000000ull,  // SETSADR
     0x00FFFFC0FFFFFEF0ull,  // FLAGOP
     0x00FC0FC000000000ull,  // CMP
+    0x0000003FFFFFFFFFull,  // DIVSTEP
 };
 // The rest of the legality rules besides reserved bits and word ranges, as masks: an
 // instruction is ILLEGAL when (raw & mask) == value for an IllegalPattern (an opcode's

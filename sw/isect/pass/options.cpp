@@ -48,6 +48,7 @@ void KernelStats::add(const KernelStats& o) {
   fmpp_box_tests += o.fmpp_box_tests;
   box_cycles += o.box_cycles;
   gated += o.gated;
+  object_searches += o.object_searches;
   unread_rays += o.unread_rays;
   probe_rounds += o.probe_rounds;
   oracle_any += o.oracle_any;

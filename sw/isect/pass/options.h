@@ -128,6 +128,7 @@ struct KernelStats {
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
   uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
   uint64_t gated = 0;            // broadcasts whose tail a gate skipped (no block could use it)
+  uint64_t object_searches = 0;  // object-parallel: rays whose broadcast needed the maximum search (two or more possible hits)
   uint64_t unread_rays = 0;      // rays not read back: their best certainly beyond their tmax
   uint64_t probe_rounds = 0;     // probe rounds after a pass's first (rays of their own origins: tuning.h)
   // With KernelOptions::oracle: per pass, the broadcasts of triangles some ray of the pass

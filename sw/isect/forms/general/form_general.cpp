@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "sw/isect/forms/certify_rounding.h"
 #include "sw/isect/forms/general/certify_general.h"
 #include "sw/isect/forms/general/general_frame.h"
 #include "sw/isect/geometry/hierarchy.h"
@@ -98,16 +99,19 @@ class GeneralForm : public RayForm {
 
   void init(Program& p) const override {
     p << writes(kBest, 0x7FFFFFFFu, kSel) << writes(kIdx, 0, kSel) << writes(kCnt, 0, kSel) << writes(kOne, 1, kSel)
+      << writes(kQ, 0, kSel)
       << writes(kZero, 0, kSel) << writes(kUnit, 1u << policy::kGeneralRayBits, kSel)
       << flagop(layout::kUnc, 0, 0, lut::kZero);
     pair_words(p, pairs_, kSel);
   }
 
-  // The exclusion test compares with the broadcast's number in the pass.
+  // The exclusion test compares with the broadcast's number in the pass (two CMPs: below
+  // it, or at least the next).
   const std::vector<uint64_t>& code(size_t k, uint32_t number) override {
     const Broadcast& b = broadcasts[k];
     code_ = b.program().code();
     code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
+    code_[b.mark() + 1] = ins::with_imm(code_[b.mark() + 1], number + 1);
     return code_;
   }
 
@@ -191,12 +195,18 @@ class GeneralForm : public RayForm {
     }
     ew_det[3] = 0;  // the unit word is exact
     Bounds bd;
-    double ba = 0;
-    for (int i = 0; i < 3; ++i) {
-      const double bi = certify::row_bound(g.a + 6 * i, g.da + 6 * i, ew_row, 6, ea, opt_.n, wmax);
-      ba = std::max(ba, bi);
-      bd.nv += bi;
-    }
+    // The machine computes C_i = c_i . V (three rows) and E_0 = e_0 . L, E_1 = e_1 . L (two
+    // rows), each with its floor, then A_0 = C_0 + E_0, A_1 = C_1 + E_1 and A_2 = C_2 - E_0
+    // - E_1: the exact edges sum to 0, so -(E_0 + E_1) stands for e_2 . L within the two
+    // rows' bounds. n . V = A_0 + A_1 + A_2 = C_0 + C_1 + C_2 exactly (the E cancel).
+    const double bc[3] = {certify::row_bound(g.a + 0, g.da + 0, ew_row, 3, ea, opt_.n, wmax),
+                          certify::row_bound(g.a + 6, g.da + 6, ew_row, 3, ea, opt_.n, wmax),
+                          certify::row_bound(g.a + 12, g.da + 12, ew_row, 3, ea, opt_.n, wmax)};
+    const double be[2] = {certify::row_bound(g.a + 3, g.da + 3, ew_row + 3, 3, ea, opt_.n, wmax),
+                          certify::row_bound(g.a + 9, g.da + 9, ew_row + 3, 3, ea, opt_.n, wmax)};
+    using certify::kUp;
+    const double ba = std::max({(bc[0] + be[0]) * kUp, (bc[1] + be[1]) * kUp, ((bc[2] + be[0]) * kUp + be[1]) * kUp});
+    bd.nv = ((bc[0] + bc[1]) * kUp + bc[2]) * kUp;
     const int dshift = ed + 1;
     const double bdet = certify::row_bound(g.d, g.dd, ew_det, 4, ed, opt_.n, wmax);
     bd.det = dshift >= 0 ? std::ldexp(bdet, dshift) : std::ldexp(bdet, dshift) + 1;
@@ -231,15 +241,18 @@ class GeneralForm : public RayForm {
   // before it). Both >= 0: the order of the two exact quotients is not certain.
   static void near_words(Program& p, unsigned pred, unsigned y) {
     const unsigned w = kA + 0, f = kA + 2;
-    p << add(w, kQ, y, pred) << add(w, w, kOne, pred, policy::kGeneralCertBits - 1);  // the shift, then + 1
-    for (int k = 1; k < 4; ++k) p << add(w, w, kOne, pred);
+    // (Q + Y + 2^(s+1)) >>> (s - 1) is ((Q + Y) >>> (s - 1)) + 4: a multiple of the divisor
+    // passes through the floor. 2^(s+1) is the unit word shifted (SHR_A).
+    constexpr unsigned s = policy::kGeneralCertBits;
+    static_assert(s + 1 <= policy::kGeneralRayBits, "2^(s+1) from the unit word 2^kGeneralRayBits");
+    p << add(w, kQ, y, pred) << add(w, kUnit, w, pred, policy::kGeneralRayBits - (s + 1)) << rshift(w, w, pred, s - 1);
     p << sub(f, w, kTmp, pred) << add(w, w, kTmp, pred);
   }
   // U |= blocks `pred` whose order against Y is not certain. Uses flag kTmp.
   static void near_uncertain(Program& p, unsigned pred, unsigned y) {
     near_words(p, pred, y);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, layout::kTmp, pred);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, layout::kTmp, layout::kTmp);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 2, 0, layout::kTmp, pred);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 0, 0, layout::kTmp, layout::kTmp);
     p << flagop(layout::kUnc, layout::kUnc, layout::kTmp, lut::kOr);
   }
 
@@ -247,56 +260,55 @@ class GeneralForm : public RayForm {
   Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th,
                   ProgramMarks* marks) const {
     constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
-    const auto low = [](int bits) { return bits >= 32 ? 0xFFFFFFFFu : (uint32_t{1} << bits) - 1; };
     Program p;
     p.assume_mask(layout::kDataMask);
     p << add(kCnt, kCnt, kOne, kSel);
     // The ray's own triangle (a secondary ray leaving its surface) never counts:
-    // kHit <- SEL and not excluded, the blocks every test below speaks for.
-    p.mask(0);
+    // kHit <- SEL and not excluded (kExcl below this broadcast's number or above it),
+    // the blocks every test below speaks for. code() writes the numbers.
     marks->mark = p.size();
-    p << ref(RefFn::kThrough, RefPart::kData, kExcl, 0, kT, kSel);
-    p.mask(layout::kDataMask);
-    p << flagop(kHit, kSel, kT, lut::kAndNotB);
-    std::vector<Row> rows(4);
+    p << cmp(CmpFn::kThrough, CmpLt::kLt, kExcl, 0, kT, kSel) << cmp(CmpFn::kOr, CmpLt::kGe, kExcl, 1, kT, kT);
+    p << flagop(kHit, kSel, kT, lut::kAnd);
+    // The edge rows as C_i = c_i . V into A_i, E_0 = e_0 . L into nv's word and E_1 = e_1 .
+    // L into det's; then A_0 += E_0, A_1 += E_1, A_2 -= E_0 + E_1 (e_2 = -e_0 - e_1: its
+    // row is two adds, prepare_late's bounds); then the det row.
+    std::vector<Row> rows(6);
     for (unsigned i = 0; i < 3; ++i) {
       rows[i].r = kA + i;
-      for (unsigned j = 0; j < 3; ++j) {
-        rows[i].terms.push_back(Term{kV + j, xa[6 * i + j], 0});
-        rows[i].terms.push_back(Term{kL + j, xa[6 * i + 3 + j], 0});
-      }
+      for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, xa[6 * i + j], 0});
     }
-    rows[3].r = kDet;
-    for (unsigned j = 0; j < 3; ++j) rows[3].terms.push_back(Term{kO + j, xd[j], 0});
-    rows[3].terms.push_back(Term{kUnit, xd[3], 0});
-    dot_rows_const(p, rows, opt_.n, kSel, pairs_);
+    rows[3].r = kNv;
+    rows[4].r = kDet;
+    for (unsigned j = 0; j < 3; ++j) {
+      rows[3].terms.push_back(Term{kL + j, xa[3 + j], 0});
+      rows[4].terms.push_back(Term{kL + j, xa[9 + j], 0});
+    }
+    rows[5].r = kDet;
+    for (unsigned j = 0; j < 3; ++j) rows[5].terms.push_back(Term{kO + j, xd[j], 0});
+    rows[5].terms.push_back(Term{kUnit, xd[3], 0});
+    dot_rows_const(p, {rows.begin(), rows.begin() + 5}, opt_.n, kSel, pairs_);
+    p << add(kA + 0, kA + 0, kNv, kSel) << sub(kA + 2, kA + 2, kNv, kSel);
+    p << add(kA + 1, kA + 1, kDet, kSel) << sub(kA + 2, kA + 2, kDet, kSel);
+    dot_rows_const(p, {rows[5]}, opt_.n, kSel, pairs_);
     p << add(kNv, kA + 0, kA + 1, kSel) << add(kNv, kNv, kA + 2, kSel);
     // Where det < 0, negate det, the A_i and nv: then a hit is A_i >= 0, det > 0.
-    p.mask(layout::kDataMask);
-    p << ref(RefFn::kAnd, RefPart::kData, kDet, layout::kSignBit, kX, kSel);
+    p << cmp(CmpFn::kAnd, CmpLt::kLt, kDet, 0, kX, kSel);
     for (unsigned w : {kDet, kA + 0, kA + 1, kA + 2, kNv}) p << sub(w, kZero, w, kX);
-    // K = 2^ka > every row's bound. A_i - K >= 0: A_i certainly >= 0.
-    const uint32_t K = uint32_t{1} << th.ka;
-    p.mask(0);
-    p << writes(kTmp, K, kSel) << writes(kQ, 2 * K, kSel);
-    p.mask(layout::kDataMask);
-    for (unsigned i = 0; i < 3; ++i) p << sub(kA + i, kA + i, kTmp, kSel);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kWin, kHit);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 1, 0, kWin, kWin);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kWin, kWin);  // kWin: certainly inside (det aside)
+    // K = 2^ka > every row's bound. A_i >= K: A_i certainly >= 0 (CMP, signed, exact).
+    const int32_t K = int32_t{1} << th.ka;
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 0, K, kWin, kHit);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 1, K, kWin, kWin);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 2, K, kWin, kWin);  // kWin: certainly inside (det aside)
     marks->test_steps = p.size();
     // det within its bound of 0 (its sign, and t > 0, not certain): the ray may still
     // hit unless the A_i certainly differ in sign. Here: none certainly positive.
-    p.mask(low(th.kd));
-    p << ref(RefFn::kAnd, RefPart::kData, kDet, 0, kX, kHit);
-    p.mask(layout::kDataMask);
-    for (unsigned i = 0; i < 3; ++i) p << ref(RefFn::kAnd, RefPart::kData, kA + i, layout::kSignBit, kX, kX);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kDet, 0, kX, kHit) << cmp(CmpFn::kAnd, CmpLt::kLt, kDet, int32_t{1} << th.kd, kX, kX);
+    for (unsigned i = 0; i < 3; ++i) p << cmp(CmpFn::kAnd, CmpLt::kLt, kA + i, K, kX, kX);
     p << flagop(kU, kU, kX, lut::kOr);
-    // A_i + K >= 0 for every i: the ray may be inside (no A_i certainly negative).
-    for (unsigned i = 0; i < 3; ++i) p << add(kA + i, kA + i, kQ, kSel);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kX, kHit);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 1, 0, kX, kX);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kX, kX);
+    // A_i >= -K for every i: the ray may be inside (no A_i certainly negative).
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 0, -K, kX, kHit);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 1, -K, kX, kX);
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 2, -K, kX, kX);
     // The gate: everything below acts only in blocks that may be inside (kX), or on this
     // broadcast's scratch. Where no block may be, the host skips it (pass.h).
     marks->gate = emit_gate(p, kX, kT);
@@ -304,12 +316,8 @@ class GeneralForm : public RayForm {
     // 2^jd and nv >= 2^jn, so that Q is within 2^-s of t / u. kT <- not strong.
     for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kX);
     if (dshift < 0) p << rshift(kDet, kDet, kX, static_cast<unsigned>(std::min(-dshift, 32)));
-    p.mask(low(th.jd));
-    p << ref(RefFn::kThrough, RefPart::kData, kDet, 0, kT, kSel);
-    p.mask(low(th.jn));
-    p << ref(RefFn::kOr, RefPart::kData, kNv, 0, kT, kT);
-    p.mask(layout::kDataMask);
-    p << ref(RefFn::kOr, RefPart::kData, kNv, layout::kSignBit, kT, kT);
+    p << cmp(CmpFn::kThrough, CmpLt::kGe, kDet, 0, kT, kSel) << cmp(CmpFn::kAnd, CmpLt::kLt, kDet, int32_t{1} << th.jd, kT, kT);
+    p << cmp(CmpFn::kOr, CmpLt::kLt, kNv, int32_t{1} << th.jn, kT, kT);
     // kHit <- may be inside and strong: its Q bounds the distance to the plane, hit or
     // not. kWin <- of those, the uncertain inside tests (kPs: flagged below unless
     // certainly beyond the best). A weak block that may be inside is flagged now.
@@ -318,47 +326,46 @@ class GeneralForm : public RayForm {
     // t must be below the range of the quotient: det < 2 nv. A hit beyond it is impossible
     // (the range is past the scene's farthest corner): the V flag sends the ray to the
     // host; an uncertain block there is certainly not a hit.
-    p << sub(kTmp, kDet, kNv, kHit) << sub(kTmp, kTmp, kNv, kHit);
-    nonneg(p, kT, kHit, kTmp);
+    p << sub(kTmp, kDet, kNv, kHit, 1);  // floor(det / 2) - nv >= 0: det >= 2 nv
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kTmp, 0, kT, kHit);
     p << flagop(kX, kT, kPs, lut::kAndNotB) << flagop(map::kFlagV, map::kFlagV, kX, lut::kOr);
     p << flagop(kHit, kHit, kT, lut::kAndNotB) << flagop(kPs, kPs, kT, lut::kAndNotB);
-    p << func(FuncFn::kOr, kA + 1, kDet, kDet, kHit);  // the shifted det, kept for the best
-    // Restoring division: Q = floor(det 2^(q-1) / nv), the remainder in det. Both are
-    // non-negative here, so SUB's carry (no borrow) is the quotient bit, C <- det >= nv,
-    // with no sign test; C is cleared outside kHit first, so only kHit blocks act.
-    constexpr unsigned kC = map::kFlagC;  // the quotient bit here; scratch after the arithmetic
-    p << func(FuncFn::kXor, kQ, kQ, kQ, kHit) << flagop(kC, kC, kHit, lut::kAnd);
-    for (int j = static_cast<int>(opt_.qbits) - 1; j >= 0; --j) {
-      if (j + 1 < static_cast<int>(opt_.qbits)) p << lshift(kQ, kQ, kHit);  // Q is 0 before the first bit
-      p << sub(kTmp, kDet, kNv, kHit);
-      p << func(FuncFn::kOr, kDet, kTmp, kTmp, kC) << add(kQ, kQ, kOne, kC);
-      if (j > 0) p << lshift(kDet, kDet, kHit);
+    constexpr unsigned kC = map::kFlagC;  // scratch after the arithmetic
+    // Q = floor(det 2^(q-1) / nv) where the ray may hit (0 <= det < 2 nv here): one
+    // DIVSTEP and one BITCOPY a bit (fmpp::quotient; Q's bits from q up are 0 since init),
+    // the remainder in A_2 (free now); det is kept for the best. 2^q - 1 is the unit word
+    // shifted, minus 1.
+    if (opt_.qbits <= policy::kGeneralRayBits) {
+      p << sub(kTmp, kUnit, kOne, kHit, policy::kGeneralRayBits - opt_.qbits);
+    } else {
+      p.mask(0);
+      p << writes(kTmp, (uint32_t{1} << opt_.qbits) - 1, kHit);
+      p.mask(layout::kDataMask);
     }
+    quotient(p, kQ, kA + 1, kDet, kNv, opt_.qbits, kHit, kTmp);
     // Beyond the ray's tmin (only batches with one need the test).
     if (sc_.has_tmin) {
       p << sub(kTmp, kQ, kQmin, kHit);
       near_uncertain(p, kHit, kQmin);
-      nonneg(p, kHit, kHit, kTmp);
+      p << cmp(CmpFn::kAnd, CmpLt::kGe, kTmp, 0, kHit, kHit);
       p << flagop(kPs, kPs, kHit, lut::kAnd);
     }
     // Nearer than the best so far; the order is uncertain if the two are within their
     // bounds (exact ties included). A block without a best yet (kIdx = 0) has nothing to
     // compare: an uncertain inside test there is flagged, as is one that is not
     // certainly beyond the best.
-    p.mask(0);
-    p << ref(RefFn::kThrough, RefPart::kData, kIdx, 0, kX, kSel);
-    p.mask(layout::kDataMask);
+    p << cmp(CmpFn::kThrough, CmpLt::kLt, kIdx, 1, kX, kSel);  // kIdx >= 0: a count
     p << flagop(kX, kHit, kX, lut::kAndNotB);
     p << sub(kTmp, kQ, kBest, kHit);
     near_words(p, kX, kBest);
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 2, 0, kT, kX);  // has a best, not certainly beyond it
-    p << ref(RefFn::kAnd, RefPart::kData, kA + 0, 0, kC, kT);  // nor certainly before it
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 2, 0, kT, kX);  // has a best, not certainly beyond it
+    p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 0, 0, kC, kT);  // nor certainly before it
     p << flagop(kC, kC, kPs, lut::kAndNotB) << flagop(kU, kU, kC, lut::kOr);
     p << flagop(kC, kT, kX, kLutOrNotB) << flagop(kC, kC, kPs, lut::kAnd) << flagop(kU, kU, kC, lut::kOr);
     p << flagop(kHit, kHit, kPs, lut::kAndNotB);
-    p << ref(RefFn::kAnd, RefPart::kData, kTmp, layout::kSignBit, kWin, kHit);
+    p << cmp(CmpFn::kAnd, CmpLt::kLt, kTmp, 0, kWin, kHit);
     p << func(FuncFn::kOr, kBest, kQ, kQ, kWin) << func(FuncFn::kOr, kIdx, kCnt, kCnt, kWin);
-    p << func(FuncFn::kOr, kBestDet, kA + 1, kA + 1, kWin) << func(FuncFn::kOr, kBestNv, kNv, kNv, kWin);
+    p << func(FuncFn::kOr, kBestDet, kDet, kDet, kWin) << func(FuncFn::kOr, kBestNv, kNv, kNv, kWin);
     return p;
   }
 

@@ -36,8 +36,7 @@ bool paper_inverse(const Triangle& t, const glm::dvec3& o, double cond_limit, do
   return true;
 }
 
-Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, const KernelOptions& opt,
-                             size_t* test_steps) {
+Program paper_object_program(const std::vector<int32_t>& v, const KernelOptions& opt, size_t* test_steps) {
   using namespace layout::object;
   using layout::kHit;
   using layout::kLoaded;
@@ -73,8 +72,15 @@ Program paper_object_program(const std::vector<int32_t>& v, unsigned sbits, cons
   // The search word kD: S_c for the nominal hits, 0 for the other blocks that may hit, so
   // that a ray some block may hit but none nominally does shows as a winner with 0.
   p << writes(kD, 0, kLoaded) << func(FuncFn::kOr, kD, kS, kS, kHit);
-  p << flagop(kHit, kWin, kWin, lut::kA);
-  max_search(p, kHit, kTmp, kD, sbits);
+  p << flagop(kHit, kWin, kWin, lut::kA) << flagop(layout::kSel, kHit, kHit, lut::kA);
+  return p;
+}
+
+Program paper_object_search(unsigned sbits) {
+  using layout::kHit;
+  using layout::kTmp;
+  Program p;
+  max_search(p, kHit, kTmp, layout::object::kD, sbits);
   p << flagop(layout::kSel, kHit, kHit, lut::kA);
   return p;
 }

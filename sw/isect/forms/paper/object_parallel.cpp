@@ -47,7 +47,7 @@ class ObjectParallelPlan : public PassPlan {
   ObjectParallelPlan(const std::vector<Ray>& rays, const std::vector<size_t>& idx, const std::vector<Triangle>& tris,
                      const glm::dvec3& origin, const KernelOptions& opt, KernelStats* st)
       : rays_(rays), idx_(idx), tris_(tris), opt_(opt), st_(st), best_(idx.size()), tainted_(idx.size(), 0),
-        flagged_(idx.size(), 0), redo_passes_(idx.size()) {
+        flagged_(idx.size(), 0), redo_passes_(idx.size()), search_(paper_object_search(policy::object_search_bits(opt))) {
     prepare(origin);
   }
 
@@ -82,18 +82,25 @@ class ObjectParallelPlan : public PassPlan {
     const std::vector<int32_t> v = {quantize(d.x, sv, vlim(), "ray component"),
                                     quantize(d.y, sv, vlim(), "ray component"),
                                     quantize(d.z, sv, vlim(), "ray component")};
-    program_ = paper_object_program(v, policy::object_search_bits(opt_), opt_, &marks->test_steps);
+    program_ = paper_object_program(v, opt_, &marks->test_steps);
     return program_.code();
   }
 
-  // The winner of the maximum search (RESP.FIRST, the lowest block of the largest S_c),
-  // then one question to the ANY responder: is some block's decision uncertain, or some
-  // other possible hit's S_c within the two bounds of the winner's? If so the ray is
-  // redone on the host for this pass's triangles; otherwise the winner is the exact
-  // nearest of the pass and is compared with the ray's best of the earlier passes.
+  // The blocks that may hit: none, a certain miss in this pass; two or more, the maximum
+  // search among them (paper_object_search). Then the winner (RESP.FIRST, the lowest
+  // block of the largest S_c) and one question to the ANY responder: is some block's
+  // decision uncertain, or some other possible hit's S_c within the two bounds of the
+  // winner's? If so the ray is redone on the host for this pass's triangles; otherwise
+  // the winner is the exact nearest of the pass and is compared with the ray's best of
+  // the earlier passes.
   void after_broadcast(Device& dev, size_t r) override {
-    const Responders resp = dev.responders();
+    Responders resp = dev.responders();
     if (!resp.any) return;  // no block may hit: a certain miss in this pass
+    if (resp.count > 1) {
+      push_counted(dev, search_.code(), st_);
+      ++st_->object_searches;
+      resp = dev.responders();
+    }
     if (resp.first >= count_) throw std::logic_error("fmpp::isect: object-parallel winner in an empty block");
     const uint32_t s = dev.read_word(resp.first, kD);
     const TriangleData& t = data_[base_ + resp.first];
@@ -279,6 +286,7 @@ class ObjectParallelPlan : public PassPlan {
   std::vector<char> flagged_;   // some decision of the ray was uncertain (counted once)
   std::vector<std::vector<size_t>> redo_passes_;  // first triangle of each pass the ray was uncertain in
   Program program_;
+  Program search_;  // the maximum search, where two or more blocks may hit
 };
 
 }  // namespace
