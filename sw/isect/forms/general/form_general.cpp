@@ -230,7 +230,7 @@ class GeneralForm : public RayForm {
   struct Thresholds {
     int ka = 0, kd = 0, jd = 0, jn = 0;
   };
-  // Bounds of a broadcast: on the shifted det and on n . V (the three rows' bounds).
+  // Bounds of a broadcast: on the shifted det and on n . V (the sum of the C rows' bounds).
   struct Bounds {
     double det = 0, nv = 0;
   };
@@ -256,7 +256,8 @@ class GeneralForm : public RayForm {
     p << flagop(layout::kUnc, layout::kUnc, layout::kTmp, lut::kOr);
   }
 
-  // marks->mark: the REF whose key is the broadcast's number; marks->gate: see below.
+  // marks->mark: the first of the two CMPs that hold the broadcast's number (code() writes
+  // it); marks->gate: see below.
   Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th,
                   ProgramMarks* marks) const {
     constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
@@ -333,7 +334,7 @@ class GeneralForm : public RayForm {
     constexpr unsigned kC = map::kFlagC;  // scratch after the arithmetic
     // Q = floor(det 2^(q-1) / nv) where the ray may hit (0 <= det < 2 nv here): one
     // DIVSTEP and one BITCOPY a bit (fmpp::quotient; Q's bits from q up are 0 since init),
-    // the remainder in A_2 (free now); det is kept for the best. 2^q - 1 is the unit word
+    // the remainder in word kA + 1 (free now); det is kept for the best. 2^q - 1 is the unit word
     // shifted, minus 1.
     if (opt_.qbits <= policy::kGeneralRayBits) {
       p << sub(kTmp, kUnit, kOne, kHit, policy::kGeneralRayBits - opt_.qbits);
