@@ -36,19 +36,24 @@ from docs_plan import PLAN_CHECK, gen_plan, plan_render, plan_row, share_sentenc
 
 # ------------------------------------------------------------------ generators
 
+def synth_baselines(data):
+    """--baseline-dir/--baseline-label pairs of fmpp-report area, from docs/data/synth/baselines.txt."""
+    args = []
+    with open(os.path.join(data, "synth", "baselines.txt"), encoding="utf-8") as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                folder, label = line.rstrip("\n").split("|", 1)
+                args += ["--baseline-dir", os.path.join(data, "synth", folder), "--baseline-label", label]
+    return args
+
+
 def area_md(build, out):
     """fmpp-report area over the committed synthesis and FPGA results, then the standard-cell
     section tools/asic_report.py makes from docs/asic/ (make asic's committed results)."""
     data = os.path.join(ROOT, "docs", "data")
     base = out + ".base"
     run([tool(build, "fmpp-report"), "area", "--synth-dir", os.path.join(data, "synth"),
-         "--fpga-csv", os.path.join(data, "fpga", "summary.csv"),
-         "--baseline-dir", os.path.join(data, "synth", "before_shr"),
-         "--baseline-label", "the RTL before the shifted operand A, SHR_A (commit 4709c66)",
-         "--baseline-dir", os.path.join(data, "synth", "before_cmp"),
-         "--baseline-label", "the RTL before CMP (commit b28488d)",
-         "--baseline-dir", os.path.join(data, "synth", "before_divstep"),
-         "--baseline-label", "the RTL before DIVSTEP (commit 1f73d13)", "--out", base])
+         "--fpga-csv", os.path.join(data, "fpga", "summary.csv")] + synth_baselines(data) + ["--out", base])
     run([sys.executable, os.path.join(ROOT, "tools", "asic_report.py"), "doc", "--area-md", base,
          "--dir", os.path.join(ROOT, "docs", "asic"), "--out", out])
     os.remove(base)
