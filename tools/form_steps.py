@@ -31,6 +31,9 @@ FORMS = [
     ("paper, object-parallel, constant multiply", ["--mapping", "object", "--no-gates"]),
     ("watertight", ["--watertight", "--no-gates"]),
     ("arbitrary origin", ["--origins", "general", "--no-gates"]),
+    # The same on 32-word blocks, the frames' machine, where the form keeps its pair words
+    # (intersection.md); the build before them ran the same program on either.
+    ("arbitrary origin, 32-word blocks", ["--origins", "general", "--words", "32", "--no-gates"]),
 ]
 
 
