@@ -273,24 +273,25 @@ class GeneralForm : public RayForm {
     // The edge rows as C_i = c_i . V into A_i, E_0 = e_0 . L into nv's word and E_1 = e_1 .
     // L into det's; then A_0 += E_0, A_1 += E_1, A_2 -= E_0 + E_1 (e_2 = -e_0 - e_1: its
     // row is two adds, prepare_late's bounds); then the det row.
-    std::vector<Row> rows(6);
+    std::vector<Row> edges(5);
     for (unsigned i = 0; i < 3; ++i) {
-      rows[i].r = kA + i;
-      for (unsigned j = 0; j < 3; ++j) rows[i].terms.push_back(Term{kV + j, xa[6 * i + j], 0});
+      edges[i].r = kA + i;
+      for (unsigned j = 0; j < 3; ++j) edges[i].terms.push_back(Term{kV + j, xa[6 * i + j], 0});
     }
-    rows[3].r = kNv;
-    rows[4].r = kDet;
+    edges[3].r = kNv;
+    edges[4].r = kDet;
     for (unsigned j = 0; j < 3; ++j) {
-      rows[3].terms.push_back(Term{kL + j, xa[3 + j], 0});
-      rows[4].terms.push_back(Term{kL + j, xa[9 + j], 0});
+      edges[3].terms.push_back(Term{kL + j, xa[3 + j], 0});
+      edges[4].terms.push_back(Term{kL + j, xa[9 + j], 0});
     }
-    rows[5].r = kDet;
-    for (unsigned j = 0; j < 3; ++j) rows[5].terms.push_back(Term{kO + j, xd[j], 0});
-    rows[5].terms.push_back(Term{kUnit, xd[3], 0});
-    dot_rows_const(p, {rows.begin(), rows.begin() + 5}, opt_.n, kSel, pairs_);
+    dot_rows_const(p, edges, opt_.n, kSel, pairs_);
     p << add(kA + 0, kA + 0, kNv, kSel) << sub(kA + 2, kA + 2, kNv, kSel);
     p << add(kA + 1, kA + 1, kDet, kSel) << sub(kA + 2, kA + 2, kDet, kSel);
-    dot_rows_const(p, {rows[5]}, opt_.n, kSel, pairs_);
+    Row det;
+    det.r = kDet;
+    for (unsigned j = 0; j < 3; ++j) det.terms.push_back(Term{kO + j, xd[j], 0});
+    det.terms.push_back(Term{kUnit, xd[3], 0});
+    dot_rows_const(p, {det}, opt_.n, kSel, pairs_);
     p << add(kNv, kA + 0, kA + 1, kSel) << add(kNv, kNv, kA + 2, kSel);
     // Where det < 0, negate det, the A_i and nv: then a hit is A_i >= 0, det > 0.
     p << cmp(CmpFn::kAnd, CmpLt::kLt, kDet, 0, kX, kSel);
