@@ -5,6 +5,7 @@
 
 #include "backends/backend.h"
 #include "sw/rt/render.h"
+#include "sw/isect/forms/forms.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."
@@ -20,11 +21,15 @@ struct Case {
 
 class Render : public ::testing::TestWithParam<Case> {};
 
-Image render_on(const std::string& backend, const Scene& s, int size, fmpp::isect::KernelStats* st) {
+// With `object` (if given) the kinds of batch that run object-parallel (the plan's
+// choice, PlanRequest::choose_mapping).
+Image render_on(const std::string& backend, const Scene& s, int size, fmpp::isect::KernelStats* st,
+                std::initializer_list<BatchKind> object = {}) {
   auto be = fmpp::make_backend(backend, fmpp::Config{1024, 32});
   fmpp::Device dev(be->bus());
   fmpp::isect::KernelOptions o;
   FmppIntersector fi(dev, s.triangles, o);
+  for (BatchKind k : object) fi.set_mapping(k, fmpp::isect::Mapping::kObject);
   RenderOptions ro;
   ro.width = ro.height = size;
   Image img = render(s, fi, ro, nullptr);
@@ -65,6 +70,24 @@ TEST(RenderSystemC, MatchesTheRtlImage) {
   const Image sc = render_on("systemc", s, 24, &b);
   EXPECT_EQ(rtl.to_rgb8(), sc.to_rgb8());
   EXPECT_EQ(a.cycles, b.cycles);
+}
+
+// A kind of batch moved to the object-parallel mapping (as the plan may move the primary
+// or the shadow rays): the same picture as all ray-parallel, and the RTL equal to the
+// golden model clock for clock.
+TEST(RenderMapping, ObjectParallelKindsModelEqualsRtl) {
+  const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/cornell.json");
+  fmpp::isect::KernelStats ray, model, rtl;
+  const Image all_ray = render_on("cmodel", s, 12, &ray);
+  for (BatchKind k : {BatchKind::kPrimary, BatchKind::kShadow}) {
+    const Image m = render_on("cmodel", s, 12, &model, {k});
+    const Image r = render_on("rtl", s, 12, &rtl, {k});
+    EXPECT_EQ(m.to_rgb8(), all_ray.to_rgb8()) << to_string(k);
+    EXPECT_EQ(m.to_rgb8(), r.to_rgb8()) << to_string(k);
+    EXPECT_EQ(model.cycles, rtl.cycles) << to_string(k);
+    EXPECT_GT(model.form_rays[fmpp::isect::kFormPaperObject], 0u) << to_string(k);
+    EXPECT_EQ(ray.form_rays[fmpp::isect::kFormPaperObject], 0u);
+  }
 }
 
 TEST(RenderCulling, SameImageFewerBroadcasts) {

@@ -13,6 +13,7 @@
 #include "sw/isect/cull/order.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/forms/forms.h"
+#include "sw/rt/object_cost.h"
 #include "sw/rt/render.h"
 
 namespace rt {
@@ -198,7 +199,8 @@ PassRates rates_from(const fmpp::isect::KernelStats& st) {
 }
 
 PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt,
-                               const std::vector<unsigned>& candidates, const PassRates* rates) {
+                               const std::vector<unsigned>& candidates, const PassRates* rates, bool object,
+                               const std::string& why_object) {
   PassCostModel m;
   // The rates known, else measured on samples of the frame's rays, grouped as the
   // kernels of the largest candidate group them.
@@ -261,15 +263,20 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   // With origins shared by fewer than `below` rays merged (0: the kernels' default);
   // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
   // general_over_box scales that form's broadcasts (kGeneralOverBox).
+  // With the kinds of `object` (nullptr: none) object-parallel at `orates`.
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
-                      double general_over_box = 1) {
+                      double general_over_box = 1, const KindFlags* object = nullptr,
+                      const KindRates* orates = nullptr) {
     double clocks = 0;
     *bc = 0;
-    fmpp::isect::KernelOptions o = opt;
-    o.merge_below = below;
     if (merged) *merged = 0;
     for (size_t k = 0; k < frame.batches.size(); ++k) {
       const std::vector<Ray>& rays = frame.batches[k].second;
+      const int kind = static_cast<int>(frame.batches[k].first);
+      const bool op = object && (*object)[kind];
+      fmpp::isect::KernelOptions o = opt;
+      o.merge_below = below;
+      if (op) o.mapping = fmpp::isect::Mapping::kObject;
       const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, o, blocks);
       if (merged) *merged += routes.general.size() - own_general[k];
       auto add = [&](const std::vector<size_t>& idx, bool shared) {
@@ -280,7 +287,13 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
         clocks += static_cast<double>(b) * (shared ? shared_b : general_over_box * general_b) +
                   static_cast<double>(idx.size()) * (shared ? shared_r : general_r);
       };
-      for (const auto& g : routes.groups) add(g.second, true);
+      for (const auto& g : routes.groups) {
+        if (op) {
+          clocks += object_group_clocks((*orates)[kind], g.second.size(), scene.triangles.size(), blocks);
+        } else {
+          add(g.second, true);
+        }
+      }
       add(routes.general, false);
     }
     return clocks;
@@ -322,6 +335,20 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     });
   } else {
     m.why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
+  }
+
+  // The mapping of each kind of batch, at that size, order and merging.
+  if (object) {
+    uint64_t unused = 0;
+    const double ray_clocks = estimate(c.blocks, m.coherent, &unused, m.merge_below);
+    choose_mappings(scene, frame, opt, c.blocks, ray_clocks,
+                    [&](const KindFlags& f, const KindRates& r) {
+                      uint64_t bc = 0;
+                      return estimate(c.blocks, m.coherent, &bc, m.merge_below, nullptr, 1, &f, &r);
+                    },
+                    &m);
+  } else {
+    m.why_mapping = why_object;
   }
 
   std::ostringstream why;

@@ -24,6 +24,7 @@
 // kMergeThresholds, the kernels' default where it is within kMergeSlack of that.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -70,6 +71,16 @@ struct MergeEstimate {
   size_t merged_rays = 0;  // rays of shared origins moved to the arbitrary-origin batch
 };
 
+// The object-parallel mapping priced for one kind of batch (object_cost.h).
+struct MappingEstimate {
+  BatchKind kind = BatchKind::kPrimary;
+  size_t rays = 0;           // the kind's rays sharing an origin: those the mapping would take
+  double ray_clocks = 0;     // the frame, the kind ray-parallel
+  double object_clocks = 0;  // the frame, the kind object-parallel
+  bool searched = false;     // object_clocks with the maximum search measured (else without it: a bound)
+  bool chosen = false;
+};
+
 struct PassCostModel {
   double per_broadcast = 0;  // clocks of a broadcast, its share of box tests included
   double per_ray = 0;        // clocks to load and read back a ray
@@ -78,7 +89,9 @@ struct PassCostModel {
   bool coherent = true;  // the pass order chosen
   std::vector<MergeEstimate> merges;  // the thresholds priced (empty: one origin per batch)
   unsigned merge_below = 0;           // the one chosen (0: the kernels' default)
-  std::string why_blocks, why_order, why_merge;
+  std::vector<MappingEstimate> mappings;  // the kinds priced object-parallel (empty: none could be)
+  std::array<bool, kNumBatchKinds> object{};  // the kinds that take it
+  std::string why_blocks, why_order, why_merge, why_mapping;
 };
 
 // The frame rendered on the host with the exact reference's hits, every batch of rays
@@ -103,8 +116,12 @@ PassRates rates_from(const fmpp::isect::KernelStats& st);
 
 // Estimates each candidate number of blocks (ascending, each >= 1) for the recorded
 // frame, with `opt` (n set), at `rates` (nullptr: none known); a kind of ray the rates
-// do not know is measured on the golden model on up to 512 of the frame's rays.
+// do not know is measured on the golden model on up to 512 of the frame's rays. With
+// `object` (the plan may choose the mapping: opt's is the ray-parallel one), then the
+// mapping of each kind of batch at the chosen size (object_cost.h); otherwise
+// `why_object` is the reason the mapping stays as it is.
 PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt,
-                               const std::vector<unsigned>& candidates, const PassRates* rates);
+                               const std::vector<unsigned>& candidates, const PassRates* rates, bool object = false,
+                               const std::string& why_object = "");
 
 }  // namespace rt

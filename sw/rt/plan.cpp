@@ -15,6 +15,7 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/rt/plan_parts.h"
@@ -120,7 +121,18 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   Steps steps(req);
   fmpp::isect::KernelOptions with_forms = plan->options;  // the plan's forms and shapes, for its runs
   with_forms.forms = req.forms;
-  const PassCostModel m = model_pass_sizes(scene, frame, with_forms, sizes, rates);
+  // The object-parallel mapping for a kind of batch: where the plan may choose it and the
+  // machine can run it.
+  std::string why_not;
+  if (!req.choose_mapping) {
+    why_not = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel for every batch, as requested";
+  } else if (req.base.watertight) {
+    why_not = "ray-parallel: the watertight form exists in the ray-parallel mapping only";
+  } else if (fmpp::isect::paper_object_words(req.base) > plan->config.words) {
+    why_not = "ray-parallel: the object-parallel form needs " + std::to_string(fmpp::isect::paper_object_words(req.base)) +
+              " words per block, more than the " + std::to_string(plan->config.words) + " of the machine";
+  }
+  const PassCostModel m = model_pass_sizes(scene, frame, with_forms, sizes, rates, why_not.empty(), why_not);
   steps.say("pass size: " + std::to_string(sizes.size()) + " sizes priced");
   plan->pass_sizes = m.sizes;
   plan->options.coherent = m.coherent;
@@ -128,6 +140,9 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   plan->options.merge_below = m.merge_below;
   plan->merges = m.merges;
   plan->why_merge = m.why_merge;
+  plan->mappings = m.mappings;
+  plan->object = m.object;
+  plan->why_mapping = m.why_mapping;
   if (names.empty()) {
     plan->config.blocks = sizes[m.chosen];
     plan->why_blocks = m.why_blocks;
@@ -137,6 +152,58 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
                        plan->config.str() + ")";
   }
   plan->config.validate();
+}
+
+// A kind of batch the cost model moved to the object-parallel mapping is checked as the
+// n was (that mapping's form has its own precision: docs/intersection.md): the frame
+// sample rendered again with it must keep the error target and the allowance of rays
+// redone, or every kind goes back to the ray-parallel mapping.
+void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan) {
+  std::string kinds;
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (plan->object[k]) kinds += (kinds.empty() ? "" : " and ") + std::string(to_string(static_cast<BatchKind>(k)));
+  }
+  if (kinds.empty()) return;
+  Steps steps(req);
+  RenderOptions ro;
+  ro.width = req.width;
+  ro.height = req.height;
+  ro.max_depth = depth;
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
+  if (want < pixels) ro.pixels = plan_pixels(pixels, want);
+  const size_t sampled = ro.pixels.empty() ? pixels : ro.pixels.size();
+  fmpp::ModelBus bus(fmpp::Config{static_cast<unsigned>(std::min<size_t>(sampled, 64)), 32});
+  fmpp::Device dev(bus);
+  fmpp::isect::KernelOptions o = plan->options;
+  o.forms = req.forms;
+  o.progress = nullptr;
+  FmppIntersector fi(dev, scene.triangles, o);
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (plan->object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
+  }
+  const Image got = render(scene, fi, ro, nullptr);
+  Image want_img = ro.pixels.empty() ? reference : Image(req.width, req.height);
+  for (uint32_t i : ro.pixels) {
+    const int x = static_cast<int>(i % static_cast<uint32_t>(req.width)), y = static_cast<int>(i / static_cast<uint32_t>(req.width));
+    want_img.at(x, y) = reference.at(x, y);
+  }
+  const size_t over = compare(got, want_img).pixels_over;
+  const double rate = static_cast<double>(over) / static_cast<double>(sampled);
+  const double bound = sampled == pixels ? rate : upper_confidence_bound(over, sampled, req.confidence);
+  const double redone = flagged_share(fi.stats());
+  const bool keeps = bound <= req.target_wrong_rate && redone <= req.max_flagged_share;
+  std::ostringstream why;
+  why << "; the frame sample with " << kinds << " rays object-parallel: " << pct(rate) << " of " << sampled
+      << " pixels off the reference (bound " << pct(bound) << "), " << pct(redone) << " of its rays redone"
+      << (keeps ? "" : ", over the target or the allowance: every kind kept ray-parallel");
+  plan->why_mapping += why.str();
+  if (!keeps) {
+    plan->object = {};
+    for (MappingEstimate& e : plan->mappings) e.chosen = false;
+  }
+  steps.say("the frame sample with " + kinds + " rays object-parallel: " + pct(rate) + " off, " + pct(redone) +
+            " redone" + (keeps ? "" : ": kept ray-parallel"));
 }
 
 }  // namespace
@@ -244,12 +311,16 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   plan.options.n = bits.value;
   plan.why_bits = bits.why;
   if (const FrameRecord* f = traced()) {
+    // The frame sample is culled (plan_bits.cpp); a frame without culling has cheaper
+    // broadcasts (most are gated off), measured on samples of its rays instead.
     const PassRates rates = rates_from(sample_stats);
-    decide_pass_size(scene, req, pixels, *f, &rates, &plan);
+    decide_pass_size(scene, req, pixels, *f, req.base.cull ? &rates : nullptr, &plan);
+    check_mappings(scene, req, depth, f->picture, &plan);
   }
   if (plan.pass_sizes.empty()) {
     plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
     plan.why_merge = "the default (not modelled)";
+    plan.why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
   }
   return plan;
 }

@@ -26,9 +26,14 @@
 //     The object-parallel mapping keeps one pass of primary rays where the map allows it.
 //   - Merged batches, at that size and order: which origins' rays go into the
 //     arbitrary-origin batch (KernelOptions::merge_below), from the same cost model.
+//   - The mapping of each kind of batch whose rays share an origin (primary, shadow):
+//     object-parallel where the same cost model, with that mapping's clocks measured on
+//     the golden model (object_cost.h), finds it cheaper; checked like the n, on the frame
+//     sample rendered again with it, and kept ray-parallel if that sample misses a target.
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -57,6 +62,10 @@ struct PlanRequest {
   // Overrides.
   std::optional<unsigned> bits, blocks, words;
   fmpp::isect::KernelOptions base;    // mapping, multiply, watertight, cull...
+  // Whether the plan may move a kind of batch to the object-parallel mapping (base's
+  // mapping is then the ray-parallel one); false: base's mapping for every batch (the
+  // user chose it, or several FMPPs share the passes, which that mapping cannot).
+  bool choose_mapping = true;
   // Called with a line on each step the plan takes (what it tries, what it found, how
   // long it took), for the console; nullptr for none.
   std::function<void(const std::string&)> progress;
@@ -107,7 +116,9 @@ struct Plan {
   std::vector<PlanCandidate> candidates;
   std::vector<PassSizeEstimate> pass_sizes;  // the cost model's candidates (empty: not run)
   std::vector<MergeEstimate> merges;          // the merge thresholds priced (empty: not run, or none moves a ray)
-  std::string why_bits, why_words, why_blocks, why_order, why_merge;
+  std::vector<MappingEstimate> mappings;      // the kinds priced object-parallel (empty: not run, or none could be)
+  std::array<bool, kNumBatchKinds> object{};  // the kinds of batch that run object-parallel
+  std::string why_bits, why_words, why_blocks, why_order, why_merge, why_mapping;
   // False if no candidate n keeps the error target on the frame sample (why_bits says by
   // how much): a render at the plan's n may then be off by more than the target.
   bool met_target = true;

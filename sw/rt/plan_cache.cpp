@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-5";
+constexpr const char* kPlanVersion = "plan-6";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -48,6 +48,7 @@ nlohmann::json request_json(const PlanRequest& r) {
           {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
           {"words", r.words ? static_cast<int>(*r.words) : -1},
           {"mapping", static_cast<int>(o.mapping)},
+          {"choose_mapping", r.choose_mapping},
           {"mul", static_cast<int>(o.mul)},
           {"watertight", o.watertight},
           {"t_accuracy", o.t_accuracy},
@@ -106,6 +107,14 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.why_words = j.at("why_words").get<std::string>();
     p.why_blocks = j.at("why_blocks").get<std::string>();
     p.why_order = j.at("why_pass_order").get<std::string>();
+    p.why_mapping = j.at("why_mapping").get<std::string>();
+    for (const auto& k : j.at("object_parallel")) {
+      bool known = false;
+      for (int i = 0; i < kNumBatchKinds; ++i) {
+        if (k.get<std::string>() == to_string(static_cast<BatchKind>(i))) p.object[i] = known = true;
+      }
+      if (!known) return std::nullopt;
+    }
     // The lists, as plan_report writes them (a list with no entry is left out).
     const auto list = [&](const char* name) { return j.contains(name) ? j.at(name) : nlohmann::json::array(); };
     for (const auto& c : list("candidates")) {
@@ -136,6 +145,17 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       m.clocks = e.at("estimated_cycles").get<double>();
       m.merged_rays = e.at("merged_rays").get<size_t>();
       p.merges.push_back(m);
+    }
+    for (const auto& e : list("mappings")) {
+      MappingEstimate m;
+      const std::string kind = e.at("kind").get<std::string>();
+      m.kind = kind == "primary" ? BatchKind::kPrimary : kind == "shadow" ? BatchKind::kShadow : BatchKind::kSecondary;
+      m.rays = e.at("rays").get<size_t>();
+      m.ray_clocks = e.at("ray_parallel_cycles").get<double>();
+      m.object_clocks = e.at("object_parallel_cycles").get<double>();
+      m.searched = e.at("search_measured").get<bool>();
+      m.chosen = e.at("chosen").get<bool>();
+      p.mappings.push_back(m);
     }
     if (p.options.n < 2 || p.options.n > 32) return std::nullopt;
     return p;
@@ -171,7 +191,16 @@ nlohmann::json plan_report(const Plan& p) {
                       {"why_blocks", p.why_blocks}, {"words", p.config.words}, {"why_words", p.why_words},
                       {"met_target", p.met_target}, {"pass_order", p.options.coherent ? "coherent" : "batch"},
                       {"why_pass_order", p.why_order}, {"merge_below", p.options.merge_below},
-                      {"why_merge", p.why_merge}};
+                      {"why_merge", p.why_merge}, {"object_parallel", nlohmann::json::array()},
+                      {"why_mapping", p.why_mapping}};
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (p.object[k]) j["object_parallel"].push_back(to_string(static_cast<BatchKind>(k)));
+  }
+  for (const MappingEstimate& e : p.mappings) {
+    j["mappings"].push_back({{"kind", to_string(e.kind)}, {"rays", e.rays}, {"ray_parallel_cycles", e.ray_clocks},
+                             {"object_parallel_cycles", e.object_clocks}, {"search_measured", e.searched},
+                             {"chosen", e.chosen}});
+  }
   for (const MergeEstimate& e : p.merges) {
     j["merges"].push_back({{"below", e.below}, {"merged_rays", e.merged_rays}, {"estimated_broadcasts", e.broadcasts},
                            {"estimated_cycles", e.clocks}});

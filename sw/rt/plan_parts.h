@@ -60,6 +60,10 @@ inline std::string pct(double v) {
   return o.str();
 }
 
+// `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed (the
+// plan is deterministic), sorted: the frame sample's pixels.
+std::vector<uint32_t> plan_pixels(size_t pixels, size_t count);
+
 // The multiplier bits n: the narrowest candidate whose sampled wrong-pixel rate meets the
 // target (plan_bits.cpp; docs/raytracer.md, "The precision plan"). `exact` answers with
 // the exact reference; `reference` gives its render of the whole frame, waiting for it

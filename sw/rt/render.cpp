@@ -31,7 +31,9 @@ std::vector<Hit> ReferenceIntersector::intersect(const std::vector<Ray>& rays) {
 
 FmppIntersector::FmppIntersector(fmpp::Device& dev, const std::vector<fmpp::isect::Triangle>& tris,
                                  const fmpp::isect::KernelOptions& opt)
-    : dev_(dev), tris_(tris), opt_(opt) {}
+    : dev_(dev), tris_(tris), opt_(opt) {
+  for (fmpp::isect::Mapping& m : mapping_) m = opt.mapping;
+}
 
 double float_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
@@ -49,6 +51,7 @@ std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
   fmpp::isect::KernelStats st;
   fmpp::isect::KernelOptions o = opt_;
   o.occlusion = shadow_stop_ && kind_ == BatchKind::kShadow;
+  o.mapping = mapping_[static_cast<int>(kind_)];
   std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, rays, tris_, o, &st);
   stats_.add(st);
   by_kind_[static_cast<int>(kind_)].add(st);

@@ -81,6 +81,9 @@ class FmppIntersector : public Intersector {
   // stops at its first certified occluder; the shading only asks whether one exists),
   // unless this is off: then as nearest-hit queries like the others. The same image.
   void set_shadow_stop(bool on) { shadow_stop_ = on; }
+  // The mapping of one kind of batch (initially the options' for every kind); rays the
+  // mapping cannot take still go ray-parallel (fmpp::isect::route_rays).
+  void set_mapping(BatchKind k, fmpp::isect::Mapping m) { mapping_[static_cast<int>(k)] = m; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 
@@ -92,6 +95,7 @@ class FmppIntersector : public Intersector {
   fmpp::isect::KernelStats by_kind_[kNumBatchKinds];
   BatchKind kind_ = BatchKind::kPrimary;
   bool shadow_stop_ = true;
+  fmpp::isect::Mapping mapping_[kNumBatchKinds];
 };
 
 struct RenderOptions {

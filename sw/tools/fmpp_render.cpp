@@ -84,8 +84,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(tool_backends()));
   app.add_option("--width", width, "image width")->capture_default_str()->check(int_range(1, 16384));
   app.add_option("--height", height, "image height")->capture_default_str()->check(int_range(1, 16384));
-  app.add_option("--mapping", mapping, "ray | object (secondary rays always ray-parallel)")
-      ->capture_default_str()
+  app.add_option("--mapping", mapping,
+                 "ray | object: every batch of rays sharing an origin in that mapping (default: ray-parallel, and "
+                 "object-parallel for a kind of batch, primary or shadow, where the precision plan's cost model finds "
+                 "it cheaper; secondary rays always ray-parallel)")
       ->check(CLI::IsMember({"ray", "object"}));
   app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
   CLI::Option* blocks_opt = app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
@@ -246,6 +248,13 @@ int main(int argc, char** argv) {
       pr.sample_pixels = sample_pixels;
       if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
       pr.base.mapping = isect::parse_mapping(mapping);
+      pr.choose_mapping = !app.count("--mapping") && session->size() == 1;
+      // The culling the frame will have, for the plan's cost model.
+      pr.base.cull = !no_cull;
+      pr.base.cull_packet = cull_packet;
+      pr.base.cull_probe = !no_probe;
+      pr.base.fmpp_boxes = !no_fmpp_boxes;
+      pr.base.gates = !no_gates;
       pr.base.mul = isect::parse_mul_mode(mul);
       pr.base.watertight = watertight;
       pr.base.t_accuracy = t_accuracy;
@@ -302,8 +311,13 @@ int main(int argc, char** argv) {
                                 : !plan.met_target ? "no n keeps the error target"
                                 : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
                                                                            : "the widest n; some costs over their limits";
-        std::fprintf(stderr, "plan: n = %u, %u blocks x %u words (%s; %.1f s%s); the reasons are in --report's plan\n",
-                     bits, cfg.blocks, cfg.words, how.c_str(), plan_seconds, from_cache ? ", cached" : "");
+        std::string object;
+        for (int k = 0; k < rt::kNumBatchKinds; ++k) {
+          if (plan.object[k]) object += (object.empty() ? ", " : " and ") + std::string(rt::to_string(static_cast<rt::BatchKind>(k)));
+        }
+        if (!object.empty()) object += " rays object-parallel";
+        std::fprintf(stderr, "plan: n = %u, %u blocks x %u words%s (%s; %.1f s%s); the reasons are in --report's plan\n",
+                     bits, cfg.blocks, cfg.words, object.c_str(), how.c_str(), plan_seconds, from_cache ? ", cached" : "");
       }
       mpi::RenderChips chips(*session);
       auto be = make_backend(backend, cfg, bo);
@@ -328,6 +342,9 @@ int main(int argc, char** argv) {
       ko.share = chips.attach(dev, rank0 == "work");
       rt::FmppIntersector fi(dev, scene.triangles, ko);
       fi.set_shadow_stop(!no_shadow_stop);
+      for (int k = 0; k < rt::kNumBatchKinds; ++k) {
+        if (plan.object[k]) fi.set_mapping(static_cast<rt::BatchKind>(k), isect::Mapping::kObject);
+      }
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
@@ -338,7 +355,7 @@ int main(int argc, char** argv) {
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
                      {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
-                     {"merge_below", ko.merge_below}};
+                     {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
