@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 #include "sw/rt/image.h"
@@ -58,6 +59,33 @@ Pfm read_pfm(const std::string& path) {
     }
   }
   return p;
+}
+
+// The levels' table gives the formula's level for every double: at and around every
+// level's start (where the two could part), and at random values of every scale.
+TEST(ImageFormat, LevelTableEqualsTheFormula) {
+  for (int k = 1; k < 256; ++k) {
+    const double guess = std::pow((k - 0.5) / 255.0, 2.2);
+    double v = guess;
+    for (int i = 0; i < 300; ++i) v = std::nextafter(v, 0.0);
+    for (int i = 0; i < 600; ++i, v = std::nextafter(v, 1.0)) {
+      ASSERT_EQ(to_level(v), to_level_by_formula(v)) << "k = " << k << ", v = " << v;
+    }
+  }
+  uint64_t x = 0x9e3779b97f4a7c15ull;
+  for (int i = 0; i < 200000; ++i) {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    const double v = std::ldexp(static_cast<double>(x >> 11) / 9007199254740992.0, -static_cast<int>(x % 40));
+    ASSERT_EQ(to_level(v), to_level_by_formula(v)) << v;
+    ASSERT_EQ(to_level(-v), 0);
+    ASSERT_EQ(to_level(1 + v), 255);
+  }
+  for (double v : {0.0, -0.0, 1.0, 5e-324, std::nextafter(1.0, 0.0), std::numeric_limits<double>::infinity(),
+                   -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    EXPECT_EQ(to_level(v), to_level_by_formula(v)) << v;
+  }
 }
 
 TEST(ImageFormat, ExtensionChoosesTheFormat) {

@@ -23,6 +23,9 @@ namespace fmpp::isect {
 RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, unsigned blocks) {
   RayRoutes rr;
   // Group rays by origin: a group shares one set of inverse matrices (the paper's method).
+  // Rays of one origin come in runs (a light's shadow rays, the camera's): the group of
+  // the ray before is tried first, with the map's own equivalence.
+  auto last = rr.groups.end();
   for (size_t i = 0; i < rays.size(); ++i) {
     const Ray& r = rays[i];
     // Rays with tmin or an excluded triangle take the general (ray-parallel) kernel in
@@ -30,9 +33,11 @@ RayRoutes route_rays(const std::vector<Ray>& rays, const KernelOptions& opt, uns
     const bool special = r.tmin > 0 || r.exclude >= 0;
     if (special || (opt.mapping == Mapping::kRay && opt.origins == Origins::kGeneral)) {
       rr.general.push_back(i);
-    } else {
-      rr.groups[{r.o.x, r.o.y, r.o.z}].push_back(i);
+      continue;
     }
+    const std::tuple<double, double, double> key{r.o.x, r.o.y, r.o.z};
+    if (last == rr.groups.end() || key < last->first || last->first < key) last = rr.groups.try_emplace(key).first;
+    last->second.push_back(i);
   }
   if (opt.mapping == Mapping::kRay && opt.origins == Origins::kAuto) {
     // Small groups would leave most blocks idle: send them through the general kernel.

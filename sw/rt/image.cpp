@@ -9,22 +9,74 @@
 #include <filesystem>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #include "common/util/output_file.h"
 
 namespace rt {
 
+namespace {
+
+// The tone curve: the 8-bit level of a linear value.
+uint8_t level_by_formula(double v) {
+  return static_cast<uint8_t>(std::lround(std::pow(std::clamp(v, 0.0, 1.0), 1.0 / 2.2) * 255.0));
+}
+
+// Where each level starts: start[k] is the smallest double in (0, 1) whose level is at
+// least k, found from the formula itself (a bisection on the doubles near the curve's
+// inverse), so that a search of the table gives the formula's level. Values within 64
+// ulps of a start are given by the formula directly: the table cannot differ from it
+// there even if pow were not monotone within its last ulp.
+struct LevelStarts {
+  double start[257];
+  LevelStarts() {
+    start[0] = 0;
+    for (int k = 1; k < 256; ++k) {
+      const double guess = std::pow((k - 0.5) / 255.0, 2.2);
+      double lo = guess * (1 - 1e-9), hi = guess * (1 + 1e-9);
+      if (level_by_formula(lo) >= k) lo = 0;
+      if (level_by_formula(hi) < k) hi = 1;
+      // lo has a level below k, hi at least k: bisect on the ordered bit patterns.
+      uint64_t a, b;
+      std::memcpy(&a, &lo, 8);
+      std::memcpy(&b, &hi, 8);
+      while (b - a > 1) {
+        const uint64_t m = a + (b - a) / 2;
+        double v;
+        std::memcpy(&v, &m, 8);
+        (level_by_formula(v) >= k ? b : a) = m;
+      }
+      std::memcpy(&start[k], &b, 8);
+    }
+    start[256] = 1;
+  }
+};
+
+uint8_t level(double v) {
+  if (v <= 0) return 0;     // clamped to 0: pow(0) = 0
+  if (v >= 1) return 255;   // clamped to 1
+  if (!(v == v)) return level_by_formula(v);  // NaN, as the formula has it
+  static const LevelStarts t;
+  const double* up = std::upper_bound(t.start + 1, t.start + 256, v);  // first start above v
+  const int k = static_cast<int>(up - t.start) - 1;                    // start[k] <= v < start[k + 1]
+  const double near = 64 * std::numeric_limits<double>::epsilon() * v;
+  if (v - t.start[k] <= near || t.start[k + 1] - v <= near) return level_by_formula(v);
+  return static_cast<uint8_t>(k);
+}
+
+}  // namespace
+
 std::vector<uint8_t> Image::to_rgb8() const {
   std::vector<uint8_t> out(px_.size() * 3);
   for (size_t i = 0; i < px_.size(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const double v = std::pow(std::clamp(px_[i][c], 0.0, 1.0), 1.0 / 2.2);
-      out[3 * i + c] = static_cast<uint8_t>(std::lround(v * 255.0));
-    }
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = level(px_[i][c]);
   }
   return out;
 }
+
+uint8_t to_level(double v) { return level(v); }
+uint8_t to_level_by_formula(double v) { return level_by_formula(v); }
 
 void Image::write_png(const std::string& path) const {
   const std::vector<uint8_t> rgb = to_rgb8();

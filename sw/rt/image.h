@@ -35,6 +35,12 @@ class Image {
   std::vector<glm::dvec3> px_;
 };
 
+// The 8-bit level of one linear value, as to_rgb8 gives it (a search of the levels'
+// starts), and the same from the formula itself (clamp, pow, round): equal for every
+// double (tests/image_format_test.cpp).
+uint8_t to_level(double v);
+uint8_t to_level_by_formula(double v);
+
 // The output formats, chosen by the file name's extension (case-insensitive): ".png"
 // (8-bit, tone-mapped as to_rgb8) and ".pfm" (linear radiance, 32-bit float, unclamped).
 enum class ImageFormat { kPng, kPfm };

@@ -50,21 +50,22 @@ ObjectRates measure_object_rates(const Scene& scene, const std::vector<Ray>& ray
   std::vector<Ray> sample;
   const size_t step = std::max<size_t>(1, rays.size() / 32);
   for (size_t i = 0; i < rays.size() && sample.size() < 32; i += step) sample.push_back(rays[i]);
-  const double n = static_cast<double>(sample.size());
   if (searched) {
     // One full pass of the first triangles: the search as often as it runs there.
     const size_t t = std::min<size_t>(m, blocks);
     const auto [load, ray] = run_object(scene, sample, opt, t, static_cast<unsigned>(t));
     r.per_triangle = load / static_cast<double>(t);
-    r.per_ray = ray / n;
+    r.per_ray = ray / static_cast<double>(sample.size());
     return r;
   }
-  // The load on one pass of up to 16 triangles; the rays on passes of one block each,
-  // where no ray has two possible hits (and most have none): a bound from below.
+  // The load on one pass of up to 16 triangles; the rays (16 of them) on passes of one
+  // block each, where no ray has two possible hits (and most have none): a bound from
+  // below.
   const size_t t = std::min<size_t>(m, 16);
   r.per_triangle = run_object(scene, {sample.front()}, opt, t, static_cast<unsigned>(t)).first / static_cast<double>(t);
-  const size_t p = std::min<size_t>(m, 4);
-  r.per_ray = run_object(scene, sample, opt, p, 1).second / (n * static_cast<double>(p));
+  const size_t p = std::min<size_t>(m, 2);
+  if (sample.size() > 16) sample.resize(16);
+  r.per_ray = run_object(scene, sample, opt, p, 1).second / (static_cast<double>(sample.size()) * static_cast<double>(p));
   return r;
 }
 

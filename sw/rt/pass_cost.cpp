@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -263,6 +264,16 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   // With origins shared by fewer than `below` rays merged (0: the kernels' default);
   // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
   // general_over_box scales that form's broadcasts (kGeneralOverBox).
+  // Each batch's routing, kept: it depends only on the mapping and the threshold below
+  // which an origin's rays are merged (route_rays), which many of the estimates share.
+  std::map<std::tuple<size_t, int, size_t>, fmpp::isect::RayRoutes> routed;
+  auto routes_of = [&](size_t k, const fmpp::isect::KernelOptions& o, unsigned blocks) -> const fmpp::isect::RayRoutes& {
+    const size_t below = o.merge_below ? o.merge_below : std::max<size_t>(16, blocks / 8);
+    const auto key = std::make_tuple(k, static_cast<int>(o.mapping), below);
+    auto it = routed.find(key);
+    if (it == routed.end()) it = routed.emplace(key, fmpp::isect::route_rays(frame.batches[k].second, o, blocks)).first;
+    return it->second;
+  };
   // With the kinds of `object` (nullptr: none) object-parallel at `orates`.
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
                       double general_over_box = 1, const KindFlags* object = nullptr,
@@ -271,13 +282,12 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     *bc = 0;
     if (merged) *merged = 0;
     for (size_t k = 0; k < frame.batches.size(); ++k) {
-      const std::vector<Ray>& rays = frame.batches[k].second;
       const int kind = static_cast<int>(frame.batches[k].first);
       const bool op = object && (*object)[kind];
       fmpp::isect::KernelOptions o = opt;
       o.merge_below = below;
       if (op) o.mapping = fmpp::isect::Mapping::kObject;
-      const fmpp::isect::RayRoutes routes = fmpp::isect::route_rays(rays, o, blocks);
+      const fmpp::isect::RayRoutes& routes = routes_of(k, o, blocks);
       if (merged) *merged += routes.general.size() - own_general[k];
       auto add = [&](const std::vector<size_t>& idx, bool shared) {
         if (idx.empty()) return;

@@ -107,6 +107,7 @@ struct PlanCandidate {
   size_t pixels_sampled = 0;
   double flagged_share = -1;  // frame sample: rays redone on the host (certification); -1 if not rendered
   double primary_redone = -1;  // the same share of the primary sample; -1 if not sampled
+  size_t primary_sampled = 0;  // rays of the primary sample measured (fewer once its refusal was certain)
   uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 

@@ -11,6 +11,7 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/cull/order.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/pass/policy.h"
@@ -71,6 +72,19 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
   // passes of 128 rays 0.03 s and 0.19 s; the same answers and redone rays).
   const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 128)), 32};
+  // Those passes as calls of their own, so that a candidate stops as soon as its refusal
+  // is certain: once the wrong triangles or the rays redone so far exceed what the whole
+  // sample may have (a count, not an estimate: the rest cannot bring them back).
+  std::vector<std::vector<size_t>> sample_passes;
+  {
+    std::vector<size_t> idx(sample.size());
+    std::iota(idx.begin(), idx.end(), size_t{0});
+    const std::vector<size_t> order = fmpp::isect::coherent_order(sample, idx);
+    for (size_t b = 0; b < order.size(); b += sample_cfg.blocks) {
+      sample_passes.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(b),
+                                 order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b + sample_cfg.blocks)));
+    }
+  }
   // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
   // plan is deterministic), in frame order, rendered whole (shadow, reflection and
   // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
@@ -233,16 +247,32 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     fmpp::isect::KernelOptions o = options(n);
     o.cond_bits = fmpp::isect::policy::kRawCondBits;  // the machine's own answers, no host fallback
     fmpp::isect::KernelStats st;
-    const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample, scene.triangles, o, &st);
-    size_t wrong = 0;
-    for (size_t i = 0; i < got.size(); ++i) wrong += got[i].tri != ref[i].tri;
-    c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(got.size());
+    const double total = static_cast<double>(sample.size());
+    size_t wrong = 0, done = 0;
+    for (const std::vector<size_t>& pass : sample_passes) {
+      std::vector<Ray> rays;
+      for (size_t i : pass) rays.push_back(sample[i]);
+      const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, rays, scene.triangles, o, &st);
+      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != ref[pass[j]].tri;
+      done += pass.size();
+      // At n = 32 the costs do not refuse (below): its sample is measured whole.
+      const double redone = flagged_share(st) * static_cast<double>(done);
+      if (n != 32 && (static_cast<double>(wrong) > req.target_wrong_rate * total ||
+                      redone > kCostlyRedone * req.max_flagged_share * total)) {
+        break;
+      }
+    }
+    c.primary_sampled = done;
+    c.wrong_rate = static_cast<double>(wrong) / static_cast<double>(done);
     c.sample_cycles = st.cycles;
     c.primary_redone = flagged_share(st);
     const bool costly = costly_primary(c, req) && n != 32;
     const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share && !costly;
     steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
               " of triangles ill-conditioned, " + pct(c.primary_redone) + " of its rays redone" +
+              (done < sample.size() ? " (refused after " + std::to_string(done) + " of its " +
+                                          std::to_string(sample.size()) + " rays)"
+                                    : "") +
               (primary_ok ? "" : ": too many"));
     if (primary_ok) render_frame(c);  // only then the frame: it costs more
     plan.candidates.push_back(c);

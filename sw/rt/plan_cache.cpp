@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-6";
+constexpr const char* kPlanVersion = "plan-7";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -127,6 +127,7 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       pc.pixels_sampled = c.at("pixels_sampled").get<size_t>();
       pc.flagged_share = c.at("flagged_share").get<double>();
       pc.primary_redone = c.at("primary_redone").get<double>();
+      pc.primary_sampled = c.at("primary_sampled").get<size_t>();
       pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
       p.candidates.push_back(pc);
     }
@@ -213,7 +214,8 @@ nlohmann::json plan_report(const Plan& p) {
     j["candidates"].push_back({{"n", c.n}, {"wrong_rate", c.wrong_rate}, {"host_share", c.host_share},
                                {"pixel_rate", c.pixel_rate}, {"pixel_bound", c.pixel_bound},
                                {"pixels_sampled", c.pixels_sampled}, {"flagged_share", c.flagged_share},
-                               {"primary_redone", c.primary_redone}, {"sample_cycles", c.sample_cycles}});
+                               {"primary_redone", c.primary_redone}, {"primary_sampled", c.primary_sampled},
+                               {"sample_cycles", c.sample_cycles}});
   }
   return j;
 }

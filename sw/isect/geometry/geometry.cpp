@@ -55,13 +55,13 @@ void validate_input(const std::vector<Ray>& rays, const std::vector<Triangle>& t
   }
   for (size_t i = 0; i < rays.size(); ++i) {
     const Ray& r = rays[i];
-    const std::string ray = "ray " + std::to_string(i);
+    const auto ray = [i] { return "ray " + std::to_string(i); };  // named only in an error
     std::string why = check_point(r.o);
-    if (!why.empty()) fail(ray + " origin " + why);
+    if (!why.empty()) fail(ray() + " origin " + why);
     why = check_direction(r.d);
-    if (!why.empty()) fail(ray + " direction " + why);
-    if (!std::isfinite(r.tmin) || !(r.tmin >= 0)) fail(ray + " tmin " + shortest(r.tmin) + " is not finite and >= 0");
-    if (std::isnan(r.tmax)) fail(ray + " tmax is NaN");
+    if (!why.empty()) fail(ray() + " direction " + why);
+    if (!std::isfinite(r.tmin) || !(r.tmin >= 0)) fail(ray() + " tmin " + shortest(r.tmin) + " is not finite and >= 0");
+    if (std::isnan(r.tmax)) fail(ray() + " tmax is NaN");
   }
 }
 
