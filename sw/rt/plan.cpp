@@ -296,7 +296,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
       frame = tracing.get();
       if (req.progress) {
         std::ostringstream o;
-        o.precision(2);
+        o.precision(4);
         o << std::fixed << "plan: the frame traced with exact hits beside the samples (the reference's picture, "
           << "the pass-size model's rays; " << *traced_seconds << " s)";
         req.progress(o.str());

@@ -143,6 +143,68 @@ TEST(ExactReference, FilterAgreesWithTheExactEvaluation) {
   }
 }
 
+// The hit's t from the double-double bound (RayTest::hit_t) against the exact
+// truncation, hit by hit: triangles of many sizes at many distances from the origin
+// (tiny beside huge), rays from near and far aimed inside them; and t exactly a double,
+// which no bound can settle (the exact evaluation must).
+TEST(ExactReference, HitTEqualsTheExactTruncation) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(-1, 1), w(0.02, 0.48);
+  const auto vec = [&](int e) { return glm::dvec3(std::ldexp(u(rng), e), std::ldexp(u(rng), e), std::ldexp(u(rng), e)); };
+  uint64_t hits = 0, filtered = 0;
+  for (int place : {-250, -40, -8, 0, 8, 40, 250}) {
+    for (int size : {-60, -20, -2, 0, 12, 40}) {
+      for (int away : {-6, 0, 6, 20}) {
+        for (int k = 0; k < 12; ++k) {
+          const glm::dvec3 centre = vec(place);
+          const Triangle t = tri(centre + vec(size), centre + vec(size), centre + vec(size));
+          const double a = w(rng), b = w(rng);
+          const glm::dvec3 target = (1 - a - b) * t.p[0] + a * t.p[1] + b * t.p[2];
+          const Ray r{target + vec(size + away), glm::dvec3(0)};
+          Ray ray = r;
+          ray.d = target - r.o;
+          if (ray.d == glm::dvec3(0)) continue;
+          exact::RayTest fast(ray, true), slow(ray, false);
+          exact::Candidate cf, cs;
+          const bool hf = fast.hits(t, &cf), hs = slow.hits(t, &cs);
+          ASSERT_EQ(hf, hs) << place << " " << size << " " << away;
+          if (!hf) continue;
+          ++hits;
+          EXPECT_EQ(fast.hit_t(t, &cf), slow.hit_t(t, &cs)) << place << " " << size << " " << away;
+          filtered += fast.t_filtered;
+          EXPECT_EQ(slow.t_filtered, 0u);
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 500u);
+  EXPECT_GT(filtered, hits * 9 / 10) << "the bound settles nearly every t";
+  // t exactly a double, or within an ulp of one: an axis-aligned triangle in the plane
+  // z = -c, the ray straight down it (its direction one or two ulps off 1 for the
+  // second). The bound cannot settle these; the values are exact, and decide them.
+  for (double c : {1.0, 0.75, 3.0, 1e-30, std::ldexp(1.0, 200), 0.1}) {
+    for (double dz : {1.0, std::nextafter(1.0, 2.0), std::nextafter(std::nextafter(1.0, 2.0), 2.0),
+                      std::nextafter(1.0, 0.0)}) {
+      const Triangle t = tri({-c, -c, -c}, {c, -c, -c}, {0, c, -c});
+      const Ray ray{{0, 0, 0}, {0, 0, -dz}};
+      exact::RayTest fast(ray, true), slow(ray, false);
+      exact::Candidate cf, cs;
+      ASSERT_TRUE(fast.hits(t, &cf));
+      ASSERT_TRUE(slow.hits(t, &cs));
+      const double want = slow.hit_t(t, &cs);
+      EXPECT_EQ(fast.hit_t(t, &cf), want) << c << " " << dz;
+      if (dz == 1.0) {
+        EXPECT_EQ(want, c);
+      }
+      // Where c^2 is a double (c = 1, 0.75, 3, 2^200) every value stays exact and settles
+      // it; for 0.1 and 1e-30 the exact evaluation does.
+      if (c * c == std::fma(c, c, 0.0) && std::fma(c, c, -(c * c)) == 0) {
+        EXPECT_EQ(fast.t_filtered, 1u) << c << " " << dz << ": settled from exact values";
+      }
+    }
+  }
+}
+
 TEST(ExactReference, ScalingByAPowerOfTwoChangesNothing) {
   // Positions times 2^k (directions kept): every decision unchanged and every t times
   // 2^k, from scenes near the smallest normal doubles to scenes near the input limit

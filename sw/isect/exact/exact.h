@@ -90,6 +90,12 @@ class RayTest {
   // The exact distance of a hit on `tri` (a triangle the ray meets), into *t.
   void exact_t(const Triangle& tri, Ratio* t);
 
+  // The distance of a hit `c` on `tri` (a triangle the ray meets at t > tmin) as the
+  // reference reports it, to_double(exact t, tmin): from a double-double evaluation with
+  // a rigorous error bound where the bound settles the truncation (hit_t.cpp), else
+  // from the exact t (filled into c->exact). The same double either way.
+  double hit_t(const Triangle& tri, Candidate* c);
+
   // Sign of t(a) - t(b) for two hits of this ray (exact; a tie is 0). Fills in the
   // exact distances it needed.
   int compare_hits(const Triangle& ta, Candidate* a, const Triangle& tb, Candidate* b);
@@ -97,6 +103,7 @@ class RayTest {
   // For the speed report: tests the filter settled alone, tests that needed the exact
   // sign of some of uA, uB, uC, and full exact evaluations (a test, or a hit's t).
   uint64_t filtered = 0, exact_signs = 0, exact_evaluations = 0;
+  uint64_t t_filtered = 0;  // hits whose t the double-double bound settled (hit_t)
 
  private:
   bool exact_hit(const Triangle& tri, Candidate* c);

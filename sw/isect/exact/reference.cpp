@@ -32,15 +32,11 @@ class Nearest {
     std::swap(best_, next_);
   }
 
-  Hit result(double tmin) {
+  Hit result() {
     Hit h;
     if (best_.tri < 0) return h;
-    if (!best_.have_exact) {
-      test_->exact_t(tris_[best_.tri], &best_.exact);
-      best_.have_exact = true;
-    }
     h.tri = best_.tri;
-    h.t = exact::to_double(best_.exact, tmin);
+    h.t = test_->hit_t(tris_[best_.tri], &best_);
     return h;
   }
 
@@ -57,8 +53,7 @@ double intersect_reference(const Ray& r, const Triangle& t) {
   RayTest test(r);
   Candidate c;
   if (!test.hits(t, &c)) return std::numeric_limits<double>::infinity();
-  if (!c.have_exact) test.exact_t(t, &c.exact);
-  return exact::to_double(c.exact, r.tmin);
+  return test.hit_t(t, &c);
 }
 
 std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vector<Triangle>& tris,
@@ -85,7 +80,7 @@ std::vector<Hit> nearest_reference(const std::vector<Ray>& rays, const std::vect
     for (size_t k = 0; k < tris.size(); ++k) {
       if (static_cast<int>(k) != rays[i].exclude) best.offer(static_cast<int>(k));
     }
-    out[i] = best.result(rays[i].tmin);
+    out[i] = best.result();
     st.tests += tris.size() - (rays[i].exclude >= 0 && static_cast<size_t>(rays[i].exclude) < tris.size());
     st.filtered += test.filtered;
     st.exact_signs += test.exact_signs;
@@ -108,7 +103,7 @@ Hit nearest_reference_among(const Ray& r, const std::vector<Triangle>& tris, con
   };
   if (current >= 0) offer(current);
   for (int k : candidates) offer(k);
-  return best.result(r.tmin);
+  return best.result();
 }
 
 }  // namespace fmpp::isect

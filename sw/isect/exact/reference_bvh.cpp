@@ -80,9 +80,8 @@ Hit ReferenceBvh::nearest(const Ray& r) const {
   });
   Hit h;
   if (best.tri < 0) return h;
-  if (!best.have_exact) test.exact_t(tris_[static_cast<size_t>(best.tri)], &best.exact);
   h.tri = best.tri;
-  h.t = exact::to_double(best.exact, r.tmin);
+  h.t = test.hit_t(tris_[static_cast<size_t>(best.tri)], &best);
   return h;
 }
 
