@@ -43,6 +43,38 @@ TEST(Plan, PassSizeFromTheCostModel) {
   EXPECT_GT(c.config.blocks, 1024u);
 }
 
+// The pass size settled without the frame where the cost model's bound allows
+// (pass_cost.h, PassBound): one triangle's broadcasts are too few to move any estimate
+// by the slack, so the fewest blocks, as the model itself takes; with more triangles the
+// frame is traced and priced.
+TEST(Plan, PassSizeSettledByTheBoundWithoutTheFrame) {
+  PlanRequest r;
+  r.width = r.height = 128;
+  const Plan p = make_plan(shipped_scene("one_triangle"), r);
+  EXPECT_TRUE(p.pass_sizes.empty());
+  EXPECT_EQ(p.config.blocks, 1024u);
+  EXPECT_NE(p.why_blocks.find("without tracing the frame"), std::string::npos) << p.why_blocks;
+  EXPECT_TRUE(p.options.coherent);
+  EXPECT_TRUE(p.mappings.empty());
+  // Priced on the traced frame (n given: no frame sample to price the bound), the model
+  // takes the same size.
+  r.bits = p.options.n;
+  const Plan q = make_plan(shipped_scene("one_triangle"), r);
+  EXPECT_FALSE(q.pass_sizes.empty());
+  EXPECT_EQ(q.config.blocks, p.config.blocks);
+  // The Cornell box has mirrors (rays of their own origins): priced on its frame.
+  PlanRequest c;
+  c.width = c.height = 48;
+  EXPECT_FALSE(make_plan(shipped_scene("cornell"), c).pass_sizes.empty());
+  // The bound's arithmetic: 1 light, 16 passes of primary rays and 1 call, so 34 passes.
+  EXPECT_TRUE(pass_bound(16384, 1, 1, 1, 1024, 84, 3, 99).certain);        // 2,856 <= 0.1 x 49,152
+  EXPECT_FALSE(pass_bound(16384, 1, 1, 2, 1024, 84, 3, 99).certain);       // 5,712 > 4,915
+  EXPECT_FALSE(pass_bound(16384, 1, 1, 1, 1024, 84, 3, 2).certain);        // the other mapping cheaper a ray
+  EXPECT_TRUE(pass_bound_may_hold(16384, 1, 1, 1, 1024));                  // 34 x 1 x 32 <= 1,638
+  EXPECT_FALSE(pass_bound_may_hold(16384, 1, 1, 2, 1024));
+  EXPECT_FALSE(pass_bound_may_hold(16384, 1, 3, 1, 1024));                 // 4 x 17 x 32 > 1,638
+}
+
 // Merged batches: where a call has several origins (an area light's points), the cost
 // model prices the thresholds below which an origin's rays join the arbitrary-origin
 // batch, and the plan takes the cheapest unless the default is within kMergeSlack; the

@@ -114,6 +114,31 @@ struct PassRates {
 // n = 24, 200 clocks.
 PassRates rates_from(const fmpp::isect::KernelStats& st);
 
+// The pass size without the frame: where every ray shares an origin (point lights, no
+// mirror or glass within the depth), the frame's clocks at B blocks are R r + X(B): its
+// R rays, at least its P primary ones, loaded and read back at r clocks each, and X(B)
+// its broadcasts, at most (1 + L) (ceil(P / B) + spp) passes (the primary rays' and one
+// light's each, L lights, spp calls of primary rays) of at most all m triangles, at b
+// clocks each. Where X(B0) <= kPassSizeSlack P r at the smallest candidate B0, every
+// candidate's estimate is at least R r >= C(B0) / (1 + kPassSizeSlack): the model's rule
+// takes B0 whatever the frame, and either pass order is within the slack. No kind of
+// batch can move to the object-parallel mapping either (it would save at most X(B0),
+// below kMappingSlack of the frame, and costs more a ray: `object_per_ray` >= r is
+// required), and no batch has two origins to merge. The frame is then not traced.
+struct PassBound {
+  bool certain = false;
+  double broadcasts = 0;  // the bound on X(B0), clocks
+  double rays = 0;        // P r, clocks
+  std::string why;
+};
+PassBound pass_bound(size_t primary, int spp, size_t lights, size_t triangles, unsigned smallest, double per_broadcast,
+                     double per_ray, double object_per_ray);
+// Whether the bound may hold, before any rate is known: with b / r = kBoundRatio (the
+// frame samples of the shipped scenes have had 28 and more), so that the plan traces the
+// frame beside its samples wherever it will need it.
+inline constexpr double kBoundRatio = 32;
+bool pass_bound_may_hold(size_t primary, int spp, size_t lights, size_t triangles, unsigned smallest);
+
 // Estimates each candidate number of blocks (ascending, each >= 1) for the recorded
 // frame, with `opt` (n set), at `rates` (nullptr: none known); a kind of ray the rates
 // do not know is measured on the golden model on up to 512 of the frame's rays. With

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <future>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -18,6 +19,7 @@
 #include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
+#include "sw/rt/object_cost.h"
 #include "sw/rt/plan_parts.h"
 #include "sw/rt/render.h"
 
@@ -30,15 +32,26 @@ using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
 // Words per block: what the kernels the scene's rays take need.
-Decision<unsigned> decide_words(const Scene& scene, const PlanRequest& req, int depth) {
-  if (req.words) return {*req.words, "set by the user"};
+// Whether mirrors or glass lie within the recursion depth (secondary rays, each of its
+// own origin).
+bool has_secondary(const Scene& scene, int depth) {
   bool secondary = false;
   if (depth > 1) {
     for (int m : scene.material_of) {
       secondary = secondary || scene.materials[m].reflectivity > 0 || scene.materials[m].transparency > 0;
     }
   }
-  if (secondary) {
+  return secondary;
+}
+
+// Whether every ray of the frame shares an origin (the eye's, a point light's).
+bool all_rays_share_origins(const Scene& scene, int depth) {
+  return !has_secondary(scene, depth) && !shadows_need_own_origins(scene);
+}
+
+Decision<unsigned> decide_words(const Scene& scene, const PlanRequest& req, int depth) {
+  if (req.words) return {*req.words, "set by the user"};
+  if (has_secondary(scene, depth)) {
     return {fmpp::isect::own_origin_words(req.base),
             "mirrors or glass within the recursion depth: secondary rays take the arbitrary-origin kernel, which "
             "needs " + std::to_string(fmpp::isect::own_origin_words(req.base)) + " words per block"};
@@ -96,10 +109,11 @@ Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned b
 
 // Blocks and pass order from the cost model (pass_cost.h): on the golden model powers of
 // two from 1,024 to one pass; on the RTL its built configurations with the words.
-void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, const FrameRecord& frame,
-                      const PassRates* rates, Plan* plan) {
+// The candidate numbers of blocks, ascending (on the RTL with the names of its built
+// configurations); none where no built configuration has the words (fit_rtl refused).
+std::vector<unsigned> candidate_sizes(const PlanRequest& req, size_t pixels, unsigned words,
+                                      std::vector<std::string>* names) {
   std::vector<unsigned> sizes;
-  std::vector<std::string> names;
   if (req.rtl_configs.empty()) {
     const size_t one_pass = std::min<size_t>(pixels, fmpp::map::kMaxBlocks);
     for (size_t b = 1024; b < one_pass; b *= 2) sizes.push_back(static_cast<unsigned>(b));
@@ -108,16 +122,36 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
     std::vector<std::pair<unsigned, std::string>> built;
     for (const std::string& name : req.rtl_configs) {
       const fmpp::Config c = fmpp::named_config(name);
-      if (c.words >= plan->config.words) built.emplace_back(c.blocks, name);
+      if (c.words >= words) built.emplace_back(c.blocks, name);
     }
     std::sort(built.begin(), built.end());
     for (const auto& [b, name] : built) {
       if (!sizes.empty() && sizes.back() == b) continue;  // the first name of a size
       sizes.push_back(b);
-      names.push_back(name);
+      names->push_back(name);
     }
-    if (sizes.empty()) return;  // fit_rtl has refused already
   }
+  return sizes;
+}
+
+// Sets the machine to `blocks` of the candidates (on the RTL the configuration of that name).
+void set_blocks(const std::vector<unsigned>& sizes, const std::vector<std::string>& names, size_t chosen,
+                const std::string& why, Plan* plan) {
+  if (names.empty()) {
+    plan->config.blocks = sizes[chosen];
+    plan->why_blocks = why;
+  } else {
+    plan->config = fmpp::named_config(names[chosen]);
+    plan->why_blocks = why + " the built RTL configuration '" + names[chosen] + "' (" + plan->config.str() + ")";
+  }
+  plan->config.validate();
+}
+
+void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, const FrameRecord& frame,
+                      const PassRates* rates, Plan* plan) {
+  std::vector<std::string> names;
+  const std::vector<unsigned> sizes = candidate_sizes(req, pixels, plan->config.words, &names);
+  if (sizes.empty()) return;  // fit_rtl has refused already
   Steps steps(req);
   fmpp::isect::KernelOptions with_forms = plan->options;  // the plan's forms and shapes, for its runs
   with_forms.forms = req.forms;
@@ -143,15 +177,34 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   plan->mappings = m.mappings;
   plan->object = m.object;
   plan->why_mapping = m.why_mapping;
-  if (names.empty()) {
-    plan->config.blocks = sizes[m.chosen];
-    plan->why_blocks = m.why_blocks;
-  } else {
-    plan->config = fmpp::named_config(names[m.chosen]);
-    plan->why_blocks = m.why_blocks + " the built RTL configuration '" + names[m.chosen] + "' (" +
-                       plan->config.str() + ")";
+  set_blocks(sizes, names, m.chosen, m.why_blocks, plan);
+}
+
+// The pass size where the cost model's bound settles it without the frame (pass_cost.h,
+// PassBound): true if it did (the plan's blocks, order, merging and mapping set).
+bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_t pixels,
+                               const fmpp::isect::KernelStats& sample, Plan* plan) {
+  std::vector<std::string> names;
+  const std::vector<unsigned> sizes = candidate_sizes(req, pixels, plan->config.words, &names);
+  const PassRates r = rates_from(sample);
+  if (sizes.empty() || !r.shared || r.general) return false;
+  // The object-parallel mapping's clocks a ray, from below (object_cost.h), where the
+  // plan may choose it; else no bound is needed on it.
+  double object_per_ray = std::numeric_limits<double>::infinity();
+  if (req.choose_mapping && !req.base.watertight && fmpp::isect::paper_object_words(req.base) <= plan->config.words) {
+    const std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height);
+    object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false).per_ray;
   }
-  plan->config.validate();
+  const PassBound b = pass_bound(pixels * static_cast<size_t>(scene.spp), scene.spp, scene.lights.size(),
+                                 scene.triangles.size(), sizes.front(), r.shared_b, r.shared_r, object_per_ray);
+  Steps(req).say(std::string("pass size ") + (b.certain ? "settled by the cost model's bound" : "not settled by the bound"));
+  if (!b.certain) return false;
+  plan->options.coherent = true;
+  plan->why_order = "coherent: " + b.why;
+  plan->why_merge = "the default: " + b.why;
+  plan->why_mapping = "ray-parallel: " + b.why;
+  set_blocks(sizes, names, 0, b.why, plan);
+  return true;
 }
 
 // A kind of batch the cost model moved to the object-parallel mapping is checked as the
@@ -283,7 +336,16 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   std::optional<FrameRecord> frame;
   std::optional<double> traced_seconds;
   const auto started = std::chrono::steady_clock::now();
-  if (!req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay) {
+  // Where the cost model's bound may settle the pass size without the frame (every ray
+  // sharing an origin, few triangles beside the primary rays: pass_cost.h, PassBound),
+  // the frame is traced only if the bound, once the frame sample has priced it, does not.
+  const bool model = !req.blocks && req.base.mapping == fmpp::isect::Mapping::kRay;
+  std::vector<std::string> unused;
+  const std::vector<unsigned> sizes = candidate_sizes(req, pixels, plan.config.words, &unused);
+  const bool may_skip = model && !req.bits && !sizes.empty() && all_rays_share_origins(scene, depth) &&
+                        pass_bound_may_hold(pixels * static_cast<size_t>(scene.spp), scene.spp, scene.lights.size(),
+                                            scene.triangles.size(), sizes.front());
+  if (model && !may_skip) {
     tracing = std::async(std::launch::async, [&scene, &exact, &req, depth, started, &traced_seconds] {
       FrameRecord f = record_frame(scene, exact, req.width, req.height, depth);
       traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -310,14 +372,20 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   const Decision<unsigned> bits = decide_bits(scene, req, depth, exact, reference, &sample_stats, plan);
   plan.options.n = bits.value;
   plan.why_bits = bits.why;
-  if (const FrameRecord* f = traced()) {
+  const bool settled = may_skip && decide_pass_size_by_bound(scene, req, pixels, sample_stats, &plan);
+  if (may_skip && !settled) {  // the bound did not hold: the frame after all
+    Steps steps(req);
+    frame = record_frame(scene, exact, req.width, req.height, depth);
+    steps.say("the frame traced with exact hits (the pass-size model's rays)");
+  }
+  if (const FrameRecord* f = settled ? nullptr : traced()) {
     // The frame sample is culled (plan_bits.cpp); a frame without culling has cheaper
     // broadcasts (most are gated off), measured on samples of its rays instead.
     const PassRates rates = rates_from(sample_stats);
     decide_pass_size(scene, req, pixels, *f, req.base.cull ? &rates : nullptr, &plan);
     check_mappings(scene, req, depth, f->picture, &plan);
   }
-  if (plan.pass_sizes.empty()) {
+  if (plan.pass_sizes.empty() && !settled) {
     plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
     plan.why_merge = "the default (not modelled)";
     plan.why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
