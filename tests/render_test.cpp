@@ -90,6 +90,41 @@ TEST(RenderMapping, ObjectParallelKindsModelEqualsRtl) {
   }
 }
 
+// Shadow and secondary rays in one call (FmppIntersector::set_kinds_together): an area
+// light's shadow rays share the secondary rays' passes; the RTL equal to the golden
+// model clock for clock, the picture the one of separate calls.
+TEST(RenderShadowCalls, TogetherModelEqualsRtl) {
+  Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/cornell.json");
+  Light area;
+  area.type = LightType::kRect;
+  area.position = s.lights[0].position;
+  area.edge1 = glm::dvec3(0.6, 0, 0);
+  area.edge2 = glm::dvec3(0, 0, 0.6);
+  area.samples = 2;
+  area.pool = 2;
+  s.lights = {area};
+  std::vector<uint8_t> img[3];
+  uint64_t cycles[3] = {0, 0, 0}, together[3] = {0, 0, 0};
+  const char* backends[3] = {"cmodel", "rtl", "cmodel"};
+  for (int i = 0; i < 3; ++i) {
+    auto be = fmpp::make_backend(backends[i], fmpp::Config{1024, 32});
+    fmpp::Device dev(be->bus());
+    FmppIntersector fi(dev, s.triangles, fmpp::isect::KernelOptions{});
+    fi.set_kinds_together(i < 2);
+    RenderOptions ro;
+    ro.width = ro.height = 12;
+    img[i] = render(s, fi, ro, nullptr).to_rgb8();
+    be->finish();
+    cycles[i] = fi.stats().cycles;
+    together[i] = fi.stats_together().cycles;
+  }
+  EXPECT_EQ(img[0], img[1]);
+  EXPECT_EQ(cycles[0], cycles[1]);
+  EXPECT_GT(together[0], 0u);
+  EXPECT_EQ(together[2], 0u);
+  EXPECT_EQ(img[0], img[2]);
+}
+
 TEST(RenderCulling, SameImageFewerBroadcasts) {
   const Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/spheres_1k.json");
   std::vector<uint8_t> img[2];

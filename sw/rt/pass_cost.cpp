@@ -31,6 +31,13 @@ class Recorder : public Intersector {
  public:
   explicit Recorder(ReferenceIntersector& exact) : exact_(exact) {}
   void set_batch_kind(BatchKind k) override { kind_ = k; }
+  // A shadow batch and the next depth's rays cast in one call (render.cpp): recorded as
+  // two batches, the first's index kept (FrameRecord::pairs).
+  std::pair<std::vector<Hit>, std::vector<Hit>> intersect_two(const std::vector<Ray>& a, BatchKind ka,
+                                                              const std::vector<Ray>& b, BatchKind kb) override {
+    if (ka == BatchKind::kShadow && kb == BatchKind::kSecondary) pairs.push_back(batches.size());
+    return Intersector::intersect_two(a, ka, b, kb);
+  }
   std::vector<Hit> intersect(const std::vector<Ray>& rays) override {
     std::vector<Hit> hits = exact_.intersect(rays);
     std::vector<Ray> cut = rays;
@@ -42,6 +49,7 @@ class Recorder : public Intersector {
   }
   double spawn_margin() const override { return exact_.spawn_margin(); }
   std::vector<std::pair<BatchKind, std::vector<Ray>>> batches;
+  std::vector<size_t> pairs;
 
  private:
   ReferenceIntersector& exact_;
@@ -176,6 +184,7 @@ FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int wi
   FrameRecord f;
   f.picture = render(scene, rec, ro, nullptr);
   f.batches = std::move(rec.batches);
+  f.pairs = std::move(rec.pairs);
   return f;
 }
 
@@ -237,29 +246,59 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
   std::vector<Reach> reach;
   for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
+  // The units priced: every batch (0 .. N - 1), then each pair of a shadow batch and the
+  // next depth's rays cast with it (FrameRecord::pairs) as one call (N ..), their rays and
+  // reach lists one after the other.
+  const size_t N = frame.batches.size();
+  std::vector<std::vector<Ray>> paired;
+  for (size_t p : frame.pairs) {
+    const std::vector<Ray>&a = frame.batches[p].second, &b = frame.batches[p + 1].second;
+    paired.emplace_back(a);
+    paired.back().insert(paired.back().end(), b.begin(), b.end());
+    Reach r = reach[p];
+    if (opt.cull) {
+      const uint32_t base = static_cast<uint32_t>(r.tris.size());
+      for (size_t i = 1; i < reach[p + 1].start.size(); ++i) r.start.push_back(base + reach[p + 1].start[i]);
+      r.tris.insert(r.tris.end(), reach[p + 1].tris.begin(), reach[p + 1].tris.end());
+    }
+    reach.push_back(std::move(r));
+  }
+  auto rays_of = [&](size_t u) -> const std::vector<Ray>& { return u < N ? frame.batches[u].second : paired[u - N]; };
+  // The units of the frame, with the kinds apart or each pair in one call.
+  auto units = [&](bool together) {
+    std::vector<size_t> u;
+    size_t next_pair = 0;
+    for (size_t k = 0; k < N; ++k) {
+      if (together && next_pair < frame.pairs.size() && frame.pairs[next_pair] == k) {
+        u.push_back(N + next_pair++);
+        ++k;  // its second batch is in the unit
+        continue;
+      }
+      u.push_back(k);
+    }
+    return u;
+  };
   std::vector<uint64_t> stamp(scene.triangles.size(), 0);
   uint64_t pass = 0;
   // Per batch, the groups the kernels make on `blocks` blocks (rays sharing an origin,
   // rays of their own: the routing depends on the blocks), each priced at its rates.
   // A group's coherent order, kept for the other sizes that group the batch alike.
-  std::vector<std::vector<std::pair<std::vector<size_t>, std::vector<size_t>>>> orders(frame.batches.size());
+  std::vector<std::vector<std::pair<std::vector<size_t>, std::vector<size_t>>>> orders(reach.size());
   auto coherent_order = [&](size_t k, const std::vector<size_t>& idx) -> const std::vector<size_t>& {
     for (const auto& o : orders[k]) {
       if (o.first == idx) return o.second;
     }
-    orders[k].emplace_back(idx, fmpp::isect::coherent_order(frame.batches[k].second, idx));
+    orders[k].emplace_back(idx, fmpp::isect::coherent_order(rays_of(k), idx));
     return orders[k].back().second;
   };
   // Each batch's rays routed to the arbitrary-origin form when no origin's are merged
   // (KernelOptions::merge_below = 1): the base of the merged rays counted below.
-  std::vector<size_t> own_general(frame.batches.size(), 0);
+  std::vector<size_t> own_general(reach.size(), 0);
   const bool merging = opt.origins == fmpp::isect::Origins::kAuto && opt.mapping == fmpp::isect::Mapping::kRay;
   if (merging) {
     fmpp::isect::KernelOptions none = opt;
     none.merge_below = 1;
-    for (size_t k = 0; k < frame.batches.size(); ++k) {
-      own_general[k] = fmpp::isect::route_rays(frame.batches[k].second, none, 0).general.size();
-    }
+    for (size_t k = 0; k < reach.size(); ++k) own_general[k] = fmpp::isect::route_rays(rays_of(k), none, 0).general.size();
   }
   // With origins shared by fewer than `below` rays merged (0: the kernels' default);
   // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
@@ -271,18 +310,22 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     const size_t below = o.merge_below ? o.merge_below : std::max<size_t>(16, blocks / 8);
     const auto key = std::make_tuple(k, static_cast<int>(o.mapping), below);
     auto it = routed.find(key);
-    if (it == routed.end()) it = routed.emplace(key, fmpp::isect::route_rays(frame.batches[k].second, o, blocks)).first;
+    if (it == routed.end()) it = routed.emplace(key, fmpp::isect::route_rays(rays_of(k), o, blocks)).first;
     return it->second;
   };
-  // With the kinds of `object` (nullptr: none) object-parallel at `orates`.
+  // With the kinds of `object` (nullptr: none) object-parallel at `orates`; with
+  // `together`, each shadow batch in one call with the next depth's rays.
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
                       double general_over_box = 1, const KindFlags* object = nullptr,
-                      const KindRates* orates = nullptr) {
+                      const KindRates* orates = nullptr, bool together = false) {
     double clocks = 0;
     *bc = 0;
     if (merged) *merged = 0;
-    for (size_t k = 0; k < frame.batches.size(); ++k) {
-      const int kind = static_cast<int>(frame.batches[k].first);
+    // A shadow batch moved to the object-parallel mapping cannot share the secondary
+    // rays' call.
+    const bool join = together && !(object && (*object)[static_cast<int>(BatchKind::kShadow)]);
+    for (size_t k : units(join)) {
+      const int kind = static_cast<int>(k < N ? frame.batches[k].first : BatchKind::kSecondary);
       const bool op = object && (*object)[kind];
       fmpp::isect::KernelOptions o = opt;
       o.merge_below = below;
@@ -347,16 +390,39 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     m.why_merge = "no threshold merges any origin's rays (each batch has one origin, or many rays from each)";
   }
 
+  // The last shadow batch of each depth in one call with the next depth's rays (their
+  // own-origin rays then share passes), where that is cheaper by kMergeSlack.
+  if (!frame.pairs.empty() && merging) {
+    uint64_t b_apart = 0, b_together = 0;
+    m.kinds_apart = estimate(c.blocks, m.coherent, &b_apart, m.merge_below);
+    m.kinds_together_clocks = estimate(c.blocks, m.coherent, &b_together, m.merge_below, nullptr, 1, nullptr, nullptr, true);
+    m.kinds_together = m.kinds_together_clocks < (1 - kMergeSlack) * m.kinds_apart;
+    std::ostringstream w;
+    w << (m.kinds_together ? "together" : "apart") << ": the " << frame.pairs.size()
+      << (frame.pairs.size() == 1 ? " shadow batch" : " shadow batches")
+      << " cast with the next depth's rays, estimated " << fmt_clocks(m.kinds_together_clocks) << " in one call each ("
+      << b_together << " broadcasts) against " << fmt_clocks(m.kinds_apart) << " apart (" << b_apart << ")"
+      << (m.kinds_together ? "" : ", not " + std::to_string(static_cast<int>(100 * kMergeSlack)) + " % cheaper");
+    m.why_kinds = w.str();
+  } else {
+    m.why_kinds = frame.pairs.empty() ? "apart: no shadow batch is cast with a next depth's rays"
+                                      : "apart: the mapping merges nothing";
+  }
   // The mapping of each kind of batch, at that size, order and merging.
   if (object) {
     uint64_t unused = 0;
-    const double ray_clocks = estimate(c.blocks, m.coherent, &unused, m.merge_below);
+    const double ray_clocks = estimate(c.blocks, m.coherent, &unused, m.merge_below, nullptr, 1, nullptr, nullptr,
+                                       m.kinds_together);
     choose_mappings(scene, frame, opt, c.blocks, ray_clocks,
                     [&](const KindFlags& f, const KindRates& r) {
                       uint64_t bc = 0;
-                      return estimate(c.blocks, m.coherent, &bc, m.merge_below, nullptr, 1, &f, &r);
+                      return estimate(c.blocks, m.coherent, &bc, m.merge_below, nullptr, 1, &f, &r, m.kinds_together);
                     },
                     &m);
+    if (m.kinds_together && m.object[static_cast<int>(BatchKind::kShadow)]) {
+      m.kinds_together = false;
+      m.why_kinds += "; apart after all: the shadow rays are object-parallel";
+    }
   } else {
     m.why_mapping = why_object;
   }

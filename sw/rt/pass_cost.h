@@ -91,7 +91,11 @@ struct PassCostModel {
   unsigned merge_below = 0;           // the one chosen (0: the kernels' default)
   std::vector<MappingEstimate> mappings;  // the kinds priced object-parallel (empty: none could be)
   std::array<bool, kNumBatchKinds> object{};  // the kinds that take it
-  std::string why_blocks, why_order, why_merge, why_mapping;
+  // Each depth's last shadow batch in one call with the next depth's rays (FrameRecord::
+  // pairs; FmppIntersector::set_kinds_together), and the two estimates.
+  bool kinds_together = false;
+  double kinds_apart = 0, kinds_together_clocks = 0;
+  std::string why_blocks, why_order, why_merge, why_mapping, why_kinds;
 };
 
 // The frame rendered on the host with the exact reference's hits, every batch of rays
@@ -100,6 +104,9 @@ struct PassCostModel {
 struct FrameRecord {
   Image picture{1, 1};
   std::vector<std::pair<BatchKind, std::vector<fmpp::isect::Ray>>> batches;
+  // The shadow batches cast in one call with the next depth's rays (Intersector::
+  // intersect_two): indices into batches, the next depth's batch right after each.
+  std::vector<size_t> pairs;
 };
 FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth);
 

@@ -174,6 +174,10 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   plan->options.merge_below = m.merge_below;
   plan->merges = m.merges;
   plan->why_merge = m.why_merge;
+  plan->kinds_together = m.kinds_together;
+  plan->kinds_apart_clocks = m.kinds_apart;
+  plan->kinds_together_clocks = m.kinds_together_clocks;
+  plan->why_kinds = m.why_kinds;
   plan->mappings = m.mappings;
   plan->object = m.object;
   plan->why_mapping = m.why_mapping;
@@ -203,6 +207,7 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
   plan->why_order = "coherent: " + b.why;
   plan->why_merge = "the default: " + b.why;
   plan->why_mapping = "ray-parallel: " + b.why;
+  plan->why_kinds = "apart: no batch has rays of their own origins";
   set_blocks(sizes, names, 0, b.why, plan);
   return true;
 }
@@ -389,6 +394,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
     plan.why_merge = "the default (not modelled)";
     plan.why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
+    plan.why_kinds = "apart (not modelled)";
   }
   return plan;
 }

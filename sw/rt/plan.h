@@ -26,6 +26,8 @@
 //     The object-parallel mapping keeps one pass of primary rays where the map allows it.
 //   - Merged batches, at that size and order: which origins' rays go into the
 //     arbitrary-origin batch (KernelOptions::merge_below), from the same cost model.
+//   - Shadow and secondary rays in one call: each depth's last shadow batch with the next
+//     depth's rays (cast together already), where the same cost model finds it cheaper.
 //   - The mapping of each kind of batch whose rays share an origin (primary, shadow):
 //     object-parallel where the same cost model, with that mapping's clocks measured on
 //     the golden model (object_cost.h), finds it cheaper; checked like the n, on the frame
@@ -119,7 +121,12 @@ struct Plan {
   std::vector<MergeEstimate> merges;          // the merge thresholds priced (empty: not run, or none moves a ray)
   std::vector<MappingEstimate> mappings;      // the kinds priced object-parallel (empty: not run, or none could be)
   std::array<bool, kNumBatchKinds> object{};  // the kinds of batch that run object-parallel
-  std::string why_bits, why_words, why_blocks, why_order, why_merge, why_mapping;
+  // Each depth's last shadow batch in one call with the next depth's rays
+  // (FmppIntersector::set_kinds_together), and the cost model's two estimates (0: not
+  // priced).
+  bool kinds_together = false;
+  double kinds_apart_clocks = 0, kinds_together_clocks = 0;
+  std::string why_bits, why_words, why_blocks, why_order, why_merge, why_mapping, why_kinds;
   // False if no candidate n keeps the error target on the frame sample (why_bits says by
   // how much): a render at the plan's n may then be off by more than the target.
   bool met_target = true;

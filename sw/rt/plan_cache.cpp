@@ -15,7 +15,7 @@ namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-7";
+constexpr const char* kPlanVersion = "plan-8";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -108,6 +108,10 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.why_blocks = j.at("why_blocks").get<std::string>();
     p.why_order = j.at("why_pass_order").get<std::string>();
     p.why_mapping = j.at("why_mapping").get<std::string>();
+    p.kinds_together = j.at("shadow_calls").get<std::string>() == "together";
+    p.kinds_apart_clocks = j.at("shadow_calls_apart_cycles").get<double>();
+    p.kinds_together_clocks = j.at("shadow_calls_together_cycles").get<double>();
+    p.why_kinds = j.at("why_shadow_calls").get<std::string>();
     for (const auto& k : j.at("object_parallel")) {
       bool known = false;
       for (int i = 0; i < kNumBatchKinds; ++i) {
@@ -193,7 +197,9 @@ nlohmann::json plan_report(const Plan& p) {
                       {"met_target", p.met_target}, {"pass_order", p.options.coherent ? "coherent" : "batch"},
                       {"why_pass_order", p.why_order}, {"merge_below", p.options.merge_below},
                       {"why_merge", p.why_merge}, {"object_parallel", nlohmann::json::array()},
-                      {"why_mapping", p.why_mapping}};
+                      {"why_mapping", p.why_mapping}, {"shadow_calls", p.kinds_together ? "together" : "apart"},
+                      {"shadow_calls_apart_cycles", p.kinds_apart_clocks},
+                      {"shadow_calls_together_cycles", p.kinds_together_clocks}, {"why_shadow_calls", p.why_kinds}};
   for (int k = 0; k < kNumBatchKinds; ++k) {
     if (p.object[k]) j["object_parallel"].push_back(to_string(static_cast<BatchKind>(k)));
   }

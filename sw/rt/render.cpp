@@ -58,6 +58,26 @@ std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
   return hits;
 }
 
+std::pair<std::vector<Hit>, std::vector<Hit>> FmppIntersector::intersect_two(const std::vector<Ray>& a, BatchKind ka,
+                                                                             const std::vector<Ray>& b, BatchKind kb) {
+  const bool one_call = together_ && ka == BatchKind::kShadow && kb == BatchKind::kSecondary &&
+                        mapping_[static_cast<int>(ka)] == fmpp::isect::Mapping::kRay &&
+                        mapping_[static_cast<int>(kb)] == fmpp::isect::Mapping::kRay;
+  if (!one_call) return Intersector::intersect_two(a, ka, b, kb);
+  std::vector<Ray> both = a;
+  both.insert(both.end(), b.begin(), b.end());
+  fmpp::isect::KernelStats st;
+  fmpp::isect::KernelOptions o = opt_;
+  o.occlusion = shadow_stop_;  // only rays with a finite tmax stop early: the shadow rays
+  o.mapping = fmpp::isect::Mapping::kRay;
+  std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, both, tris_, o, &st);
+  stats_.add(st);
+  together_stats_.add(st);
+  std::vector<Hit> hb(hits.begin() + static_cast<std::ptrdiff_t>(a.size()), hits.end());
+  hits.resize(a.size());
+  return {std::move(hits), std::move(hb)};
+}
+
 const char* to_string(BatchKind k) {
   switch (k) {
     case BatchKind::kPrimary: return "primary";

@@ -84,6 +84,16 @@ class FmppIntersector : public Intersector {
   // The mapping of one kind of batch (initially the options' for every kind); rays the
   // mapping cannot take still go ray-parallel (fmpp::isect::route_rays).
   void set_mapping(BatchKind k, fmpp::isect::Mapping m) { mapping_[static_cast<int>(k)] = m; }
+  // A shadow batch and the next depth's rays given together (intersect_two) go to the
+  // kernels as one call, where this is on and the shadow rays are ray-parallel: their
+  // rays of their own origins share passes. The same hits (a shadow ray's occlusion query
+  // stops as before; the others have no tmax to stop at); the call's counters are kept
+  // apart (stats_together), besides the totals.
+  void set_kinds_together(bool on) { together_ = on; }
+  std::pair<std::vector<fmpp::isect::Hit>, std::vector<fmpp::isect::Hit>> intersect_two(
+      const std::vector<fmpp::isect::Ray>& a, BatchKind ka, const std::vector<fmpp::isect::Ray>& b,
+      BatchKind kb) override;
+  const fmpp::isect::KernelStats& stats_together() const { return together_stats_; }
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 
@@ -96,6 +106,8 @@ class FmppIntersector : public Intersector {
   BatchKind kind_ = BatchKind::kPrimary;
   bool shadow_stop_ = true;
   fmpp::isect::Mapping mapping_[kNumBatchKinds];
+  bool together_ = false;
+  fmpp::isect::KernelStats together_stats_;
 };
 
 struct RenderOptions {

@@ -154,6 +154,11 @@ int main(int argc, char** argv) {
                  "max(16, blocks / 8)); default: the plan's choice, from its cost model")
       ->check(int_range(0, 1 << 24));
   bool no_probe = false, no_fmpp_boxes = false, no_gates = false, no_shadow_stop = false;
+  std::string shadow_calls;
+  app.add_option("--shadow-calls", shadow_calls,
+                 "together | apart: each depth's last shadow batch in one kernel call with the next depth's rays, or "
+                 "in its own (default: the precision plan's choice, from its cost model)")
+      ->check(CLI::IsMember({"together", "apart"}));
   app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
   app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
                "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
@@ -345,6 +350,8 @@ int main(int argc, char** argv) {
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
         if (plan.object[k]) fi.set_mapping(static_cast<rt::BatchKind>(k), isect::Mapping::kObject);
       }
+      const bool together = shadow_calls.empty() ? plan.kinds_together : shadow_calls == "together";
+      fi.set_kinds_together(together);
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
@@ -355,7 +362,8 @@ int main(int argc, char** argv) {
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
                      {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
-                     {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]}};
+                     {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]},
+                     {"shadow_calls", together ? "together" : "apart"}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
@@ -364,6 +372,13 @@ int main(int argc, char** argv) {
         nlohmann::json j = isect::stats_json(kst, clock_mhz);
         if (oracle) j["oracle"] = isect::oracle_json(kst);
         rep["by_kind"][rt::to_string(kind)] = j;
+      }
+      // The calls of shadow and secondary rays together (--shadow-calls together): not
+      // in either kind's counters above, in the totals.
+      if (fi.stats_together().cycles > 0) {
+        nlohmann::json j = isect::stats_json(chips.total(fi.stats_together()), clock_mhz);
+        if (oracle) j["oracle"] = isect::oracle_json(fi.stats_together());
+        rep["by_kind"]["shadow_and_secondary"] = j;
       }
       if (nlohmann::json c = chips.report(fi.stats(), clock_mhz); !c.is_null()) rep["chips"] = c;
     }
