@@ -77,14 +77,7 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
           static_cast<double>(st.load_cycles + st.readback_cycles) / static_cast<double>(sample.size())};
 }
 
-// Per ray of a batch, the triangles whose boxes it crosses before its first hit: what the
-// walk of the culling reaches for it alone, the same whatever group and pass it is in.
-// A pass's broadcasts are the triangles some of its rays reach, so these lists price
-// every pass size and order without walking the hierarchy again.
-struct Reach {
-  std::vector<uint32_t> start;  // ray i's triangles: tris[start[i] .. start[i + 1])
-  std::vector<uint32_t> tris;
-};
+using Reach = BatchReach;
 
 Reach reach_lists(const std::vector<Ray>& rays, const Bvh& bvh) {
   Reach r;
@@ -188,6 +181,14 @@ FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int wi
   return f;
 }
 
+void add_reach(const Scene& scene, FrameRecord* frame) {
+  std::vector<Box> boxes;
+  for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
+  const Bvh bvh(boxes, {}, 1);
+  frame->reach.clear();
+  for (const auto& batch : frame->batches) frame->reach.push_back(reach_lists(batch.second, bvh));
+}
+
 PassRates rates_from(const fmpp::isect::KernelStats& st) {
   double b[2] = {}, bc[2] = {}, io[2] = {}, rays[2] = {};
   for (const fmpp::isect::FormInfo& f : fmpp::isect::all_forms()) {
@@ -241,11 +242,16 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
 
   std::vector<Box> boxes;
   for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
-  // The triangles' own hierarchy: the one culling keeps where the options carry its cache.
-  fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
-  const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
+  // The reach lists, listed beside the frame sample (add_reach), else here on the
+  // triangles' own hierarchy: the one culling keeps where the options carry its cache.
   std::vector<Reach> reach;
-  for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
+  if (opt.cull && frame.reach.size() == frame.batches.size()) {
+    reach = frame.reach;
+  } else {
+    fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
+    const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
+    for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
+  }
   // The units priced: every batch (0 .. N - 1), then each pair of a shadow batch and the
   // next depth's rays cast with it (FrameRecord::pairs) as one call (N ..), their rays and
   // reach lists one after the other.

@@ -98,6 +98,16 @@ struct PassCostModel {
   std::string why_blocks, why_order, why_merge, why_mapping, why_kinds;
 };
 
+// Per ray of a batch, the triangles whose boxes it crosses before its first hit: what the
+// walk of the culling reaches for it alone, the same whatever group and pass it is in
+// (and whatever the hierarchy's shape, with one triangle a leaf). A pass's broadcasts are
+// the triangles some of its rays reach, so these lists price every pass size and order
+// without walking the hierarchy again.
+struct BatchReach {
+  std::vector<uint32_t> start;  // ray i's triangles: tris[start[i] .. start[i + 1])
+  std::vector<uint32_t> tris;
+};
+
 // The frame rendered on the host with the exact reference's hits, every batch of rays
 // kept as the kernels get it, each ray cut at its exact nearest hit. Its picture is the
 // exact reference's render of the frame, which the plan's frame sample compares with.
@@ -107,8 +117,13 @@ struct FrameRecord {
   // The shadow batches cast in one call with the next depth's rays (Intersector::
   // intersect_two): indices into batches, the next depth's batch right after each.
   std::vector<size_t> pairs;
+  // Each batch's reach lists (add_reach), or none: model_pass_sizes lists them then.
+  std::vector<BatchReach> reach;
 };
 FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth);
+// Lists the frame's reach (with a hierarchy of its own: the plan does it on the thread
+// that traced the frame, beside the frame sample).
+void add_reach(const Scene& scene, FrameRecord* frame);
 
 // Clocks of a broadcast (its box tests included) and of loading and reading back a ray,
 // for rays sharing an origin and for rays of their own; a kind with no ray is unknown.

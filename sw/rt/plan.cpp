@@ -353,6 +353,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
   if (model && !may_skip) {
     tracing = std::async(std::launch::async, [&scene, &exact, &req, depth, started, &traced_seconds] {
       FrameRecord f = record_frame(scene, exact, req.width, req.height, depth);
+      if (req.base.cull) add_reach(scene, &f);  // the cost model's lists, beside the frame sample too
       traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       return f;
     });
@@ -363,7 +364,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
       frame = tracing.get();
       if (req.progress) {
         std::ostringstream o;
-        o.precision(4);
+        o.precision(2);
         o << std::fixed << "plan: the frame traced with exact hits beside the samples (the reference's picture, "
           << "the pass-size model's rays; " << *traced_seconds << " s)";
         req.progress(o.str());

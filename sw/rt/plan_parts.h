@@ -42,7 +42,7 @@ class Steps {
     if (!progress_) return;
     const auto now = std::chrono::steady_clock::now();
     std::ostringstream o;
-    o.precision(4);
+    o.precision(2);
     o << std::fixed << "plan: " << what << " (" << std::chrono::duration<double>(now - t0_).count() << " s)";
     progress_(o.str());
     t0_ = now;
