@@ -25,37 +25,6 @@ using fmpp::isect::Bvh;
 using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
-// Renders the frame with the exact reference's hits and keeps every batch of rays, each
-// cut at its exact nearest hit: the rays the FMPP will get.
-class Recorder : public Intersector {
- public:
-  explicit Recorder(ReferenceIntersector& exact) : exact_(exact) {}
-  void set_batch_kind(BatchKind k) override { kind_ = k; }
-  // A shadow batch and the next depth's rays cast in one call (render.cpp): recorded as
-  // two batches, the first's index kept (FrameRecord::pairs).
-  std::pair<std::vector<Hit>, std::vector<Hit>> intersect_two(const std::vector<Ray>& a, BatchKind ka,
-                                                              const std::vector<Ray>& b, BatchKind kb) override {
-    if (ka == BatchKind::kShadow && kb == BatchKind::kSecondary) pairs.push_back(batches.size());
-    return Intersector::intersect_two(a, ka, b, kb);
-  }
-  std::vector<Hit> intersect(const std::vector<Ray>& rays) override {
-    std::vector<Hit> hits = exact_.intersect(rays);
-    std::vector<Ray> cut = rays;
-    for (size_t i = 0; i < cut.size(); ++i) {
-      if (hits[i].hit()) cut[i].tmax = std::min(cut[i].tmax, hits[i].t * (1 + 1e-9));
-    }
-    batches.push_back({kind_, std::move(cut)});
-    return hits;
-  }
-  double spawn_margin() const override { return exact_.spawn_margin(); }
-  std::vector<std::pair<BatchKind, std::vector<Ray>>> batches;
-  std::vector<size_t> pairs;
-
- private:
-  ReferenceIntersector& exact_;
-  BatchKind kind_ = BatchKind::kPrimary;
-};
-
 // Clocks of a broadcast (box tests included) and of loading and reading back a ray,
 // measured on the golden model for up to 512 of `rays`.
 std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& rays,
@@ -78,19 +47,6 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
 }
 
 using Reach = BatchReach;
-
-Reach reach_lists(const std::vector<Ray>& rays, const Bvh& bvh) {
-  Reach r;
-  r.start.reserve(rays.size() + 1);
-  r.start.push_back(0);
-  std::vector<size_t> all(rays.size());
-  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  for (const fmpp::isect::RayPacket& p : fmpp::isect::make_packets(rays, all, 0, all.size(), 1, 0)) {
-    bvh.visit(p, [&](uint32_t k) { r.tris.push_back(k); });
-    r.start.push_back(static_cast<uint32_t>(r.tris.size()));
-  }
-  return r;
-}
 
 // The broadcasts of passes of `blocks` rays, in the order `order` (indices of the
 // batch's rays): per pass, the triangles some of its rays reach (all, without culling).
@@ -168,27 +124,6 @@ void choose_merge(PassCostModel* m, unsigned blocks, Estimate&& estimate) {
 
 }  // namespace
 
-FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int width, int height, int max_depth) {
-  Recorder rec(exact);
-  RenderOptions ro;
-  ro.width = width;
-  ro.height = height;
-  ro.max_depth = max_depth;
-  FrameRecord f;
-  f.picture = render(scene, rec, ro, nullptr);
-  f.batches = std::move(rec.batches);
-  f.pairs = std::move(rec.pairs);
-  return f;
-}
-
-void add_reach(const Scene& scene, FrameRecord* frame) {
-  std::vector<Box> boxes;
-  for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
-  const Bvh bvh(boxes, {}, 1);
-  frame->reach.clear();
-  for (const auto& batch : frame->batches) frame->reach.push_back(reach_lists(batch.second, bvh));
-}
-
 PassRates rates_from(const fmpp::isect::KernelStats& st) {
   double b[2] = {}, bc[2] = {}, io[2] = {}, rays[2] = {};
   for (const fmpp::isect::FormInfo& f : fmpp::isect::all_forms()) {
@@ -250,7 +185,7 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   } else {
     fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
     const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
-    for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_lists(batch.second, bvh) : Reach{});
+    for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_of(batch.second, bvh) : Reach{});
   }
   // The units priced: every batch (0 .. N - 1), then each pair of a shadow batch and the
   // next depth's rays cast with it (FrameRecord::pairs) as one call (N ..), their rays and

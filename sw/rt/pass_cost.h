@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/kernels.h"
 #include "sw/rt/image.h"
 #include "sw/rt/render.h"
@@ -124,6 +125,8 @@ FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int wi
 // Lists the frame's reach (with a hierarchy of its own: the plan does it on the thread
 // that traced the frame, beside the frame sample).
 void add_reach(const Scene& scene, FrameRecord* frame);
+// One batch's reach lists, on `bvh` (the triangles' own boxes, one a leaf).
+BatchReach reach_of(const std::vector<fmpp::isect::Ray>& rays, const fmpp::isect::Bvh& bvh);
 
 // Clocks of a broadcast (its box tests included) and of loading and reading back a ray,
 // for rays sharing an origin and for rays of their own; a kind with no ray is unknown.

@@ -60,6 +60,22 @@ inline std::string pct(double v) {
   return o.str();
 }
 
+// The candidate numbers of blocks, ascending (on the RTL with the names of its built
+// configurations in *names); none where no built configuration has the words.
+std::vector<unsigned> candidate_sizes(const PlanRequest& req, size_t pixels, unsigned words,
+                                      std::vector<std::string>* names);
+// The pass size, order, merging and mappings from the cost model on the traced frame, at
+// the frame sample's rates (nullptr: measured on samples) (plan_pass.cpp).
+void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, const FrameRecord& frame,
+                      const PassRates* rates, Plan* plan);
+// The same where the cost model's bound settles them without the frame (pass_cost.h,
+// PassBound), from the frame sample's counters: true if it did.
+bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_t pixels,
+                               const fmpp::isect::KernelStats& sample, Plan* plan);
+// A kind of batch moved to the object-parallel mapping, checked on the frame sample
+// rendered again with it against the exact frame's picture (else moved back).
+void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan);
+
 // `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed (the
 // plan is deterministic), sorted: the frame sample's pixels.
 std::vector<uint32_t> plan_pixels(size_t pixels, size_t count);

@@ -1,0 +1,175 @@
+// The plan's machine size, pass order, merging and mappings (see plan_parts.h, plan.h):
+// from the cost model of pass_cost.h on the traced frame, or from its bound without it.
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "fmpp/model_bus.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/forms/forms.h"
+#include "sw/rt/object_cost.h"
+#include "sw/rt/plan_parts.h"
+#include "sw/rt/render.h"
+
+namespace rt::plan_parts {
+
+using fmpp::isect::Ray;
+
+// The candidate numbers of blocks, ascending (on the RTL with the names of its built
+// configurations); none where no built configuration has the words (fit_rtl refused).
+std::vector<unsigned> candidate_sizes(const PlanRequest& req, size_t pixels, unsigned words,
+                                      std::vector<std::string>* names) {
+  std::vector<unsigned> sizes;
+  if (req.rtl_configs.empty()) {
+    const size_t one_pass = std::min<size_t>(pixels, fmpp::map::kMaxBlocks);
+    for (size_t b = 1024; b < one_pass; b *= 2) sizes.push_back(static_cast<unsigned>(b));
+    sizes.push_back(static_cast<unsigned>(one_pass));
+  } else {
+    std::vector<std::pair<unsigned, std::string>> built;
+    for (const std::string& name : req.rtl_configs) {
+      const fmpp::Config c = fmpp::named_config(name);
+      if (c.words >= words) built.emplace_back(c.blocks, name);
+    }
+    std::sort(built.begin(), built.end());
+    for (const auto& [b, name] : built) {
+      if (!sizes.empty() && sizes.back() == b) continue;  // the first name of a size
+      sizes.push_back(b);
+      names->push_back(name);
+    }
+  }
+  return sizes;
+}
+
+// Sets the machine to `blocks` of the candidates (on the RTL the configuration of that name).
+void set_blocks(const std::vector<unsigned>& sizes, const std::vector<std::string>& names, size_t chosen,
+                const std::string& why, Plan* plan) {
+  if (names.empty()) {
+    plan->config.blocks = sizes[chosen];
+    plan->why_blocks = why;
+  } else {
+    plan->config = fmpp::named_config(names[chosen]);
+    plan->why_blocks = why + " the built RTL configuration '" + names[chosen] + "' (" + plan->config.str() + ")";
+  }
+  plan->config.validate();
+}
+
+// Blocks and pass order from the cost model (pass_cost.h): on the golden model powers of
+// two from 1,024 to one pass; on the RTL its built configurations with the words.
+void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels, const FrameRecord& frame,
+                      const PassRates* rates, Plan* plan) {
+  std::vector<std::string> names;
+  const std::vector<unsigned> sizes = candidate_sizes(req, pixels, plan->config.words, &names);
+  if (sizes.empty()) return;  // fit_rtl has refused already
+  Steps steps(req);
+  fmpp::isect::KernelOptions with_forms = plan->options;  // the plan's forms and shapes, for its runs
+  with_forms.forms = req.forms;
+  // The object-parallel mapping for a kind of batch: where the plan may choose it and the
+  // machine can run it.
+  std::string why_not;
+  if (!req.choose_mapping) {
+    why_not = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel for every batch, as requested";
+  } else if (req.base.watertight) {
+    why_not = "ray-parallel: the watertight form exists in the ray-parallel mapping only";
+  } else if (fmpp::isect::paper_object_words(req.base) > plan->config.words) {
+    why_not = "ray-parallel: the object-parallel form needs " + std::to_string(fmpp::isect::paper_object_words(req.base)) +
+              " words per block, more than the " + std::to_string(plan->config.words) + " of the machine";
+  }
+  const PassCostModel m = model_pass_sizes(scene, frame, with_forms, sizes, rates, why_not.empty(), why_not);
+  steps.say("pass size: " + std::to_string(sizes.size()) + " sizes priced");
+  plan->pass_sizes = m.sizes;
+  plan->options.coherent = m.coherent;
+  plan->why_order = m.why_order;
+  plan->options.merge_below = m.merge_below;
+  plan->merges = m.merges;
+  plan->why_merge = m.why_merge;
+  plan->kinds_together = m.kinds_together;
+  plan->kinds_apart_clocks = m.kinds_apart;
+  plan->kinds_together_clocks = m.kinds_together_clocks;
+  plan->why_kinds = m.why_kinds;
+  plan->mappings = m.mappings;
+  plan->object = m.object;
+  plan->why_mapping = m.why_mapping;
+  set_blocks(sizes, names, m.chosen, m.why_blocks, plan);
+}
+
+// The pass size where the cost model's bound settles it without the frame (pass_cost.h,
+// PassBound): true if it did (the plan's blocks, order, merging and mapping set).
+bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_t pixels,
+                               const fmpp::isect::KernelStats& sample, Plan* plan) {
+  std::vector<std::string> names;
+  const std::vector<unsigned> sizes = candidate_sizes(req, pixels, plan->config.words, &names);
+  const PassRates r = rates_from(sample);
+  if (sizes.empty() || !r.shared || r.general) return false;
+  // The object-parallel mapping's clocks a ray, from below (object_cost.h), where the
+  // plan may choose it; else no bound is needed on it.
+  double object_per_ray = std::numeric_limits<double>::infinity();
+  if (req.choose_mapping && !req.base.watertight && fmpp::isect::paper_object_words(req.base) <= plan->config.words) {
+    const std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height);
+    object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false).per_ray;
+  }
+  const PassBound b = pass_bound(pixels * static_cast<size_t>(scene.spp), scene.spp, scene.lights.size(),
+                                 scene.triangles.size(), sizes.front(), r.shared_b, r.shared_r, object_per_ray);
+  Steps(req).say(std::string("pass size ") + (b.certain ? "settled by the cost model's bound" : "not settled by the bound"));
+  if (!b.certain) return false;
+  plan->options.coherent = true;
+  plan->why_order = "coherent: " + b.why;
+  plan->why_merge = "the default: " + b.why;
+  plan->why_mapping = "ray-parallel: " + b.why;
+  plan->why_kinds = "apart: no batch has rays of their own origins";
+  set_blocks(sizes, names, 0, b.why, plan);
+  return true;
+}
+
+// A kind of batch the cost model moved to the object-parallel mapping is checked as the
+// n was (that mapping's form has its own precision: docs/intersection.md): the frame
+// sample rendered again with it must keep the error target and the allowance of rays
+// redone, or every kind goes back to the ray-parallel mapping.
+void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan) {
+  std::string kinds;
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (plan->object[k]) kinds += (kinds.empty() ? "" : " and ") + std::string(to_string(static_cast<BatchKind>(k)));
+  }
+  if (kinds.empty()) return;
+  Steps steps(req);
+  RenderOptions ro;
+  ro.width = req.width;
+  ro.height = req.height;
+  ro.max_depth = depth;
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
+  if (want < pixels) ro.pixels = plan_pixels(pixels, want);
+  const size_t sampled = ro.pixels.empty() ? pixels : ro.pixels.size();
+  fmpp::ModelBus bus(fmpp::Config{static_cast<unsigned>(std::min<size_t>(sampled, 64)), 32});
+  fmpp::Device dev(bus);
+  fmpp::isect::KernelOptions o = plan->options;
+  o.forms = req.forms;
+  o.progress = nullptr;
+  FmppIntersector fi(dev, scene.triangles, o);
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (plan->object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
+  }
+  const Image got = render(scene, fi, ro, nullptr);
+  Image want_img = ro.pixels.empty() ? reference : Image(req.width, req.height);
+  for (uint32_t i : ro.pixels) {
+    const int x = static_cast<int>(i % static_cast<uint32_t>(req.width)), y = static_cast<int>(i / static_cast<uint32_t>(req.width));
+    want_img.at(x, y) = reference.at(x, y);
+  }
+  const size_t over = compare(got, want_img).pixels_over;
+  const double rate = static_cast<double>(over) / static_cast<double>(sampled);
+  const double bound = sampled == pixels ? rate : upper_confidence_bound(over, sampled, req.confidence);
+  const double redone = flagged_share(fi.stats());
+  const bool keeps = bound <= req.target_wrong_rate && redone <= req.max_flagged_share;
+  std::ostringstream why;
+  why << "; the frame sample with " << kinds << " rays object-parallel: " << pct(rate) << " of " << sampled
+      << " pixels off the reference (bound " << pct(bound) << "), " << pct(redone) << " of its rays redone"
+      << (keeps ? "" : ", over the target or the allowance: every kind kept ray-parallel");
+  plan->why_mapping += why.str();
+  if (!keeps) {
+    plan->object = {};
+    for (MappingEstimate& e : plan->mappings) e.chosen = false;
+  }
+  steps.say("the frame sample with " + kinds + " rays object-parallel: " + pct(rate) + " off, " + pct(redone) +
+            " redone" + (keeps ? "" : ": kept ray-parallel"));
+}
+
+}  // namespace rt::plan_parts
