@@ -80,15 +80,7 @@ TEST(Plan, PassSizeSettledByTheBoundWithoutTheFrame) {
 // batch, and the plan takes the cheapest unless the default is within kMergeSlack; the
 // frame is the same picture at any threshold.
 TEST(Plan, MergedBatchesFromTheCostModel) {
-  Scene sc = shipped_scene("cornell");
-  Light area;
-  area.type = LightType::kRect;
-  area.position = sc.lights[0].position;
-  area.edge1 = glm::dvec3(0.6, 0, 0);
-  area.edge2 = glm::dvec3(0, 0, 0.6);
-  area.samples = 4;
-  area.pool = 4;
-  sc.lights = {area};
+  const Scene sc = cornell_with_area_light(4, 4);
   PlanRequest r;
   r.width = r.height = 40;
   r.bits = 24;
@@ -141,15 +133,7 @@ TEST(Plan, MergedBatchesFromTheCostModel) {
 // rays' passes. The rule holds on the estimates, and the frame it runs is fewer clocks
 // for the same picture here.
 TEST(Plan, ShadowAndSecondaryRaysInOneCall) {
-  Scene sc = shipped_scene("cornell");
-  Light area;
-  area.type = LightType::kRect;
-  area.position = sc.lights[0].position;
-  area.edge1 = glm::dvec3(0.6, 0, 0);
-  area.edge2 = glm::dvec3(0, 0, 0.6);
-  area.samples = 4;
-  area.pool = 4;
-  sc.lights = {area};
+  const Scene sc = cornell_with_area_light(4, 4);
   PlanRequest r;
   r.width = r.height = 40;
   r.bits = 24;

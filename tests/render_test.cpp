@@ -5,6 +5,7 @@
 
 #include "backends/backend.h"
 #include "sw/rt/render.h"
+#include "tests/shipped_scene.h"
 #include "sw/isect/forms/forms.h"
 
 #ifndef FMPP_SOURCE_DIR
@@ -94,15 +95,7 @@ TEST(RenderMapping, ObjectParallelKindsModelEqualsRtl) {
 // light's shadow rays share the secondary rays' passes; the RTL equal to the golden
 // model clock for clock, the picture the one of separate calls.
 TEST(RenderShadowCalls, TogetherModelEqualsRtl) {
-  Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/cornell.json");
-  Light area;
-  area.type = LightType::kRect;
-  area.position = s.lights[0].position;
-  area.edge1 = glm::dvec3(0.6, 0, 0);
-  area.edge2 = glm::dvec3(0, 0, 0.6);
-  area.samples = 2;
-  area.pool = 2;
-  s.lights = {area};
+  const Scene s = cornell_with_area_light(2, 2);
   std::vector<uint8_t> img[3];
   uint64_t cycles[3] = {0, 0, 0}, together[3] = {0, 0, 0};
   const char* backends[3] = {"cmodel", "rtl", "cmodel"};
