@@ -7,9 +7,11 @@
 // as double-doubles (two_sum). Each product and sum of double-doubles below has a
 // relative error of at most 4 u^2 (u = 2^-53; the accurate sum and the product with FMA
 // of Joldes, Muller and Popescu, "Tight and rigorous error bounds for basic building
-// blocks of double-word arithmetic", 2017: 3 u^2 and 4 u^2), the quotient 15 u^2 + 56 u^3;
-// the bounds carried here use 2^-102 (8 u^2) and 2^-98 (64 u^2), and every operation
-// adds 2^-1060 for a part that underflows. The evaluation runs only when every nonzero
+// blocks of double-word arithmetic", 2017: 3 u^2 and 4 u^2); the bounds carried here use
+// 2^-102 (8 u^2), and every operation adds 2^-1060 for a part that underflows. The
+// quotient is only a candidate: the truncated t is the largest double c with t >= c, and
+// t >= c iff num - c den >= 0 (den > 0), a residual evaluated with its bound, whose sign
+// the bound settles unless t lies within it of c. The evaluation runs only when every nonzero
 // component of a, B - A, C - A and D lies in [2^-300, 2^300], so no product of three
 // overflows or loses its relative bound to underflow beyond that allowance.
 #include <cmath>
@@ -54,8 +56,7 @@ DD dd_div(DD x, DD y) {
   return fast_two_sum(th, d / y.hi);
 }
 
-constexpr double kRel = 0x1p-102;    // of a sum or a product
-constexpr double kDivRel = 0x1p-98;  // of the quotient
+constexpr double kRel = 0x1p-102;  // of a sum or a product
 constexpr double kUnder = 0x1p-1060;
 constexpr double kUp = 1 + 0x1p-40;  // covers the rounding of the bounds themselves
 
@@ -144,37 +145,41 @@ double filtered_t(const Ray& r, const Triangle& tri) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     n[k] = sub(mul(e1[i], e2[j]), mul(e1[j], e2[i]));
   }
-  const Bounded num = add(add(mul(a[0], n[0]), mul(a[1], n[1])), mul(a[2], n[2]));
-  const Bounded den = add(add(mul(d[0], n[0]), mul(d[1], n[1])), mul(d[2], n[2]));
-  const double rn = num.e / std::abs(num.v.hi), rd = den.e / std::abs(den.v.hi);
-  if (!(rn < 0x1p-70 && rd < 0x1p-70)) return std::numeric_limits<double>::quiet_NaN();
-  const DD q = dd_div(num.v, den.v);
-  if (!(q.hi > 0)) return std::numeric_limits<double>::quiet_NaN();  // a hit has t > 0
-  // |t - q| <= bound.
-  const double bound = q.hi * ((rn + rd) * (1 + 0x1p-60) + kDivRel) * kUp * kUp;
-  // x = q truncated: q.hi, or the double below it where the low part is negative.
-  const double x = q.lo < 0 ? std::nextafter(q.hi, 0.0) : q.hi;
-  const double next = std::nextafter(x, std::numeric_limits<double>::infinity());
-  // The distances from q to x and to the next double (q.hi - x and next - q.hi are one
-  // ulp or 0: exact), each rounded once more at most.
-  const double below = (q.hi - x) + q.lo, above = (next - q.hi) - q.lo;
-  if (!(x >= 0x1p-1000)) return std::numeric_limits<double>::quiet_NaN();
-  if (below * (1 - 0x1p-50) > bound && above * (1 - 0x1p-50) > bound) return x;
-  if (num.e != 0 || den.e != 0) return std::numeric_limits<double>::quiet_NaN();
-  // num and den exact, t within the bound of a double: truncated, t is the largest
-  // double x' with x' den <= num, one of x's neighbours or x (the bound is far below an ulp).
-  DD nn = num.v, dn = den.v;
-  if (dn.hi < 0) {
-    nn = DD{-nn.hi, -nn.lo};
-    dn = DD{-dn.hi, -dn.lo};
+  Bounded num = add(add(mul(a[0], n[0]), mul(a[1], n[1])), mul(a[2], n[2]));
+  Bounded den = add(add(mul(d[0], n[0]), mul(d[1], n[1])), mul(d[2], n[2]));
+  if (den.v.hi < 0) {  // den > 0 below (negating is exact)
+    num.v = DD{-num.v.hi, -num.v.lo};
+    den.v = DD{-den.v.hi, -den.v.lo};
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double prev = std::nextafter(x, 0.0), after = std::nextafter(next, std::numeric_limits<double>::infinity());
-  const int sp = sign_against(nn, dn, prev), sx = sign_against(nn, dn, x), sn = sign_against(nn, dn, next);
-  if (sp == 2 || sx == 2 || sn == 2 || sp < 0) return nan;  // t below prev: not within the bound
-  if (sx < 0) return prev;
-  if (sn < 0) return x;
-  return sign_against(nn, dn, after) < 0 ? next : nan;
+  if (!(den.v.hi > 0 && num.v.hi > 0)) return nan;  // a hit has t > 0
+  // The candidate: the quotient's approximation truncated (the double below q.hi where
+  // its low part is negative). Then t >= c iff num - c den >= 0, a sign the bound on that
+  // residual settles unless it is within it: 1, -1, or 0 for unsettled.
+  const DD q = dd_div(num.v, den.v);
+  const double x = q.lo < 0 ? std::nextafter(q.hi, 0.0) : q.hi;
+  if (!(x >= 0x1p-1000)) return nan;
+  const bool exact = num.e == 0 && den.e == 0;
+  const auto at_least = [&](double c) {
+    if (exact) {  // num and den exact: the sign exactly (2: a part could underflow)
+      const int sg = sign_against(num.v, den.v, c);
+      return sg == 2 ? 0 : (sg >= 0 ? 1 : -1);
+    }
+    const Bounded res = sub(num, mul(Bounded{DD{c, 0}, 0}, den));
+    if (std::abs(res.v.hi) * (1 - 0x1p-50) <= res.e) return 0;
+    return res.v.hi > 0 ? 1 : -1;
+  };
+  // t truncated is the largest double c with t >= c: x, or one of its neighbours.
+  const double prev = std::nextafter(x, 0.0), next = std::nextafter(x, std::numeric_limits<double>::infinity());
+  const int sx = at_least(x);
+  if (sx == 0) return nan;
+  if (sx > 0) {
+    const int sn = at_least(next);
+    if (sn < 0) return x;
+    if (sn == 0) return nan;
+    return at_least(std::nextafter(next, std::numeric_limits<double>::infinity())) < 0 ? next : nan;
+  }
+  return at_least(prev) > 0 ? prev : nan;
 }
 
 }  // namespace
