@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -63,10 +64,20 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
   std::vector<Ray> sample;
   for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
-  const std::vector<Hit> ref = exact.intersect(sample);
+  // The sample's exact hits, traced beside the first candidate's golden-model run (the
+  // reference is thread-safe: reference_bvh.h), waited for at its first comparison.
+  std::future<std::vector<Hit>> tracing_sample = std::async(std::launch::async, [&] { return exact.intersect(sample); });
+  std::vector<Hit> ref;
+  const auto exact_hits = [&]() -> const std::vector<Hit>& {
+    if (tracing_sample.valid()) {
+      ref = tracing_sample.get();
+      steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays, traced beside the first "
+                "candidate");
+    }
+    return ref;
+  };
   std::vector<double> cond;
   for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
-  steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays");
   // Passes of 128 of the sample's rays, in the coherent order (image tiles): each pass
   // broadcasts only what its part of the frame needs (measured, the golden model's time
   // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
@@ -165,12 +176,15 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       // The reference's pixels of the chunk: rendered with `exact` before the golden
       // model's, or taken from the whole frame after it (which may still be being traced
       // beside it).
+      // Without the whole frame, the chunk's exact render runs on a thread of its own
+      // beside the golden model's (started below), and is waited for here.
+      std::future<Image> tracing_chunk;
       const auto chunk_reference = [&]() -> const Image& {
         if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) return it->second;
         if (!reference) {
-          const Image& r =
-              ref_chunks.emplace(std::make_pair(from, to[k]), render(scene, exact, part, nullptr)).first->second;
-          steps.say("the exact reference's render of " + std::to_string(count) + " more sampled pixels");
+          const Image& r = ref_chunks.emplace(std::make_pair(from, to[k]), tracing_chunk.get()).first->second;
+          steps.say("the exact reference's render of " + std::to_string(count) +
+                    " more sampled pixels, beside the golden model's");
           return r;
         }
         // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
@@ -183,7 +197,9 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
         }
         return ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
       };
-      if (!reference) chunk_reference();
+      if (!reference && !ref_chunks.count({from, to[k]})) {
+        tracing_chunk = std::async(std::launch::async, [&scene, &exact, &part] { return render(scene, exact, part, nullptr); });
+      }
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
@@ -253,7 +269,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       std::vector<Ray> rays;
       for (size_t i : pass) rays.push_back(sample[i]);
       const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, rays, scene.triangles, o, &st);
-      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != ref[pass[j]].tri;
+      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != exact_hits()[pass[j]].tri;
       done += pass.size();
       // At n = 32 the costs do not refuse (below): its sample is measured whole.
       const double redone = flagged_share(st) * static_cast<double>(done);
