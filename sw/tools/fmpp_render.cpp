@@ -17,9 +17,7 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <optional>
 #include <cstdio>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -27,6 +25,7 @@
 #include "sw/isect/form_cache.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
+#include "sw/tools/render_plan.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/plan_cache.h"
 #include "sw/rt/render.h"
@@ -244,7 +243,18 @@ int main(int argc, char** argv) {
       rt::ReferenceIntersector ref(scene.triangles);
       img = std::make_unique<rt::Image>(rt::render(scene, ref, ro, &rs));
     } else {
-      // The precision plan chooses what the options leave open.
+      // The precision plan chooses what the options leave open; the frame's kernel options
+      // are the same as the plan's, with its choices.
+      isect::KernelOptions base;
+      base.mapping = isect::parse_mapping(mapping);
+      base.mul = isect::parse_mul_mode(mul);
+      base.cull = !no_cull;
+      base.cull_packet = cull_packet;
+      base.cull_probe = !no_probe;
+      base.fmpp_boxes = !no_fmpp_boxes;
+      base.gates = !no_gates;
+      base.watertight = watertight;
+      base.t_accuracy = t_accuracy;
       rt::PlanRequest pr;
       pr.width = width;
       pr.height = height;
@@ -252,17 +262,8 @@ int main(int argc, char** argv) {
       pr.target_wrong_rate = target;
       pr.sample_pixels = sample_pixels;
       if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
-      pr.base.mapping = isect::parse_mapping(mapping);
+      pr.base = base;
       pr.choose_mapping = !app.count("--mapping") && session->size() == 1;
-      // The culling the frame will have, for the plan's cost model.
-      pr.base.cull = !no_cull;
-      pr.base.cull_packet = cull_packet;
-      pr.base.cull_probe = !no_probe;
-      pr.base.fmpp_boxes = !no_fmpp_boxes;
-      pr.base.gates = !no_gates;
-      pr.base.mul = isect::parse_mul_mode(mul);
-      pr.base.watertight = watertight;
-      pr.base.t_accuracy = t_accuracy;
       if (app.count("--bits")) pr.bits = bits;
       if (!quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
       if (!config.empty()) {
@@ -272,75 +273,23 @@ int main(int argc, char** argv) {
       }
       if (app.count("--blocks")) pr.blocks = blocks;
       if (app.count("--words")) pr.words = words;
-      const std::string key = rt::plan_key(scene, pr);
-      std::optional<rt::Plan> cached = replan ? std::nullopt : rt::load_plan(plan_cache, key, pr);
-      const bool from_cache = cached.has_value();
-      if (from_cache && !quiet) {
-        std::fprintf(stderr, "plan: reused %s/%s.json (same scene files and options; --replan plans again)\n",
-                     plan_cache.c_str(), key.c_str());
-      }
       // The forms the plan's golden-model runs prepare are kept for the frame: those of the
       // chosen n it finds (the same answers and clocks) come off the plan's seconds.
       isect::FormCache forms(scene.triangles, rt::kPlanFormBytes);
       pr.forms = &forms;
-      const auto plan_t0 = std::chrono::steady_clock::now();
-      const rt::Plan plan = from_cache ? *cached : rt::make_plan(scene, pr);
-      const double plan_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_t0).count();
+      const tools::RenderPlan rp = tools::plan_render(scene, pr, {plan_cache, replan, accept_miss, quiet}, &rep);
+      const rt::Plan& plan = rp.plan;
       forms.next_phase();
-      if (!from_cache && !plan_cache.empty()) {
-        std::string why;
-        if (!rt::store_plan(plan_cache, key, plan, &why) && !quiet) {
-          std::fprintf(stderr, "plan: not cached (%s)\n", why.c_str());
-        }
-      }
-      if (!plan.met_target && !accept_miss) {
-        std::ostringstream t;
-        t << target;
-        throw std::runtime_error("the precision plan cannot keep --error-target " + t.str() + ": " + plan.why_bits +
-                                 "; no picture written (raise --error-target, or give --accept-plan-miss to render "
-                                 "anyway)");
-      }
-      if (!plan.met_target && !quiet) {
-        std::fprintf(stderr, "warning: rendering although the plan missed its target (--accept-plan-miss): %s\n",
-                     plan.why_bits.c_str());
-      }
       const Config cfg = plan.config;
       bits = plan.options.n;
-      rep["plan"] = rt::plan_report(plan);
-      rep["plan"].update({{"error_target", target}, {"accepted_miss", !plan.met_target && accept_miss},
-                          {"cached", from_cache}, {"key", key}, {"seconds", plan_seconds}});
-      if (!quiet) {
-        // One short line; the reasons, every candidate and the cost model's estimates are
-        // in the report's "plan".
-        const std::string how = pr.bits ? "n set by the user"
-                                : !plan.met_target ? "no n keeps the error target"
-                                : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
-                                                                           : "the widest n; some costs over their limits";
-        std::string object;
-        for (int k = 0; k < rt::kNumBatchKinds; ++k) {
-          if (plan.object[k]) object += (object.empty() ? ", " : " and ") + std::string(rt::to_string(static_cast<rt::BatchKind>(k)));
-        }
-        if (!object.empty()) object += " rays object-parallel";
-        std::fprintf(stderr, "plan: n = %u, %u blocks x %u words%s (%s; %.1f s%s); the reasons are in --report's plan\n",
-                     bits, cfg.blocks, cfg.words, object.c_str(), how.c_str(), plan_seconds, from_cache ? ", cached" : "");
-      }
       mpi::RenderChips chips(*session);
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
-      isect::KernelOptions ko;
-      ko.mapping = isect::parse_mapping(mapping);
-      ko.mul = isect::parse_mul_mode(mul);
+      isect::KernelOptions ko = base;
       ko.n = bits;
-      ko.cull = !no_cull;
-      ko.cull_packet = cull_packet;
       ko.coherent = app.count("--pass-order") ? pass_order == "coherent" : plan.options.coherent;
       ko.merge_below = app.count("--merge-below") ? merge_below : plan.options.merge_below;
       ko.oracle = oracle;
-      ko.cull_probe = !no_probe;
-      ko.fmpp_boxes = !no_fmpp_boxes;
-      ko.gates = !no_gates;
-      ko.watertight = watertight;
-      ko.t_accuracy = t_accuracy;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       ko.forms = &forms;
       chips.agree(scene.triangles, cfg, ko);
@@ -355,9 +304,9 @@ int main(int argc, char** argv) {
       img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
-      rep["plan"]["wall_seconds"] = plan_seconds;
+      rep["plan"]["wall_seconds"] = rp.seconds;
       rep["plan"]["reused_by_frame_seconds"] = forms.carried_seconds();
-      rep["plan"]["seconds"] = plan_seconds - forms.carried_seconds();
+      rep["plan"]["seconds"] = rp.seconds - forms.carried_seconds();
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
       rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
