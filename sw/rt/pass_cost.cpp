@@ -175,17 +175,19 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   m.per_broadcast = shared_b;
   m.per_ray = shared_r;
 
-  std::vector<Box> boxes;
-  for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
   // The reach lists, listed beside the frame sample (add_reach), else here on the
   // triangles' own hierarchy: the one culling keeps where the options carry its cache.
   std::vector<Reach> reach;
-  if (opt.cull && frame.reach.size() == frame.batches.size()) {
+  if (!opt.cull) {
+    reach.resize(frame.batches.size());
+  } else if (frame.reach.size() == frame.batches.size()) {
     reach = frame.reach;
   } else {
+    std::vector<Box> boxes;
+    for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
     fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
     const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
-    for (const auto& batch : frame.batches) reach.push_back(opt.cull ? reach_of(batch.second, bvh) : Reach{});
+    for (const auto& batch : frame.batches) reach.push_back(reach_of(batch.second, bvh));
   }
   // The units priced: every batch (0 .. N - 1), then each pair of a shadow batch and the
   // next depth's rays cast with it (FrameRecord::pairs) as one call (N ..), their rays and
@@ -241,9 +243,6 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     none.merge_below = 1;
     for (size_t k = 0; k < reach.size(); ++k) own_general[k] = fmpp::isect::route_rays(rays_of(k), none, 0).general.size();
   }
-  // With origins shared by fewer than `below` rays merged (0: the kernels' default);
-  // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
-  // general_over_box scales that form's broadcasts (kGeneralOverBox).
   // Each batch's routing, kept: it depends only on the mapping and the threshold below
   // which an origin's rays are merged (route_rays), which many of the estimates share.
   std::map<std::tuple<size_t, int, size_t>, fmpp::isect::RayRoutes> routed;
@@ -254,8 +253,11 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
     if (it == routed.end()) it = routed.emplace(key, fmpp::isect::route_rays(rays_of(k), o, blocks)).first;
     return it->second;
   };
-  // With the kinds of `object` (nullptr: none) object-parallel at `orates`; with
-  // `together`, each shadow batch in one call with the next depth's rays.
+  // With origins shared by fewer than `below` rays merged (0: the kernels' default);
+  // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
+  // general_over_box scales that form's broadcasts (kGeneralOverBox); the kinds of
+  // `object` (nullptr: none) object-parallel at `orates`; with `together`, each shadow
+  // batch in one call with the next depth's rays.
   auto estimate = [&](unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
                       double general_over_box = 1, const KindFlags* object = nullptr,
                       const KindRates* orates = nullptr, bool together = false) {
@@ -333,9 +335,12 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
 
   // The last shadow batch of each depth in one call with the next depth's rays (their
   // own-origin rays then share passes), where that is cheaper by kMergeSlack.
+  // The frame as chosen so far, the base of the two choices below.
+  uint64_t b_apart = 0;
+  const double apart = estimate(c.blocks, m.coherent, &b_apart, m.merge_below);
   if (!frame.pairs.empty() && merging) {
-    uint64_t b_apart = 0, b_together = 0;
-    m.kinds_apart = estimate(c.blocks, m.coherent, &b_apart, m.merge_below);
+    uint64_t b_together = 0;
+    m.kinds_apart = apart;
     m.kinds_together_clocks = estimate(c.blocks, m.coherent, &b_together, m.merge_below, nullptr, 1, nullptr, nullptr, true);
     m.kinds_together = m.kinds_together_clocks < (1 - kMergeSlack) * m.kinds_apart;
     std::ostringstream w;
@@ -351,10 +356,7 @@ PassCostModel model_pass_sizes(const Scene& scene, const FrameRecord& frame, con
   }
   // The mapping of each kind of batch, at that size, order and merging.
   if (object) {
-    uint64_t unused = 0;
-    const double ray_clocks = estimate(c.blocks, m.coherent, &unused, m.merge_below, nullptr, 1, nullptr, nullptr,
-                                       m.kinds_together);
-    choose_mappings(scene, frame, opt, c.blocks, ray_clocks,
+    choose_mappings(scene, frame, opt, c.blocks, m.kinds_together ? m.kinds_together_clocks : apart,
                     [&](const KindFlags& f, const KindRates& r) {
                       uint64_t bc = 0;
                       return estimate(c.blocks, m.coherent, &bc, m.merge_below, nullptr, 1, &f, &r, m.kinds_together);

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <functional>
 #include <future>
-#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -16,10 +15,8 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
-#include "sw/rt/object_cost.h"
 #include "sw/rt/plan_parts.h"
 #include "sw/rt/render.h"
 

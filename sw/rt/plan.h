@@ -134,6 +134,10 @@ struct Plan {
 
 Plan make_plan(const Scene& scene, const PlanRequest& req);
 
+// The kinds of batch the plan moved to the object-parallel mapping, as "primary and
+// shadow" ("" for none).
+std::string object_kinds(const Plan& plan);
+
 // The one-sided upper confidence bound (Clopper-Pearson) on a binomial share, after
 // `hits` of `trials` draws: the p at which `hits` or fewer have probability 1 - confidence.
 // 0 <= hits <= trials, trials >= 1, confidence in (0, 1).

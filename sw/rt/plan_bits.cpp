@@ -188,14 +188,7 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
           return r;
         }
         // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
-        const Image& whole = *reference();
-        Image chunk = part.pixels.empty() ? whole : Image(frame.width, frame.height);
-        for (uint32_t i : part.pixels) {
-          const int x = static_cast<int>(i % static_cast<uint32_t>(frame.width));
-          const int y = static_cast<int>(i / static_cast<uint32_t>(frame.width));
-          chunk.at(x, y) = whole.at(x, y);
-        }
-        return ref_chunks.emplace(std::make_pair(from, to[k]), std::move(chunk)).first->second;
+        return ref_chunks.emplace(std::make_pair(from, to[k]), pixels_of(*reference(), part.pixels)).first->second;
       };
       if (!reference && !ref_chunks.count({from, to[k]})) {
         tracing_chunk = std::async(std::launch::async, [&scene, &exact, &part] { return render(scene, exact, part, nullptr); });

@@ -72,6 +72,12 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
 // PassBound), from the frame sample's counters: true if it did.
 bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_t pixels,
                                const fmpp::isect::KernelStats& sample, Plan* plan);
+// Why the plan may not move a kind of batch to the object-parallel mapping on a machine
+// of `words` words ("" where it may): the user's --mapping, the watertight form, words.
+std::string object_mapping_refused(const PlanRequest& req, unsigned words);
+// The pixels of `whole` at `pixels` (indices y * width + x), the rest black (as a render
+// of those pixels alone leaves them); all of it for none.
+Image pixels_of(const Image& whole, const std::vector<uint32_t>& pixels);
 // A kind of batch moved to the object-parallel mapping, checked on the frame sample
 // rendered again with it against the exact frame's picture (else moved back).
 void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan);

@@ -40,6 +40,30 @@ std::vector<unsigned> candidate_sizes(const PlanRequest& req, size_t pixels, uns
   return sizes;
 }
 
+std::string object_mapping_refused(const PlanRequest& req, unsigned words) {
+  if (!req.choose_mapping) {
+    return std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel for every batch, as requested";
+  }
+  if (req.base.watertight) return "ray-parallel: the watertight form exists in the ray-parallel mapping only";
+  const unsigned need = fmpp::isect::paper_object_words(req.base);
+  if (need > words) {
+    return "ray-parallel: the object-parallel form needs " + std::to_string(need) + " words per block, more than the " +
+           std::to_string(words) + " of the machine";
+  }
+  return "";
+}
+
+Image pixels_of(const Image& whole, const std::vector<uint32_t>& pixels) {
+  if (pixels.empty()) return whole;
+  Image part(whole.width(), whole.height());
+  for (uint32_t i : pixels) {
+    const int x = static_cast<int>(i % static_cast<uint32_t>(whole.width()));
+    const int y = static_cast<int>(i / static_cast<uint32_t>(whole.width()));
+    part.at(x, y) = whole.at(x, y);
+  }
+  return part;
+}
+
 // Sets the machine to `blocks` of the candidates (on the RTL the configuration of that name).
 void set_blocks(const std::vector<unsigned>& sizes, const std::vector<std::string>& names, size_t chosen,
                 const std::string& why, Plan* plan) {
@@ -63,17 +87,7 @@ void decide_pass_size(const Scene& scene, const PlanRequest& req, size_t pixels,
   Steps steps(req);
   fmpp::isect::KernelOptions with_forms = plan->options;  // the plan's forms and shapes, for its runs
   with_forms.forms = req.forms;
-  // The object-parallel mapping for a kind of batch: where the plan may choose it and the
-  // machine can run it.
-  std::string why_not;
-  if (!req.choose_mapping) {
-    why_not = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel for every batch, as requested";
-  } else if (req.base.watertight) {
-    why_not = "ray-parallel: the watertight form exists in the ray-parallel mapping only";
-  } else if (fmpp::isect::paper_object_words(req.base) > plan->config.words) {
-    why_not = "ray-parallel: the object-parallel form needs " + std::to_string(fmpp::isect::paper_object_words(req.base)) +
-              " words per block, more than the " + std::to_string(plan->config.words) + " of the machine";
-  }
+  const std::string why_not = object_mapping_refused(req, plan->config.words);
   const PassCostModel m = model_pass_sizes(scene, frame, with_forms, sizes, rates, why_not.empty(), why_not);
   steps.say("pass size: " + std::to_string(sizes.size()) + " sizes priced");
   plan->pass_sizes = m.sizes;
@@ -103,7 +117,7 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
   // The object-parallel mapping's clocks a ray, from below (object_cost.h), where the
   // plan may choose it; else no bound is needed on it.
   double object_per_ray = std::numeric_limits<double>::infinity();
-  if (req.choose_mapping && !req.base.watertight && fmpp::isect::paper_object_words(req.base) <= plan->config.words) {
+  if (object_mapping_refused(req, plan->config.words).empty()) {
     const std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height);
     object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false).per_ray;
   }
@@ -125,10 +139,7 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
 // sample rendered again with it must keep the error target and the allowance of rays
 // redone, or every kind goes back to the ray-parallel mapping.
 void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan) {
-  std::string kinds;
-  for (int k = 0; k < kNumBatchKinds; ++k) {
-    if (plan->object[k]) kinds += (kinds.empty() ? "" : " and ") + std::string(to_string(static_cast<BatchKind>(k)));
-  }
+  const std::string kinds = object_kinds(*plan);
   if (kinds.empty()) return;
   Steps steps(req);
   RenderOptions ro;
@@ -149,12 +160,7 @@ void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const
     if (plan->object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
   }
   const Image got = render(scene, fi, ro, nullptr);
-  Image want_img = ro.pixels.empty() ? reference : Image(req.width, req.height);
-  for (uint32_t i : ro.pixels) {
-    const int x = static_cast<int>(i % static_cast<uint32_t>(req.width)), y = static_cast<int>(i / static_cast<uint32_t>(req.width));
-    want_img.at(x, y) = reference.at(x, y);
-  }
-  const size_t over = compare(got, want_img).pixels_over;
+  const size_t over = compare(got, pixels_of(reference, ro.pixels)).pixels_over;
   const double rate = static_cast<double>(over) / static_cast<double>(sampled);
   const double bound = sampled == pixels ? rate : upper_confidence_bound(over, sampled, req.confidence);
   const double redone = flagged_share(fi.stats());
@@ -173,3 +179,15 @@ void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const
 }
 
 }  // namespace rt::plan_parts
+
+namespace rt {
+
+std::string object_kinds(const Plan& plan) {
+  std::string kinds;
+  for (int k = 0; k < kNumBatchKinds; ++k) {
+    if (plan.object[k]) kinds += (kinds.empty() ? "" : " and ") + std::string(to_string(static_cast<BatchKind>(k)));
+  }
+  return kinds;
+}
+
+}  // namespace rt

@@ -47,15 +47,21 @@ double float_spawn_margin(const std::vector<fmpp::isect::Triangle>& tris) {
   return tris.empty() ? 0 : 2e-5 * glm::length(0.5 * hi - 0.5 * lo);
 }
 
-std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
+std::vector<Hit> FmppIntersector::call(const std::vector<Ray>& rays, bool occlusion, fmpp::isect::Mapping mapping,
+                                       fmpp::isect::KernelStats* counters) {
   fmpp::isect::KernelStats st;
   fmpp::isect::KernelOptions o = opt_;
-  o.occlusion = shadow_stop_ && kind_ == BatchKind::kShadow;
-  o.mapping = mapping_[static_cast<int>(kind_)];
+  o.occlusion = occlusion;
+  o.mapping = mapping;
   std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, rays, tris_, o, &st);
   stats_.add(st);
-  by_kind_[static_cast<int>(kind_)].add(st);
+  counters->add(st);
   return hits;
+}
+
+std::vector<Hit> FmppIntersector::intersect(const std::vector<Ray>& rays) {
+  const int k = static_cast<int>(kind_);
+  return call(rays, shadow_stop_ && kind_ == BatchKind::kShadow, mapping_[k], &by_kind_[k]);
 }
 
 std::pair<std::vector<Hit>, std::vector<Hit>> FmppIntersector::intersect_two(const std::vector<Ray>& a, BatchKind ka,
@@ -66,13 +72,8 @@ std::pair<std::vector<Hit>, std::vector<Hit>> FmppIntersector::intersect_two(con
   if (!one_call) return Intersector::intersect_two(a, ka, b, kb);
   std::vector<Ray> both = a;
   both.insert(both.end(), b.begin(), b.end());
-  fmpp::isect::KernelStats st;
-  fmpp::isect::KernelOptions o = opt_;
-  o.occlusion = shadow_stop_;  // only rays with a finite tmax stop early: the shadow rays
-  o.mapping = fmpp::isect::Mapping::kRay;
-  std::vector<Hit> hits = fmpp::isect::intersect_fmpp(dev_, both, tris_, o, &st);
-  stats_.add(st);
-  together_stats_.add(st);
+  // Only rays with a finite tmax stop early under the occlusion query: the shadow rays.
+  std::vector<Hit> hits = call(both, shadow_stop_, fmpp::isect::Mapping::kRay, &together_stats_);
   std::vector<Hit> hb(hits.begin() + static_cast<std::ptrdiff_t>(a.size()), hits.end());
   hits.resize(a.size());
   return {std::move(hits), std::move(hb)};

@@ -103,6 +103,10 @@ class FmppIntersector : public Intersector {
   fmpp::isect::KernelOptions opt_;
   fmpp::isect::KernelStats stats_;
   fmpp::isect::KernelStats by_kind_[kNumBatchKinds];
+  // One kernel call, its counters added to the totals and to *counters.
+  std::vector<fmpp::isect::Hit> call(const std::vector<fmpp::isect::Ray>& rays, bool occlusion,
+                                     fmpp::isect::Mapping mapping, fmpp::isect::KernelStats* counters);
+
   BatchKind kind_ = BatchKind::kPrimary;
   bool shadow_stop_ = true;
   fmpp::isect::Mapping mapping_[kNumBatchKinds];

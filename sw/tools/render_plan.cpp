@@ -55,11 +55,8 @@ RenderPlan plan_render(const rt::Scene& scene, const rt::PlanRequest& req, const
                             : !plan.met_target ? "no n keeps the error target"
                             : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
                                                                        : "the widest n; some costs over their limits";
-    std::string object;
-    for (int k = 0; k < rt::kNumBatchKinds; ++k) {
-      if (plan.object[k]) object += (object.empty() ? ", " : " and ") + std::string(rt::to_string(static_cast<rt::BatchKind>(k)));
-    }
-    if (!object.empty()) object += " rays object-parallel";
+    std::string object = rt::object_kinds(plan);
+    if (!object.empty()) object = ", " + object + " rays object-parallel";
     std::fprintf(stderr, "plan: n = %u, %u blocks x %u words%s (%s; %.1f s%s); the reasons are in --report's plan\n",
                  plan.options.n, plan.config.blocks, plan.config.words, object.c_str(), how.c_str(), rp.seconds,
                  rp.cached ? ", cached" : "");
