@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sw/rt/plan.h"
+#include "sw/rt/plan_parts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -234,12 +235,37 @@ TEST(Plan, SampledPixelsAreTracedAsInTheWholeFrame) {
   RenderOptions some = all;
   some.pixels = {0, 5, 100, 301, 575};
   Image part = render(s, ri, some, nullptr);
-  for (uint32_t i = 0; i < 24u * 24u; ++i) {
-    const bool in = std::find(some.pixels.begin(), some.pixels.end(), i) != some.pixels.end();
-    EXPECT_EQ(part[i], in ? whole[i] : glm::dvec3(0)) << "pixel " << i;
-  }
+  // The listed pixels alone, in their order.
+  ASSERT_EQ(part.width(), 5);
+  ASSERT_EQ(part.height(), 1);
+  for (size_t k = 0; k < some.pixels.size(); ++k) EXPECT_EQ(part[k], whole[some.pixels[k]]) << "pixel " << some.pixels[k];
+  EXPECT_EQ(compare(part, listed_pixels(whole, {}, some.pixels)).pixels, 0u);
+  // In any order, and taken from a render of other listed pixels that hold them.
+  RenderOptions other = all;
+  other.pixels = {575, 301, 7, 0};
+  const Image again = render(s, ri, other, nullptr);
+  for (size_t k = 0; k < other.pixels.size(); ++k) EXPECT_EQ(again[k], whole[other.pixels[k]]);
+  const Image picked = listed_pixels(again, other.pixels, {0, 575, 301});
+  EXPECT_EQ(picked[0], whole[0]);
+  EXPECT_EQ(picked[1], whole[575]);
+  EXPECT_EQ(picked[2], whole[301]);
+  EXPECT_THROW(listed_pixels(again, other.pixels, {5}), std::invalid_argument);   // not rendered
+  EXPECT_THROW(listed_pixels(again, other.pixels, {}), std::invalid_argument);    // not the whole frame
+  EXPECT_EQ(compare(listed_pixels(whole, {}, {}), whole).pixels, 0u);
   some.pixels = {576};
   EXPECT_THROW(render(s, ri, some, nullptr), std::invalid_argument);
+}
+
+TEST(Plan, SampledPixelsSortedAndDistinct) {
+  using plan_parts::plan_pixels;
+  using plan_parts::sorted_subset;
+  EXPECT_EQ(sorted_subset({9, 2, 5, 2}, 10), (std::vector<uint32_t>{2, 5, 9}));
+  EXPECT_THROW(sorted_subset({10}, 10), std::out_of_range);
+  const std::vector<uint32_t> p = plan_pixels(1000, 300);
+  ASSERT_EQ(p.size(), 300u);
+  EXPECT_TRUE(std::is_sorted(p.begin(), p.end()));
+  EXPECT_EQ(std::adjacent_find(p.begin(), p.end()), p.end());
+  EXPECT_LT(p.back(), 1000u);
 }
 
 // The pass size comes from the cost model: the fewest blocks whose estimated frame is

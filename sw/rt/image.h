@@ -18,6 +18,8 @@ class Image {
   glm::dvec3& at(int x, int y) { return px_[static_cast<size_t>(y) * w_ + x]; }
   const glm::dvec3& at(int x, int y) const { return px_[static_cast<size_t>(y) * w_ + x]; }
   glm::dvec3& operator[](size_t i) { return px_[i]; }
+  const glm::dvec3& operator[](size_t i) const { return px_[i]; }
+  size_t size() const { return px_.size(); }
   // 8-bit RGB, row-major from the top: clamp to [0, 1], gamma 1/2.2, round.
   std::vector<uint8_t> to_rgb8() const;
   // Writes a PNG (stb_image_write), atomically and checked (fmpp::write_output). Throws

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -10,6 +9,7 @@
 #include <stdexcept>
 #include <sstream>
 
+#include "common/util/claimable.h"
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/cull/order.h"
@@ -36,8 +36,20 @@ std::vector<uint32_t> plan_pixels(size_t pixels, size_t count) {
     std::swap(all[k], all[pick(rng)]);
   }
   all.resize(count);
-  std::sort(all.begin(), all.end());
-  return all;
+  return sorted_subset(all, pixels);
+}
+
+std::vector<uint32_t> sorted_subset(const std::vector<uint32_t>& some, size_t pixels) {
+  // Marked, then read in order: linear in the frame, where a sort of thousands of pixels
+  // was a visible part of a small scene's plan.
+  std::vector<char> in(pixels, 0);
+  for (uint32_t i : some) in.at(i) = 1;
+  std::vector<uint32_t> out;
+  out.reserve(some.size());
+  for (size_t i = 0; i < pixels; ++i) {
+    if (in[i]) out.push_back(static_cast<uint32_t>(i));
+  }
+  return out;
 }
 
 namespace {
@@ -60,42 +72,8 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   Steps steps(req);
   const size_t pixels = static_cast<size_t>(req.width) * req.height;
   // Sample: every k-th primary ray of the frame.
-  const std::vector<Ray> all = primary_rays(scene.camera, req.width, req.height);
-  const size_t step = std::max<size_t>(1, all.size() / static_cast<size_t>(std::max(1, req.sample_rays)));
-  std::vector<Ray> sample;
-  for (size_t i = 0; i < all.size(); i += step) sample.push_back(all[i]);
-  // The sample's exact hits, traced beside the first candidate's golden-model run (the
-  // reference is thread-safe: reference_bvh.h), waited for at its first comparison.
-  std::future<std::vector<Hit>> tracing_sample = std::async(std::launch::async, [&] { return exact.intersect(sample); });
-  std::vector<Hit> ref;
-  const auto exact_hits = [&]() -> const std::vector<Hit>& {
-    if (tracing_sample.valid()) {
-      ref = tracing_sample.get();
-      steps.say("exact hits of " + std::to_string(sample.size()) + " sampled primary rays, traced beside the first "
-                "candidate");
-    }
-    return ref;
-  };
-  std::vector<double> cond;
-  for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
-  // Passes of 128 of the sample's rays, in the coherent order (image tiles): each pass
-  // broadcasts only what its part of the frame needs (measured, the golden model's time
-  // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
-  // passes of 128 rays 0.03 s and 0.19 s; the same answers and redone rays).
-  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 128)), 32};
-  // Those passes as calls of their own, so that a candidate stops as soon as its refusal
-  // is certain: once the wrong triangles or the rays redone so far exceed what the whole
-  // sample may have (a count, not an estimate: the rest cannot bring them back).
-  std::vector<std::vector<size_t>> sample_passes;
-  {
-    std::vector<size_t> idx(sample.size());
-    std::iota(idx.begin(), idx.end(), size_t{0});
-    const std::vector<size_t> order = fmpp::isect::coherent_order(sample, idx);
-    for (size_t b = 0; b < order.size(); b += sample_cfg.blocks) {
-      sample_passes.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(b),
-                                 order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b + sample_cfg.blocks)));
-    }
-  }
+  const size_t step = std::max<size_t>(1, pixels / static_cast<size_t>(std::max(1, req.sample_rays)));
+  const std::vector<Ray> sample = primary_rays(scene.camera, req.width, req.height, 0, pixels, step);
   // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
   // plan is deterministic), in frame order, rendered whole (shadow, reflection and
   // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
@@ -126,7 +104,59 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   std::vector<size_t> ends;
   for (size_t e = first; e < sampled && !frame.pixels.empty(); e += kChunk) ends.push_back(e);
   ends.push_back(sampled);
-  std::map<std::pair<size_t, size_t>, Image> ref_chunks;  // the reference's pixels of each chunk rendered
+  // A chunk of the frame sample, [from, to) of its random order, in frame order (coherent
+  // passes); a frame sampled whole is one chunk of every pixel.
+  const auto chunk = [&](size_t from, size_t to) {
+    RenderOptions part = frame;
+    if (!frame.pixels.empty()) {
+      part.pixels = sorted_subset(std::vector<uint32_t>(order.begin() + static_cast<std::ptrdiff_t>(from),
+                                                        order.begin() + static_cast<std::ptrdiff_t>(to)),
+                                  pixels);
+    }
+    return part;
+  };
+  // The exact work, on one thread beside the golden model's (the reference is
+  // thread-safe: reference_bvh.h): the primary sample's hits, for the first candidate's
+  // comparisons; then, where the reference's whole frame is not traced, the exact render
+  // of the frame sample's first chunk, which the first candidate to pass its primary
+  // sample compares with (whichever n it is). Each is done on this thread instead if the
+  // other has not begun it when it is needed (claimable.h): on a small scene the work
+  // takes less time than a thread may take to start.
+  fmpp::Claimable<std::vector<Hit>> sample_hits([&] { return exact.intersect(sample); });
+  const std::pair<size_t, size_t> first_key{0, ends.front()};
+  fmpp::Claimable<Image> first_chunk([&] { return render(scene, exact, chunk(first_key.first, first_key.second), nullptr); });
+  if (reference) first_chunk.drop();
+  const fmpp::Beside beside(sample_hits, first_chunk);  // what it has not begun at the end is dropped
+  std::vector<double> cond;
+  for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
+  // Passes of 128 of the sample's rays, in the coherent order (image tiles): each pass
+  // broadcasts only what its part of the frame needs (measured, the golden model's time
+  // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
+  // passes of 128 rays 0.03 s and 0.19 s; the same answers and redone rays).
+  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 128)), 32};
+  // Those passes as calls of their own, so that a candidate stops as soon as its refusal
+  // is certain: once the wrong triangles or the rays redone so far exceed what the whole
+  // sample may have (a count, not an estimate: the rest cannot bring them back).
+  std::vector<std::vector<size_t>> sample_passes;
+  {
+    std::vector<size_t> idx(sample.size());
+    std::iota(idx.begin(), idx.end(), size_t{0});
+    const std::vector<size_t> order = fmpp::isect::coherent_order(sample, idx);
+    for (size_t b = 0; b < order.size(); b += sample_cfg.blocks) {
+      sample_passes.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(b),
+                                 order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b + sample_cfg.blocks)));
+    }
+  }
+  // The reference's render of each chunk rendered without the whole frame (its pixels and
+  // the image of them); a chunk within one of them is compared with its pixels there (a
+  // pixel's exact render does not depend on the pixels rendered with it).
+  std::map<std::pair<size_t, size_t>, std::pair<std::vector<uint32_t>, Image>> ref_chunks;
+  const auto covering = [&](size_t from, size_t to) -> const std::pair<std::vector<uint32_t>, Image>* {
+    for (const auto& [key, rendered] : ref_chunks) {
+      if (key.first <= from && to <= key.second) return &rendered;
+    }
+    return nullptr;
+  };
   std::map<unsigned, fmpp::isect::KernelStats> frame_stats;  // of each n whose frame sample was rendered
   // The decision, with the frame sample's counters at its n.
   auto decided = [&](unsigned n, std::string why) {
@@ -166,38 +196,35 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       to.insert(to.begin(), 2 * kChunk);
     }
     for (size_t k = 0, from = 0; k < to.size(); from = to[k++]) {
-      RenderOptions part = frame;
-      if (!frame.pixels.empty()) {
-        const auto at = [&](size_t i) { return order.begin() + static_cast<std::ptrdiff_t>(i); };
-        part.pixels.assign(at(from), at(to[k]));
-        std::sort(part.pixels.begin(), part.pixels.end());  // frame order: coherent passes
-      }
+      const RenderOptions part = chunk(from, to[k]);
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
-      // The reference's pixels of the chunk: rendered with `exact` before the golden
-      // model's, or taken from the whole frame after it (which may still be being traced
-      // beside it).
-      // Without the whole frame, the chunk's exact render runs on a thread of its own
-      // beside the golden model's (started below), and is waited for here.
-      std::future<Image> tracing_chunk;
-      const auto chunk_reference = [&]() -> const Image& {
-        if (const auto it = ref_chunks.find({from, to[k]}); it != ref_chunks.end()) return it->second;
-        if (!reference) {
-          const Image& r = ref_chunks.emplace(std::make_pair(from, to[k]), tracing_chunk.get()).first->second;
-          steps.say("the exact reference's render of " + std::to_string(count) +
-                    " more sampled pixels, beside the golden model's");
-          return r;
+      // The reference's picture of the chunk: the whole frame's (which may still be being
+      // traced beside the samples), or without it the first chunk's (traced beside the
+      // candidates) if it holds this one, else the chunk's own exact render, beside the
+      // golden model's (claimable.h: or after it, here).
+      const bool in_first = !reference && to[k] <= first_key.second;
+      fmpp::Claimable<Image> own([&] { return render(scene, exact, part, nullptr); });
+      std::optional<fmpp::Beside> beside_own;
+      if (!reference && !in_first && !covering(from, to[k])) beside_own.emplace(own);
+      // The reference's picture of the chunk's pixels.
+      const auto chunk_reference = [&]() -> Image {
+        if (reference) return listed_pixels(*reference(), {}, part.pixels);
+        if (in_first && !ref_chunks.count(first_key)) {
+          ref_chunks.emplace(first_key, std::make_pair(chunk(first_key.first, first_key.second).pixels, first_chunk.take()));
+          steps.say("the exact reference's render of the first " + std::to_string(first_key.second) +
+                    " sampled pixels, traced beside the candidates");
         }
-        // The chunk's pixels of the reference's whole frame: traced as in the whole frame.
-        return ref_chunks.emplace(std::make_pair(from, to[k]), pixels_of(*reference(), part.pixels)).first->second;
+        if (const auto* r = covering(from, to[k])) return listed_pixels(r->second, r->first, part.pixels);
+        const Image& r = ref_chunks.emplace(std::make_pair(from, to[k]), std::make_pair(part.pixels, own.take()))
+                             .first->second.second;
+        steps.say("the exact reference's render of " + std::to_string(count) +
+                  " more sampled pixels, beside the golden model's");
+        return r;
       };
-      if (!reference && !ref_chunks.count({from, to[k]})) {
-        tracing_chunk = std::async(std::launch::async, [&scene, &exact, &part] { return render(scene, exact, part, nullptr); });
-      }
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
       const Image got = render(scene, fi, part, nullptr);
-      // Pixels outside the chunk are black in both renders: they count as equal.
       over += compare(got, chunk_reference()).pixels_over;
       st.add(fi.stats());
       done += count;
@@ -262,7 +289,8 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       std::vector<Ray> rays;
       for (size_t i : pass) rays.push_back(sample[i]);
       const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, rays, scene.triangles, o, &st);
-      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != exact_hits()[pass[j]].tri;
+      const std::vector<Hit>& want = sample_hits.get();
+      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != want[pass[j]].tri;
       done += pass.size();
       // At n = 32 the costs do not refuse (below): its sample is measured whole.
       const double redone = flagged_share(st) * static_cast<double>(done);

@@ -75,9 +75,6 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
 // Why the plan may not move a kind of batch to the object-parallel mapping on a machine
 // of `words` words ("" where it may): the user's --mapping, the watertight form, words.
 std::string object_mapping_refused(const PlanRequest& req, unsigned words);
-// The pixels of `whole` at `pixels` (indices y * width + x), the rest black (as a render
-// of those pixels alone leaves them); all of it for none.
-Image pixels_of(const Image& whole, const std::vector<uint32_t>& pixels);
 // A kind of batch moved to the object-parallel mapping, checked on the frame sample
 // rendered again with it against the exact frame's picture (else moved back).
 void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan);
@@ -85,6 +82,8 @@ void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const
 // `count` distinct pixel indices of [0, pixels), drawn uniformly with a fixed seed (the
 // plan is deterministic), sorted: the frame sample's pixels.
 std::vector<uint32_t> plan_pixels(size_t pixels, size_t count);
+// The distinct pixel indices of `some` (each in [0, pixels)), sorted.
+std::vector<uint32_t> sorted_subset(const std::vector<uint32_t>& some, size_t pixels);
 
 // The multiplier bits n: the narrowest candidate whose sampled wrong-pixel rate meets the
 // target (plan_bits.cpp; docs/raytracer.md, "The precision plan"). `exact` answers with

@@ -53,17 +53,6 @@ std::string object_mapping_refused(const PlanRequest& req, unsigned words) {
   return "";
 }
 
-Image pixels_of(const Image& whole, const std::vector<uint32_t>& pixels) {
-  if (pixels.empty()) return whole;
-  Image part(whole.width(), whole.height());
-  for (uint32_t i : pixels) {
-    const int x = static_cast<int>(i % static_cast<uint32_t>(whole.width()));
-    const int y = static_cast<int>(i / static_cast<uint32_t>(whole.width()));
-    part.at(x, y) = whole.at(x, y);
-  }
-  return part;
-}
-
 // Sets the machine to `blocks` of the candidates (on the RTL the configuration of that name).
 void set_blocks(const std::vector<unsigned>& sizes, const std::vector<std::string>& names, size_t chosen,
                 const std::string& why, Plan* plan) {
@@ -118,7 +107,10 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
   // plan may choose it; else no bound is needed on it.
   double object_per_ray = std::numeric_limits<double>::infinity();
   if (object_mapping_refused(req, plan->config.words).empty()) {
-    const std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height);
+    // The rates are measured on 32 rays spread over those given (object_cost.cpp): the
+    // frame's 32 alone, not its every primary ray.
+    std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height, 0, pixels, std::max<size_t>(1, pixels / 32));
+    if (primary.size() > 32) primary.resize(32);
     object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false).per_ray;
   }
   const PassBound b = pass_bound(pixels * static_cast<size_t>(scene.spp), scene.spp, scene.lights.size(),
@@ -160,7 +152,7 @@ void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const
     if (plan->object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
   }
   const Image got = render(scene, fi, ro, nullptr);
-  const size_t over = compare(got, pixels_of(reference, ro.pixels)).pixels_over;
+  const size_t over = compare(got, listed_pixels(reference, {}, ro.pixels)).pixels_over;
   const double rate = static_cast<double>(over) / static_cast<double>(sampled);
   const double bound = sampled == pixels ? rate : upper_confidence_bound(over, sampled, req.confidence);
   const double redone = flagged_share(fi.stats());

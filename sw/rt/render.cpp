@@ -123,14 +123,15 @@ class PixelRays {
 
 }  // namespace
 
-std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last) {
+std::vector<Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last, size_t step) {
   // Row by row from the top, so a pass of the ray-parallel FMPP is a band of rows and
   // its culling frustum is thin.
   const PixelRays at(cam, width, height);
   last = std::min(last, static_cast<size_t>(width) * static_cast<size_t>(height));
   std::vector<Ray> rays;
-  rays.reserve(last > first ? last - first : 0);
-  for (size_t i = first; i < last; ++i) rays.push_back(at(i));
+  step = std::max<size_t>(step, 1);
+  rays.reserve(last > first ? (last - first + step - 1) / step : 0);
+  for (size_t i = first; i < last; i += step) rays.push_back(at(i));
   return rays;
 }
 
@@ -168,7 +169,6 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   check_resolution(opt.width, opt.height);
   RenderStats local;
   RenderStats& st = stats ? *stats : local;
-  Image img(opt.width, opt.height);
   const int depth = opt.max_depth > 0 ? opt.max_depth : sc.max_depth;
   // Secondary rays start off the surface by the bound on the hit point's own error plus
   // what the intersector needs to tell a new hit from the surface it leaves.
@@ -190,6 +190,11 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
     }
   }
   const size_t pixels = opt.pixels.empty() ? frame : opt.pixels.size();
+  if (pixels > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    throw std::invalid_argument("render: " + std::to_string(pixels) + " listed pixels, more than one image holds");
+  }
+  // The image: the frame, or the listed pixels alone (a path's pixel is then its slot).
+  Image img = opt.pixels.empty() ? Image(opt.width, opt.height) : Image(static_cast<int>(pixels), 1);
   const PixelRays at(sc.camera, opt.width, opt.height);
   // A band holds at most kPrimaryBatch primary rays: all the samples of its pixels.
   const size_t band = std::max<size_t>(1, kPrimaryBatch / static_cast<size_t>(spp));
@@ -200,9 +205,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
     std::vector<Path> paths;
     for (size_t k = first; k < last; ++k) {
       const uint32_t i = opt.pixels.empty() ? static_cast<uint32_t>(k) : opt.pixels[k];
+      const auto slot = static_cast<uint32_t>(k);  // the pixel's place in the image
       if (spp == 1) {
         rays.push_back(at(i));
-        paths.push_back(Path{i, glm::dvec3(1), RayKind::kPrimary, i});
+        paths.push_back(Path{slot, glm::dvec3(1), RayKind::kPrimary, i});
         continue;
       }
       // The pixel's samples share the eye, so they travel with the other primary rays in
@@ -212,7 +218,7 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         const double u1 = rng.next(), u2 = rng.next();
         const glm::dvec2 d = stratified(j, spp, u1, u2);
         rays.push_back(at(i, d.x, d.y));
-        paths.push_back(Path{i, glm::dvec3(1.0 / spp), RayKind::kPrimary,
+        paths.push_back(Path{slot, glm::dvec3(1.0 / spp), RayKind::kPrimary,
                              static_cast<uint64_t>(i) * static_cast<uint64_t>(spp) + static_cast<uint64_t>(j)});
       }
     }
@@ -284,6 +290,34 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
     }
   }
   return img;
+}
+
+Image listed_pixels(const Image& image, const std::vector<uint32_t>& of, const std::vector<uint32_t>& want) {
+  if (want.empty()) {
+    if (!of.empty()) throw std::invalid_argument("listed_pixels: the whole frame wanted of an image of listed pixels");
+    return image;
+  }
+  if (want.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    throw std::invalid_argument("listed_pixels: " + std::to_string(want.size()) + " pixels, more than one image holds");
+  }
+  Image out(static_cast<int>(want.size()), 1);
+  // Where each pixel of `of` lies in `image` (by a sorted copy: `of` may be in any order).
+  std::vector<std::pair<uint32_t, size_t>> at;
+  at.reserve(of.size());
+  for (size_t k = 0; k < of.size(); ++k) at.emplace_back(of[k], k);
+  std::sort(at.begin(), at.end());
+  for (size_t k = 0; k < want.size(); ++k) {
+    size_t slot = want[k];
+    if (!of.empty()) {
+      const auto it = std::lower_bound(at.begin(), at.end(), std::make_pair(want[k], size_t{0}));
+      slot = it != at.end() && it->first == want[k] ? it->second : image.size();
+    }
+    if (slot >= image.size()) {
+      throw std::invalid_argument("listed_pixels: pixel " + std::to_string(want[k]) + " is not in the image");
+    }
+    out[k] = image[slot];
+  }
+  return out;
 }
 
 }  // namespace rt

@@ -125,8 +125,10 @@ struct RenderOptions {
   int spp = 0;
   // The seed of every random choice (jitter, area-light samples); unset: the scene's.
   std::optional<uint64_t> seed;
-  // Empty: every pixel. Otherwise only these pixel indices (y * width + x, each in the
-  // frame), traced exactly as in the whole frame; the other pixels stay black.
+  // Empty: every pixel, and the image is the frame. Otherwise only these pixel indices
+  // (y * width + x, each in the frame), traced exactly as in the whole frame, and the
+  // image holds them alone, the k-th listed at index k (pixels.size() x 1): a sample of a
+  // large frame costs no image of the frame.
   std::vector<uint32_t> pixels;
   // Called after each batch of rays: (rays traced so far, a description of the batch).
   std::function<void(uint64_t, const std::string&)> progress;
@@ -151,11 +153,18 @@ struct RenderStats {
 // spawn_margin() (0 but for Embree).
 double spawn_offset(const fmpp::isect::Ray& r, double t, const glm::dvec3& n, double t_err);
 
+// The pixels `want` of `image` as a render of them alone gives them (RenderOptions::pixels:
+// the k-th at index k; want empty: the whole frame), where `image` is a render of the
+// pixels `of` (of empty: of the whole frame). Throws std::invalid_argument for a pixel
+// `image` does not hold.
+Image listed_pixels(const Image& image, const std::vector<uint32_t>& of, const std::vector<uint32_t>& want);
+
 // The camera's primary rays through the pixel centres, row by row from the top (pixel
 // index y * width + x), exactly as render() casts them.
 std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height);
-// The same rays for pixel indices [first, last) only.
-std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last);
+// The same rays for pixel indices first, first + step, ... below last only (step >= 1).
+std::vector<fmpp::isect::Ray> primary_rays(const Camera& cam, int width, int height, size_t first, size_t last,
+                                           size_t step = 1);
 
 // True if some of the scene's shadow rays may take the arbitrary-origin form, which needs
 // own_origin_words() per block: a directional light's (cast from their points), or an area
