@@ -3,10 +3,15 @@
 // exception either way; dropped work is never done.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <future>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/util/claimable.h"
@@ -99,6 +104,57 @@ TEST(Claimable, DroppedWorkIsNeverDone) {
     const Beside beside(late);
   }
   EXPECT_EQ(late_runs, 0);
+}
+
+TEST(Claimable, PiecesAddedAfterTheStartRunOnce) {
+  std::vector<int> order;
+  std::mutex m;
+  const auto note = [&](int k) {
+    const std::lock_guard<std::mutex> lock(m);
+    order.push_back(k);
+    return k;
+  };
+  Claimable<int> a([&] { return note(1); });
+  Beside beside;
+  beside.add(a);
+  beside.start();
+  EXPECT_EQ(a.get(), 1);
+  // Later pieces, kept alive by the Beside; each done once, by whichever thread.
+  std::vector<std::shared_ptr<Claimable<int>>> later;
+  for (int k = 2; k < 40; ++k) {
+    later.push_back(std::make_shared<Claimable<int>>([&, k] { return note(k); }));
+    beside.add(later.back());
+  }
+  for (size_t i = 0; i < later.size(); ++i) EXPECT_EQ(later[i]->get(), static_cast<int>(i) + 2);
+  EXPECT_EQ(order.size(), 39u);
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());  // none twice
+}
+
+TEST(Claimable, SettledWorkRunsNowhere) {
+  // Not begun: dropped, never done.
+  int runs = 0;
+  Claimable<int> w([&] { return ++runs; });
+  w.settle();
+  EXPECT_EQ(runs, 0);
+  EXPECT_THROW(w.get(), std::logic_error);
+  // Begun on the thread beside: waited for, so its captures may go after settle().
+  std::promise<void> began;
+  std::atomic<bool> finished{false};
+  auto slow = std::make_shared<Claimable<int>>([&] {
+    began.set_value();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    finished = true;
+    return 5;
+  });
+  Beside beside;
+  beside.add(slow);
+  beside.start();
+  began.get_future().wait();
+  slow->settle();
+  EXPECT_TRUE(finished.load());
+  EXPECT_EQ(slow->get(), 5);
 }
 
 TEST(Claimable, TakeMovesTheResultOut) {

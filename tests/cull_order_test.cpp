@@ -27,6 +27,31 @@ bool ray_enters(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1, 
   return t0 <= t1;
 }
 
+// One ray's packet made alone is the one make_packets makes for it, bit for bit (the exact
+// reference's walk relies on the same padding either way).
+TEST(CullBox, OneRaysPacketAsMakePacketsMakesIt) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const std::vector<size_t> one{0};
+  for (int trial = 0; trial < 500; ++trial) {
+    const double scale = std::ldexp(1.0, static_cast<int>(rng() % 80) - 40);
+    Ray r{glm::dvec3(u(rng), u(rng), u(rng)) * scale, glm::dvec3(u(rng), u(rng), u(rng))};
+    if (trial % 3 == 0) r.d.x = 0;
+    r.tmax = trial % 2 ? std::abs(u(rng)) * scale : std::numeric_limits<double>::infinity();
+    for (double margin : {0.0, 0x1p-30, 0.01}) {
+      const RayPacket a = make_packets({r}, one, 0, 1, 1, margin)[0], b = ray_packet(r, margin);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(a.o.lo[k], b.o.lo[k]);
+        EXPECT_EQ(a.o.hi[k], b.o.hi[k]);
+        EXPECT_EQ(a.d.lo[k], b.d.lo[k]);
+        EXPECT_EQ(a.d.hi[k], b.d.hi[k]);
+      }
+      EXPECT_EQ(a.t0, b.t0);
+      EXPECT_EQ(a.t1, b.t1);
+    }
+  }
+}
+
 TEST(CullBox, PacketTestNeverRejectsAnEnteredBox) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);

@@ -217,6 +217,16 @@ TEST(Plan, TheFrameSampleCatchesWhatPrimaryRaysMiss) {
 TEST(Plan, UpperConfidenceBoundIsClopperPearson) {
   // No hit in n draws: 1 - (1 - c)^(1/n) exactly ("the rule of three" for c = 0.95).
   EXPECT_NEAR(upper_confidence_bound(0, 3000, 0.95), 1 - std::pow(0.05, 1.0 / 3000), 1e-9);
+  // Solved in closed form there: an upper bound (P(X = 0) at it is at most 1 - c), and a
+  // tight one (a hair below it, P(X = 0) is over 1 - c).
+  for (size_t n : {1u, 2u, 10u, 1496u, 1497u, 100000u}) {
+    for (double c : {0.5, 0.95, 0.999}) {
+      const double p = upper_confidence_bound(0, n, c);
+      const double nn = static_cast<double>(n);
+      EXPECT_LE(nn * std::log1p(-p), std::log1p(-c)) << n << " " << c;
+      EXPECT_GT(nn * std::log1p(-p * (1 - 1e-9)), std::log1p(-c)) << n << " " << c;
+    }
+  }
   // Published values: 1 in 10 at 95 %: 0.3942; 5 in 100: 0.1023 (one-sided).
   EXPECT_NEAR(upper_confidence_bound(1, 10, 0.95), 0.3942, 5e-4);
   EXPECT_NEAR(upper_confidence_bound(5, 100, 0.95), 0.1023, 5e-4);

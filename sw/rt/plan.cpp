@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <future>
 #include <numeric>
 #include <optional>
@@ -111,8 +112,14 @@ double upper_confidence_bound(size_t hits, size_t trials, double confidence) {
     throw std::invalid_argument("upper_confidence_bound: needs 0 <= hits <= trials, trials >= 1, confidence in (0, 1)");
   }
   if (hits == trials) return 1;
-  // P(X <= hits) for X ~ Binomial(trials, p), summed in log space.
   const double nn = static_cast<double>(trials);
+  if (hits == 0) {
+    // P(X = 0) = (1 - p)^trials = 1 - confidence, solved, and rounded up by a few ulps
+    // (an upper bound; the bisection below gives the same within 1e-12).
+    const double p = -std::expm1(std::log1p(-confidence) / nn);
+    return std::min(1.0, p * (1 + 64 * std::numeric_limits<double>::epsilon()));
+  }
+  // P(X <= hits) for X ~ Binomial(trials, p), summed in log space.
   auto cdf = [&](double p) {
     double sum = 0;
     for (size_t i = 0; i <= hits; ++i) {

@@ -3,16 +3,14 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <numeric>
+#include <memory>
 #include <optional>
-#include <random>
 #include <stdexcept>
 #include <sstream>
 
 #include "common/util/claimable.h"
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/cull/order.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/pass/policy.h"
@@ -26,31 +24,6 @@ using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
 }  // namespace
-
-std::vector<uint32_t> plan_pixels(size_t pixels, size_t count) {
-  std::mt19937_64 rng(0x5eed);
-  std::vector<uint32_t> all(pixels);
-  std::iota(all.begin(), all.end(), 0u);
-  for (size_t k = 0; k < count; ++k) {  // a partial Fisher-Yates shuffle
-    std::uniform_int_distribution<size_t> pick(k, pixels - 1);
-    std::swap(all[k], all[pick(rng)]);
-  }
-  all.resize(count);
-  return sorted_subset(all, pixels);
-}
-
-std::vector<uint32_t> sorted_subset(const std::vector<uint32_t>& some, size_t pixels) {
-  // Marked, then read in order: linear in the frame, where a sort of thousands of pixels
-  // was a visible part of a small scene's plan.
-  std::vector<char> in(pixels, 0);
-  for (uint32_t i : some) in.at(i) = 1;
-  std::vector<uint32_t> out;
-  out.reserve(some.size());
-  for (size_t i = 0; i < pixels; ++i) {
-    if (in[i]) out.push_back(static_cast<uint32_t>(i));
-  }
-  return out;
-}
 
 namespace {
 
@@ -71,82 +44,33 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   if (req.bits) return {*req.bits, "set by the user"};
   Steps steps(req);
   const size_t pixels = static_cast<size_t>(req.width) * req.height;
-  // Sample: every k-th primary ray of the frame.
-  const size_t step = std::max<size_t>(1, pixels / static_cast<size_t>(std::max(1, req.sample_rays)));
-  const std::vector<Ray> sample = primary_rays(scene.camera, req.width, req.height, 0, pixels, step);
-  // The frame's sample: sample_pixels pixels drawn without replacement (a fixed seed: the
-  // plan is deterministic), in frame order, rendered whole (shadow, reflection and
-  // refraction rays too) at the frame's own resolution; or the whole frame if smaller.
-  RenderOptions frame;
-  frame.width = req.width;
-  frame.height = req.height;
-  frame.max_depth = depth;
-  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
-  if (want < pixels) frame.pixels = plan_pixels(pixels, want);
-  const size_t sampled = frame.pixels.empty() ? pixels : frame.pixels.size();
-  // The sample is rendered in chunks, prefixes of its random order, so that a candidate
-  // is decided as soon as its answer is certain: accepted once the bound on the prefix
-  // keeps the target, refused once no outcome of the rest could keep it. No prefix
-  // shorter than `first` can keep the target even with no pixel off (1,497 pixels for
-  // 0.2 % at 95 %), so the first chunk is that long, and one render of it (one setup of
-  // each batch, the costly part on a large mesh) decides a clean candidate; kChunk more
-  // pixels at a time after it. The reference's chunks are kept for the next candidate.
-  // A frame sampled whole is decided on the whole.
-  constexpr size_t kChunk = 500;
-  // With no pixel off the bound is 1 - (1 - confidence)^(1/k): start just below its k.
-  size_t first = std::max(kChunk, static_cast<size_t>(std::max(
-                                      0.0, std::floor(std::log1p(-req.confidence) / std::log1p(-req.target_wrong_rate)) - 1)));
-  while (first < sampled && upper_confidence_bound(0, first, req.confidence) > req.target_wrong_rate) first += 1;
-  // The sample in random order, and the ends of its chunks (prefixes of that order); a
-  // frame sampled whole is one chunk.
-  std::vector<uint32_t> order = frame.pixels;  // sorted; drawn again in random order for prefixes
-  std::shuffle(order.begin(), order.end(), std::mt19937_64(0x5eed + 1));
-  std::vector<size_t> ends;
-  for (size_t e = first; e < sampled && !frame.pixels.empty(); e += kChunk) ends.push_back(e);
-  ends.push_back(sampled);
-  // A chunk of the frame sample, [from, to) of its random order, in frame order (coherent
-  // passes); a frame sampled whole is one chunk of every pixel.
-  const auto chunk = [&](size_t from, size_t to) {
-    RenderOptions part = frame;
-    if (!frame.pixels.empty()) {
-      part.pixels = sorted_subset(std::vector<uint32_t>(order.begin() + static_cast<std::ptrdiff_t>(from),
-                                                        order.begin() + static_cast<std::ptrdiff_t>(to)),
-                                  pixels);
-    }
-    return part;
-  };
+  const PrimarySample sample = primary_sample(scene, req);
   // The exact work, on one thread beside the golden model's (the reference is
-  // thread-safe: reference_bvh.h): the primary sample's hits, for the first candidate's
-  // comparisons; then, where the reference's whole frame is not traced, the exact render
-  // of the frame sample's first chunk, which the first candidate to pass its primary
-  // sample compares with (whichever n it is). Each is done on this thread instead if the
-  // other has not begun it when it is needed (claimable.h): on a small scene the work
-  // takes less time than a thread may take to start.
-  fmpp::Claimable<std::vector<Hit>> sample_hits([&] { return exact.intersect(sample); });
-  const std::pair<size_t, size_t> first_key{0, ends.front()};
-  fmpp::Claimable<Image> first_chunk([&] { return render(scene, exact, chunk(first_key.first, first_key.second), nullptr); });
+  // thread-safe: reference_bvh.h): the exact hits of each pass of the primary sample, in
+  // the order the candidates compare them; the frame sample's pixels drawn; and, where the
+  // reference's whole frame is not traced, the exact render of the frame sample's first
+  // chunk, which the first candidate to pass its primary sample compares with (whichever n
+  // it is). Each piece is done on this thread instead if the other has not begun it when
+  // it is needed (claimable.h): on a small scene a piece takes less time than a thread may
+  // take to start.
+  std::vector<std::unique_ptr<fmpp::Claimable<std::vector<Hit>>>> pass_hits;
+  fmpp::Beside beside;  // what it has not begun at the end is dropped
+  for (const std::vector<Ray>& pass : sample.passes) {
+    pass_hits.push_back(std::make_unique<fmpp::Claimable<std::vector<Hit>>>([&] { return exact.intersect(pass); }));
+    beside.add(*pass_hits.back());
+  }
+  fmpp::Claimable<FrameSample> drawn([&] { return frame_sample(req, depth); });
+  beside.add(drawn);
+  fmpp::Claimable<std::pair<std::vector<uint32_t>, Image>> first_chunk([&] {
+    const FrameSample& f = drawn.get();
+    const RenderOptions part = f.chunk(0, f.ends.front());
+    return std::make_pair(part.pixels, render(scene, exact, part, nullptr));
+  });
   if (reference) first_chunk.drop();
-  const fmpp::Beside beside(sample_hits, first_chunk);  // what it has not begun at the end is dropped
+  beside.add(first_chunk);
+  beside.start();
   std::vector<double> cond;
   for (const auto& t : scene.triangles) cond.push_back(fmpp::isect::policy::condition(t, scene.camera.eye));
-  // Passes of 128 of the sample's rays, in the coherent order (image tiles): each pass
-  // broadcasts only what its part of the frame needs (measured, the golden model's time
-  // per candidate: one pass of the 1,024 rays 0.08 s on spheres_10k, 0.24 s on scans;
-  // passes of 128 rays 0.03 s and 0.19 s; the same answers and redone rays).
-  const fmpp::Config sample_cfg{static_cast<unsigned>(std::min<size_t>(sample.size(), 128)), 32};
-  // Those passes as calls of their own, so that a candidate stops as soon as its refusal
-  // is certain: once the wrong triangles or the rays redone so far exceed what the whole
-  // sample may have (a count, not an estimate: the rest cannot bring them back).
-  std::vector<std::vector<size_t>> sample_passes;
-  {
-    std::vector<size_t> idx(sample.size());
-    std::iota(idx.begin(), idx.end(), size_t{0});
-    const std::vector<size_t> order = fmpp::isect::coherent_order(sample, idx);
-    for (size_t b = 0; b < order.size(); b += sample_cfg.blocks) {
-      sample_passes.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(b),
-                                 order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b + sample_cfg.blocks)));
-    }
-  }
   // The reference's render of each chunk rendered without the whole frame (its pixels and
   // the image of them); a chunk within one of them is compared with its pixels there (a
   // pixel's exact render does not depend on the pixels rendered with it).
@@ -163,9 +87,6 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     if (frame_stats.count(n)) *sample_stats = frame_stats[n];
     return Decision<unsigned>{n, std::move(why)};
   };
-  // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
-  // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
-  const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(sampled, kChunk), 64)), 32};
   // The shared-origin forms the plan's golden-model runs prepare, kept for the next run
   // with the same form, n, options and origin (form_cache.h): the primary samples of one
   // n, the frame sample's chunks and its shadow rays from one light at every depth
@@ -185,72 +106,123 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
   // The frame sample at n: what the rays the primary sample does not see (shadow rays
   // ending on a neighbour's edge, secondary rays) do to the picture.
   auto render_frame = [&](PlanCandidate& c) {
+    const FrameSample& fs = drawn.get();
+    const std::pair<size_t, size_t> first_key{0, fs.ends.front()};
+    // 64 blocks: a chunk's pixels lie all over the frame, and short passes of them keep
+    // culling useful (measured: 15 % less plan time than one pass of the chunk on scans).
+    const fmpp::Config frame_cfg{static_cast<unsigned>(std::min<size_t>(std::min(fs.sampled, kPlanChunk), 64)), 32};
     fmpp::isect::KernelStats st;
     size_t done = 0, over = 0;
     // The rule on the cost below refuses a candidate after 1,000 pixels; one whose primary
     // sample already redoes more than a quarter of what it refuses (the frame sample has
     // redone about four times the primary sample's share on every shipped scene) renders
     // its first 1,000 pixels on their own, so that it can stop there.
-    std::vector<size_t> to = ends;
-    if (c.primary_redone * 4 > kCostlyRedone * req.max_flagged_share && 2 * kChunk < first && !frame.pixels.empty()) {
-      to.insert(to.begin(), 2 * kChunk);
+    std::vector<size_t> to = fs.ends;
+    if (c.primary_redone * 4 > kCostlyRedone * req.max_flagged_share && 2 * kPlanChunk < fs.first &&
+        !fs.frame.pixels.empty()) {
+      to.insert(to.begin(), 2 * kPlanChunk);
     }
     for (size_t k = 0, from = 0; k < to.size(); from = to[k++]) {
-      const RenderOptions part = chunk(from, to[k]);
+      const RenderOptions part = fs.chunk(from, to[k]);
       const size_t count = part.pixels.empty() ? pixels : part.pixels.size();
       // The reference's picture of the chunk: the whole frame's (which may still be being
       // traced beside the samples), or without it the first chunk's (traced beside the
       // candidates) if it holds this one, else the chunk's own exact render, beside the
       // golden model's (claimable.h: or after it, here).
       const bool in_first = !reference && to[k] <= first_key.second;
-      fmpp::Claimable<Image> own([&] { return render(scene, exact, part, nullptr); });
-      std::optional<fmpp::Beside> beside_own;
-      if (!reference && !in_first && !covering(from, to[k])) beside_own.emplace(own);
-      // The reference's picture of the chunk's pixels.
+      std::shared_ptr<fmpp::Claimable<Image>> own;
+      if (!reference && !in_first && !covering(from, to[k])) {
+        own = std::make_shared<fmpp::Claimable<Image>>([&scene, &exact, part] { return render(scene, exact, part, nullptr); });
+        beside.add(own);
+      }
       const auto chunk_reference = [&]() -> Image {
         if (reference) return listed_pixels(*reference(), {}, part.pixels);
         if (in_first && !ref_chunks.count(first_key)) {
-          ref_chunks.emplace(first_key, std::make_pair(chunk(first_key.first, first_key.second).pixels, first_chunk.take()));
+          ref_chunks.emplace(first_key, first_chunk.take());
           steps.say("the exact reference's render of the first " + std::to_string(first_key.second) +
                     " sampled pixels, traced beside the candidates");
         }
         if (const auto* r = covering(from, to[k])) return listed_pixels(r->second, r->first, part.pixels);
-        const Image& r = ref_chunks.emplace(std::make_pair(from, to[k]), std::make_pair(part.pixels, own.take()))
+        const Image& r = ref_chunks.emplace(std::make_pair(from, to[k]), std::make_pair(part.pixels, own->take()))
                              .first->second.second;
         steps.say("the exact reference's render of " + std::to_string(count) +
                   " more sampled pixels, beside the golden model's");
         return r;
       };
-      fmpp::ModelBus fbus(frame_cfg);
-      fmpp::Device fdev(fbus);
-      FmppIntersector fi(fdev, scene.triangles, options(c.n));
-      const Image got = render(scene, fi, part, nullptr);
+      // The chunk on the golden model: a listed chunk of at least two passes in two halves
+      // of its pixels, each on a machine of its own, the first here and the second beside
+      // (or after it, here), so that the two cores share it. The halves are fixed, so the
+      // answers and clocks are the same whichever thread renders the second; the second
+      // prepares forms of its own (a cache is not shared between threads).
+      const fmpp::isect::KernelOptions o = options(c.n);
+      const auto golden = [&scene, frame_cfg, part, o](size_t begin, size_t end, fmpp::isect::FormCache* cache) {
+        RenderOptions some = part;
+        if (!part.pixels.empty()) {
+          some.pixels.assign(part.pixels.begin() + static_cast<std::ptrdiff_t>(begin),
+                             part.pixels.begin() + static_cast<std::ptrdiff_t>(end));
+        }
+        fmpp::ModelBus bus(frame_cfg);
+        fmpp::Device dev(bus);
+        fmpp::isect::KernelOptions mine = o;
+        mine.forms = cache;
+        FmppIntersector fi(dev, scene.triangles, mine);
+        Image image = render(scene, fi, some, nullptr);
+        return std::make_pair(std::move(image), fi.stats());
+      };
+      const size_t half = part.pixels.size() >= 2 * size_t{frame_cfg.blocks} ? part.pixels.size() / 2 : 0;
+      std::shared_ptr<fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>> second;
+      if (half > 0) {
+        second = std::make_shared<fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>>(
+            [golden, half, n = part.pixels.size(), &scene] {
+              fmpp::isect::FormCache own_cache(scene.triangles, kPlanFormBytes);
+              return golden(half, n, &own_cache);
+            });
+        beside.add(second);
+      }
+      const struct Settle {
+        fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>* work;
+        ~Settle() {
+          if (work) work->settle();  // not running past this chunk, even on an exception
+        }
+      } settle{second.get()};
+      auto [got, got_stats] = golden(0, half > 0 ? half : part.pixels.size(), &forms);
+      if (second) {
+        const auto& [rest, rest_stats] = second->get();
+        Image both(static_cast<int>(part.pixels.size()), 1);
+        for (size_t i = 0; i < got.size(); ++i) both[i] = got[i];
+        for (size_t i = 0; i < rest.size(); ++i) both[got.size() + i] = rest[i];
+        got = std::move(both);
+        got_stats.add(rest_stats);
+      }
       over += compare(got, chunk_reference()).pixels_over;
-      st.add(fi.stats());
+      st.add(got_stats);
       done += count;
       c.pixels_sampled = done;
       c.pixel_rate = static_cast<double>(over) / static_cast<double>(done);
       c.pixel_bound = done == pixels ? c.pixel_rate : upper_confidence_bound(over, done, req.confidence);
       c.flagged_share = flagged_share(st);
-      steps.say("n = " + std::to_string(c.n) + ": " + std::to_string(done) + " of " + std::to_string(sampled) +
-                " sampled pixels on the FMPP, " + pct(c.pixel_rate) + " off the reference (bound " +
-                pct(c.pixel_bound) + "), " + pct(c.flagged_share) + " of their rays redone");
-      if (done == sampled) break;
+      if (steps.on()) {
+        steps.say("n = " + std::to_string(c.n) + ": " + std::to_string(done) + " of " + std::to_string(fs.sampled) +
+                  " sampled pixels on the FMPP, " + pct(c.pixel_rate) + " off the reference (bound " +
+                  pct(c.pixel_bound) + "), " + pct(c.flagged_share) + " of their rays redone");
+      }
+      if (done == fs.sampled) break;
       const bool keeps = c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share;
       // Even a clean rest of the sample would not bring the bound within the target, or
       // the redone rays so far exceed the allowance for the whole sample, or (a cost, not
       // the target: an estimate will do) 1,000 pixels or more redo a quarter as many again
       // as allowed.
-      const bool fails = upper_confidence_bound(over, sampled, req.confidence) > req.target_wrong_rate ||
+      const bool fails = upper_confidence_bound(over, fs.sampled, req.confidence) > req.target_wrong_rate ||
                          c.flagged_share * static_cast<double>(done) >
-                             req.max_flagged_share * static_cast<double>(sampled) ||
-                         (done >= 2 * kChunk && c.flagged_share > kCostlyRedone * req.max_flagged_share);
+                             req.max_flagged_share * static_cast<double>(fs.sampled) ||
+                         (done >= 2 * kPlanChunk && c.flagged_share > kCostlyRedone * req.max_flagged_share);
       if (keeps || fails) break;
     }
     c.sample_cycles += st.cycles;
     frame_stats[c.n] = st;
   };
   auto frame_figure = [&](const PlanCandidate& c) {
+    const RenderOptions& frame = drawn.get().frame;
     std::ostringstream f;
     if (c.pixels_sampled == pixels) {
       f << "in the whole " << frame.width << " x " << frame.height << " frame " << pct(c.pixel_rate);
@@ -278,20 +250,18 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       steps.say("n = " + std::to_string(n) + ": " + pct(c.host_share) + " of triangles ill-conditioned: too many");
       continue;
     }
-    fmpp::ModelBus bus(sample_cfg);
+    fmpp::ModelBus bus(fmpp::Config{sample.blocks, 32});
     fmpp::Device dev(bus);
     fmpp::isect::KernelOptions o = options(n);
     o.cond_bits = fmpp::isect::policy::kRawCondBits;  // the machine's own answers, no host fallback
     fmpp::isect::KernelStats st;
-    const double total = static_cast<double>(sample.size());
+    const double total = static_cast<double>(sample.rays);
     size_t wrong = 0, done = 0;
-    for (const std::vector<size_t>& pass : sample_passes) {
-      std::vector<Ray> rays;
-      for (size_t i : pass) rays.push_back(sample[i]);
-      const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, rays, scene.triangles, o, &st);
-      const std::vector<Hit>& want = sample_hits.get();
-      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != want[pass[j]].tri;
-      done += pass.size();
+    for (size_t p = 0; p < sample.passes.size(); ++p) {
+      const std::vector<Hit> got = fmpp::isect::intersect_fmpp(dev, sample.passes[p], scene.triangles, o, &st);
+      const std::vector<Hit>& want = pass_hits[p]->get();
+      for (size_t j = 0; j < got.size(); ++j) wrong += got[j].tri != want[j].tri;
+      done += got.size();
       // At n = 32 the costs do not refuse (below): its sample is measured whole.
       const double redone = flagged_share(st) * static_cast<double>(done);
       if (n != 32 && (static_cast<double>(wrong) > req.target_wrong_rate * total ||
@@ -305,17 +275,19 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
     c.primary_redone = flagged_share(st);
     const bool costly = costly_primary(c, req) && n != 32;
     const bool primary_ok = c.wrong_rate <= req.target_wrong_rate && c.host_share <= req.max_host_share && !costly;
-    steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
-              " of triangles ill-conditioned, " + pct(c.primary_redone) + " of its rays redone" +
-              (done < sample.size() ? " (refused after " + std::to_string(done) + " of its " +
-                                          std::to_string(sample.size()) + " rays)"
-                                    : "") +
-              (primary_ok ? "" : ": too many"));
+    if (steps.on()) {
+      steps.say("n = " + std::to_string(n) + ": primary sample " + pct(c.wrong_rate) + " wrong, " + pct(c.host_share) +
+                " of triangles ill-conditioned, " + pct(c.primary_redone) + " of its rays redone" +
+                (done < sample.rays ? " (refused after " + std::to_string(done) + " of its " +
+                                            std::to_string(sample.rays) + " rays)"
+                                      : "") +
+                (primary_ok ? "" : ": too many"));
+    }
     if (primary_ok) render_frame(c);  // only then the frame: it costs more
     plan.candidates.push_back(c);
     if (primary_ok && c.pixel_bound <= req.target_wrong_rate && c.flagged_share <= req.max_flagged_share) {
       std::ostringstream why;
-      why << "smallest n meeting the target on " << sample.size() << " sampled primary rays: wrong triangle "
+      why << "smallest n meeting the target on " << sample.rays << " sampled primary rays: wrong triangle "
           << pct(c.wrong_rate) << " <= " << pct(req.target_wrong_rate) << ", " << pct(c.host_share)
           << " of triangles beyond the conditioning limit <= " << pct(req.max_host_share) << ", and "
           << frame_figure(c) << " <= " << pct(req.target_wrong_rate) << ", "

@@ -297,6 +297,7 @@ Image listed_pixels(const Image& image, const std::vector<uint32_t>& of, const s
     if (!of.empty()) throw std::invalid_argument("listed_pixels: the whole frame wanted of an image of listed pixels");
     return image;
   }
+  if (want == of) return image;  // the same pixels in the same order
   if (want.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
     throw std::invalid_argument("listed_pixels: " + std::to_string(want.size()) + " pixels, more than one image holds");
   }

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -50,9 +51,7 @@ ReferenceBvh::ReferenceBvh(const std::vector<Triangle>& tris) : tris_(tris) {
 
 Hit ReferenceBvh::nearest(const Ray& r) const {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  const std::vector<Ray> one{r};
-  const std::vector<size_t> idx{0};
-  RayPacket p = make_packets(one, idx, 0, 1, 1, kRel)[0];
+  RayPacket p = ray_packet(r, kRel);
   p.t1 = kInf;
   const double len = glm::length(r.d) * (1 + kRel);
   const double slack = kRel * max_abs(r.o);
@@ -90,12 +89,23 @@ std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   std::vector<Hit> out(rays.size());
   // Each ray's answer is its own (the exact arithmetic keeps its workspace per thread),
   // so the rays are shared among the machine's cores in chunks taken in turn: the same
-  // answers in any order. A batch too small to repay a thread runs here alone.
+  // answers in any order. The first chunk is traced here and timed: other threads start
+  // only if the rest would take several times what a thread may take to start (measured:
+  // up to milliseconds on the 2-core VM the project is built on; a join waits for a late
+  // thread even if it finds no chunk left), so a small batch runs here alone.
   constexpr size_t kChunk = 256;
+  constexpr double kRepays = 2e-3;  // seconds of work left that repay a thread
   const size_t n = rays.size();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < std::min(n, kChunk); ++i) out[i] = nearest(rays[i]);
+  if (n <= kChunk) return out;
+  const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double rest = first * static_cast<double>(n - kChunk) / static_cast<double>(kChunk);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned threads = static_cast<unsigned>(std::min<size_t>({cores, kMaxThreads, (n + kChunk - 1) / kChunk}));
-  std::atomic<size_t> next{0};
+  const unsigned threads =
+      rest < kRepays ? 1u
+                     : static_cast<unsigned>(std::min<size_t>({cores, kMaxThreads, (n - kChunk + kChunk - 1) / kChunk}));
+  std::atomic<size_t> next{kChunk};
   std::vector<std::exception_ptr> failed(std::max(1u, threads));
   const auto work = [&](unsigned t) {
     try {

@@ -30,6 +30,17 @@ std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vec
   return out;
 }
 
+RayPacket ray_packet(const Ray& r, double margin) {
+  RayPacket p;
+  const double len = glm::length(r.d);
+  p.o.grow(r.o);
+  p.d.grow(r.d / len);
+  p.t1 = std::max(0.0, r.tmax * len * (1 + margin));  // inf stays inf
+  p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
+  p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+  return p;
+}
+
 bool may_enter(const RayPacket& p, const Box& b) { return entry_distance(p, b) < std::numeric_limits<double>::infinity(); }
 
 double entry_distance(const RayPacket& p, const Box& b) {

@@ -56,6 +56,8 @@ struct RayPacket {
 // for lying just before a ray's tmin).
 std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin,
                                     size_t end, size_t size, double margin);
+// The packet of one ray, as make_packets makes it (without its vectors).
+RayPacket ray_packet(const Ray& r, double margin);
 
 // False only if no point o + t d of the packet (o, d in their boxes, t in [t0, t1])
 // lies in the box. Interval arithmetic per axis, so a packet may pass that no single
