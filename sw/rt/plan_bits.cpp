@@ -149,53 +149,12 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
                   " more sampled pixels, beside the golden model's");
         return r;
       };
-      // The chunk on the golden model: a listed chunk of at least two passes in two halves
-      // of its pixels, each on a machine of its own, the first here and the second beside
-      // (or after it, here), so that the two cores share it. The halves are fixed, so the
-      // answers and clocks are the same whichever thread renders the second; the second
-      // prepares forms of its own (a cache is not shared between threads).
-      const fmpp::isect::KernelOptions o = options(c.n);
-      const auto golden = [&scene, frame_cfg, part, o](size_t begin, size_t end, fmpp::isect::FormCache* cache) {
-        RenderOptions some = part;
-        if (!part.pixels.empty()) {
-          some.pixels.assign(part.pixels.begin() + static_cast<std::ptrdiff_t>(begin),
-                             part.pixels.begin() + static_cast<std::ptrdiff_t>(end));
-        }
-        fmpp::ModelBus bus(frame_cfg);
-        fmpp::Device dev(bus);
-        fmpp::isect::KernelOptions mine = o;
-        mine.forms = cache;
-        FmppIntersector fi(dev, scene.triangles, mine);
-        Image image = render(scene, fi, some, nullptr);
-        return std::make_pair(std::move(image), fi.stats());
-      };
-      const size_t half = part.pixels.size() >= 2 * size_t{frame_cfg.blocks} ? part.pixels.size() / 2 : 0;
-      std::shared_ptr<fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>> second;
-      if (half > 0) {
-        second = std::make_shared<fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>>(
-            [golden, half, n = part.pixels.size(), &scene] {
-              fmpp::isect::FormCache own_cache(scene.triangles, kPlanFormBytes);
-              return golden(half, n, &own_cache);
-            });
-        beside.add(second);
-      }
-      const struct Settle {
-        fmpp::Claimable<std::pair<Image, fmpp::isect::KernelStats>>* work;
-        ~Settle() {
-          if (work) work->settle();  // not running past this chunk, even on an exception
-        }
-      } settle{second.get()};
-      auto [got, got_stats] = golden(0, half > 0 ? half : part.pixels.size(), &forms);
-      if (second) {
-        const auto& [rest, rest_stats] = second->get();
-        Image both(static_cast<int>(part.pixels.size()), 1);
-        for (size_t i = 0; i < got.size(); ++i) both[i] = got[i];
-        for (size_t i = 0; i < rest.size(); ++i) both[got.size() + i] = rest[i];
-        got = std::move(both);
-        got_stats.add(rest_stats);
-      }
+      fmpp::ModelBus fbus(frame_cfg);
+      fmpp::Device fdev(fbus);
+      FmppIntersector fi(fdev, scene.triangles, options(c.n));
+      const Image got = render(scene, fi, part, nullptr);
       over += compare(got, chunk_reference()).pixels_over;
-      st.add(got_stats);
+      st.add(fi.stats());
       done += count;
       c.pixels_sampled = done;
       c.pixel_rate = static_cast<double>(over) / static_cast<double>(done);
