@@ -41,7 +41,7 @@ std::string clocks(double c) {
 }  // namespace
 
 ObjectRates measure_object_rates(const Scene& scene, const std::vector<Ray>& rays, const fmpp::isect::KernelOptions& opt,
-                                 unsigned blocks, bool searched) {
+                                 unsigned blocks, bool searched, bool loads) {
   ObjectRates r;
   r.searched = searched;
   const size_t m = scene.triangles.size();
@@ -62,7 +62,9 @@ ObjectRates measure_object_rates(const Scene& scene, const std::vector<Ray>& ray
   // block each, where no ray has two possible hits (and most have none): a bound from
   // below.
   const size_t t = std::min<size_t>(m, 16);
-  r.per_triangle = run_object(scene, {sample.front()}, opt, t, static_cast<unsigned>(t)).first / static_cast<double>(t);
+  if (loads) {
+    r.per_triangle = run_object(scene, {sample.front()}, opt, t, static_cast<unsigned>(t)).first / static_cast<double>(t);
+  }
   const size_t p = std::min<size_t>(m, 2);
   if (sample.size() > 16) sample.resize(16);
   r.per_ray = run_object(scene, sample, opt, p, 1).second / (static_cast<double>(sample.size()) * static_cast<double>(p));

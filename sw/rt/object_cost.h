@@ -33,9 +33,11 @@ struct ObjectRates {
   bool searched = false;    // measured on a full pass; false: without the maximum search
 };
 
-// The rates for `rays` (a sample of one kind's rays sharing an origin) at `blocks` blocks.
+// The rates for `rays` (a sample of one kind's rays sharing an origin) at `blocks` blocks;
+// without `loads`, per_ray alone (per_triangle 0: one golden-model run fewer).
 ObjectRates measure_object_rates(const Scene& scene, const std::vector<fmpp::isect::Ray>& rays,
-                                 const fmpp::isect::KernelOptions& opt, unsigned blocks, bool searched);
+                                 const fmpp::isect::KernelOptions& opt, unsigned blocks, bool searched,
+                                 bool loads = true);
 
 // Clocks of a group of `rays` rays sharing an origin, object-parallel on `blocks` blocks.
 double object_group_clocks(const ObjectRates& r, size_t rays, size_t triangles, unsigned blocks);

@@ -111,7 +111,7 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
     // frame's 32 alone, not its every primary ray.
     std::vector<Ray> primary = primary_rays(scene.camera, req.width, req.height, 0, pixels, std::max<size_t>(1, pixels / 32));
     if (primary.size() > 32) primary.resize(32);
-    object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false).per_ray;
+    object_per_ray = measure_object_rates(scene, primary, plan->options, sizes.front(), false, false).per_ray;
   }
   const PassBound b = pass_bound(pixels * static_cast<size_t>(scene.spp), scene.spp, scene.lights.size(),
                                  scene.triangles.size(), sizes.front(), r.shared_b, r.shared_r, object_per_ray);
