@@ -90,9 +90,9 @@ std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   // Each ray's answer is its own (the exact arithmetic keeps its workspace per thread),
   // so the rays are shared among the machine's cores in chunks taken in turn: the same
   // answers in any order. The first chunk is traced here and timed: other threads start
-  // only if the rest would take several times what a thread may take to start (measured:
-  // up to milliseconds on the 2-core VM the project is built on; a join waits for a late
-  // thread even if it finds no chunk left), so a small batch runs here alone.
+  // only if the rest would take kRepays or more, since a thread may take milliseconds to
+  // begin (measured on the 2-core VM the project is built on) and a join waits for a late
+  // thread even if it finds no chunk left; a smaller batch runs here alone.
   constexpr size_t kChunk = 256;
   constexpr double kRepays = 2e-3;  // seconds of work left that repay a thread
   const size_t n = rays.size();
@@ -104,7 +104,7 @@ std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const unsigned threads =
       rest < kRepays ? 1u
-                     : static_cast<unsigned>(std::min<size_t>({cores, kMaxThreads, (n - kChunk + kChunk - 1) / kChunk}));
+                     : static_cast<unsigned>(std::min<size_t>({cores, kMaxThreads, (n - 1) / kChunk}));  // chunks left
   std::atomic<size_t> next{kChunk};
   std::vector<std::exception_ptr> failed(std::max(1u, threads));
   const auto work = [&](unsigned t) {
