@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <limits>
 #include <future>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <random>

@@ -96,8 +96,11 @@ std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   constexpr size_t kChunk = 256;
   constexpr double kRepays = 2e-3;  // seconds of work left that repay a thread
   const size_t n = rays.size();
+  const auto trace = [&](size_t b) {
+    for (size_t i = b; i < std::min(n, b + kChunk); ++i) out[i] = nearest(rays[i]);
+  };
   const auto t0 = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < std::min(n, kChunk); ++i) out[i] = nearest(rays[i]);
+  trace(0);
   if (n <= kChunk) return out;
   const double first = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double rest = first * static_cast<double>(n - kChunk) / static_cast<double>(kChunk);
@@ -109,9 +112,7 @@ std::vector<Hit> ReferenceBvh::nearest(const std::vector<Ray>& rays) const {
   std::vector<std::exception_ptr> failed(std::max(1u, threads));
   const auto work = [&](unsigned t) {
     try {
-      for (size_t b = next.fetch_add(kChunk); b < n; b = next.fetch_add(kChunk)) {
-        for (size_t i = b; i < std::min(n, b + kChunk); ++i) out[i] = nearest(rays[i]);
-      }
+      for (size_t b = next.fetch_add(kChunk); b < n; b = next.fetch_add(kChunk)) trace(b);
     } catch (...) {
       failed[t] = std::current_exception();
       next.store(n);  // the others stop at their next chunk

@@ -9,6 +9,25 @@
 
 namespace fmpp::isect {
 
+namespace {
+
+// A packet is grown ray by ray from an empty one (t1 0), then its directions widened by
+// the margin: make_packets and ray_packet share these steps, so one ray's packet is the
+// same from either.
+void add_ray(RayPacket& p, const Ray& r, double margin) {
+  const double len = glm::length(r.d);
+  p.o.grow(r.o);
+  p.d.grow(r.d / len);
+  p.t1 = std::max(p.t1, r.tmax * len * (1 + margin));  // inf stays inf
+}
+
+void widen(RayPacket& p, double margin) {
+  p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
+  p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+}
+
+}  // namespace
+
 std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vector<size_t>& order, size_t begin,
                                     size_t end, size_t size, double margin) {
   if (size == 0) throw std::invalid_argument("fmpp::isect::make_packets: packet size 0");
@@ -16,15 +35,8 @@ std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vec
   for (size_t b = begin; b < end; b += size) {
     RayPacket p;
     p.t1 = 0;
-    for (size_t k = b; k < std::min(end, b + size); ++k) {
-      const Ray& r = rays[order[k]];
-      const double len = glm::length(r.d);
-      p.o.grow(r.o);
-      p.d.grow(r.d / len);
-      p.t1 = std::max(p.t1, r.tmax * len * (1 + margin));  // inf stays inf
-    }
-    p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
-    p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+    for (size_t k = b; k < std::min(end, b + size); ++k) add_ray(p, rays[order[k]], margin);
+    widen(p, margin);
     out.push_back(p);
   }
   return out;
@@ -32,12 +44,9 @@ std::vector<RayPacket> make_packets(const std::vector<Ray>& rays, const std::vec
 
 RayPacket ray_packet(const Ray& r, double margin) {
   RayPacket p;
-  const double len = glm::length(r.d);
-  p.o.grow(r.o);
-  p.d.grow(r.d / len);
-  p.t1 = std::max(0.0, r.tmax * len * (1 + margin));  // inf stays inf
-  p.d.lo = glm::max(p.d.lo - margin, glm::dvec3(-1));
-  p.d.hi = glm::min(p.d.hi + margin, glm::dvec3(1));
+  p.t1 = 0;
+  add_ray(p, r, margin);
+  widen(p, margin);
   return p;
 }
 
