@@ -24,6 +24,7 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/exact/answer_check.h"
 #include "sw/isect/exact/reference_bvh.h"
 #include "sw/rt/image.h"
 #include "sw/rt/ray_kind.h"
@@ -53,6 +54,12 @@ class Intersector {
   // error bound: 0 for the reference and the FMPP (exact or certified t); Embree's float
   // arithmetic takes float_spawn_margin.
   virtual double spawn_margin() const { return 0; }
+  // What the ray-level exact check (exact_check.h) allows the answers of a batch of kind
+  // k: exact answers by default; a shadow batch under the shadow stop may name any
+  // occluder, and certified t's may be off by their bound.
+  virtual fmpp::isect::AnswerRules answer_rules(BatchKind) const { return {}; }
+  // The machine and the options behind the answers, for the check's messages.
+  virtual std::string describe() const { return "the exact reference"; }
 };
 
 class ReferenceIntersector : public Intersector {
@@ -94,6 +101,9 @@ class FmppIntersector : public Intersector {
       const std::vector<fmpp::isect::Ray>& a, BatchKind ka, const std::vector<fmpp::isect::Ray>& b,
       BatchKind kb) override;
   const fmpp::isect::KernelStats& stats_together() const { return together_stats_; }
+  fmpp::isect::AnswerRules answer_rules(BatchKind k) const override;
+  // "n = 24, 4096 blocks x 32 words, ..." with every kernel option and mapping choice.
+  std::string describe() const override;
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 

@@ -68,6 +68,10 @@ struct Hit {
   // t_accuracy). The ray tracer offsets the rays it spawns from the hit by it.
   double t_err = 0;
   HostRedo redo = HostRedo::kNone;  // set by intersect_fmpp, for the per-ray-kind counts
+  // The pass of its kernel call that held the ray (1, 2, ... in the call's order; the
+  // ray-parallel mapping), 0 where no single pass answered it (the object-parallel
+  // mapping, the host alone): for the diagnostics of the ray-level exact check.
+  uint32_t pass = 0;
   bool hit() const { return tri >= 0; }
 };
 
