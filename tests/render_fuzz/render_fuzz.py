@@ -32,27 +32,39 @@ import scenegen  # noqa: E402
 ALLOWED_REFUSALS = {
     "words per block": "too few words for the scene's rays",
     "the watertight form exists in the ray-parallel mapping only": "--watertight with --mapping object",
+    "--mapping object cannot run on several FMPPs": "--mapping object under MPI",
 }
-RTL_CONFIGS = ("small", "odd", "medium")
+RTL_CONFIGS = ("small", "odd", "medium")  # built in every tree (make asan's too)
 
 
 def draw_options(rng, backend):
     """Random fmpp-render options: every option that changes how the FMPP answers."""
     o = ["--backend", backend]
-    if backend == "cmodel":
+    if backend in ("cmodel", "mpi"):
         if rng.random() < 0.85:  # otherwise the plan chooses n, blocks and words
             o += ["--bits", str(rng.randint(2, 32))]
-            o += ["--blocks", str(rng.choice((1, 2, 3, 5, 16, 37, 64, 100, 256, 1000, 1024, 4096)))]
-            o += ["--words", str(rng.choice((8, 10, 14, 16, 20, 22, 24, 26, 28, 32, 40, 64)))]
+            blocks = (1, 2, 3, 5, 16, 37, 64, 100, 256, 1000, 1024, 4096)
+            o += ["--blocks", str(rng.choice(blocks) if rng.random() < 0.98 else rng.choice((16384, 65536)))]
+            # Mostly enough for every form (26), sometimes fewer (a clear refusal, or a scene
+            # whose rays need fewer).
+            small = (2, 8, 10, 14, 16, 20, 22, 24)
+            o += ["--words", str(rng.choice(small if rng.random() < 0.3 else (26, 28, 30, 32, 40, 64)))]
         else:
-            o += ["--plan-pixels", str(rng.choice((50, 200, 500))), "--accept-plan-miss"]
+            o += ["--plan-pixels", str(rng.choice((1, 50, 200, 500, 3000))), "--accept-plan-miss"]
+            if rng.random() < 0.5:
+                o += ["--error-target", repr(rng.choice((0.0, 0.0005, 0.002, 0.01, 0.1, 1.0)))]
+        if backend == "mpi":
+            o[1] = "cmodel"
+            if rng.random() < 0.5:
+                o += ["--rank0", "schedule"]
     else:
         o += ["--config", rng.choice(RTL_CONFIGS), "--bits", str(rng.randint(2, 32))]
     if rng.random() < 0.2:
         o += ["--mapping", rng.choice(("ray", "object"))]
     if rng.random() < 0.3:
         o += ["--mul", rng.choice(("const", "generic"))]
-    for flag in ("--no-cull", "--no-probe", "--no-fmpp-boxes", "--no-gates", "--no-shadow-stop", "--watertight"):
+    for flag in ("--no-cull", "--no-probe", "--no-fmpp-boxes", "--no-gates", "--no-shadow-stop", "--watertight",
+                 "--oracle"):
         if rng.random() < 0.2:
             o.append(flag)
     if rng.random() < 0.4:
@@ -74,6 +86,22 @@ def draw_options(rng, backend):
     return o
 
 
+def draw_backend(rng, rtl_share):
+    """The golden model, or for a share of the renders the RTL, lockstep, SystemC, or two
+    golden-model FMPPs under Open MPI (where mpirun is installed)."""
+    r = rng.random()
+    if r >= rtl_share:
+        return "cmodel"
+    r /= rtl_share
+    if r < 0.35:
+        return "rtl"
+    if r < 0.7:
+        return "lockstep"
+    if r < 0.85 or not shutil.which("mpirun"):
+        return "systemc"
+    return "mpi"
+
+
 def one_render(args, index, case_seed):
     """Builds and renders case `index`; returns (outcome, detail): 'ok', 'refused:<reason>'
     or 'fail'."""
@@ -81,12 +109,13 @@ def one_render(args, index, case_seed):
     folder = os.path.join(args.out, "case%06d" % index)
     shutil.rmtree(folder, ignore_errors=True)
     scene, summary = scenegen.make_scene(rng, folder)
-    r = rng.random()
-    backend = "cmodel" if r >= args.rtl_share else ("lockstep" if r < args.rtl_share / 3 else "rtl")
+    backend = draw_backend(rng, args.rtl_share)
     w, h = rng.randint(3, args.max_side), rng.randint(3, args.max_side)
     cmd = [os.path.join(args.build, "fmpp-render"), "--scene", scene, "--width", str(w), "--height", str(h),
            "--verify-exact", "--quiet", "--plan-cache", "", "--out", os.path.join(folder, "out.png"),
            "--report", os.path.join(folder, "report.json")] + draw_options(rng, backend)
+    if backend == "mpi":
+        cmd = ["mpirun", "--oversubscribe", "-np", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
