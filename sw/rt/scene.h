@@ -80,6 +80,16 @@ struct Scene {
   std::vector<std::array<glm::dvec3, 3>> normals;
 };
 
+// The largest |coordinate| of any point of a scene: the camera's eye and look_at, a
+// light's position, centre or corner, a mesh translation and every mesh vertex as placed
+// (docs/raytracer.md, "Numbers"). The renderer casts rays between such points: a shadow
+// ray runs from a light to a shaded point, its direction their difference (up to twice
+// this) plus the shaded point's own error (the hit's t within its certified bound,
+// under 100 %, so under twice this again), and the intersector takes ray origins and
+// directions up to fmpp::isect::kMaxCoordinate (1e100) only. 1e99 keeps every such ray
+// inside with room to spare.
+inline constexpr double kMaxScenePosition = 1e99;
+
 // Limits of the sampling fields (scene JSON and fmpp-render's options).
 inline constexpr int kMaxSpp = 1024;
 inline constexpr int kMaxLightSamples = 1024;

@@ -114,7 +114,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
             field_error(file, wr, "must be [0, 0, 0, 1] (an affine transform)");
           }
         } else if (c == 3) {
-          tr.v[r] = number(m[r][c], file, wc, -1e9, 1e9);
+          tr.v[r] = number(m[r][c], file, wc, -kMaxScenePosition, kMaxScenePosition);
         } else {
           lin.m[r][c] = number(m[r][c], file, wc, -1e6, 1e6);
         }
@@ -125,9 +125,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
                        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     if (!(std::abs(det) >= 1e-18) || !std::isfinite(det)) {
-      std::ostringstream o;
-      o << "is singular (determinant " << det << "): it would flatten the mesh";
-      field_error(file, w, o.str());
+      field_error(file, w, "is singular (determinant " + exact_text(det) + "): it would flatten the mesh");
     }
     // Inverse transpose = cofactor matrix / det.
     for (int r = 0; r < 3; ++r) {
@@ -183,13 +181,13 @@ Placement placement(const json& t, const std::string& file, const std::string& w
   if (t.contains("translate")) {
     Step st;
     st.kind = Step::kTranslate;
-    st.v = vec3(t["translate"], file, where + ".translate");
+    st.v = position(t["translate"], file, where + ".translate");
     if (st.v != glm::dvec3(0)) pl.steps.push_back(st);
   }
   return pl;
 }
 
-void place(const Placement& pl, MeshGroup& g, const std::string& file, const std::string& where) {
+void place(const Placement& pl, MeshGroup& g) {
   if (pl.identity()) return;
   bool renormalize = false;
   for (const Step& st : pl.steps) {
@@ -204,9 +202,6 @@ void place(const Placement& pl, MeshGroup& g, const std::string& file, const std
           case Step::kTranslate: p = p + st.v; break;
           case Step::kLinear: p = apply(st.m, p); break;
         }
-      }
-      if (!(std::abs(p.x) <= fmpp::isect::kMaxCoordinate && std::abs(p.y) <= fmpp::isect::kMaxCoordinate && std::abs(p.z) <= fmpp::isect::kMaxCoordinate)) {
-        field_error(file, where, "moves a vertex beyond the input limit of 1e100");
       }
     }
     if (pl.mirrors) std::swap(t.p[1], t.p[2]);  // keep the front face where it was
@@ -230,6 +225,22 @@ void place(const Placement& pl, MeshGroup& g, const std::string& file, const std
   }
 }
 
+// Every vertex of g, as placed, within kMaxScenePosition (scene.h says why).
+void check_placed(const MeshGroup& g, bool identity, const std::string& file, const std::string& where,
+                  const std::string& path) {
+  for (const auto& t : g.triangles) {
+    for (const auto& p : t.p) {
+      const double m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+      if (!(m <= kMaxScenePosition)) {
+        const std::string v = "(" + exact_text(p.x) + ", " + exact_text(p.y) + ", " + exact_text(p.z) + ")";
+        if (!identity) field_error(file, where + ".transform", "moves a vertex of " + path + " to " + v +
+                                                                    ", beyond the scene's position limit 1e99");
+        field_error(file, where, path + " has a vertex at " + v + ", beyond the scene's position limit 1e99");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 // One light of "lights" (docs/raytracer.md, "Lights"): by its "type", point (the default),
@@ -248,7 +259,7 @@ Light light(const json& j, const std::string& f, const std::string& w) {
   };
   if (type == "point") {
     reject_unknown(j, {"type", "position", "color"}, f, w);
-    l.position = vec3(require(j, "position", f, w), f, w + ".position");
+    l.position = position(require(j, "position", f, w), f, w + ".position");
   } else if (type == "directional") {
     reject_unknown(j, {"type", "direction", "color"}, f, w);
     l.type = LightType::kDirectional;
@@ -259,13 +270,13 @@ Light light(const json& j, const std::string& f, const std::string& w) {
   } else if (type == "sphere") {
     reject_unknown(j, {"type", "center", "radius", "color", "samples", "pool"}, f, w);
     l.type = LightType::kSphere;
-    l.position = vec3(require(j, "center", f, w), f, w + ".center");
+    l.position = position(require(j, "center", f, w), f, w + ".center");
     l.radius = number(require(j, "radius", f, w), f, w + ".radius", 1e-9, 1e9);
     area_fields();
   } else if (type == "rect") {
     reject_unknown(j, {"type", "corner", "edge1", "edge2", "color", "samples", "pool"}, f, w);
     l.type = LightType::kRect;
-    l.position = vec3(require(j, "corner", f, w), f, w + ".corner");
+    l.position = position(require(j, "corner", f, w), f, w + ".corner");
     l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1");
     l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2");
     const double e1 = glm::length(l.edge1), e2 = glm::length(l.edge2), a = glm::length(glm::cross(l.edge1, l.edge2));
@@ -323,7 +334,8 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
   };
   std::map<std::string, bool> used;
   for (MeshGroup& g : mesh.groups) {
-    place(pl, g, file, where + ".transform");
+    place(pl, g);
+    check_placed(g, pl.identity(), file, where, path);
     const auto it = group_mat.find(g.name);
     if (it != group_mat.end()) used[g.name] = true;
     for (size_t i = 0; i < g.triangles.size(); ++i) {
