@@ -100,7 +100,7 @@ TEST(LightScene, BadSpecsNameTheField) {
   EXPECT_EQ(error_of(R"([{"type": "point", "position": [0, 1, 0], "samples": 4}])"), f + ".samples': unknown field");
   EXPECT_EQ(error_of(R"([{"type": 3, "position": [0, 1, 0]}])"), f + ".type': expected a string");
   EXPECT_EQ(error_of(kSun, R"("samples_per_pixel": 0, )"), "field 'samples_per_pixel': value 0 outside [1, 1024]");
-  EXPECT_EQ(error_of(kSun, R"("seed": -1, )"), "field 'seed': value -1 outside [0, 9.0072e+15]");
+  EXPECT_EQ(error_of(kSun, R"("seed": -1, )"), "field 'seed': value -1 outside [0, 9007199254740991]");
 }
 
 TEST(Sampling, StrataGridAndStratification) {

@@ -1,4 +1,5 @@
-// Mesh files through assimp, confined to the file itself (see mesh.h).
+// Mesh files: assimp confined to the file itself, and the project's own readers of
+// vertex values (see mesh.h).
 #include "sw/rt/mesh.h"
 
 #include <assimp/material.h>
@@ -9,20 +10,14 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <charconv>
-#include <map>
-#include <cctype>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
-#include <unordered_map>
 
 #include "sw/isect/geometry/io.h"
-
-#include <nlohmann/json.hpp>
 #include "sw/rt/isolate.h"
 #include "sw/rt/mesh_parts.h"
 #include "sw/rt/mesh_text.h"

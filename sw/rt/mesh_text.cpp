@@ -42,6 +42,7 @@ bool parse_count(const std::string& tok, unsigned long long max, unsigned long l
   return true;
 }
 
+// The k-th number of line l, which must be there and finite; `what` names it in an error.
 double finite(const std::string& path, const Line& l, size_t k, const char* what) {
   double v = 0;
   if (k >= l.tokens.size()) {
@@ -75,6 +76,8 @@ bool off_keyword(const std::string& tok, OffHeader* h) {
   return tok.compare(k, std::string::npos, "OFF") == 0;
 }
 
+// A vertex line: `dims` coordinates (the rest 0), w (4OFF), a normal (NOFF); colours and
+// texture coordinates after them are not used.
 void off_vertex(const std::string& path, const Line& l, const OffHeader& h, unsigned dims, PolyMesh& m) {
   glm::dvec3 p(0);
   for (unsigned d = 0; d < dims; ++d) p[d] = finite(path, l, d, "vertex");
@@ -92,6 +95,8 @@ void off_vertex(const std::string& path, const Line& l, const OffHeader& h, unsi
   }
 }
 
+// A face line: its vertex count n, then n indices from 0 (a colour after them is not
+// used); fewer than 3 indices is a point or a line, counted in m.skipped.
 void off_face(const std::string& path, const Line& l, PolyMesh& m) {
   const std::string where = path + ":" + std::to_string(l.number) + ": face: ";
   unsigned long long n = 0;
@@ -188,7 +193,7 @@ class StlTokens {
  public:
   StlTokens(const std::string& path, const std::string& text) : path_(path) {
     for (const Line& l : text_lines(path, text)) {
-      for (size_t k = 0; k < l.tokens.size(); ++k) toks_.push_back(Tok{l.tokens[k], l.number});
+      for (const std::string& tok : l.tokens) toks_.push_back(Tok{tok, l.number});
     }
   }
   bool done() const { return at_ >= toks_.size(); }
