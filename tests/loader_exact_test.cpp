@@ -342,3 +342,61 @@ TEST(LoaderExact, OutOfRangeValuesAreQuotedExactly) {
 
 }  // namespace
 }  // namespace rt
+
+namespace rt {
+namespace {
+
+// The project's own readers keep what the library kept: points and lines counted, not
+// kept; OBJ groups in order; ASCII STL solids as parts; OFF's normals and w.
+TEST(LoaderExact, StructureOfEveryFormatIsKept) {
+  const Mesh obj = load_mesh(write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                                "o a\np 1\nl 1 2 3\nf 1 2 3 4\no b\nf 2 5 3\n"));
+  ASSERT_EQ(obj.groups.size(), 2u);
+  EXPECT_EQ(obj.groups[0].name, "a");
+  EXPECT_EQ(obj.groups[0].triangles.size(), 2u);
+  EXPECT_EQ(obj.groups[1].name, "b");
+  EXPECT_EQ(obj.skipped_primitives, 3u);  // the point and the line's two segments
+  const Mesh stl = load_mesh(write("two.stl", "solid one\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                              "vertex 0 1 0\nendloop\nendfacet\nendsolid one\nsolid\nfacet normal 0 0 -2\n"
+                                              "outer loop\nvertex 0 0 1\nvertex 0 1 1\nvertex 1 0 1\nendloop\nendfacet\n"));
+  ASSERT_EQ(stl.groups.size(), 2u);
+  EXPECT_EQ(stl.groups[0].name, "one");
+  EXPECT_EQ(stl.groups[1].name, "<STL_ASCII>");
+  EXPECT_EQ(stl.groups[1].normals[0][0], dvec3(0, 0, -1));
+  const Mesh off = load_mesh(write("n.off", "N4OFF\n3 2 0\n2 0 0 2 0 0 3\n4 4 0 2 0 0 3\n0 2 0 2 0 0 3\n3 0 1 2\n2 0 1\n"));
+  ASSERT_EQ(off.triangles, 1u);
+  EXPECT_EQ(off.groups[0].name, "<OFFRoot>");
+  EXPECT_EQ(off.groups[0].triangles[0].p[1], dvec3(2, 2, 0));
+  EXPECT_EQ(off.groups[0].normals[0][0], dvec3(0, 0, 1));
+  EXPECT_EQ(off.skipped_primitives, 1u);
+  const Mesh noheader = load_mesh(write("bare.off", "3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  EXPECT_EQ(noheader.triangles, 1u);
+}
+
+// Bad files of the project's readers are errors naming the file and the line.
+TEST(LoaderExact, BadTextMeshesNameTheLine) {
+  auto err = [&](const std::string& name, const std::string& text) {
+    return error_of([&] { load_mesh(write(name, text)); });
+  };
+  const std::string d = dir() + "/";
+  EXPECT_EQ(err("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"), d + "short.off: ends after 2 of 3 vertices");
+  EXPECT_EQ(err("idx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+            d + "idx.off:6: face: refers to vertex 3 of 3 (indices start at 0)");
+  EXPECT_EQ(err("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"),
+            d + "nan.off:4: vertex: number 2 is not a finite number");
+  EXPECT_EQ(err("w.off", "4OFF\n3 1 0\n0 0 0 1\n1 0 0 0\n0 1 0 1\n3 0 1 2\n"), d + "w.off:4: vertex: homogeneous w is 0");
+  EXPECT_EQ(err("four.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                            "vertex 1 1 0\nendloop\nendfacet\nendsolid s\n"),
+            d + "four.stl:7: a facet with more than 3 vertices");
+  EXPECT_EQ(err("two.stl", "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n"),
+            d + "two.stl:6: expected 'vertex'");
+  EXPECT_EQ(err("w.obj", "v 0 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), d + "w.obj:1: 'v' has a w of 0");
+  EXPECT_EQ(err("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 1\nf 1 2 3\n"), d + "vn.obj:4: 'vn' needs 3 numbers, not 2");
+  // A binary PLY whose vertices end early.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  EXPECT_NE(err("cut.ply", ply + std::string(20, '\0')).find(d + "cut.ply: "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rt
