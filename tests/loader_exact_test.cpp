@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -204,7 +205,8 @@ TEST(LoaderExact, ObjNormalsKeepTheirDecimals) {
 // origin, its corners 1 apart (they all round to one float), covered exactly once.
 TEST(LoaderExact, PolygonsTriangulateOnTheDoubles) {
   const double o = 0x1p29;
-  const std::vector<dvec3> hex = {{o, o, o}, {o + 4, o, o}, {o + 4, o + 4, o}, {o + 2, o + 1, o}, {o, o + 4, o}, {o - 1, o + 2, o}};
+  const std::vector<dvec3> hex = {{o, o, o},         {o + 4, o, o}, {o + 4, o + 4, o},
+                                  {o + 2, o + 1, o}, {o, o + 4, o}, {o - 1, o + 2, o}};
   std::string obj, off = "OFF\n6 1 0\n";
   for (const dvec3& p : hex) {
     obj += "v " + g17(p.x) + " " + g17(p.y) + " " + g17(p.z) + "\n";
@@ -312,6 +314,55 @@ TEST(LoaderExact, CameraAndLightsFarOutRenderAsTranslatedBack) {
   EXPECT_TRUE(a == b) << "the scene at 1e15 renders differently";
 }
 
+// A scene of every light kind, a mirror and polygons, scaled by 2^k: camera, lights,
+// light sizes and meshes (by the transform's scale and translation). Every number is a
+// power-of-two multiple of the same decimal, written exactly.
+std::string scaled_scene(int k, bool rect) {
+  const double s = std::ldexp(1.0, k);
+  auto v = [&](double x, double y, double z) { return "[" + g17(s * x) + ", " + g17(s * y) + ", " + g17(s * z) + "]"; };
+  return R"({"camera": {"eye": )" + v(0.5, 1.5, 4) + R"(, "look_at": )" + v(0, 0, -1) + R"(, "up": [0, 1, 0], "fov_y_deg": 45},
+    "ambient": [0.05, 0.05, 0.05], "max_depth": 2,
+    "lights": [{"position": )" + v(-2, 4, 2) + R"(, "color": [0.5, 0.5, 0.5]},
+      {"type": "sphere", "center": )" + v(3, 2, 1) + R"(, "radius": )" + g17(0.3 * s) + R"(, "samples": 2, "pool": 4},
+      {"type": "directional", "direction": [-0.3, -1, -0.4], "color": [0.3, 0.3, 0.3]})" +
+         (rect ? R"(, {"type": "rect", "corner": )" + v(-1, 3, -1) + R"(, "edge1": )" + v(1.5, 0, 0) + R"(, "edge2": )" +
+                     v(0, 0, 1.5) + R"(, "samples": 2, "pool": 4})"
+               : std::string()) +
+         R"(],
+    "materials": {"floor": {"diffuse": [0.6, 0.6, 0.55]}, "box": {"diffuse": [0.8, 0.4, 0.2], "specular": 0.4},
+      "mirror": {"diffuse": [0.05, 0.05, 0.05], "reflectivity": 0.85}},
+    "meshes": [{"file": "stage.obj", "material": "floor", "groups": {"box": "box", "mirror": "mirror"},
+      "transform": {"scale": )" + g17(s) + R"(, "translate": )" + v(0, -1, -2) + "}}]}";
+}
+
+// A scene anywhere from 2^-100 to 2^326 (8e98, its farthest point near the position
+// limit) renders as the same scene at size 1, on the exact reference: every quantity of
+// the renderer scales by the same power of two, none overflows or underflows. (The
+// rectangle light's edges stop at 2^240: their cross product is normalized in double.)
+TEST(LoaderExact, ScenesRenderAlikeAtEveryScale) {
+  write("stage.obj", "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\n"
+                     "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 0 0.5\nv -0.5 0 0.5\n"
+                     "v -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n"
+                     "v -2.5 0 -2.5\nv 2.5 0 -2.5\nv 2.5 2 -2.5\nv -2.5 2 -2.5\n"
+                     "o floor\nf 1 4 3 2\no box\nf 8 7 11 12\nf 7 6 10 11\nf 6 5 9 10\nf 5 8 12 9\nf 12 11 10 9\n"
+                     "o mirror\nf 13 14 15 16\n");
+  auto pixels = [&](int k, bool rect) {
+    write("scaled.json", scaled_scene(k, rect));
+    const Scene s = load_scene(dir() + "/scaled.json");
+    ReferenceIntersector ref(s.triangles);
+    RenderOptions ro;
+    ro.width = ro.height = 24;
+    return render(s, ref, ro, nullptr).to_rgb8();
+  };
+  for (const bool rect : {true, false}) {
+    const std::vector<uint8_t> base = pixels(0, rect);
+    ASSERT_GT(std::set<uint8_t>(base.begin(), base.end()).size(), 20u);
+    for (const int k : rect ? std::vector<int>{-100, -30, 30, 160, 240} : std::vector<int>{-100, 326}) {
+      EXPECT_TRUE(pixels(k, rect) == base) << "scale 2^" << k << (rect ? " with" : " without") << " the rectangle";
+    }
+  }
+}
+
 // Positions go as far as kMaxScenePosition; a value out of range is quoted with every
 // digit, naming the file and the key.
 TEST(LoaderExact, OutOfRangeValuesAreQuotedExactly) {
@@ -325,9 +376,12 @@ TEST(LoaderExact, OutOfRangeValuesAreQuotedExactly) {
   write("eye.json", json("1.0000000000000002e99", R"({"position": [0, 2, 0]})"));
   EXPECT_EQ(error_of([&] { load_scene(dir() + "/eye.json"); }),
             dir() + "/eye.json: field 'camera.eye[2]': value 1.0000000000000002e+99 outside [-1e+99, 1e+99]");
-  write("radius.json", json("0", R"({"type": "sphere", "center": [0, 2, 0], "radius": 1000000002.75, "samples": 1})"));
+  write("radius.json", json("0", R"({"type": "sphere", "center": [0, 2, 0], "radius": -1000000002.75, "samples": 1})"));
   EXPECT_EQ(error_of([&] { load_scene(dir() + "/radius.json"); }),
-            dir() + "/radius.json: field 'lights[0].radius': value 1000000002.75 outside [1e-09, 1e+09]");
+            dir() + "/radius.json: field 'lights[0].radius': value -1000000002.75 outside (0, 1e+99]");
+  write("color.json", json("0", R"({"position": [0, 2, 0], "color": [1, 100.00000000000001, 1]})"));
+  EXPECT_EQ(error_of([&] { load_scene(dir() + "/color.json"); }),
+            dir() + "/color.json: field 'lights[0].color[1]': value 100.00000000000001 outside [0, 100]");
   write("fov.json", R"({"camera": {"eye": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y_deg": 170.00000000000003},
       "lights": [{"position": [0, 2, 0]}], "materials": {"m": {}}, "meshes": [{"file": "tri.obj", "material": "m"}]})");
   EXPECT_EQ(error_of([&] { load_scene(dir() + "/fov.json"); }),
@@ -339,12 +393,6 @@ TEST(LoaderExact, OutOfRangeValuesAreQuotedExactly) {
             dir() + "/mesh.json: field 'meshes[0]': " + dir() +
                 "/far.obj has a vertex at (0, 0, -2e+99), beyond the scene's position limit 1e99");
 }
-
-}  // namespace
-}  // namespace rt
-
-namespace rt {
-namespace {
 
 // The project's own readers keep what the library kept: points and lines counted, not
 // kept; OBJ groups in order; ASCII STL solids as parts; OFF's normals and w.

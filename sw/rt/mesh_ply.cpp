@@ -160,7 +160,8 @@ bool ascii_value(const std::string& tok, Type t, Value* v) {
   if (sign && tok[0] == '-') n = -n;
   const int bits = static_cast<int>(8 * size_of(t));
   const bool is_signed = t == Type::kChar || t == Type::kShort || t == Type::kInt;
-  const long long lo = is_signed ? -(1ll << (bits - 1)) : 0, hi = is_signed ? (1ll << (bits - 1)) - 1 : (1ll << bits) - 1;
+  const long long lo = is_signed ? -(1ll << (bits - 1)) : 0;
+  const long long hi = is_signed ? (1ll << (bits - 1)) - 1 : (1ll << bits) - 1;
   if (n < lo || n > hi) return false;
   v->exact = static_cast<double>(n);
   v->library = static_cast<float>(n);
@@ -236,7 +237,9 @@ void read_ascii(const std::string& path, const std::string& data, const Header& 
         Value v{};
         if (k >= t.size()) throw SceneError(where + "fewer values than its properties");
         if (el.props[p].list) {
-          if (!ascii_value(t[k++], el.props[p].count, &v) || v.exact < 0) throw SceneError(where + "a list length that is not a count");
+          if (!ascii_value(t[k++], el.props[p].count, &v) || v.exact < 0) {
+            throw SceneError(where + "a list length that is not a count");
+          }
           k += static_cast<size_t>(std::min<double>(v.exact, static_cast<double>(t.size())));
           continue;
         }
@@ -326,7 +329,8 @@ void check_ply_order(const std::string& path, const aiScene& scene, const PlyVer
   if (!ply.normals.empty() && !m.mNormals) throw SceneError(why + "no normals)");
   auto same = [](const aiVector3D& a, const glm::vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
   for (size_t i = 0; i < ply.positions.size(); ++i) {
-    if (!same(m.mVertices[i], ply.library[i]) || (!ply.normals.empty() && !same(m.mNormals[i], ply.library_normals[i]))) {
+    const bool normal_differs = !ply.normals.empty() && !same(m.mNormals[i], ply.library_normals[i]);
+    if (!same(m.mVertices[i], ply.library[i]) || normal_differs) {
       throw SceneError(why + "vertex " + std::to_string(i) + " differs)");
     }
   }

@@ -93,16 +93,15 @@ struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
 };
 
 // The renderer's camera basis: the view direction look_at - eye normalized, and the
-// right vector, cross(view, up) normalized. Both lengths must be well inside double's
-// normal range (at least 1e-150: their squares are then normal numbers), or the basis
-// would not be finite.
+// right vector, cross(view, up) normalized: both at least kMinSceneLength long, or the
+// basis would not be finite.
 void check_camera(const Camera& c, const std::string& f) {
   const glm::dvec3 d = c.look_at - c.eye;
   if (d == glm::dvec3(0)) field_error(f, "camera.look_at", "equals camera.eye");
-  if (!(glm::length(d) >= 1e-150)) {
+  if (!(glm::length(d) >= kMinSceneLength)) {
     field_error(f, "camera.look_at", "is within 1e-150 of camera.eye: the view direction cannot be normalized");
   }
-  if (!(glm::length(glm::cross(glm::normalize(d), c.up)) >= 1e-150)) {
+  if (!(glm::length(glm::cross(glm::normalize(d), c.up)) >= kMinSceneLength)) {
     field_error(f, "camera.up", "is parallel to the viewing direction (or less than 1e-150 across it)");
   }
 }
@@ -154,7 +153,7 @@ Scene load_scene(const std::string& json_path) {
   reject_unknown(cam, {"eye", "look_at", "up", "fov_y_deg"}, f, "camera");
   s.camera.eye = position(require(cam, "eye", f, "camera"), f, "camera.eye");
   s.camera.look_at = position(require(cam, "look_at", f, "camera"), f, "camera.look_at");
-  s.camera.up = vec3(require(cam, "up", f, "camera"), f, "camera.up");
+  s.camera.up = direction(require(cam, "up", f, "camera"), f, "camera.up");
   s.camera.fov_y_deg = number(require(cam, "fov_y_deg", f, "camera"), f, "camera.fov_y_deg", 1, 170);
   check_camera(s.camera, f);
   if (j.contains("background")) s.background = vec3(j["background"], f, "background", 0, 100);

@@ -89,6 +89,13 @@ struct Scene {
 // directions up to fmpp::isect::kMaxCoordinate (1e100) only. 1e99 keeps every such ray
 // inside with room to spare.
 inline constexpr double kMaxScenePosition = 1e99;
+// The shortest vector the renderer normalizes: the view direction, `up` across it, a
+// light's direction, a rotation's axis, a rectangle light's normal (edge1 x edge2). Its
+// squared length is then a normal double, so its unit vector is finite.
+inline constexpr double kMinSceneLength = 1e-150;
+// The largest |component| of a rectangle light's edges: the renderer normalizes
+// edge1 x edge2, whose squared length (up to about (3 x 1e75^2)^2) stays finite.
+inline constexpr double kMaxRectEdge = 1e75;
 
 // Limits of the sampling fields (scene JSON and fmpp-render's options).
 inline constexpr int kMaxSpp = 1024;

@@ -50,7 +50,9 @@ void sincos_deg(double deg, double* c, double* sn) {
 // down the axis towards the origin).
 Step rotation(glm::dvec3 axis, double deg, const std::string& file, const std::string& where) {
   const double len = glm::length(axis);
-  if (!(len > 0) || !std::isfinite(len)) field_error(file, where + ".axis", "is the zero vector");
+  if (!(len >= kMinSceneLength) || !std::isfinite(len)) {
+    field_error(file, where + ".axis", "is the zero vector (or shorter than 1e-150)");
+  }
   Step st;
   st.kind = Step::kRotate;
   double c, sn;
@@ -148,9 +150,9 @@ Placement placement(const json& t, const std::string& file, const std::string& w
     Step st;
     st.kind = Step::kScale;
     if (t["scale"].is_array()) {
-      st.v = vec3(t["scale"], file, w, 1e-6, 1e6);
+      st.v = vec3(t["scale"], file, w, 1e-100, 1e100);
     } else {
-      st.v = glm::dvec3(number(t["scale"], file, w, 1e-6, 1e6));
+      st.v = glm::dvec3(number(t["scale"], file, w, 1e-100, 1e100));
     }
     if (st.v != glm::dvec3(1)) pl.steps.push_back(st);
   }
@@ -172,7 +174,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
       const json& one = r.is_array() ? r[k] : r;
       const std::string wk = r.is_array() ? w + "[" + std::to_string(k) + "]" : w;
       reject_unknown(one, {"axis", "deg"}, file, wk);
-      const glm::dvec3 axis = vec3(require(one, "axis", file, wk), file, wk + ".axis");
+      const glm::dvec3 axis = direction(require(one, "axis", file, wk), file, wk + ".axis");
       const double deg = number(require(one, "deg", file, wk), file, wk + ".deg", -360, 360);
       const Step st = rotation(axis, deg, file, wk);
       if (deg != 0) pl.steps.push_back(st);
@@ -263,26 +265,30 @@ Light light(const json& j, const std::string& f, const std::string& w) {
   } else if (type == "directional") {
     reject_unknown(j, {"type", "direction", "color"}, f, w);
     l.type = LightType::kDirectional;
-    const glm::dvec3 d = vec3(require(j, "direction", f, w), f, w + ".direction");
+    const glm::dvec3 d = direction(require(j, "direction", f, w), f, w + ".direction");
     const double len = glm::length(d);
-    if (!(len > 1e-9)) field_error(f, w + ".direction", "is the zero vector (or shorter than 1e-9)");
+    if (!(len >= kMinSceneLength)) field_error(f, w + ".direction", "is the zero vector (or shorter than 1e-150)");
     l.direction = d / len;
   } else if (type == "sphere") {
     reject_unknown(j, {"type", "center", "radius", "color", "samples", "pool"}, f, w);
     l.type = LightType::kSphere;
     l.position = position(require(j, "center", f, w), f, w + ".center");
-    l.radius = number(require(j, "radius", f, w), f, w + ".radius", 1e-9, 1e9);
+    l.radius = positive(require(j, "radius", f, w), f, w + ".radius", kMaxScenePosition);
     area_fields();
   } else if (type == "rect") {
     reject_unknown(j, {"type", "corner", "edge1", "edge2", "color", "samples", "pool"}, f, w);
     l.type = LightType::kRect;
     l.position = position(require(j, "corner", f, w), f, w + ".corner");
-    l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1");
-    l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2");
+    l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1", -kMaxRectEdge, kMaxRectEdge);
+    l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2", -kMaxRectEdge, kMaxRectEdge);
     const double e1 = glm::length(l.edge1), e2 = glm::length(l.edge2), a = glm::length(glm::cross(l.edge1, l.edge2));
-    if (!(e1 > 1e-9)) field_error(f, w + ".edge1", "is the zero vector (or shorter than 1e-9)");
-    if (!(e2 > 1e-9)) field_error(f, w + ".edge2", "is the zero vector (or shorter than 1e-9)");
+    if (l.edge1 == glm::dvec3(0)) field_error(f, w + ".edge1", "is the zero vector");
+    if (l.edge2 == glm::dvec3(0)) field_error(f, w + ".edge2", "is the zero vector");
     if (!(a > 1e-6 * e1 * e2)) field_error(f, w + ".edge2", "is parallel to edge1: the rectangle has no area");
+    if (!(a >= kMinSceneLength)) {
+      field_error(f, w + ".edge2",
+                  "makes with edge1 an area under 1e-150: the rectangle's normal cannot be normalized");
+    }
     area_fields();
   } else {
     field_error(f, w + ".type", "'" + type + "' is not one of point, directional, sphere, rect");

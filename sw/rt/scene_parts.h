@@ -56,6 +56,20 @@ inline glm::dvec3 vec3(const json& j, const std::string& file, const std::string
   return v;
 }
 
+// A direction (a camera's up, a light's direction, a rotation's axis): each component
+// within kMaxScenePosition (its length is checked where it is used).
+inline glm::dvec3 direction(const json& j, const std::string& file, const std::string& field) {
+  return vec3(j, file, field, -kMaxScenePosition, kMaxScenePosition);
+}
+
+// A JSON number in (0, hi].
+inline double positive(const json& j, const std::string& file, const std::string& field, double hi) {
+  if (!j.is_number()) field_error(file, field, "expected a number");
+  const double v = j.get<double>();
+  if (!(v > 0 && v <= hi)) field_error(file, field, "value " + exact_text(v) + " outside (0, " + exact_text(hi) + "]");
+  return v;
+}
+
 // A point of the scene (camera eye and look_at, a light's position, centre or corner, a
 // translation): each coordinate within kMaxScenePosition.
 inline glm::dvec3 position(const json& j, const std::string& file, const std::string& field) {
