@@ -91,8 +91,9 @@ struct Corner {
 };
 
 // Appends face `f` of part g (a polygon of 3 or more corners) as triangles, triangulated
-// on the file's values, each vertex checked as read and as placed by to_root.
-void add_face(const std::string& path, size_t f, const std::vector<Corner>& corners, const Affine& to_root, int material,
+// on the file's values, each vertex checked as read and as placed by to_root; `where`
+// (the file, or the file and the face's line) begins each message.
+void add_face(const std::string& where, size_t f, const std::vector<Corner>& corners, const Affine& to_root, int material,
               MeshGroup& g) {
   const std::string face = "face " + std::to_string(f) + " of part '" + g.name + "' ";
   std::vector<glm::dvec3> file(corners.size()), placed(corners.size()), normals(corners.size());
@@ -103,11 +104,11 @@ void add_face(const std::string& path, size_t f, const std::vector<Corner>& corn
       if (moved) placed[c] = to_root.point(placed[c]);
       const std::string why = fmpp::isect::check_point(placed[c]);
       if (!why.empty()) {
-        throw SceneError(path + ": vertex of " + face + (moved ? "placed by the node transforms " : "") + why);
+        throw SceneError(where + ": vertex of " + face + (moved ? "placed by the node transforms " : "") + why);
       }
     }
     const std::string nwhy = fmpp::isect::check_point(corners[c].n);
-    if (!nwhy.empty()) throw SceneError(path + ": normal of " + face + nwhy);
+    if (!nwhy.empty()) throw SceneError(where + ": normal of " + face + nwhy);
     normals[c] = to_root.identity ? corners[c].n : to_root.normal(corners[c].n);
   }
   for (const auto& tri : triangulate(file)) {
@@ -355,8 +356,10 @@ Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
     g.name = pm.name;
     for (size_t f = 0; f < pm.faces.size(); ++f) {
       corners.clear();
-      for (uint32_t i : pm.faces[f]) corners.push_back(Corner{pm.positions[i], pm.normals.empty() ? glm::dvec3(0) : pm.normals[i]});
-      add_face(path, f, corners, Affine{}, -1, g);
+      for (uint32_t i : pm.faces[f]) {
+        corners.push_back(Corner{pm.positions[i], pm.normals.empty() ? glm::dvec3(0) : pm.normals[i]});
+      }
+      add_face(path + ":" + std::to_string(pm.face_line[f]), f, corners, Affine{}, -1, g);
     }
     m.skipped_primitives += pm.skipped;
     m.triangles += g.triangles.size();
@@ -404,9 +407,14 @@ Mesh library_mesh(const std::string& path, const std::string& ext, std::string d
 }
 
 Mesh parse_mesh(const std::string& path, const std::string& ext, std::string data) {
-  Mesh m = ext == ".off"                             ? polygon_mesh(path, {read_off(path, data)})
-           : ext == ".stl" && is_stl_ascii(data) ? polygon_mesh(path, read_stl_ascii(path, data))
-                                                   : library_mesh(path, ext, std::move(data));
+  Mesh m;
+  if (ext == ".off") {
+    m = polygon_mesh(path, {read_off(path, data)});
+  } else if (ext == ".stl" && is_stl_ascii(data)) {
+    m = polygon_mesh(path, read_stl_ascii(path, data));
+  } else {
+    m = library_mesh(path, ext, std::move(data));
+  }
   if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
   return m;
 }

@@ -25,7 +25,7 @@ struct PolyMesh {
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec3> normals;
   std::vector<std::vector<uint32_t>> faces;
-  std::vector<size_t> face_line;  // per face: the line it was read from (for messages)
+  std::vector<size_t> face_line;  // per face: the line it begins on (for messages)
   size_t skipped = 0;
 };
 
