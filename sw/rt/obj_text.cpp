@@ -18,7 +18,7 @@ std::string normalize_obj(const std::string& path, std::string text) {
   out.reserve(text.size() + 1);
   size_t held = 0;  // lines joined into `joined` so far
   fmpp::isect::for_each_line(text, [&](const std::string& line, size_t) {
-    // The library joins a line ending in '\\' with the next one; so does this text, with
+    // The library joins a line ending in '\' with the next one; so does this text, with
     // the statement on its first line and an empty line for each one joined, so that
     // every line keeps its number.
     joined += line;

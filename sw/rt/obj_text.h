@@ -16,7 +16,7 @@ namespace rt {
 // OBJ text as assimp should see it: one line end ("\n"), comments removed (so that a
 // '#' ends a face's statement as it ends a vertex's), no byte-order mark, no white space
 // before a statement (the library would skip such a line), and a statement continued
-// with '\\' joined onto its first line (an empty line for each line joined, so that
+// with '\' joined onto its first line (an empty line for each line joined, so that
 // every line keeps its number). The same text is all the parser sees, so no check and
 // parser can disagree on where a statement is.
 // Throws SceneError naming `path` for text that is not a readable text file.
