@@ -1,0 +1,153 @@
+// Culling drops, for a ray, only what its exact answer cannot need (docs/certification.md,
+// "Culling decisions and their certification"): intersect_fmpp on the golden model
+// against the exact reference (nearest_reference), ray by ray, with every culling
+// decision on, on scenes built so that each decision is tempted to drop what it must not.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "backends/backend.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/exact/reference.h"
+#include "sw/isect/kernels.h"
+
+namespace fmpp::isect {
+namespace {
+
+// What a renderer reads of a shadow ray's answer (rt::Shader::add_unshadowed): the
+// nearest hit before tmax is another triangle than the ray's own (its hint).
+bool blocked(const Hit& h, const Ray& r) { return h.hit() && h.tri != r.hint && h.t < r.tmax; }
+
+std::vector<Hit> run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const KernelOptions& o,
+                     Config cfg, KernelStats* st) {
+  auto be = make_backend("cmodel", cfg);
+  Device dev(be->bus());
+  return intersect_fmpp(dev, rays, tris, o, st);
+}
+
+// A floor of tiles x tiles squares of side `tile` at y = 0 around the origin (two
+// triangles each, the first ones), and a box standing on it: x in [0.3, 0.5], z in
+// [-0.2, 0], height 0.25 (12 triangles, the last ones).
+std::vector<Triangle> floor_and_box(int tiles, double tile) {
+  std::vector<Triangle> t;
+  const double h = tiles * tile / 2;
+  for (int i = 0; i < tiles; ++i) {
+    for (int k = 0; k < tiles; ++k) {
+      const double x0 = -h + i * tile, z0 = -h + k * tile, x1 = x0 + tile, z1 = z0 + tile;
+      t.push_back(Triangle{{{x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0}}});
+      t.push_back(Triangle{{{x0, 0, z1}, {x1, 0, z0}, {x0, 0, z0}}});
+    }
+  }
+  const glm::dvec3 lo(0.3, 0, -0.2), hi(0.5, 0.25, 0);
+  for (int a = 0; a < 3; ++a) {
+    for (int side = 0; side < 2; ++side) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      glm::dvec3 q[4];
+      for (int j = 0; j < 4; ++j) {
+        q[j][a] = side ? hi[a] : lo[a];
+        q[j][b] = (j == 1 || j == 2) ? hi[b] : lo[b];
+        q[j][c] = (j >= 2) ? hi[c] : lo[c];
+      }
+      t.push_back(Triangle{{q[0], q[1], q[2]}});
+      t.push_back(Triangle{{q[0], q[2], q[3]}});
+    }
+  }
+  return t;
+}
+
+// The floor triangle under (x, z) (floor_and_box's numbering).
+int floor_triangle(int tiles, double tile, double x, double z) {
+  const double h = tiles * tile / 2;
+  const int i = std::min(tiles - 1, static_cast<int>(std::floor((x + h) / tile)));
+  const int k = std::min(tiles - 1, static_cast<int>(std::floor((z + h) / tile)));
+  const double fx = (x + h) / tile - i, fz = (z + h) / tile - k;
+  return 2 * (i * tiles + k) + (fx >= 1 - fz ? 0 : 1);
+}
+
+// Shadow rays as a renderer casts them from a point light `height` above the floor to
+// points of the floor beyond the box: tmax 1 - 1e-4, the floor triangle under the point
+// as hint. A point computed from a certified t lies off the plane; here up to `depth`
+// below it, so that the ray meets its own triangle just before tmax.
+std::vector<Ray> shadow_rays(int tiles, double tile, double height, double depth, unsigned seed, size_t count) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> x(0.6, 2.5), z(-1.5, 0.2), d(0, 1);
+  const glm::dvec3 light(-0.9, height, 0.6);
+  std::vector<Ray> rays;
+  while (rays.size() < count) {
+    const glm::dvec3 p(x(rng), -depth * d(rng), z(rng));
+    Ray r{light, p - light};
+    r.tmax = 1 - 1e-4;
+    r.hint = floor_triangle(tiles, tile, p.x, p.z);
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+// Finding 1 of issue 42. The occlusion stop answers a shadow ray with any certified hit
+// before its tmax; a ray whose end point lies behind its own triangle meets that
+// triangle before tmax, and the floor, nearest to the light, is sent first: the stop
+// answered with the ray's own triangle, which the renderer reads as lit, though the box
+// lies nearer. Such a ray (its hint not proven beyond its reach) must get its nearest.
+TEST(CullCertified, ShadowStopAnswersRaysEndingBehindTheirPlaneWithTheNearest) {
+  constexpr int kTiles = 8;
+  constexpr double kTile = 2.5;
+  const std::vector<Triangle> tris = floor_and_box(kTiles, kTile);
+  const std::vector<Ray> rays = shadow_rays(kTiles, kTile, 0.05, 4e-5, 7, 600);
+  const std::vector<Hit> exact = nearest_reference(rays, tris);
+  size_t tempting = 0;  // rays the box shadows that meet their own triangle before tmax
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const bool own = intersect_reference(rays[i], tris[static_cast<size_t>(rays[i].hint)]) < rays[i].tmax;
+    tempting += own && blocked(exact[i], rays[i]);
+  }
+  ASSERT_GT(tempting, 40u);
+  for (unsigned n : {16u, 24u, 28u, 32u}) {
+    for (const Config& cfg : {Config{64, 32}, Config{1024, 26}}) {
+      SCOPED_TRACE("n = " + std::to_string(n) + ", " + std::to_string(cfg.blocks) + " blocks");
+      KernelOptions o;
+      o.n = n;
+      o.occlusion = true;
+      KernelStats st;
+      const std::vector<Hit> got = run(rays, tris, o, cfg, &st);
+      size_t wrong = 0;
+      for (size_t i = 0; i < rays.size(); ++i) wrong += blocked(got[i], rays[i]) != blocked(exact[i], rays[i]);
+      EXPECT_EQ(wrong, 0u);
+      EXPECT_GT(st.fmpp_box_tests, 0u);
+    }
+  }
+}
+
+// In a call with the stop on, a ray of infinite tmax that shares its pass with shadow
+// rays gets its nearest hit, as KernelOptions::occlusion says: the stop acts only on
+// rays with a finite tmax.
+TEST(CullCertified, ShadowStopLeavesRaysWithoutTmaxTheirNearest) {
+  constexpr int kTiles = 8;
+  constexpr double kTile = 2.5;
+  const std::vector<Triangle> tris = floor_and_box(kTiles, kTile);
+  std::vector<Ray> rays = shadow_rays(kTiles, kTile, 0.05, 0, 9, 600);
+  for (size_t i = 0; i < rays.size(); i += 2) {
+    rays[i].tmax = std::numeric_limits<double>::infinity();
+    rays[i].hint = -1;
+  }
+  const std::vector<Hit> exact = nearest_reference(rays, tris);
+  size_t behind_box = 0;
+  for (size_t i = 0; i < rays.size(); i += 2) behind_box += exact[i].tri >= 2 * kTiles * kTiles;
+  ASSERT_GT(behind_box, 40u);
+  for (unsigned n : {16u, 24u, 32u}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    KernelOptions o;
+    o.n = n;
+    o.occlusion = true;
+    KernelStats st;
+    const std::vector<Hit> got = run(rays, tris, o, Config{64, 32}, &st);
+    size_t wrong = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      wrong += std::isinf(rays[i].tmax) ? got[i].tri != exact[i].tri : blocked(got[i], rays[i]) != blocked(exact[i], rays[i]);
+    }
+    EXPECT_EQ(wrong, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace fmpp::isect
