@@ -11,6 +11,7 @@
 #include "backends/backend.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/exact/reference.h"
+#include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/kernels.h"
 
 namespace fmpp::isect {
@@ -147,6 +148,25 @@ TEST(CullCertified, ShadowStopLeavesRaysWithoutTmaxTheirNearest) {
     }
     EXPECT_EQ(wrong, 0u);
   }
+}
+
+// The hint's proof (plane_beyond_reach) on a triangle whose cross product underflows:
+// edges of 2^-534 give a normal of 2^-1068, whose products with the ray lose up to 2^-6
+// of themselves to the subnormal range, and the proof's relative error bounds underflow
+// to 0. The ray crosses the plane at t = 1 / 1.001, before tmax: no proof.
+TEST(CullCertified, HintProofAllowsForUnderflow) {
+  const double a = std::ldexp(1.0, -534);
+  const Triangle t{{{0, 0, 0}, {a, 0, 0}, {0, a, 0}}};
+  Ray r{{0, 0, 1}, {0, 0, -1.001}};
+  r.tmax = 1 - 1e-4;
+  EXPECT_LT(intersect_reference(r, t), r.tmax) << "the ray meets the triangle before tmax";
+  EXPECT_FALSE(plane_beyond_reach(r, t));
+  // The same shape at an ordinary size is decided as before: crossed at 1 / 1.001 < tmax
+  // (no proof), at 1 / 0.999 > tmax (proven).
+  const Triangle big{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
+  EXPECT_FALSE(plane_beyond_reach(r, big));
+  r.d.z = -0.999;
+  EXPECT_TRUE(plane_beyond_reach(r, big));
 }
 
 }  // namespace

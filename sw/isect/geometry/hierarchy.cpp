@@ -84,8 +84,13 @@ bool plane_beyond_reach(const Ray& r, const Triangle& t) {
   const double nd = glm::dot(n, r.d), dl = glm::length(r.d), nl = glm::length(n);
   // Rounding: each component of n is within 2^-50 |e1| |e2| of the exact cross product,
   // each dot product within 2^-50 of its terms' magnitudes; 1e-12 is far above both.
-  const double eps = 1e-12 * glm::length(e1) * glm::length(e2);
-  const double num_err = eps * glm::length(w), den_err = eps * dl;
+  // Those are relative bounds, for results in double's normal range: a product that
+  // underflows loses up to 2^-1075 outright (and eps itself may underflow), so each
+  // dot product also gets 8 2^-1074 times (1 + the other factor's length), above the
+  // three products' and n's own losses.
+  const double eps = 1e-12 * glm::length(e1) * glm::length(e2), wl = glm::length(w);
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  const double num_err = eps * wl + 8 * tiny * (1 + wl), den_err = eps * dl + 8 * tiny * (1 + dl);
   // Far from parallel (the hit's own angle of incidence is then not tiny either), and the
   // denominator's sign certain.
   if (!(std::abs(nd) >= 1e-6 * nl * dl) || !(std::abs(nd) > 2 * den_err)) return false;
