@@ -169,5 +169,92 @@ TEST(CullCertified, HintProofAllowsForUnderflow) {
   EXPECT_TRUE(plane_beyond_reach(r, big));
 }
 
+// The probe (rays sharing an origin without the FMPP's box tests, --no-fmpp-boxes): it
+// sends each ray's first leaf, reads the best, then sends only what the ray may meet as
+// near as that best's exact distance can be. Here the first leaf is a long sliver seen
+// nearly edge-on (ill-conditioned from the origin: its certified t is loose), and a
+// small square lies just before its hit point: the square must stay within the reach.
+TEST(CullCertified, ProbeReachCoversTheBestsOwnBound) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Triangle> tris;
+  for (int k = 0; k < 4; ++k) {
+    const double x = k - 1.5;
+    tris.push_back(Triangle{{{x - 0.4, -0.4, -2}, {x + 0.4, 0.4 + 0x1p-8 * k, -2}, {x, 0, -30}}});
+  }
+  std::vector<Ray> rays;
+  for (int k = 0; k < 256; ++k) {
+    const Triangle& s = tris[static_cast<size_t>(k % 4)];
+    double a = u(rng), b = u(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    rays.push_back(Ray{{0, 0, 0}, s.p[0] + a * (s.p[1] - s.p[0]) + b * (s.p[2] - s.p[0])});
+  }
+  for (const Ray& r : rays) {  // a square across the ray, 2^-6 to 2^-16 of the way before
+    const glm::dvec3 q = r.d * (1 - std::ldexp(1.0, -6 - static_cast<int>(u(rng) * 10)));
+    const double h = 0.02 * glm::length(r.d);
+    const glm::dvec3 e1 = h * glm::normalize(glm::cross(r.d, glm::dvec3(0, 1, 0)));
+    const glm::dvec3 e2 = h * glm::normalize(glm::cross(r.d, e1));
+    tris.push_back(Triangle{{q - e1 - e2, q + 2.0 * e1 - e2, q + 2.0 * e2 - e1}});
+  }
+  const std::vector<Hit> exact = nearest_reference(rays, tris);
+  for (unsigned n : {12u, 16u, 20u, 24u}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    KernelOptions o;
+    o.n = n;
+    o.fmpp_boxes = false;
+    KernelStats st;
+    const std::vector<Hit> got = run(rays, tris, o, Config{64, 32}, &st);
+    size_t wrong = 0;
+    for (size_t i = 0; i < rays.size(); ++i) wrong += got[i].tri != exact[i].tri;
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_GT(st.culled, n >= 16 ? st.broadcasts : 0) << "the probe cut broadcasts (most from n = 16)";
+    if (n <= 16) EXPECT_GT(st.t_bound_rays[0], 0u) << "some certified t is loose";
+  }
+}
+
+// Random variants of the floor, box and light (placement, scale, light height, tile
+// size, how far the shadow rays' end points lie off the floor), every culling decision
+// on, across n and machines the tools accept (the reach and hint words exist from 22
+// words on with the constant multiply, 25 with the generic one): every shadow ray reads
+// as the exact reference's, every ray of infinite tmax gets the exact nearest triangle.
+TEST(CullCertified, FloorAndBoxAcrossScalesAndMachines) {
+  constexpr int kTiles = 6;
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double tile = 0.5 + 2 * u(rng), scale = std::ldexp(1.0, static_cast<int>(u(rng) * 60) - 30);
+    const glm::dvec3 shift = std::ldexp(1.0, static_cast<int>(u(rng) * 40)) * glm::dvec3(u(rng), -u(rng), u(rng));
+    const double height = std::ldexp(1.0, -static_cast<int>(u(rng) * 10));
+    std::vector<Triangle> tris = floor_and_box(kTiles, tile);
+    std::vector<Ray> rays = shadow_rays(kTiles, tile, height, height * std::ldexp(1.0, -9), seed, 320);
+    for (size_t i = 0; i < rays.size(); i += 5) rays[i].tmax = std::numeric_limits<double>::infinity(), rays[i].hint = -1;
+    for (Triangle& t : tris) {
+      for (glm::dvec3& p : t.p) p = scale * (p + shift);
+    }
+    for (Ray& r : rays) r.o = scale * (r.o + shift), r.d *= scale;
+    const std::vector<Hit> exact = nearest_reference(rays, tris);
+    for (unsigned n : {8u, 16u, 24u, 32u}) {
+      for (const Config& cfg : {Config{1, 22}, Config{7, 26}, Config{64, 32}, Config{1024, 64}}) {
+        for (MulMode mul : {MulMode::kConst, MulMode::kGeneric}) {
+          SCOPED_TRACE("seed " + std::to_string(seed) + ", n = " + std::to_string(n) + ", " + cfg.str());
+          KernelOptions o;
+          o.n = n;
+          o.mul = mul;
+          o.occlusion = true;
+          if (cfg.words < words_needed(o)) continue;
+          KernelStats st;
+          const std::vector<Hit> got = run(rays, tris, o, cfg, &st);
+          size_t wrong = 0;
+          for (size_t i = 0; i < rays.size(); ++i) {
+            wrong += std::isinf(rays[i].tmax) ? got[i].tri != exact[i].tri
+                                              : blocked(got[i], rays[i]) != blocked(exact[i], rays[i]);
+          }
+          EXPECT_EQ(wrong, 0u);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fmpp::isect
