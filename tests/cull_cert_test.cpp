@@ -256,5 +256,47 @@ TEST(CullCertified, FloorAndBoxAcrossScalesAndMachines) {
   }
 }
 
+// A needle near the origin (an edge of 2^-540: its length's square underflows, and with
+// it the proof's error bound), seen by rays nearly in its plane (where the dot products
+// cancel: their rounding is large against them) whose exact crossing,
+// at 1 / (1 + delta), lies before tmax for delta > 0 and beyond it for delta < 0 (the
+// crossing in long double, exact to far better than the 2 10^-4 gap at these grazing
+// angles). No ray is proven beyond its reach that meets the plane before it; rays of an
+// ordinary triangle crossing after tmax are.
+TEST(CullCertified, HintProofOfANeedleAtTheOrigin) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  size_t wrong = 0, before = 0, proven_after = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const bool needle = k % 2 == 0;
+    const double a = std::ldexp(1.0, needle ? -540 : -2), delta = k % 4 < 2 ? 3e-4 : -3e-4;
+    const glm::dvec3 p0 = a * glm::dvec3(u(rng), u(rng), u(rng));
+    const Triangle t{{p0, p0 + a * glm::dvec3(u(rng), u(rng), u(rng)), p0 + glm::dvec3(u(rng), u(rng), u(rng))}};
+    const glm::dvec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+    const long double n[3] = {static_cast<long double>(e1.y) * e2.z - static_cast<long double>(e1.z) * e2.y,
+                              static_cast<long double>(e1.z) * e2.x - static_cast<long double>(e1.x) * e2.z,
+                              static_cast<long double>(e1.x) * e2.y - static_cast<long double>(e1.y) * e2.x};
+    const long double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const glm::dvec3 unit(static_cast<double>(n[0] / nl), static_cast<double>(n[1] / nl), static_cast<double>(n[2] / nl));
+    // Grazing: 2^-30 to 2^-44 of the way off the plane for the needle, 2^-8 to 2^-15 (far
+    // enough from parallel to be proven) for the ordinary triangle.
+    const double h = std::ldexp(1.0, needle ? -30 - static_cast<int>((u(rng) + 1) * 7.5) : -8 - static_cast<int>((u(rng) + 1) * 3.5));
+    Ray r{p0 + 0.5 * e2 + h * unit, 0.3 * e2 - h * (1 + delta) * unit};
+    r.tmax = 1 - 1e-4;
+    long double nw = 0, nd = 0;
+    for (int j = 0; j < 3; ++j) {
+      nw += n[j] * (static_cast<long double>(t.p[0][j]) - r.o[j]);
+      nd += n[j] * static_cast<long double>(r.d[j]);
+    }
+    const bool proven = plane_beyond_reach(r, t), meets = nw / nd < r.tmax;
+    wrong += proven && meets;
+    before += meets;
+    proven_after += proven && !needle && !meets;
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(before, 1500u);
+  EXPECT_GT(proven_after, 500u) << "an ordinary triangle's crossing beyond tmax is proven";
+}
+
 }  // namespace
 }  // namespace fmpp::isect
