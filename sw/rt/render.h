@@ -85,7 +85,8 @@ class FmppIntersector : public Intersector {
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
   void set_batch_kind(BatchKind k) override { kind_ = k; }
   // Shadow batches run as occlusion queries (KernelOptions::occlusion: a shadow ray
-  // stops at its first certified occluder; the shading only asks whether one exists),
+  // whose own triangle is proven beyond its end stops at its first certified occluder;
+  // the shading only asks whether the nearest hit before the end is another triangle),
   // unless this is off: then as nearest-hit queries like the others. The same image.
   void set_shadow_stop(bool on) { shadow_stop_ = on; }
   // The mapping of one kind of batch (initially the options' for every kind); rays the

@@ -23,7 +23,8 @@ struct Triangle {
 // triangles out of reach. `hint` names a triangle whose plane the caller expects beyond
 // tmax (a shadow ray's own surface): culling leaves it out for this ray where it can
 // prove that (plane_beyond_reach, cull.h), and ignores the hint otherwise. It never
-// changes a result.
+// changes a result (under KernelOptions::occlusion it decides which rays may stop at
+// their first occluder: those whose hint is proven).
 struct Ray {
   glm::dvec3 o;
   glm::dvec3 d;
