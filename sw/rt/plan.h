@@ -46,8 +46,8 @@
 //     t accuracy (more t from the host), then every t from the host (the picture is then
 //     the exact reference's wherever the answers are certified). Only a limit the user
 //     set stops the ladder: a t accuracy given (KernelOptions::t_accuracy > 0) forbids
-//     the rungs that take t from the host. With n given (bits) nothing is sampled or
-//     checked.
+//     the rungs that take t from the host. With n given (bits) the target is not judged
+//     (nothing is sampled but a mapping's check).
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
@@ -179,7 +179,8 @@ struct Plan {
   bool kinds_together = false;
   double kinds_apart_clocks = 0, kinds_together_clocks = 0;
   std::string why_bits, why_words, why_blocks, why_order, why_merge, why_mapping, why_kinds;
-  // The check on the frame's machine, a step per rung tried (empty: n set by the user),
+  // The check on the frame's machine, a step per rung tried (with n set by the user only
+  // the check of a moved mapping, if any),
   // the rung taken (kLadder; "frame machine": no escalation) and why.
   std::vector<PlanCheck> checks;
   Rung escalation = Rung::kFrameMachine;

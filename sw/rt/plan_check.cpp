@@ -72,10 +72,9 @@ class Check {
     sample_.frame.width = req.width;
     sample_.frame.height = req.height;
     sample_.frame.max_depth = depth;
-    sample_.frame.pixels = plan_pixels(pixels_, limit_);
+    sample_.order = check_order(req);
+    sample_.frame.pixels = sorted_subset(sample_.order, pixels_);
     sample_.sampled = limit_;
-    sample_.order = sample_.frame.pixels;
-    std::shuffle(sample_.order.begin(), sample_.order.end(), std::mt19937_64(0x5eed + 2));
     const size_t first = fewest_to_show(req, limit_);
     for (size_t e = std::min({first, asked_, limit_});;) {
       ends_.push_back(e);
@@ -186,25 +185,35 @@ double redone_share(const PlanCheck& c) {
   return c.rays ? static_cast<double>(c.redone) / static_cast<double>(c.rays) : 0;
 }
 
-// The first rung: the sample as asked at the plan's n on the frame's machine, with the
-// kinds the cost model moved to the object-parallel mapping; where that misses the target
-// or the allowance of rays redone, every kind goes back to the ray-parallel mapping and
-// the rung is rendered again (recorded both times).
-PlanCheck first_rung(Check& check, const PlanRequest& req, Plan* plan) {
-  PlanCheck c = fresh(Rung::kFrameMachine, plan->options.n, plan->options.t_accuracy);
-  check.run(frame_machine(req, *plan), check.asked(), false, &c);
+// The kinds the cost model moved to the object-parallel mapping, checked on the frame's
+// machine with the sample as asked at the plan's n: where that misses the target or the
+// allowance of rays redone, every kind goes back to the ray-parallel mapping (the mapping
+// is a cost). Returns that check (recorded in the plan); false if no kind was moved.
+bool check_mappings(Check& check, const PlanRequest& req, Plan* plan, PlanCheck* c) {
   const std::string kinds = object_kinds(*plan);
-  if (kinds.empty()) return c;
-  const bool keeps = c.kept && redone_share(c) <= req.max_flagged_share;
-  plan->why_mapping += "; on the frame's machine with " + kinds + " rays object-parallel, " + check.figures(c) +
+  if (kinds.empty()) return false;
+  *c = fresh(Rung::kFrameMachine, plan->options.n, plan->options.t_accuracy);
+  check.run(frame_machine(req, *plan), check.asked(), false, c);
+  plan->checks.push_back(*c);
+  const bool keeps = c->kept && redone_share(*c) <= req.max_flagged_share;
+  plan->why_mapping += "; on the frame's machine with " + kinds + " rays object-parallel, " + check.figures(*c) +
                        (keeps ? "" : ": over the target or the allowance, every kind kept ray-parallel");
-  if (keeps) return c;
+  if (!keeps) {
+    plan->object = {};
+    for (MappingEstimate& e : plan->mappings) e.chosen = false;
+  }
+  return true;
+}
+
+// The first rung: the sample as asked at the plan's n on the frame's machine, with its
+// mappings (recorded in the plan).
+PlanCheck first_rung(Check& check, const PlanRequest& req, Plan* plan) {
+  PlanCheck c;
+  if (check_mappings(check, req, plan, &c) && !object_kinds(*plan).empty()) return c;
+  c = fresh(Rung::kFrameMachine, plan->options.n, plan->options.t_accuracy);
+  check.run(frame_machine(req, *plan), check.asked(), false, &c);
   plan->checks.push_back(c);
-  plan->object = {};
-  for (MappingEstimate& e : plan->mappings) e.chosen = false;
-  PlanCheck again = fresh(Rung::kFrameMachine, plan->options.n, plan->options.t_accuracy);
-  check.run(frame_machine(req, *plan), check.asked(), false, &again);
-  return again;
+  return c;
 }
 
 // The rungs after the first, in order (plan.h), but those a limit the user set forbids:
@@ -304,12 +313,30 @@ std::string why_checked(const Check& check, const PlanRequest& req, const Plan& 
 
 }  // namespace
 
+std::vector<uint32_t> check_order(const PlanRequest& req) {
+  const size_t pixels = static_cast<size_t>(req.width) * static_cast<size_t>(req.height);
+  const size_t asked = std::min(pixels, static_cast<size_t>(std::max(1, req.sample_pixels)));
+  std::vector<uint32_t> order = plan_pixels(pixels, std::min(pixels, kSampleGrowth * asked));
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(0x5eed + 2));
+  return order;
+}
+
+std::vector<uint32_t> check_pixels(const PlanRequest& req, size_t count) {
+  const std::vector<uint32_t> order = check_order(req);
+  return sorted_subset(std::vector<uint32_t>(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count)),
+                       static_cast<size_t>(req.width) * static_cast<size_t>(req.height));
+}
+
 void check_on_frame_machine(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
                             const Image* whole, Plan* plan) {
-  if (req.bits) return;  // n set by the user: nothing sampled, nothing checked (plan.h)
+  if (req.bits && object_kinds(*plan).empty()) return;
   Check check(scene, req, depth, exact, whole);
+  if (req.bits) {  // n set by the user: the target is not judged, only the mapping's cost
+    PlanCheck c;
+    check_mappings(check, req, plan, &c);
+    return;
+  }
   const PlanCheck c = first_rung(check, req, plan);
-  plan->checks.push_back(c);
   plan->met_target = c.kept || climb(check, req, c, plan);
   plan->why_check = why_checked(check, req, *plan);
 }

@@ -83,6 +83,13 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
 // Why the plan may not move a kind of batch to the object-parallel mapping on a machine
 // of `words` words ("" where it may): the user's --mapping, the watertight form, words.
 std::string object_mapping_refused(const PlanRequest& req, unsigned words);
+// The check's sample (plan_check.cpp): up to kSampleGrowth times req.sample_pixels pixels
+// of the frame (at most all of them) in a random order with a fixed seed; its renders are
+// prefixes of that order. Its first `count` pixels, sorted (the pixels of a render of
+// that prefix).
+std::vector<uint32_t> check_order(const PlanRequest& req);
+std::vector<uint32_t> check_pixels(const PlanRequest& req, size_t count);
+
 // The check on the frame's machine and its ladder (plan_check.cpp, plan.h): sets the
 // plan's checks, escalation, why_check and met_target, and where a rung moves them its n
 // and t accuracy. A kind of batch moved to the object-parallel mapping is checked first,
