@@ -237,6 +237,33 @@ TEST(PlanEscalate, CheckRendersOnTheFramesMachine) {
   EXPECT_NE(c.clocks, sample_machine.cycles) << "the two machines must differ for this test to tell them apart";
 }
 
+// The rungs in their order, cheapest first, and none a limit the user set forbids.
+TEST(PlanEscalate, LadderOrderAndTheUsersLimits) {
+  using plan_parts::ladder;
+  const auto rungs = [](const std::vector<plan_parts::LadderStep>& steps) {
+    std::string out;
+    for (const auto& s : steps) {
+      std::ostringstream o;
+      o << to_string(s.rung) << "(" << s.n << ", " << s.t_accuracy << ") ";
+      out += o.str();
+    }
+    return out;
+  };
+  PlanRequest r;
+  Plan p;
+  p.options.n = 24;
+  EXPECT_EQ(rungs(ladder(r, p)), "larger_sample(24, 0) wider_n(32, 0) tighter_t(32, 1.52588e-05) "
+                                 "tighter_t(32, 9.53674e-07) exact_t(32, 2.22507e-308) ");
+  p.options.n = 32;  // no wider n
+  EXPECT_EQ(rungs(ladder(r, p)), "larger_sample(32, 0) tighter_t(32, 1.52588e-05) tighter_t(32, 9.53674e-07) "
+                                 "exact_t(32, 2.22507e-308) ");
+  r.base.t_accuracy = p.options.t_accuracy = 0x1p-18;  // the user's: no rung takes more t from the host
+  EXPECT_EQ(rungs(ladder(r, p)), "larger_sample(32, 3.8147e-06) ");
+  r.base.t_accuracy = 0;
+  p.options.t_accuracy = 0x1p-18;  // tighter than 2^-16 already
+  EXPECT_EQ(rungs(ladder(r, p)), "larger_sample(32, 3.8147e-06) tighter_t(32, 9.53674e-07) exact_t(32, 2.22507e-308) ");
+}
+
 // The ladder's first escalation: a sample as asked too small to show the target grows
 // (here 100 pixels asked; 1,497 with none off show 0.2 % at 95 %); n and t stay.
 TEST(PlanEscalate, LargerSampleDecidesFirst) {

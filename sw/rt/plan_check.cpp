@@ -40,14 +40,6 @@ struct Machine {
   bool together = false, shadow_stop = true;
 };
 
-// A rung: what it renders with, and how many of the sample's pixels it may render.
-struct Step {
-  Rung rung;
-  unsigned n;
-  double t_accuracy;
-  size_t limit;
-};
-
 // "2^-16" for a power of two, else the number; "every t from the host" for kExactT.
 std::string t_text(double t) {
   if (t == kExactT) return "every t from the host";
@@ -216,28 +208,14 @@ PlanCheck first_rung(Check& check, const PlanRequest& req, Plan* plan) {
   return c;
 }
 
-// The rungs after the first, in order (plan.h), but those a limit the user set forbids:
-// a t accuracy given forbids taking more t from the host.
-std::vector<Step> ladder(const Check& check, const PlanRequest& req, const Plan& plan) {
-  const unsigned n = plan.options.n;
-  const double t = plan.options.t_accuracy;
-  std::vector<Step> up = {{Rung::kLargerSample, n, t, check.limit()}};
-  if (n < 32) up.push_back({Rung::kWiderN, 32, t, check.limit()});
-  if (req.base.t_accuracy > 0) return up;
-  for (double tighter : kTighterT) {
-    if (tighter < fmpp::isect::policy::t_accuracy(plan.options)) up.push_back({Rung::kTighterT, 32, tighter, check.limit()});
-  }
-  up.push_back({Rung::kExactT, 32, kExactT, check.limit()});
-  return up;
-}
-
 // Climbs the ladder from the first rung's check `c` (recorded): the first rung that keeps
 // the target is taken (its n and t accuracy); returns whether one did.
 bool climb(Check& check, const PlanRequest& req, PlanCheck c, Plan* plan) {
   const PlanCheck first = c;
-  for (const Step& s : ladder(check, req, *plan)) {
+  const size_t limit = check.limit();
+  for (const LadderStep& s : ladder(req, *plan)) {
     if (s.rung == Rung::kLargerSample) {
-      if (check.hopeless(first, s.limit) || first.pixels >= s.limit) continue;
+      if (check.hopeless(first, limit) || first.pixels >= limit) continue;
       c = first;  // the same sample, grown: its pixels so far count, its costs are its own
       c.rung = s.rung;
       c.rays = c.redone = c.clocks = 0;
@@ -246,13 +224,13 @@ bool climb(Check& check, const PlanRequest& req, PlanCheck c, Plan* plan) {
       c = fresh(s.rung, s.n, s.t_accuracy);
       // A rung judged on its sample cannot keep a target that `limit` pixels with none
       // off would not show (a zero target, short of the whole frame).
-      if (s.rung != Rung::kExactT && check.hopeless(c, s.limit)) continue;
+      if (s.rung != Rung::kExactT && check.hopeless(c, limit)) continue;
     }
     Machine m = frame_machine(req, *plan);
     m.opt.n = s.n;
     m.opt.t_accuracy = s.t_accuracy;
     const bool exact = s.rung == Rung::kExactT;
-    check.run(m, s.limit, exact, &c);
+    check.run(m, limit, exact, &c);
     // Every t from the host: the picture is the exact reference's wherever the answers
     // are certified, so any pixel off is a defect, and none off keeps any target.
     if (exact) c.kept = c.pixels_off == 0;
@@ -312,6 +290,19 @@ std::string why_checked(const Check& check, const PlanRequest& req, const Plan& 
 }
 
 }  // namespace
+
+std::vector<LadderStep> ladder(const PlanRequest& req, const Plan& plan) {
+  const unsigned n = plan.options.n;
+  const double t = plan.options.t_accuracy;
+  std::vector<LadderStep> up = {{Rung::kLargerSample, n, t}};
+  if (n < 32) up.push_back({Rung::kWiderN, 32, t});
+  if (req.base.t_accuracy > 0) return up;  // the user's t accuracy: no more t from the host
+  for (double tighter : kTighterT) {
+    if (tighter < fmpp::isect::policy::t_accuracy(plan.options)) up.push_back({Rung::kTighterT, 32, tighter});
+  }
+  up.push_back({Rung::kExactT, 32, kExactT});
+  return up;
+}
 
 std::vector<uint32_t> check_order(const PlanRequest& req) {
   const size_t pixels = static_cast<size_t>(req.width) * static_cast<size_t>(req.height);

@@ -90,6 +90,16 @@ std::string object_mapping_refused(const PlanRequest& req, unsigned words);
 std::vector<uint32_t> check_order(const PlanRequest& req);
 std::vector<uint32_t> check_pixels(const PlanRequest& req, size_t count);
 
+// The rungs after the first that the check may climb, in order (plan.h, Rung): each with
+// the n and t accuracy it renders at; none that a limit the user set forbids (a t
+// accuracy given forbids the rungs that take more t from the host).
+struct LadderStep {
+  Rung rung;
+  unsigned n;
+  double t_accuracy;
+};
+std::vector<LadderStep> ladder(const PlanRequest& req, const Plan& plan);
+
 // The check on the frame's machine and its ladder (plan_check.cpp, plan.h): sets the
 // plan's checks, escalation, why_check and met_target, and where a rung moves them its n
 // and t accuracy. A kind of batch moved to the object-parallel mapping is checked first,
