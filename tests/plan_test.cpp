@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sw/rt/plan.h"
+#include "sw/rt/plan_cache.h"
 #include "sw/rt/plan_parts.h"
 
 #include <algorithm>
@@ -293,6 +294,8 @@ TEST(Plan, OverridesWin) {
   EXPECT_EQ(p.config.words, 30u);
   EXPECT_EQ(p.why_bits, "set by the user");
   EXPECT_TRUE(p.candidates.empty()) << "no sampling when n is given";
+  EXPECT_TRUE(p.checks.empty()) << "nor a check of the target";
+  EXPECT_EQ(plan_report(p).at("escalation").at("taken"), "none");
 }
 
 TEST(Plan, RtlChoosesABuiltConfiguration) {

@@ -99,7 +99,8 @@ PlanCheck check_from(const nlohmann::json& j) {
 // on the first rung (the frame pays the difference), and the plan's clocks and seconds
 // on the rungs after the first.
 nlohmann::json escalation_json(const Plan& p) {
-  nlohmann::json j = {{"taken", to_string(p.escalation)}, {"why", p.why_check}};
+  // "none": nothing checked (n set by the user).
+  nlohmann::json j = {{"taken", p.checks.empty() ? "none" : to_string(p.escalation)}, {"why", p.why_check}};
   size_t first = 0;
   for (size_t i = 0; i < p.checks.size(); ++i) {
     if (p.checks[i].rung == Rung::kFrameMachine) first = i;
@@ -168,7 +169,8 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.why_mapping = j.at("why_mapping").get<std::string>();
     p.kinds_together = j.at("shadow_calls").get<std::string>() == "together";
     p.options.t_accuracy = j.at("t_accuracy").get<double>();
-    p.escalation = rung_named(j.at("escalation").at("taken").get<std::string>());
+    const std::string taken = j.at("escalation").at("taken").get<std::string>();
+    p.escalation = taken == "none" ? Rung::kFrameMachine : rung_named(taken);
     p.why_check = j.at("escalation").at("why").get<std::string>();
     p.kinds_apart_clocks = j.at("shadow_calls_apart_cycles").get<double>();
     p.kinds_together_clocks = j.at("shadow_calls_together_cycles").get<double>();

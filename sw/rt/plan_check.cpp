@@ -320,6 +320,7 @@ std::vector<uint32_t> check_pixels(const PlanRequest& req, size_t count) {
 
 void check_on_frame_machine(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
                             const Image* whole, Plan* plan) {
+  if (req.bits) plan->why_check = "n set by the user: the error target is not judged";
   if (req.bits && object_kinds(*plan).empty()) return;
   Check check(scene, req, depth, exact, whole);
   if (req.bits) {  // n set by the user: the target is not judged, only the mapping's cost
