@@ -236,6 +236,10 @@ bool climb(Check& check, const PlanRequest& req, PlanCheck c, Plan* plan) {
     if (exact) c.kept = c.pixels_off == 0;
     plan->checks.push_back(c);
     if (c.kept) {
+      if (s.n != plan->options.n) {
+        plan->why_bits += "; n = " + std::to_string(s.n) + " taken by the check on the frame's machine (escalation " +
+                          to_string(s.rung) + ")";
+      }
       plan->options.n = s.n;
       plan->options.t_accuracy = s.t_accuracy;
       plan->escalation = s.rung;

@@ -53,19 +53,18 @@ RenderPlan plan_render(const rt::Scene& scene, const rt::PlanRequest& req, const
   if (!cli.quiet) {
     // One short line; the reasons, every candidate and the cost model's estimates are in
     // the report's "plan".
+    const bool escalated = plan.escalation != rt::Rung::kFrameMachine;
     const std::string how = req.bits ? "n set by the user"
                             : !plan.met_target ? "nothing the plan may do keeps the error target"
+                            : escalated ? std::string("escalated to keep the error target: ") + rt::to_string(plan.escalation)
                             : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
                                                                        : "the widest n; some costs over their limits";
     std::string object = rt::object_kinds(plan);
     if (!object.empty()) object = ", " + object + " rays object-parallel";
-    if (plan.escalation != rt::Rung::kFrameMachine) {
-      object += std::string(", escalated: ") + rt::to_string(plan.escalation);
-      if (plan.options.t_accuracy > 0) {
-        std::ostringstream t;
-        t << plan.options.t_accuracy;
-        object += " (t accuracy " + (plan.options.t_accuracy == rt::kExactT ? std::string("exact") : t.str()) + ")";
-      }
+    if (plan.options.t_accuracy > 0) {
+      std::ostringstream t;
+      t << plan.options.t_accuracy;
+      object += ", t accuracy " + (plan.options.t_accuracy == rt::kExactT ? std::string("exact") : t.str());
     }
     std::fprintf(stderr, "plan: n = %u, %u blocks x %u words%s (%s; %.1f s%s); the reasons are in --report's plan\n",
                  plan.options.n, plan.config.blocks, plan.config.words, object.c_str(), how.c_str(), rp.seconds,
