@@ -58,4 +58,18 @@ void ExactCheck::check(const std::vector<Ray>& rays, const std::vector<Hit>& hit
   stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+Image render_checked(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats, bool check,
+                     const std::string& context, ExactCheckStats* counts) {
+  if (!check) return render(scene, isect, opt, stats);
+  ExactCheck c(isect, scene.triangles, context);
+  Image img = render(scene, c, opt, stats);
+  if (counts) {
+    for (int k = 0; k < kNumBatchKinds; ++k) counts->rays[k] += c.stats().rays[k];
+    counts->batches += c.stats().batches;
+    counts->other_occluder += c.stats().other_occluder;
+    counts->seconds += c.stats().seconds;
+  }
+  return img;
+}
+
 }  // namespace rt

@@ -60,4 +60,9 @@ class ExactCheck : public Intersector {
   ExactCheckStats stats_;
 };
 
+// Renders the scene through `isect`; where `check`, under an ExactCheck whose messages end
+// with `context`, its counts added to *counts (if given).
+Image render_checked(const Scene& scene, Intersector& isect, const RenderOptions& opt, RenderStats* stats, bool check,
+                     const std::string& context, ExactCheckStats* counts = nullptr);
+
 }  // namespace rt

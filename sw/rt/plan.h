@@ -65,6 +65,8 @@
 
 namespace rt {
 
+struct ExactCheckStats;  // exact_check.h
+
 struct PlanRequest {
   int width = 128, height = 128;
   int max_depth = -1;                 // -1: the scene's
@@ -90,6 +92,11 @@ struct PlanRequest {
   // Where the plan's golden-model runs keep the forms they prepare (form_cache.h), for
   // the frame to find those of the chosen n (fmpp-render); nullptr: a cache of its own.
   fmpp::isect::FormCache* forms = nullptr;
+  // Every golden-model render of the plan under the ray-level exact check (exact_check.h):
+  // the first answer the contract does not allow throws rt::ExactCheckError naming the
+  // candidate n and the machine (fmpp-render --verify-exact); its counts in verified.
+  bool verify_exact = false;
+  ExactCheckStats* verified = nullptr;
   // How the frame runs beyond the kernel options, for the check on the frame's machine:
   // shadow batches as occlusion queries (FmppIntersector::set_shadow_stop); and choices
   // the user made that the plan would otherwise make (unset: the plan's): the pass order

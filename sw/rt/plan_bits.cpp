@@ -10,6 +10,7 @@
 
 #include "common/util/claimable.h"
 #include "fmpp/model_bus.h"
+#include "sw/rt/exact_check.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/isect/form_cache.h"
@@ -152,7 +153,9 @@ Decision<unsigned> decide_bits(const Scene& scene, const PlanRequest& req, int d
       fmpp::ModelBus fbus(frame_cfg);
       fmpp::Device fdev(fbus);
       FmppIntersector fi(fdev, scene.triangles, options(c.n));
-      const Image got = render(scene, fi, part, nullptr);
+      const Image got = render_checked(scene, fi, part, nullptr, req.verify_exact,
+                                       "The precision plan's frame sample, candidate n = " + std::to_string(c.n),
+                                       req.verified);
       over += compare(got, chunk_reference()).pixels_over;
       st.add(fi.stats());
       done += count;

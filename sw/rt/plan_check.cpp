@@ -10,6 +10,7 @@
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/pass/policy.h"
+#include "sw/rt/exact_check.h"
 #include "sw/rt/plan_parts.h"
 #include "sw/rt/render.h"
 
@@ -144,7 +145,8 @@ class Check {
       if (m.object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
     }
     fi.set_kinds_together(m.together);
-    const Image got = render(scene_, fi, part, nullptr);
+    const Image got = render_checked(scene_, fi, part, nullptr, req_.verify_exact,
+                                     "The precision plan's check on the frame's machine", req_.verified);
     *off += compare(got, reference_(part)).pixels_over;
     return fi.stats();
   }

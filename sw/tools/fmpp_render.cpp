@@ -58,13 +58,13 @@ class Progress {
 };
 
 // The frame rendered through `isect`, every answer checked against the exact reference
-// where `verify` (rt::ExactCheck; its counts go into the report's "verify_exact").
-rt::Image render_checked(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro,
-                         rt::RenderStats* rs, bool verify, const std::string& command, nlohmann::json* rep) {
-  if (!verify) return rt::render(scene, isect, ro, rs);
-  rt::ExactCheck check(isect, scene.triangles, command);
-  rt::Image img = rt::render(scene, check, ro, rs);
-  const rt::ExactCheckStats& st = check.stats();
+// where `verify` (rt::ExactCheck; its counts go into the report's "verify_exact", with the
+// plan's renders' under "plan").
+rt::Image render_frame(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro,
+                       rt::RenderStats* rs, bool verify, const std::string& command, nlohmann::json* rep) {
+  rt::ExactCheckStats st;
+  rt::Image img = rt::render_checked(scene, isect, ro, rs, verify, command, &st);
+  if (!verify) return img;
   nlohmann::json& j = (*rep)["verify_exact"];
   for (int k = 0; k < rt::kNumBatchKinds; ++k) j["rays"][rt::to_string(static_cast<rt::BatchKind>(k))] = st.rays[k];
   j["batches"] = st.batches;
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
       rt::ReferenceIntersector ref(scene.triangles);
-      img = std::make_unique<rt::Image>(render_checked(scene, ref, ro, &rs, verify, command, &rep));
+      img = std::make_unique<rt::Image>(render_frame(scene, ref, ro, &rs, verify, command, &rep));
     } else {
       // The precision plan chooses what the options leave open; the frame's kernel options
       // are the same as the plan's, with its choices.
@@ -307,6 +307,9 @@ int main(int argc, char** argv) {
       // chosen n it finds (the same answers and clocks) come off the plan's seconds.
       isect::FormCache forms(scene.triangles, rt::kPlanFormBytes);
       pr.forms = &forms;
+      rt::ExactCheckStats plan_checked;
+      pr.verify_exact = verify;
+      pr.verified = &plan_checked;
       const tools::RenderPlan rp = tools::plan_render(scene, pr, {plan_cache, replan, accept_miss, quiet}, &rep);
       const rt::Plan& plan = rp.plan;
       forms.next_phase();
@@ -332,7 +335,13 @@ int main(int argc, char** argv) {
       }
       const bool together = plan.kinds_together;
       fi.set_kinds_together(together);
-      img = std::make_unique<rt::Image>(render_checked(scene, chips.wrap(fi), ro, &rs, verify, command, &rep));
+      img = std::make_unique<rt::Image>(render_frame(scene, chips.wrap(fi), ro, &rs, verify, command, &rep));
+      if (verify) {
+        uint64_t plan_rays = 0;
+        for (uint64_t n : plan_checked.rays) plan_rays += n;
+        rep["verify_exact"]["plan_rays"] = plan_rays;  // 0 for a cached plan
+        rep["verify_exact"]["plan_seconds"] = plan_checked.seconds;
+      }
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
       rep["plan"]["wall_seconds"] = rp.seconds;
