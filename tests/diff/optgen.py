@@ -24,7 +24,7 @@ from hardgen_base import Builder, Frame
 _OWN = {name: (fam, args.get("local_bits")) for name, (fam, args) in hardgen_placement.PLACEMENT.items() if fam}
 FAMILIES = sorted(hardgen.FAMILIES) + sorted(_OWN)
 PLACE_EXP = (-30, 30)  # scene size 2^e and distance from the world origin 2^D
-CONFIGS = {"small": (64, 32), "medium": (1024, 32), "large": (4096, 32)}  # the named ones with 32 words
+CONFIGS = {"small": (64, 32), "medium": (1024, 32), "large": (4096, 32)}  # the named ones with 32 words (>= 26)
 # Words per block the forms need (form_table.cpp; the tool rounds up to even): rays sharing
 # an origin, by mapping and multiply; and the arbitrary-origin form's.
 SHARED_WORDS = {("ray", "const"): 20, ("ray", "generic"): 24, ("object", "const"): 20, ("object", "generic"): 22}
@@ -143,8 +143,12 @@ def _cull_options(rng):
             "pass-order": _pick(rng, [(7, "coherent"), (3, "batch")])}
 
 
-def _machine(rng, d, rays):
-    """blocks and words (or a named configuration) that hold what the drawn forms need."""
+def _machine(rng, d, rays, built_only):
+    """blocks and words (or a named configuration) that hold what the drawn forms need;
+    built_only: a named configuration always (the RTL exists in those sizes only)."""
+    if built_only:
+        d["config"] = rng.choice(sorted(CONFIGS))
+        return
     blocks = _pick(rng, [(2, 64), (6, lambda: int(2 ** rng.uniform(0, 12))), (1, lambda: rng.randint(1, 65536))])
     general = _general_rays(rays, d["mapping"], d["origins"], d["merge-below"], blocks)
     need = max(SHARED_WORDS[(d["mapping"], d["mul"])], GENERAL_WORDS if general else 0)
@@ -170,13 +174,15 @@ def _arguments(d):
     return args
 
 
-def case(seed, index, rays):
+def case(seed, index, rays, built_only=False):
+    """Case `index` of `seed`, with `rays` rays; built_only: the machine a named
+    configuration with 32 words (for the RTL backends)."""
     rng = random.Random("optgen:%s:%d" % (seed, index))
     name, e, dist, tris, rs = _placed_scene(rng, rays)
     rs = _with_extras(rng, tris, rs)
     d = _form_options(rng)
     d.update(_cull_options(rng))
-    _machine(rng, d, rs)
+    _machine(rng, d, rs, built_only)
     return Case(str(seed), index, name, e, dist, tris, rs, _arguments(d), d)
 
 
