@@ -44,12 +44,15 @@ class Case:
     drawn: dict = field(default_factory=dict)  # the same, by name, for the coverage counts
 
 
-def _placed_scene(rng, count):
+def _placed_scene(rng, count, scene):
     """(family, e, D, triangles, rays): a family's scene of size 2^e placed 2^D from the
-    world origin (D None: at it)."""
+    world origin (D None: at it); scene: any of them given (family, size_exp, dist_exp)."""
     name = rng.choice(FAMILIES)
     e = rng.randint(*PLACE_EXP)
     d = None if rng.random() < 0.15 else rng.randint(*PLACE_EXP)
+    name = scene.get("family", name)
+    e = scene.get("size_exp", e)
+    d = scene.get("dist_exp", d)
     fam, local_bits = _OWN.get(name, (hardgen.FAMILIES.get(name), None))
     args = dict(exp_range=(e, e), dist_exp=(d - e, d - e) if d is not None else (-3000, -3000), always_far=True)
     if local_bits:
@@ -174,14 +177,30 @@ def _arguments(d):
     return args
 
 
-def case(seed, index, rays, built_only=False):
+def _pinned(d, pins):
+    """The options with `pins` (name: value) in place of the drawn ones; a pinned
+    watertight form or object mapping leaves out what it excludes."""
+    for name, v in pins.items():
+        if name not in d:
+            raise ValueError("no option %r to pin (options: %s)" % (name, ", ".join(sorted(d))))
+        d[name] = type(d[name])(v) if isinstance(d[name], (int, float)) and not isinstance(d[name], bool) else v
+    if d["mapping"] == "object" and d["origins"] == "general":
+        d["origins"] = "auto"
+    if d["watertight"] and (d["mapping"] != "ray" or d["origins"] == "general"):
+        d["watertight"] = False
+
+
+def case(seed, index, rays, built_only=False, pins=None, scene=None):
     """Case `index` of `seed`, with `rays` rays; built_only: the machine a named
-    configuration with 32 words (for the RTL backends)."""
+    configuration with 32 words (for the RTL backends); pins: options given, not drawn
+    (name: value, as fmpp-intersect spells them; flags True or False); scene: the
+    family, size_exp or dist_exp given, not drawn."""
     rng = random.Random("optgen:%s:%d" % (seed, index))
-    name, e, dist, tris, rs = _placed_scene(rng, rays)
+    name, e, dist, tris, rs = _placed_scene(rng, rays, scene or {})
     rs = _with_extras(rng, tris, rs)
     d = _form_options(rng)
     d.update(_cull_options(rng))
+    _pinned(d, pins or {})
     _machine(rng, d, rs, built_only)
     return Case(str(seed), index, name, e, dist, tris, rs, _arguments(d), d)
 

@@ -150,7 +150,8 @@ def run_seed(a, seed, deadline, work, tally):
             break
         if a.case is None and (time.time() > deadline or (a.cases and index >= a.cases)):
             break
-        c = optgen.case(seed, index, a.rays, built_only=any(b in RTL_BACKENDS for b in a.backends.split(",")))
+        c = optgen.case(seed, index, a.rays, built_only=any(b in RTL_BACKENDS for b in a.backends.split(",")),
+                        pins=a.pins, scene=a.scene)
         res = run_case(a, c, work)
         tally["cases"] += 1
         for k in ("rays", "hits", "flagged", "t_redone"):
@@ -158,7 +159,9 @@ def run_seed(a, seed, deadline, work, tally):
         tally["families"][c.family] = tally["families"].get(c.family, 0) + 1
         coverage(c.drawn, tally["options"])
         if res["failures"]:
-            again = "%s --build %s --seed %s --case %d --backends %s" % (sys.argv[0], a.build, seed, index, a.backends)
+            again = "%s --build %s --seed %s --case %d --backends %s%s" % (
+                sys.argv[0], a.build, seed, index, a.backends, "".join(" --pin " + p for p in a.pin) +
+                (" --family " + a.family if a.family else "") + (" --place " + a.place if a.place else ""))
             failures.append((again, describe(c), res["failures"]))
             tally["failed_rays"] += len(res["failures"])
         index += 1
@@ -176,7 +179,18 @@ def main():
     ap.add_argument("--backends", default="cmodel", help="fmpp-intersect backends, comma-separated")
     ap.add_argument("--keep", help="write the cases' files here (default: a temporary directory)")
     ap.add_argument("--json", help="write the counts here")
+    ap.add_argument("--pin", action="append", default=[], metavar="NAME=VALUE",
+                    help="an option given, not drawn (e.g. cond-bits=60, origins=group, occlusion=true); repeatable")
+    ap.add_argument("--family", choices=optgen.FAMILIES, help="this family only")
+    ap.add_argument("--place", metavar="E,D", help="scenes of size 2^E placed 2^D from the origin only")
     a = ap.parse_args()
+    a.scene = {"family": a.family} if a.family else {}
+    if a.place:
+        a.scene["size_exp"], a.scene["dist_exp"] = (int(x) for x in a.place.split(","))
+    a.pins = {}
+    for p in a.pin:
+        name, _, v = p.partition("=")
+        a.pins[name] = {"true": True, "false": False, "none": None}.get(v.lower(), v)
     work = a.keep or tempfile.mkdtemp(prefix="fmpp-optrun-")
     os.makedirs(work, exist_ok=True)
     tally = {"cases": 0, "rays": 0, "hits": 0, "flagged": 0, "t_redone": 0, "failed_rays": 0, "families": {},
