@@ -80,7 +80,7 @@ TEST(LightScene, BadSpecsNameTheField) {
             f + ".type': 'spot' is not one of point, directional, sphere, rect");
   EXPECT_EQ(error_of(R"([{"type": "sphere", "center": [0, 0, 0], "samples": 4}])"), f + ".radius': missing");
   EXPECT_EQ(error_of(R"([{"type": "sphere", "center": [0, 0, 0], "radius": -1, "samples": 4}])"),
-            f + ".radius': value -1 outside [1e-09, 1e+09]");
+            f + ".radius': value -1 outside (0, 1e+99]");
   EXPECT_EQ(error_of(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1}])"), f + ".samples': missing");
   EXPECT_EQ(error_of(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "samples": 2.5}])"),
             f + ".samples': value 2.5 must be an integer");
@@ -93,14 +93,14 @@ TEST(LightScene, BadSpecsNameTheField) {
   EXPECT_EQ(error_of(R"([{"type": "rect", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [2, 0, 0], "samples": 4}])"),
             f + ".edge2': is parallel to edge1: the rectangle has no area");
   EXPECT_EQ(error_of(R"([{"type": "rect", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [2, 0, 0], "samples": 4}])"),
-            f + ".edge1': is the zero vector (or shorter than 1e-9)");
+            f + ".edge1': is the zero vector");
   EXPECT_EQ(error_of(R"([{"type": "directional", "direction": [0, 0, 0]}])"),
-            f + ".direction': is the zero vector (or shorter than 1e-9)");
+            f + ".direction': is the zero vector (or shorter than 1e-150)");
   EXPECT_EQ(error_of(R"([{"type": "directional", "position": [0, 1, 0]}])"), f + ".position': unknown field");
   EXPECT_EQ(error_of(R"([{"type": "point", "position": [0, 1, 0], "samples": 4}])"), f + ".samples': unknown field");
   EXPECT_EQ(error_of(R"([{"type": 3, "position": [0, 1, 0]}])"), f + ".type': expected a string");
   EXPECT_EQ(error_of(kSun, R"("samples_per_pixel": 0, )"), "field 'samples_per_pixel': value 0 outside [1, 1024]");
-  EXPECT_EQ(error_of(kSun, R"("seed": -1, )"), "field 'seed': value -1 outside [0, 9.0072e+15]");
+  EXPECT_EQ(error_of(kSun, R"("seed": -1, )"), "field 'seed': value -1 outside [0, 9007199254740991]");
 }
 
 TEST(Sampling, StrataGridAndStratification) {

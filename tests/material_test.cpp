@@ -181,3 +181,27 @@ TEST(Shade, AShadowQueryIsLitUnlessSomethingElseLiesBeforeThePoint) {
 
 }  // namespace
 }  // namespace rt
+
+namespace rt {
+namespace {
+
+// The barycentric coordinates of a point are those of the triangle at unit scale, for a
+// triangle scaled near the input limit (the dot products would overflow) or down to the
+// tiniest doubles (they would underflow): smooth normals survive every scale.
+TEST(Barycentric, TheSameAtEveryScale) {
+  const fmpp::isect::Triangle unit{{{0.5, -1, 2}, {3, 0.25, 1}, {-1, 2, 0.5}}};
+  const glm::dvec3 p = 0.2 * unit.p[0] + 0.3 * unit.p[1] + 0.5 * unit.p[2];
+  const glm::dvec3 want = barycentric(unit, p);
+  EXPECT_NEAR(want.y, 0.3, 1e-12);
+  EXPECT_NEAR(want.z, 0.5, 1e-12);
+  for (int e : {-1060, -340, 250, 300, 329}) {
+    fmpp::isect::Triangle t = unit;
+    for (auto& v : t.p) v = glm::dvec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e));
+    const glm::dvec3 q(std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e));
+    if (e > -1000) EXPECT_EQ(barycentric(t, q), want) << "scale 2^" << e;  // exact scaling
+    else EXPECT_NEAR(barycentric(t, q).z, 0.5, 1e-3) << "scale 2^" << e;  // subnormal: rounded
+  }
+}
+
+}  // namespace
+}  // namespace rt

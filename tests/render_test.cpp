@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "backends/backend.h"
+#include "sw/rt/exact_check.h"
 #include "sw/rt/render.h"
 #include "tests/shipped_scene.h"
 #include "sw/isect/forms/forms.h"
@@ -33,7 +34,8 @@ Image render_on(const std::string& backend, const Scene& s, int size, fmpp::isec
   for (BatchKind k : object) fi.set_mapping(k, fmpp::isect::Mapping::kObject);
   RenderOptions ro;
   ro.width = ro.height = size;
-  Image img = render(s, fi, ro, nullptr);
+  ExactCheck check(fi, s.triangles, "render_on(" + backend + ")");
+  Image img = render(s, check, ro, nullptr);
   be->finish();
   *st = fi.stats();
   return img;
@@ -106,7 +108,8 @@ TEST(RenderShadowCalls, TogetherModelEqualsRtl) {
     fi.set_kinds_together(i < 2);
     RenderOptions ro;
     ro.width = ro.height = 12;
-    img[i] = render(s, fi, ro, nullptr).to_rgb8();
+    ExactCheck check(fi, s.triangles);
+    img[i] = render(s, check, ro, nullptr).to_rgb8();
     be->finish();
     cycles[i] = fi.stats().cycles;
     together[i] = fi.stats_together().cycles;
@@ -130,7 +133,8 @@ TEST(RenderCulling, SameImageFewerBroadcasts) {
     FmppIntersector fi(dev, s.triangles, o);
     RenderOptions ro;
     ro.width = ro.height = 48;
-    img[cull] = render(s, fi, ro, nullptr).to_rgb8();
+    ExactCheck check(fi, s.triangles);
+    img[cull] = render(s, check, ro, nullptr).to_rgb8();
     st[cull] = fi.stats();
   }
   EXPECT_EQ(img[0], img[1]);

@@ -82,5 +82,53 @@ TEST(RobustRender, SpawnOffsetFollowsTheHitPoint) {
   EXPECT_LT(spawn_offset(near, 5, n, 0x1p-40), 1e-10);  // the old offset here was 1e-5 of the scene
 }
 
+// A tiled floor and a small box on it, lit by a point light 0.05 above the floor, seen
+// from 100 away (issue 42's shadow leak): the shaded points, at the FMPP's certified t,
+// lie up to about 2^-22 of the distance off the floor, and a shadow ray to a point behind
+// the floor's plane meets its own tile just before its end. With the occlusion stop that
+// hit came back in place of the box's, and 2 % of the pixels in the box's long shadow
+// were lit at n = 32; the picture is the reference's at every n now.
+TEST(RobustRender, LongShadowOfABoxOnAFloorLitFromJustAbove) {
+  Scene s;
+  s.camera = Camera{glm::dvec3(0, 60, 80), glm::dvec3(0), glm::dvec3(0, 1, 0), 2};
+  s.ambient = glm::dvec3(0.02);
+  s.max_depth = 1;
+  s.lights.push_back(Light{glm::dvec3(-0.9, 0.05, 0.6), glm::dvec3(0.8, 0.3, 0.1)});
+  s.materials.push_back(Material{});
+  const auto quad = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d) {
+    const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
+    for (const fmpp::isect::Triangle& t : {fmpp::isect::Triangle{{a, b, c}}, fmpp::isect::Triangle{{a, c, d}}}) {
+      s.triangles.push_back(t);
+      s.material_of.push_back(0);
+      s.normals.push_back({n, n, n});
+    }
+  };
+  for (int i = -4; i < 4; ++i) {
+    for (int k = -4; k < 4; ++k) {
+      const double x = 10.0 * i, z = 10.0 * k;
+      quad({x, 0, z + 10}, {x + 10, 0, z + 10}, {x + 10, 0, z}, {x, 0, z});
+    }
+  }
+  const double x0 = 0.3, x1 = 0.5, z0 = -0.2, z1 = 0, h = 0.25;
+  quad({x0, 0, z1}, {x1, 0, z1}, {x1, h, z1}, {x0, h, z1});
+  quad({x1, 0, z0}, {x0, 0, z0}, {x0, h, z0}, {x1, h, z0});
+  quad({x0, 0, z0}, {x0, 0, z1}, {x0, h, z1}, {x0, h, z0});
+  quad({x1, 0, z1}, {x1, 0, z0}, {x1, h, z0}, {x1, h, z1});
+  quad({x0, h, z1}, {x1, h, z1}, {x1, h, z0}, {x0, h, z0});
+  RenderOptions ro;
+  ro.width = ro.height = 48;
+  ReferenceIntersector ref(s.triangles);
+  const Image want = render(s, ref, ro, nullptr);
+  for (unsigned n : {24u, 28u, 32u}) {
+    SCOPED_TRACE("n = " + std::to_string(n));
+    fmpp::ModelBus bus(fmpp::Config{1024, 26});
+    fmpp::Device dev(bus);
+    fmpp::isect::KernelOptions ko;
+    ko.n = n;
+    FmppIntersector fi(dev, s.triangles, ko);
+    EXPECT_EQ(compare(render(s, fi, ro, nullptr), want).pixels_over, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace rt

@@ -98,8 +98,9 @@ TEST(Scene, ErrorsNameFileAndLineOrField) {
     const char* error;  // after "<dir>/<name>.obj: "
   };
   const BadObj bad_objs[] = {
-      {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n",
-       "cannot read mesh: not a valid obj file (OBJ: vertex index out of range)"},
+      {"badnum", "v 0 0 -3\nv 1 zero -3\nv 0 1 -3\nf 1 2 3\n", "2: 'v' holds something that is not a finite number"},
+      {"fivenum", "v 0 0 -3\nv 1 0 -3 1 1\nv 0 1 -3\nf 1 2 3\n",
+       "2: 'v' needs 3 numbers (x y z), 4 (x y z w) or 6 (x y z r g b), not 5"},
       {"badidx", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 4\n", "4: face refers to vertex 4 of 3"},
       // Normal and texture-coordinate indices are checked like positions (the library
       // took them silently), with the line; negative ones count back from the last.
@@ -243,14 +244,14 @@ TEST(Scene, MeshTransformPlacesVerticesAndNormals) {
     write("t.json", scene_json(R"({"file": "ok.obj", "material": "m", "transform": )" + transform + "}"));
     EXPECT_EQ(error_of("t.json"), dir() + "/t.json: " + want) << transform;
   };
-  expect(R"({"scale": 0})", "field 'meshes[0].transform.scale': value 0 outside [1e-06, 1e+06]");
+  expect(R"({"scale": 0})", "field 'meshes[0].transform.scale': value 0 outside [1e-100, 1e+100]");
   expect(R"({"shear": 1})", "field 'meshes[0].transform.shear': unknown field");
   expect(R"({"translate": [1, 2]})", "field 'meshes[0].transform.translate': expected an array of 3 numbers");
   expect(R"([1, 2, 3])", "field 'meshes[0].transform': expected an object");
-  write("far.obj", "v 0 0 -9e99\nv 1 0 -9e99\nv 0 1 -9e99\nf 1 2 3\n");
-  write("far.json", scene_json(R"({"file": "far.obj", "material": "m", "transform": {"scale": 1000}})"));
-  EXPECT_EQ(error_of("far.json"),
-            dir() + "/far.json: field 'meshes[0].transform': moves a vertex beyond the input limit of 1e100");
+  write("far.obj", "v 0 0 -6e98\nv 1 0 -6e98\nv 0 1 -6e98\nf 1 2 3\n");
+  write("far.json", scene_json(R"({"file": "far.obj", "material": "m", "transform": {"scale": 2}})"));
+  EXPECT_EQ(error_of("far.json"), dir() + "/far.json: field 'meshes[0].transform': moves a vertex of " + dir() +
+                                      "/far.obj to (0, 0, -1.2e+99), beyond the scene's position limit 1e99");
 }
 
 }  // namespace

@@ -160,8 +160,8 @@ TEST(Transform, BadTransformsAreFieldErrors) {
     write("bad.json", scene(R"({"file": "tri.obj", "material": "m", "transform": )" + transform + "}"));
     EXPECT_EQ(error_of([] { load_scene(dir() + "/bad.json"); }), dir() + "/bad.json: " + want) << transform;
   };
-  expect(R"({"scale": [1, 0, 1]})", "field 'meshes[0].transform.scale[1]': value 0 outside [1e-06, 1e+06]");
-  expect(R"({"rotate": {"axis": [0, 0, 0], "deg": 10}})", "field 'meshes[0].transform.rotate.axis': is the zero vector");
+  expect(R"({"scale": [1, 0, 1]})", "field 'meshes[0].transform.scale[1]': value 0 outside [1e-100, 1e+100]");
+  expect(R"({"rotate": {"axis": [0, 0, 0], "deg": 10}})", "field 'meshes[0].transform.rotate.axis': is the zero vector (or shorter than 1e-150)");
   expect(R"({"rotate": {"axis": [0, 1, 0]}})", "field 'meshes[0].transform.rotate.deg': missing");
   expect(R"({"rotate": [{"axis": [0, 1, 0], "deg": 5}, {"axis": [0, 1], "deg": 5}]})",
          "field 'meshes[0].transform.rotate[1].axis': expected an array of 3 numbers");
@@ -179,12 +179,13 @@ TEST(Transform, BadTransformsAreFieldErrors) {
          "field 'meshes[0].transform.scale': cannot be given with 'matrix'");
   expect(R"({"matrix": [[1, 0, 0, "x"], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]})",
          "field 'meshes[0].transform.matrix[0][3]': expected a number");
-  // The input limit holds after the transform.
-  write("far.obj", "v 0 0 -9e99\nv 1 0 -9e99\nv 0 1 -9e99\nf 1 2 3\n");
+  // The scene's position limit holds after the transform.
+  write("far.obj", "v 0 0 -6e98\nv 1 0 -6e98\nv 0 1 -6e98\nf 1 2 3\n");
   write("far.json", scene(R"({"file": "far.obj", "material": "m",
-      "transform": {"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 100, 0], [0, 0, 0, 1]]}})"));
+      "transform": {"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 2, 0], [0, 0, 0, 1]]}})"));
   EXPECT_EQ(error_of([] { load_scene(dir() + "/far.json"); }),
-            dir() + "/far.json: field 'meshes[0].transform': moves a vertex beyond the input limit of 1e100");
+            dir() + "/far.json: field 'meshes[0].transform': moves a vertex of " + dir() +
+                "/far.obj to (0, 0, -1.2e+99), beyond the scene's position limit 1e99");
 }
 
 // ---------------------------------------------------------------------------- glTF

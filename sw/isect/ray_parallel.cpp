@@ -294,11 +294,11 @@ class RayParallelPlan : public PassPlan {
         dev, count, form_.best_words(), done.size(),
         [&](unsigned b, uint32_t v, size_t pos) {
           const Ray& r = rays_[idx_[base + b]];
-          best_[b] = form_.t_of(v, r) * glm::length(r.d);
-          // A certified arbitrary-origin best is within its bound of the exact distance:
-          // the reach is taken from the farthest the exact distance can be (the P^-1
-          // form's reach_for allows for its relative bound itself).
-          if (general && form_.certified()) best_[b] *= 1 + form_.t_rel_bound_at(dev, b, v, done[pos]);
+          // The reach is taken from the farthest the best's exact distance can be: its
+          // certified relative bound (infinite where a form has none) on top of the
+          // distance reported. The exact nearest hit lies no farther, whatever the
+          // bound of its own triangle (CullBounds::reach_for adds that as well).
+          best_[b] = form_.t_of(v, r) * glm::length(r.d) * (1 + form_.t_rel_bound_at(dev, b, v, done[pos]));
           winner_[b] = done[pos];
         },
         every_ray ? nullptr : &probed_);

@@ -37,6 +37,8 @@ class SharedIntersector : public rt::Intersector {
   SharedIntersector(rt::FmppIntersector& fi, SharedPasses& share) : fi_(fi), share_(share) {}
   void set_batch_kind(rt::BatchKind k) override { fi_.set_batch_kind(k); }
   double spawn_margin() const override { return fi_.spawn_margin(); }
+  isect::AnswerRules answer_rules(rt::BatchKind k) const override { return fi_.answer_rules(k); }
+  std::string describe() const override { return fi_.describe() + ", passes shared among the ranks"; }
   std::vector<isect::Hit> intersect(const std::vector<isect::Ray>& rays) override {
     share_.begin_batch(0);
     std::vector<isect::Hit> h = fi_.intersect(rays);

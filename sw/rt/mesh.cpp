@@ -1,4 +1,5 @@
-// Mesh files through assimp, confined to the file itself (see mesh.h).
+// Mesh files: assimp confined to the file itself, and the project's own readers of
+// vertex values (see mesh.h).
 #include "sw/rt/mesh.h"
 
 #include <assimp/material.h>
@@ -9,22 +10,17 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <charconv>
-#include <map>
-#include <cctype>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
-#include <unordered_map>
 
 #include "sw/isect/geometry/io.h"
-
-#include <nlohmann/json.hpp>
 #include "sw/rt/isolate.h"
 #include "sw/rt/mesh_parts.h"
+#include "sw/rt/mesh_text.h"
 #include "sw/rt/obj_text.h"
 #include "sw/rt/scene.h"
 
@@ -64,16 +60,86 @@ struct Affine {
   }
 };
 
+// Where each vertex's coordinates come from: the file's own values where the project
+// reads them (OBJ through the library's tags, PLY in file order: obj_text.h,
+// mesh_text.h), else the library's (binary STL and glTF store single precision, so its
+// floats are the file's values).
+struct VertexSource {
+  const ObjVertices* obj = nullptr;
+  const PlyVertices* ply = nullptr;
+
+  glm::dvec3 position(const aiMesh& m, unsigned i) const {
+    const aiVector3D& v = m.mVertices[i];
+    if (obj) return obj->position(v.x, v.y, v.z);
+    if (ply) return ply->positions[i];
+    return glm::dvec3(v.x, v.y, v.z);
+  }
+  // (0, 0, 0) where the mesh has no normals.
+  glm::dvec3 normal(const aiMesh& m, unsigned i) const {
+    if (!m.mNormals) return glm::dvec3(0);
+    const aiVector3D& v = m.mNormals[i];
+    if (obj) return obj->normal(v.x, v.y, v.z);
+    if (ply && !ply->normals.empty()) return ply->normals[i];
+    return glm::dvec3(v.x, v.y, v.z);
+  }
+};
+
+// One corner of a face: its position and normal (zero where the file gives none), as
+// the file holds them.
+struct Corner {
+  glm::dvec3 p, n;
+};
+
+// Appends face `f` of part g (a polygon of 3 or more corners) as triangles, triangulated
+// on the file's values, each vertex checked as read and as placed by to_root; `where`
+// (the file, or the file and the face's line) begins each message.
+void add_face(const std::string& where, size_t f, const std::vector<Corner>& corners, const Affine& to_root, int material,
+              MeshGroup& g) {
+  const std::string face = "face " + std::to_string(f) + " of part '" + g.name + "' ";
+  std::vector<glm::dvec3> file(corners.size()), placed(corners.size()), normals(corners.size());
+  for (size_t c = 0; c < corners.size(); ++c) {
+    file[c] = placed[c] = corners[c].p;
+    // The file's own value first, then where the node transforms put it.
+    for (int moved = 0; moved < (to_root.identity ? 1 : 2); ++moved) {
+      if (moved) placed[c] = to_root.point(placed[c]);
+      const std::string why = fmpp::isect::check_point(placed[c]);
+      if (!why.empty()) {
+        throw SceneError(where + ": vertex of " + face + (moved ? "placed by the node transforms " : "") + why);
+      }
+    }
+    const std::string nwhy = fmpp::isect::check_point(corners[c].n);
+    if (!nwhy.empty()) throw SceneError(where + ": normal of " + face + nwhy);
+    normals[c] = to_root.identity ? corners[c].n : to_root.normal(corners[c].n);
+  }
+  for (const auto& tri : triangulate(file)) {
+    fmpp::isect::Triangle t;
+    std::array<glm::dvec3, 3> n;
+    for (int c = 0; c < 3; ++c) {
+      t.p[c] = placed[tri[c]];
+      n[c] = normals[tri[c]];
+    }
+    if (to_root.mirrors) {  // keep the front face where it was (the glTF rule)
+      std::swap(t.p[1], t.p[2]);
+      std::swap(n[1], n[2]);
+    }
+    glm::dvec3 fn = unit(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+    if (fn == glm::dvec3(0)) fn = glm::dvec3(0, 0, 1);
+    for (auto& v : n) {
+      v = unit(v);
+      if (v == glm::dvec3(0)) v = fn;  // no normal, or a zero or non-finite one
+    }
+    g.triangles.push_back(t);
+    g.normals.push_back(n);
+    g.material.push_back(material);
+  }
+}
+
 struct Walker {
   const std::string& path;
   const aiScene& scene;
-  const DoubleValues* exact;  // OBJ only
+  const VertexSource& source;
   Mesh& out;
   const std::vector<int>& material_of;  // the library's material index -> Mesh::materials, or -1
-
-  glm::dvec3 value(const aiVector3D& v) const {
-    return exact ? (*exact)(v.x, v.y, v.z) : glm::dvec3(v.x, v.y, v.z);
-  }
 
   // parent x the node's own transform; refused if not affine, not finite or singular.
   Affine compose(const Affine& parent, const aiMatrix4x4& t, const std::string& name) const {
@@ -128,56 +194,24 @@ struct Walker {
   }
 
   void mesh(const aiMesh& m, MeshGroup& g, const Affine& to_root) const {
-    const bool normals = m.HasNormals();
     const int material = m.mMaterialIndex < material_of.size() ? material_of[m.mMaterialIndex] : -1;
+    std::vector<Corner> corners;
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices != 3 || !face.mIndices) {
+      if (face.mNumIndices < 3 || !face.mIndices) {  // a point or a line
         ++out.skipped_primitives;
         continue;
       }
-      fmpp::isect::Triangle t;
-      std::array<glm::dvec3, 3> n;
-      for (int c = 0; c < 3; ++c) {
+      corners.clear();
+      for (unsigned c = 0; c < face.mNumIndices; ++c) {
         const unsigned i = face.mIndices[c];
         if (i >= m.mNumVertices || !m.mVertices) {
           throw SceneError(path + ": face " + std::to_string(f) + " of part '" + g.name + "' refers to vertex " +
                            std::to_string(i) + " of " + std::to_string(m.mNumVertices));
         }
-        t.p[c] = value(m.mVertices[i]);
-        // The file's own value first, then where the node transforms put it.
-        for (int placed = 0; placed < (to_root.identity ? 1 : 2); ++placed) {
-          if (placed) t.p[c] = to_root.point(t.p[c]);
-          const std::string why = fmpp::isect::check_point(t.p[c]);
-          if (!why.empty()) {
-            throw SceneError(path + ": vertex of face " + std::to_string(f) + " of part '" + g.name + "' " +
-                             (placed ? "placed by the node transforms " : "") + why +
-                             (placed || (std::isfinite(t.p[c].x) && std::isfinite(t.p[c].y) && std::isfinite(t.p[c].z))
-                                  ? ""
-                                  : std::string(" (") + (exact ? "or a value that rounds like another one " : "") +
-                                        "beyond the single precision of the mesh reader, 3.4e38)"));
-          }
-        }
-        n[c] = normals ? value(m.mNormals[i]) : glm::dvec3(0);
-        const std::string nwhy = fmpp::isect::check_point(n[c]);
-        if (!nwhy.empty()) {
-          throw SceneError(path + ": normal of face " + std::to_string(f) + " of part '" + g.name + "' " + nwhy);
-        }
-        if (!to_root.identity) n[c] = to_root.normal(n[c]);
+        corners.push_back(Corner{source.position(m, i), source.normal(m, i)});
       }
-      if (to_root.mirrors) {  // keep the front face where it was (the glTF rule)
-        std::swap(t.p[1], t.p[2]);
-        std::swap(n[1], n[2]);
-      }
-      glm::dvec3 fn = unit(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
-      if (fn == glm::dvec3(0)) fn = glm::dvec3(0, 0, 1);
-      for (auto& v : n) {
-        v = unit(v);
-        if (v == glm::dvec3(0)) v = fn;  // no normal, or a zero or non-finite one
-      }
-      g.triangles.push_back(t);
-      g.normals.push_back(n);
-      g.material.push_back(material);
+      add_face(path, f, corners, to_root, material, g);
     }
   }
 
@@ -313,33 +347,77 @@ std::vector<int> file_materials(const std::string& path, const std::string& ext,
   return index;
 }
 
-// The library's part: `data` is the file's bytes (already checked and read).
-Mesh parse_mesh(const std::string& path, const std::string& ext, std::string data) {
-  std::unique_ptr<DoubleValues> exact;
-  if (ext == ".obj") {
-    data = normalize_obj(path, std::move(data));
-    check_obj_indices(path, data);
-    exact = std::make_unique<DoubleValues>(data);
+// A mesh the project reads itself (OFF, ASCII STL): its parts as groups, in order.
+Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
+  Mesh m;
+  std::vector<Corner> corners;
+  for (const PolyMesh& pm : parts) {
+    MeshGroup g;
+    g.name = pm.name;
+    for (size_t f = 0; f < pm.faces.size(); ++f) {
+      corners.clear();
+      for (uint32_t i : pm.faces[f]) {
+        corners.push_back(Corner{pm.positions[i], pm.normals.empty() ? glm::dvec3(0) : pm.normals[i]});
+      }
+      add_face(path + ":" + std::to_string(pm.face_line[f]), f, corners, Affine{}, -1, g);
+    }
+    m.skipped_primitives += pm.skipped;
+    m.triangles += g.triangles.size();
+    if (!g.triangles.empty()) m.groups.push_back(std::move(g));
   }
-  const std::string text = ext == ".obj" || ext == ".gltf" || ext == ".glb" ? data : std::string();
+  return m;
+}
+
+// The library's part: `data` is the file's bytes (already checked and read). The
+// library triangulates nothing: polygons are triangulated on the file's values
+// (add_face), and its points and lines are counted, not kept.
+Mesh library_mesh(const std::string& path, const std::string& ext, std::string data) {
+  std::unique_ptr<ObjVertices> obj;
+  std::string text, ply_data;  // OBJ, glTF: the text of its materials; PLY: its bytes
+  if (ext == ".obj") {
+    text = normalize_obj(path, std::move(data));
+    check_obj_indices(path, text);
+    obj = std::make_unique<ObjVertices>(path, text);
+    data = obj->library_text();
+  } else if (ext == ".gltf" || ext == ".glb") {
+    text = data;
+  } else if (ext == ".ply") {
+    ply_data = data;
+  }
   Assimp::Importer imp;
   auto* io = new ConfinedIo(path, std::move(data));
   imp.SetIOHandler(io);  // the importer owns and deletes it
-  // Points and lines are dropped by the library itself (they hold no triangles).
-  imp.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* sc = imp.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  const aiScene* sc = imp.ReadFile(path, aiProcess_ValidateDataStructure);
   if (!sc || !sc->mRootNode || (sc->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
     const std::string why = !io->opened_error().empty() ? io->opened_error() : without_quotes(imp.GetErrorString());
     throw SceneError(path + ": cannot read mesh: not a valid " + ext.substr(1) + " file" +
                      (why.empty() ? "" : " (" + why + ")"));
   }
+  VertexSource source{obj.get(), nullptr};
+  PlyVertices ply;
+  if (ext == ".ply") {
+    ply = read_ply_vertices(path, ply_data);
+    check_ply_order(path, *sc, ply);
+    source.ply = &ply;
+  }
   Mesh m;
   const std::vector<int> material_of = file_materials(path, ext, *sc, text, m);
-  Walker{path, *sc, exact.get(), m, material_of}.node(*sc->mRootNode, "", Affine{});
-  if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
+  Walker{path, *sc, source, m, material_of}.node(*sc->mRootNode, "", Affine{});
   return m;
 }
 
+Mesh parse_mesh(const std::string& path, const std::string& ext, std::string data) {
+  Mesh m;
+  if (ext == ".off") {
+    m = polygon_mesh(path, {read_off(path, data)});
+  } else if (ext == ".stl" && is_stl_ascii(data)) {
+    m = polygon_mesh(path, read_stl_ascii(path, data));
+  } else {
+    m = library_mesh(path, ext, std::move(data));
+  }
+  if (m.triangles == 0) throw SceneError(path + ": the mesh holds no triangles");
+  return m;
+}
 
 }  // namespace
 

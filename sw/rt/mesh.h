@@ -1,7 +1,9 @@
-// Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb), all read by
-// one library (assimp), with every index and coordinate it returns checked here before
-// use. Only the file itself is opened (for .gltf, also buffer files in its directory;
-// for .obj, the material libraries its mtllib statements name in its directory).
+// Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb). OBJ, PLY,
+// binary STL and glTF are read by one library (assimp), OFF and ASCII STL by the project
+// (mesh_text.h); every coordinate is the file's own value, in double (mesh_text.h), and
+// every index and coordinate is checked here before use. Only the file itself is opened
+// (for .gltf, also buffer files in its directory; for .obj, the material libraries its
+// mtllib statements name in its directory).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -47,13 +49,12 @@ const std::vector<std::string>& mesh_extensions();
 
 // Reads a mesh file. Throws SceneError (scene.h) naming `path` and the cause: not a
 // regular file or larger than fmpp::isect::kMaxMeshBytes, an unknown extension, a file
-// the library cannot parse, an index out of range, a coordinate that is not finite or
-// outside the input limit (fmpp::isect::check_point; the library reads
-// single precision, so a coordinate beyond 3.4e38 is not finite), or no triangles. The message quotes nothing
-// from the file's contents.
-// The library runs in a child process limited to kMeshReaderBytes of address space
-// (without AddressSanitizer) and set_mesh_time_limit seconds (60 unless set): a file it
-// loops, crashes or runs out of memory on is a SceneError too.
+// that cannot be parsed, an index out of range, a coordinate that is not finite or
+// outside the input limit (fmpp::isect::check_point), or no triangles. The message
+// quotes nothing from the file's contents.
+// The reading runs in a child process limited to kMeshReaderBytes of address space
+// (without AddressSanitizer) and set_mesh_time_limit seconds (60 unless set): a file the
+// library loops, crashes or runs out of memory on is a SceneError too.
 Mesh load_mesh(const std::string& path);
 inline constexpr unsigned long long kMeshReaderBytes = 8ull << 30;
 void set_mesh_time_limit(double seconds);

@@ -1,10 +1,9 @@
 // OBJ text around the mesh library (see obj_text.h).
 #include "sw/rt/obj_text.h"
 
-#include <assimp/fast_atof.h>
-
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <sstream>
 
 #include "sw/isect/geometry/io.h"
@@ -15,12 +14,29 @@ namespace rt {
 std::string normalize_obj(const std::string& path, std::string text) {
   const std::string err = fmpp::isect::check_text(path, &text);
   if (!err.empty()) throw SceneError(err);
-  std::string out;
+  std::string out, joined;
   out.reserve(text.size() + 1);
+  size_t held = 0;  // lines joined into `joined` so far
   fmpp::isect::for_each_line(text, [&](const std::string& line, size_t) {
-    out += line;
-    out += '\n';
+    // The library joins a line ending in '\' with the next one; so does this text, with
+    // the statement on its first line and an empty line for each one joined, so that
+    // every line keeps its number.
+    joined += line;
+    ++held;
+    if (!joined.empty() && joined.back() == '\\') {
+      joined.pop_back();
+      joined += ' ';
+      return;
+    }
+    const size_t start = joined.find_first_not_of(" \t\f\v");
+    if (start != std::string::npos) out.append(joined, start, std::string::npos);
+    out.append(held, '\n');
+    joined.clear();
+    held = 0;
   });
+  const size_t start = joined.find_first_not_of(" \t\f\v");
+  if (start != std::string::npos) out.append(joined, start, std::string::npos);
+  out.append(held, '\n');
   return out;
 }
 
@@ -162,24 +178,53 @@ void parse_mtl(const std::string& path, std::string text, std::map<std::string, 
   finish();
 }
 
-DoubleValues::DoubleValues(const std::string& obj_text) {
-  fmpp::isect::for_each_line(obj_text, [&](const std::string& line, size_t) {
+namespace {
+
+constexpr size_t kLow = size_t{1} << 20;  // the tag's first number: the index's low 20 bits
+
+}  // namespace
+
+ObjVertices::ObjVertices(const std::string& path, const std::string& text) : path_(path) {
+  library_text_.reserve(text.size());
+  fmpp::isect::for_each_line(text, [&](const std::string& line, size_t lineno) {
     std::istringstream ss(line);
-    std::string tag, tok[3];
-    if (!(ss >> tag) || (tag != "v" && tag != "vn") || !(ss >> tok[0] >> tok[1] >> tok[2])) return;
-    float f[3];
-    glm::dvec3 d;
-    for (int k = 0; k < 3; ++k) {
-      try {
-        Assimp::fast_atoreal_move<float, NotANumber>(tok[k].c_str(), f[k]);
-      } catch (...) {
-        return;
-      }
-      if (!fmpp::isect::parse_finite(tok[k], &d[k])) return;
+    std::string tag;
+    if (!(ss >> tag) || (tag != "v" && tag != "vn")) {
+      library_text_ += line;
+      library_text_ += '\n';
+      return;
     }
-    const auto [it, fresh] = table_.emplace(key(f[0], f[1], f[2]), Entry{d, false});
-    if (!fresh && it->second.value != d) it->second.ambiguous = true;
+    const std::string where = path + ":" + std::to_string(lineno) + ": '" + tag + "' ";
+    std::vector<double> v;
+    for (std::string tok; ss >> tok;) {
+      double d = 0;
+      if (!fmpp::isect::parse_finite(tok, &d)) throw SceneError(where + "holds something that is not a finite number");
+      v.push_back(d);
+    }
+    glm::dvec3 p(0);
+    if (tag == "vn" ? v.size() != 3 : v.size() != 3 && v.size() != 4 && v.size() != 6) {
+      throw SceneError(where + (tag == "vn" ? "needs 3 numbers" : "needs 3 numbers (x y z), 4 (x y z w) or 6 (x y z r g b)") +
+                       ", not " + std::to_string(v.size()));
+    }
+    for (int k = 0; k < 3; ++k) p[k] = v[k];
+    if (v.size() == 4) {
+      if (v[3] == 0) throw SceneError(where + "has a w of 0");
+      p /= v[3];
+    }
+    std::vector<glm::dvec3>& to = tag == "v" ? positions_ : normals_;
+    library_text_ += tag + " " + std::to_string(to.size() % kLow) + " " + std::to_string(to.size() / kLow) + " 1\n";
+    to.push_back(p);
   });
+}
+
+size_t ObjVertices::index(float x, float y, float z, size_t count) const {
+  const double lo = x, hi = y;
+  if (z == 1 && lo >= 0 && lo < static_cast<double>(kLow) && lo == std::floor(lo) && hi >= 0 && hi == std::floor(hi) &&
+      hi < static_cast<double>(count)) {
+    const size_t i = static_cast<size_t>(lo) + kLow * static_cast<size_t>(hi);
+    if (i < count) return i;
+  }
+  throw SceneError(path_ + ": cannot read mesh: the mesh library returned a vertex that is not one of the file's");
 }
 
 }  // namespace rt

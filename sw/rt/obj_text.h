@@ -1,12 +1,10 @@
 // OBJ text around the mesh library (mesh.cpp): the text it is given, and the
-// double-precision values of the numbers it reads in single precision.
+// double-precision values of the numbers it would read in single precision.
 #pragma once
 
 #include <cstdint>
-#include <cstring>
-#include <string>
 #include <map>
-#include <unordered_map>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -16,8 +14,11 @@
 namespace rt {
 
 // OBJ text as assimp should see it: one line end ("\n"), comments removed (so that a
-// '#' ends a face's statement as it ends a vertex's), no byte-order mark. The same text
-// is all the parser sees, so no check and parser can disagree on where a statement is.
+// '#' ends a face's statement as it ends a vertex's), no byte-order mark, no white space
+// before a statement (the library would skip such a line), and a statement continued
+// with '\' joined onto its first line (an empty line for each line joined, so that
+// every line keeps its number). The same text is all the parser sees, so no check and
+// parser can disagree on where a statement is.
 // Throws SceneError naming `path` for text that is not a readable text file.
 std::string normalize_obj(const std::string& path, std::string text);
 
@@ -54,53 +55,35 @@ struct MtlMaterial {
 // defined twice (in this file or an earlier one of `out`).
 void parse_mtl(const std::string& path, std::string text, std::map<std::string, MtlMaterial>& out);
 
-// The library reads coordinates in single precision; OBJ files hold decimal text that
-// the ray tracer reads in double (the scenes' renders depend on it, and the input limit
-// 1e100 is beyond float). This table maps each 'v' and 'vn' statement's numbers as the
-// library converts them (its own fast_atoreal_move<float>) to the same numbers read by
-// strtod. It only refines values: every index and every triangle comes from the
-// library, and a float triple missing from the table, or reached from two different
-// double triples, keeps the library's value (no crash and no mix-up can follow from a
-// disagreement about the text).
-class DoubleValues {
-  // What the library's number reader throws here (its own exception type is not exported).
-  struct NotANumber {
-    template <class... Args>
-    explicit NotANumber(Args&&...) {}
-  };
-
+// The 'v' and 'vn' statements of normalized OBJ text read by the project, each number
+// the double nearest its decimal (strtod), and the text the mesh library reads in their
+// place: the same text with each such statement replaced by its own index, "v i j 1"
+// for the vertex i + 2^20 j (every one of them a whole number the library's single
+// precision holds exactly). The library copies, splits and reorders vertices freely;
+// each vertex and normal it returns still names the statement it came from, and its
+// faces, groups and materials are the file's. A 'v' holds x y z, x y z w (the point
+// (x/w, y/w, z/w), each quotient rounded once) or x y z r g b (the colour unused); a
+// 'vn' holds x y z. Throws SceneError "<path>:<line>: ..." for any other count, a
+// number that is not finite, or a w of 0.
+class ObjVertices {
  public:
-  explicit DoubleValues(const std::string& obj_text);
-  // The double triple behind the library's (x, y, z), or the float values themselves.
-  glm::dvec3 operator()(float x, float y, float z) const {
-    const auto it = table_.find(key(x, y, z));
-    if (it == table_.end() || it->second.ambiguous) return glm::dvec3(x, y, z);
-    return it->second.value;
+  ObjVertices(const std::string& path, const std::string& text);
+  const std::string& library_text() const { return library_text_; }
+  // The statement's value behind the library's vertex (x, y, z); throws SceneError naming
+  // the file for a vertex that is no index this object wrote.
+  glm::dvec3 position(float x, float y, float z) const { return positions_[index(x, y, z, positions_.size())]; }
+  // The same for a normal; (0, 0, 0), which the library gives a corner without one, is
+  // the zero vector.
+  glm::dvec3 normal(float x, float y, float z) const {
+    if (x == 0 && y == 0 && z == 0) return glm::dvec3(0);
+    return normals_[index(x, y, z, normals_.size())];
   }
 
  private:
-  struct Entry {
-    glm::dvec3 value;
-    bool ambiguous;
-  };
-  struct Key {
-    uint32_t b[3];
-    bool operator==(const Key& o) const { return b[0] == o.b[0] && b[1] == o.b[1] && b[2] == o.b[2]; }
-  };
-  struct Hash {
-    size_t operator()(const Key& k) const {
-      return (uint64_t{k.b[0]} * 0x9E3779B97F4A7C15ull) ^ (uint64_t{k.b[1]} * 0xC2B2AE3D27D4EB4Full) ^ k.b[2];
-    }
-  };
-  static Key key(float x, float y, float z) {
-    Key k;
-    std::memcpy(&k.b[0], &x, 4);
-    std::memcpy(&k.b[1], &y, 4);
-    std::memcpy(&k.b[2], &z, 4);
-    return k;
-  }
-  std::unordered_map<Key, Entry, Hash> table_;
+  size_t index(float x, float y, float z, size_t count) const;
+  std::string path_;
+  std::vector<glm::dvec3> positions_, normals_;
+  std::string library_text_;
 };
-
 
 }  // namespace rt

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "sw/isect/exact/reference.h"
+#include "sw/isect/pass/policy.h"
 #include "sw/rt/sampling.h"
 #include "sw/rt/shade.h"
 
@@ -77,6 +78,34 @@ std::pair<std::vector<Hit>, std::vector<Hit>> FmppIntersector::intersect_two(con
   std::vector<Hit> hb(hits.begin() + static_cast<std::ptrdiff_t>(a.size()), hits.end());
   hits.resize(a.size());
   return {std::move(hits), std::move(hb)};
+}
+
+fmpp::isect::AnswerRules FmppIntersector::answer_rules(BatchKind k) const {
+  fmpp::isect::AnswerRules rules;
+  // A shadow batch stops at any certified occluder; cast together with the next depth's
+  // rays, the shadow stop holds for the call, but only rays with a finite tmax (the
+  // shadow rays) stop.
+  rules.any_occluder = shadow_stop_ && k == BatchKind::kShadow;
+  rules.max_t_err = fmpp::isect::policy::t_accuracy(opt_);
+  return rules;
+}
+
+std::string FmppIntersector::describe() const {
+  const fmpp::Config& c = dev_.config();
+  auto on = [](bool b) { return b ? "on" : "off"; };
+  std::string s = "n = " + std::to_string(opt_.n) + ", " + std::to_string(c.blocks) + " blocks x " +
+                  std::to_string(c.words) + " words, mapping primary " + to_string(mapping_[0]) + " / shadow " +
+                  to_string(mapping_[1]) + " / secondary " + to_string(mapping_[2]) + ", mul " +
+                  to_string(opt_.mul) + ", origins " + to_string(opt_.origins) + ", vbits " +
+                  std::to_string(opt_.vbits) + ", mbits " + std::to_string(opt_.mbits) + ", qbits " +
+                  std::to_string(opt_.qbits) + ", cond-bits " + std::to_string(opt_.cond_bits) + ", t-accuracy " +
+                  std::to_string(fmpp::isect::policy::t_accuracy(opt_)) + ", merge-below " +
+                  std::to_string(opt_.merge_below) + ", cull " + on(opt_.cull) + " (packet " +
+                  std::to_string(opt_.cull_packet) + ", probe " + on(opt_.cull_probe) + ", FMPP boxes " +
+                  on(opt_.fmpp_boxes) + ", gates " + on(opt_.gates) + "), coherent " + on(opt_.coherent) +
+                  ", watertight " + on(opt_.watertight) + ", shadow stop " + on(shadow_stop_) +
+                  ", shadow calls " + (together_ ? "together" : "apart");
+  return s;
 }
 
 const char* to_string(BatchKind k) {

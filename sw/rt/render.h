@@ -24,6 +24,7 @@
 
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
+#include "sw/isect/exact/answer_check.h"
 #include "sw/isect/exact/reference_bvh.h"
 #include "sw/rt/image.h"
 #include "sw/rt/ray_kind.h"
@@ -53,6 +54,12 @@ class Intersector {
   // error bound: 0 for the reference and the FMPP (exact or certified t); Embree's float
   // arithmetic takes float_spawn_margin.
   virtual double spawn_margin() const { return 0; }
+  // What the ray-level exact check (exact_check.h) allows the answers of a batch of kind
+  // k: exact answers by default; a shadow batch under the shadow stop may name any
+  // occluder, and certified t's may be off by their bound.
+  virtual fmpp::isect::AnswerRules answer_rules(BatchKind) const { return {}; }
+  // The machine and the options behind the answers, for the check's messages.
+  virtual std::string describe() const { return "the exact reference"; }
 };
 
 class ReferenceIntersector : public Intersector {
@@ -78,7 +85,8 @@ class FmppIntersector : public Intersector {
   std::vector<fmpp::isect::Hit> intersect(const std::vector<fmpp::isect::Ray>& rays) override;
   void set_batch_kind(BatchKind k) override { kind_ = k; }
   // Shadow batches run as occlusion queries (KernelOptions::occlusion: a shadow ray
-  // stops at its first certified occluder; the shading only asks whether one exists),
+  // whose own triangle is proven beyond its end stops at its first certified occluder;
+  // the shading only asks whether the nearest hit before the end is another triangle),
   // unless this is off: then as nearest-hit queries like the others. The same image.
   void set_shadow_stop(bool on) { shadow_stop_ = on; }
   // The mapping of one kind of batch (initially the options' for every kind); rays the
@@ -94,6 +102,9 @@ class FmppIntersector : public Intersector {
       const std::vector<fmpp::isect::Ray>& a, BatchKind ka, const std::vector<fmpp::isect::Ray>& b,
       BatchKind kb) override;
   const fmpp::isect::KernelStats& stats_together() const { return together_stats_; }
+  fmpp::isect::AnswerRules answer_rules(BatchKind k) const override;
+  // "n = 24, 4096 blocks x 32 words, ..." with every kernel option and mapping choice.
+  std::string describe() const override;
   const fmpp::isect::KernelStats& stats() const { return stats_; }
   const fmpp::isect::KernelStats& stats(BatchKind k) const { return by_kind_[static_cast<int>(k)]; }
 

@@ -92,6 +92,20 @@ struct PositionedDomParser : nlohmann::detail::json_sax_dom_parser<json> {
   }
 };
 
+// The renderer's camera basis: the view direction look_at - eye normalized, and the
+// right vector, cross(view, up) normalized: both at least kMinSceneLength long, or the
+// basis would not be finite.
+void check_camera(const Camera& c, const std::string& f) {
+  const glm::dvec3 d = c.look_at - c.eye;
+  if (d == glm::dvec3(0)) field_error(f, "camera.look_at", "equals camera.eye");
+  if (!(glm::length(d) >= kMinSceneLength)) {
+    field_error(f, "camera.look_at", "is within 1e-150 of camera.eye: the view direction cannot be normalized");
+  }
+  if (!(glm::length(glm::cross(glm::normalize(d), c.up)) >= kMinSceneLength)) {
+    field_error(f, "camera.up", "is parallel to the viewing direction (or less than 1e-150 across it)");
+  }
+}
+
 }  // namespace
 
 const char* to_string(LightType t) {
@@ -137,14 +151,11 @@ Scene load_scene(const std::string& json_path) {
 
   const json& cam = require(j, "camera", f, "");
   reject_unknown(cam, {"eye", "look_at", "up", "fov_y_deg"}, f, "camera");
-  s.camera.eye = vec3(require(cam, "eye", f, "camera"), f, "camera.eye");
-  s.camera.look_at = vec3(require(cam, "look_at", f, "camera"), f, "camera.look_at");
-  s.camera.up = vec3(require(cam, "up", f, "camera"), f, "camera.up");
+  s.camera.eye = position(require(cam, "eye", f, "camera"), f, "camera.eye");
+  s.camera.look_at = position(require(cam, "look_at", f, "camera"), f, "camera.look_at");
+  s.camera.up = direction(require(cam, "up", f, "camera"), f, "camera.up");
   s.camera.fov_y_deg = number(require(cam, "fov_y_deg", f, "camera"), f, "camera.fov_y_deg", 1, 170);
-  if (glm::length(s.camera.look_at - s.camera.eye) == 0) field_error(f, "camera.look_at", "equals camera.eye");
-  if (glm::length(glm::cross(s.camera.look_at - s.camera.eye, s.camera.up)) == 0) {
-    field_error(f, "camera.up", "is parallel to the viewing direction");
-  }
+  check_camera(s.camera, f);
   if (j.contains("background")) s.background = vec3(j["background"], f, "background", 0, 100);
   if (j.contains("ambient")) s.ambient = vec3(j["ambient"], f, "ambient", 0, 100);
   if (j.contains("max_depth")) s.max_depth = static_cast<int>(integer(j["max_depth"], f, "max_depth", 1, 16));

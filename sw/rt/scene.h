@@ -80,6 +80,23 @@ struct Scene {
   std::vector<std::array<glm::dvec3, 3>> normals;
 };
 
+// The largest |coordinate| of any point of a scene: the camera's eye and look_at, a
+// light's position, centre or corner, a mesh translation and every mesh vertex as placed
+// (docs/raytracer.md, "Numbers"). The renderer casts rays between such points: a shadow
+// ray runs from a light to a shaded point, its direction their difference (up to twice
+// this) plus the shaded point's own error (the hit's t within its certified bound,
+// under 100 %, so under twice this again), and the intersector takes ray origins and
+// directions up to fmpp::isect::kMaxCoordinate (1e100) only. 1e99 keeps every such ray
+// inside with room to spare.
+inline constexpr double kMaxScenePosition = 1e99;
+// The shortest vector the renderer normalizes: the view direction, `up` across it, a
+// light's direction, a rotation's axis, a rectangle light's normal (edge1 x edge2). Its
+// squared length is then a normal double, so its unit vector is finite.
+inline constexpr double kMinSceneLength = 1e-150;
+// The largest |component| of a rectangle light's edges: the renderer normalizes
+// edge1 x edge2, whose squared length (up to about (3 x 1e75^2)^2) stays finite.
+inline constexpr double kMaxRectEdge = 1e75;
+
 // Limits of the sampling fields (scene JSON and fmpp-render's options).
 inline constexpr int kMaxSpp = 1024;
 inline constexpr int kMaxLightSamples = 1024;

@@ -50,7 +50,9 @@ void sincos_deg(double deg, double* c, double* sn) {
 // down the axis towards the origin).
 Step rotation(glm::dvec3 axis, double deg, const std::string& file, const std::string& where) {
   const double len = glm::length(axis);
-  if (!(len > 0) || !std::isfinite(len)) field_error(file, where + ".axis", "is the zero vector");
+  if (!(len >= kMinSceneLength) || !std::isfinite(len)) {
+    field_error(file, where + ".axis", "is the zero vector (or shorter than 1e-150)");
+  }
   Step st;
   st.kind = Step::kRotate;
   double c, sn;
@@ -114,7 +116,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
             field_error(file, wr, "must be [0, 0, 0, 1] (an affine transform)");
           }
         } else if (c == 3) {
-          tr.v[r] = number(m[r][c], file, wc, -1e9, 1e9);
+          tr.v[r] = number(m[r][c], file, wc, -kMaxScenePosition, kMaxScenePosition);
         } else {
           lin.m[r][c] = number(m[r][c], file, wc, -1e6, 1e6);
         }
@@ -125,9 +127,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
                        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     if (!(std::abs(det) >= 1e-18) || !std::isfinite(det)) {
-      std::ostringstream o;
-      o << "is singular (determinant " << det << "): it would flatten the mesh";
-      field_error(file, w, o.str());
+      field_error(file, w, "is singular (determinant " + exact_text(det) + "): it would flatten the mesh");
     }
     // Inverse transpose = cofactor matrix / det.
     for (int r = 0; r < 3; ++r) {
@@ -150,9 +150,9 @@ Placement placement(const json& t, const std::string& file, const std::string& w
     Step st;
     st.kind = Step::kScale;
     if (t["scale"].is_array()) {
-      st.v = vec3(t["scale"], file, w, 1e-6, 1e6);
+      st.v = vec3(t["scale"], file, w, 1e-100, 1e100);
     } else {
-      st.v = glm::dvec3(number(t["scale"], file, w, 1e-6, 1e6));
+      st.v = glm::dvec3(number(t["scale"], file, w, 1e-100, 1e100));
     }
     if (st.v != glm::dvec3(1)) pl.steps.push_back(st);
   }
@@ -174,7 +174,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
       const json& one = r.is_array() ? r[k] : r;
       const std::string wk = r.is_array() ? w + "[" + std::to_string(k) + "]" : w;
       reject_unknown(one, {"axis", "deg"}, file, wk);
-      const glm::dvec3 axis = vec3(require(one, "axis", file, wk), file, wk + ".axis");
+      const glm::dvec3 axis = direction(require(one, "axis", file, wk), file, wk + ".axis");
       const double deg = number(require(one, "deg", file, wk), file, wk + ".deg", -360, 360);
       const Step st = rotation(axis, deg, file, wk);
       if (deg != 0) pl.steps.push_back(st);
@@ -183,13 +183,13 @@ Placement placement(const json& t, const std::string& file, const std::string& w
   if (t.contains("translate")) {
     Step st;
     st.kind = Step::kTranslate;
-    st.v = vec3(t["translate"], file, where + ".translate");
+    st.v = position(t["translate"], file, where + ".translate");
     if (st.v != glm::dvec3(0)) pl.steps.push_back(st);
   }
   return pl;
 }
 
-void place(const Placement& pl, MeshGroup& g, const std::string& file, const std::string& where) {
+void place(const Placement& pl, MeshGroup& g) {
   if (pl.identity()) return;
   bool renormalize = false;
   for (const Step& st : pl.steps) {
@@ -204,9 +204,6 @@ void place(const Placement& pl, MeshGroup& g, const std::string& file, const std
           case Step::kTranslate: p = p + st.v; break;
           case Step::kLinear: p = apply(st.m, p); break;
         }
-      }
-      if (!(std::abs(p.x) <= fmpp::isect::kMaxCoordinate && std::abs(p.y) <= fmpp::isect::kMaxCoordinate && std::abs(p.z) <= fmpp::isect::kMaxCoordinate)) {
-        field_error(file, where, "moves a vertex beyond the input limit of 1e100");
       }
     }
     if (pl.mirrors) std::swap(t.p[1], t.p[2]);  // keep the front face where it was
@@ -230,6 +227,22 @@ void place(const Placement& pl, MeshGroup& g, const std::string& file, const std
   }
 }
 
+// Every vertex of g, as placed, within kMaxScenePosition (scene.h says why).
+void check_placed(const MeshGroup& g, bool identity, const std::string& file, const std::string& where,
+                  const std::string& path) {
+  for (const auto& t : g.triangles) {
+    for (const auto& p : t.p) {
+      const double m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+      if (!(m <= kMaxScenePosition)) {
+        const std::string v = "(" + exact_text(p.x) + ", " + exact_text(p.y) + ", " + exact_text(p.z) + ")";
+        if (!identity) field_error(file, where + ".transform", "moves a vertex of " + path + " to " + v +
+                                                                    ", beyond the scene's position limit 1e99");
+        field_error(file, where, path + " has a vertex at " + v + ", beyond the scene's position limit 1e99");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 // One light of "lights" (docs/raytracer.md, "Lights"): by its "type", point (the default),
@@ -248,30 +261,34 @@ Light light(const json& j, const std::string& f, const std::string& w) {
   };
   if (type == "point") {
     reject_unknown(j, {"type", "position", "color"}, f, w);
-    l.position = vec3(require(j, "position", f, w), f, w + ".position");
+    l.position = position(require(j, "position", f, w), f, w + ".position");
   } else if (type == "directional") {
     reject_unknown(j, {"type", "direction", "color"}, f, w);
     l.type = LightType::kDirectional;
-    const glm::dvec3 d = vec3(require(j, "direction", f, w), f, w + ".direction");
+    const glm::dvec3 d = direction(require(j, "direction", f, w), f, w + ".direction");
     const double len = glm::length(d);
-    if (!(len > 1e-9)) field_error(f, w + ".direction", "is the zero vector (or shorter than 1e-9)");
+    if (!(len >= kMinSceneLength)) field_error(f, w + ".direction", "is the zero vector (or shorter than 1e-150)");
     l.direction = d / len;
   } else if (type == "sphere") {
     reject_unknown(j, {"type", "center", "radius", "color", "samples", "pool"}, f, w);
     l.type = LightType::kSphere;
-    l.position = vec3(require(j, "center", f, w), f, w + ".center");
-    l.radius = number(require(j, "radius", f, w), f, w + ".radius", 1e-9, 1e9);
+    l.position = position(require(j, "center", f, w), f, w + ".center");
+    l.radius = positive(require(j, "radius", f, w), f, w + ".radius", kMaxScenePosition);
     area_fields();
   } else if (type == "rect") {
     reject_unknown(j, {"type", "corner", "edge1", "edge2", "color", "samples", "pool"}, f, w);
     l.type = LightType::kRect;
-    l.position = vec3(require(j, "corner", f, w), f, w + ".corner");
-    l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1");
-    l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2");
+    l.position = position(require(j, "corner", f, w), f, w + ".corner");
+    l.edge1 = vec3(require(j, "edge1", f, w), f, w + ".edge1", -kMaxRectEdge, kMaxRectEdge);
+    l.edge2 = vec3(require(j, "edge2", f, w), f, w + ".edge2", -kMaxRectEdge, kMaxRectEdge);
     const double e1 = glm::length(l.edge1), e2 = glm::length(l.edge2), a = glm::length(glm::cross(l.edge1, l.edge2));
-    if (!(e1 > 1e-9)) field_error(f, w + ".edge1", "is the zero vector (or shorter than 1e-9)");
-    if (!(e2 > 1e-9)) field_error(f, w + ".edge2", "is the zero vector (or shorter than 1e-9)");
+    if (l.edge1 == glm::dvec3(0)) field_error(f, w + ".edge1", "is the zero vector");
+    if (l.edge2 == glm::dvec3(0)) field_error(f, w + ".edge2", "is the zero vector");
     if (!(a > 1e-6 * e1 * e2)) field_error(f, w + ".edge2", "is parallel to edge1: the rectangle has no area");
+    if (!(a >= kMinSceneLength)) {
+      field_error(f, w + ".edge2",
+                  "makes with edge1 an area under 1e-150: the rectangle's normal cannot be normalized");
+    }
     area_fields();
   } else {
     field_error(f, w + ".type", "'" + type + "' is not one of point, directional, sphere, rect");
@@ -323,7 +340,8 @@ void add_mesh(Scene& s, const json& m, size_t index, const std::map<std::string,
   };
   std::map<std::string, bool> used;
   for (MeshGroup& g : mesh.groups) {
-    place(pl, g, file, where + ".transform");
+    place(pl, g);
+    check_placed(g, pl.identity(), file, where, path);
     const auto it = group_mat.find(g.name);
     if (it != group_mat.end()) used[g.name] = true;
     for (size_t i = 0; i < g.triangles.size(); ++i) {

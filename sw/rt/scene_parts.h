@@ -6,11 +6,11 @@
 
 #include <glm/glm.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <initializer_list>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,13 +30,21 @@ inline const json& require(const json& j, const char* key, const std::string& fi
   return j.at(key);
 }
 
+// The shortest decimal that reads back as `v` ("1000000002.75", "1e-06", "0.1"): a value
+// in a message, exactly as the loader holds it.
+inline std::string exact_text(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+// A JSON number as the double nearest its decimal (the JSON reader's strtod), which must
+// lie in [lo, hi].
 inline double number(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
   if (!j.is_number()) field_error(file, field, "expected a number");
   const double v = j.get<double>();
   if (!std::isfinite(v) || v < lo || v > hi) {
-    std::ostringstream o;
-    o << "value " << v << " outside [" << lo << ", " << hi << "]";
-    field_error(file, field, o.str());
+    field_error(file, field, "value " + exact_text(v) + " outside [" + exact_text(lo) + ", " + exact_text(hi) + "]");
   }
   return v;
 }
@@ -48,14 +56,30 @@ inline glm::dvec3 vec3(const json& j, const std::string& file, const std::string
   return v;
 }
 
+// A direction (a camera's up, a light's direction, a rotation's axis): each component
+// within kMaxScenePosition (its length is checked where it is used).
+inline glm::dvec3 direction(const json& j, const std::string& file, const std::string& field) {
+  return vec3(j, file, field, -kMaxScenePosition, kMaxScenePosition);
+}
+
+// A JSON number in (0, hi].
+inline double positive(const json& j, const std::string& file, const std::string& field, double hi) {
+  if (!j.is_number()) field_error(file, field, "expected a number");
+  const double v = j.get<double>();
+  if (!(v > 0 && v <= hi)) field_error(file, field, "value " + exact_text(v) + " outside (0, " + exact_text(hi) + "]");
+  return v;
+}
+
+// A point of the scene (camera eye and look_at, a light's position, centre or corner, a
+// translation): each coordinate within kMaxScenePosition.
+inline glm::dvec3 position(const json& j, const std::string& file, const std::string& field) {
+  return vec3(j, file, field, -kMaxScenePosition, kMaxScenePosition);
+}
+
 // A number that must be a whole number in [lo, hi].
 inline double integer(const json& j, const std::string& file, const std::string& field, double lo, double hi) {
   const double d = number(j, file, field, lo, hi);
-  if (d != std::floor(d)) {
-    std::ostringstream o;
-    o << "value " << d << " must be an integer";
-    field_error(file, field, o.str());
-  }
+  if (d != std::floor(d)) field_error(file, field, "value " + exact_text(d) + " must be an integer");
   return d;
 }
 

@@ -15,17 +15,9 @@ using fmpp::isect::Ray;
 
 namespace {
 
-glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
-  const glm::dvec3 v0 = t.p[1] - t.p[0], v1 = t.p[2] - t.p[0], v2 = p - t.p[0];
-  const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
-  const double d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
-  const double den = d00 * d11 - d01 * d01;
-  if (den == 0) return glm::dvec3(1.0 / 3);
-  const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den;
-  return glm::dvec3(1 - b1 - b2, b1, b2);
-}
-
 double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+glm::dvec3 scaled(const glm::dvec3& v, int e) { return {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)}; }
 
 // v / |v|, or `fallback` for a zero vector; a vector whose squared length overflows
 // (edges near the input limit) or underflows is scaled by its largest component first.
@@ -42,6 +34,23 @@ glm::dvec3 unit_or(glm::dvec3 v, const glm::dvec3& fallback) {
 constexpr double kDoubleTError = 0x1p-40;
 
 }  // namespace
+
+glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p) {
+  glm::dvec3 v0 = t.p[1] - t.p[0], v1 = t.p[2] - t.p[0], v2 = p - t.p[0];
+  // The edges brought to a largest component in [1, 2) by a power of two: exact, and the
+  // products below then neither overflow for edges near the input limit nor underflow
+  // for the tiniest triangles.
+  const double m = std::max(max_abs(v0), max_abs(v1));
+  if (!(m > 0) || !std::isfinite(m) || !std::isfinite(max_abs(v2))) return glm::dvec3(1.0 / 3);
+  const int e = -std::ilogb(m);
+  v0 = scaled(v0, e), v1 = scaled(v1, e), v2 = scaled(v2, e);
+  const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
+  const double d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
+  const double den = d00 * d11 - d01 * d01;
+  if (den == 0) return glm::dvec3(1.0 / 3);
+  const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den;
+  return glm::dvec3(1 - b1 - b2, b1, b2);
+}
 
 double spawn_offset(const Ray& r, double t, const glm::dvec3& n, double t_err) {
   // p = o + t d: each component is off by at most |t d| t_err (the intersector's error

@@ -49,6 +49,11 @@ struct ShadeOutput {
   std::vector<Shadow> shadows;
 };
 
+// The barycentric coordinates of p (a point of t's plane) in triangle t, at any scale within
+// the input limits (the same values for the triangle scaled by a power of two); (1/3, 1/3,
+// 1/3) for a degenerate triangle.
+glm::dvec3 barycentric(const fmpp::isect::Triangle& t, const glm::dvec3& p);
+
 class Shader {
  public:
   // The scene must outlive the shader. Secondary rays start off the surface by the bound

@@ -28,6 +28,7 @@
 #include "sw/tools/render_plan.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/plan_cache.h"
+#include "sw/rt/exact_check.h"
 #include "sw/rt/render.h"
 #include "sw/mpi/render_chips.h"
 
@@ -55,6 +56,23 @@ class Progress {
   bool quiet_, tty_;
   std::string label_;
 };
+
+// The frame rendered through `isect`, every answer checked against the exact reference
+// where `verify` (rt::ExactCheck; its counts go into the report's "verify_exact").
+rt::Image render_checked(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro,
+                         rt::RenderStats* rs, bool verify, const std::string& command, nlohmann::json* rep) {
+  if (!verify) return rt::render(scene, isect, ro, rs);
+  rt::ExactCheck check(isect, scene.triangles, command);
+  rt::Image img = rt::render(scene, check, ro, rs);
+  const rt::ExactCheckStats& st = check.stats();
+  nlohmann::json& j = (*rep)["verify_exact"];
+  for (int k = 0; k < rt::kNumBatchKinds; ++k) j["rays"][rt::to_string(static_cast<rt::BatchKind>(k))] = st.rays[k];
+  j["batches"] = st.batches;
+  j["other_triangle_allowed"] = st.other_occluder;
+  j["seconds"] = st.seconds;
+  j["disagreements"] = 0;
+  return img;
+}
 
 }  // namespace
 
@@ -137,6 +155,11 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(finite_range(1.0, 1e5));
   app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
+  bool verify = false;
+  app.add_flag("--verify-exact", verify,
+               "check every answer of the frame against the exact reference's answer for the same ray; the first "
+               "answer the intersection contract does not allow stops the render with the ray, its pass, n, the "
+               "machine and the options (docs/certification.md)");
   app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
   bool oracle = false;
   std::string pass_order = "coherent";
@@ -180,6 +203,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"work", "schedule"}));
   CLI11_PARSE(app, argc, argv);
+  std::string command = "The command:";
+  for (int i = 0; i < argc; ++i) command += std::string(" ") + argv[i];
 
   std::string stage = "checking the options";  // for an out-of-memory message
   quiet = quiet || !leader;
@@ -241,7 +266,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
       rt::ReferenceIntersector ref(scene.triangles);
-      img = std::make_unique<rt::Image>(rt::render(scene, ref, ro, &rs));
+      img = std::make_unique<rt::Image>(render_checked(scene, ref, ro, &rs, verify, command, &rep));
     } else {
       // The precision plan chooses what the options leave open; the frame's kernel options
       // are the same as the plan's, with its choices.
@@ -301,7 +326,7 @@ int main(int argc, char** argv) {
       }
       const bool together = shadow_calls.empty() ? plan.kinds_together : shadow_calls == "together";
       fi.set_kinds_together(together);
-      img = std::make_unique<rt::Image>(rt::render(scene, chips.wrap(fi), ro, &rs));
+      img = std::make_unique<rt::Image>(render_checked(scene, chips.wrap(fi), ro, &rs, verify, command, &rep));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
       rep["plan"]["wall_seconds"] = rp.seconds;

@@ -171,18 +171,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   if (makes_reach != nullptr) *makes_reach = make_reach;
   if (make_reach) {
     p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
-    if (stop_ && reach_) {
-      // An occlusion query is answered once best - BB exceeds S_c at tmax: the word
-      // cull_.reach is at least that less 3 (SharedOriginForm::reach_word), so
-      // best - BB - reach >= 4 puts every S_c the best may have beyond tmax's: a hit
-      // certainly before tmax. Such a block wants no further box (kD above any
-      // constant; a flagged one's reach is made unbounded below all the same). Both
-      // words lie within +-2^30: the difference cannot overflow.
-      p << sub(kT + 0, kD, cull_.reach, kSel);
-      p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
-      p.mask(0);
-      p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
-    }
+    if (stops()) append_stop(p);
     // A flagged block's best may not be a hit at all (an uncertain inside test): its
     // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
     p.mask(0);
@@ -227,6 +216,20 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   }
   p.mask(layout::kDataMask);
   return Verdict::kTest;
+}
+
+void SharedBoxTest::append_stop(Program& p) const {
+  // An occlusion query is answered once best - BB exceeds S_c at tmax: the word
+  // cull_.reach is at least that less 3 (SharedOriginForm::reach_word), so
+  // best - BB - reach >= 4 puts every S_c the best may have beyond tmax's: a hit
+  // certainly before tmax. Such a block wants no further box (kD above any constant; a
+  // flagged one's reach is made unbounded after this all the same), unless its hint word
+  // is kNoStop (set_stop_guard). Both words lie within +-2^30: no overflow.
+  p << sub(kT + 0, kD, cull_.reach, kSel);
+  p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
+  if (guard_) p << cmp(CmpFn::kAnd, CmpLt::kGe, cull_.hint, 0, kWin, kWin);
+  p.mask(0);
+  p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
 }
 
 double SharedBoxTest::rays_through(const Triangle& t) const {

@@ -62,8 +62,13 @@ class SharedBoxTest {
   // Occlusion queries (KernelOptions::occlusion): a block whose best is a certified hit
   // certainly before its ray's tmax needs no further box (its reach word is then made
   // unreachable), so that a shadow ray stops at its first certified occluder. Needs the
-  // reach words (set_reach).
+  // reach words (set_reach); stops(): this pass has them and the stop is on.
   void set_stop(bool on) { stop_ = on; }
+  bool stops() const { return stop_ && reach_; }
+  // guard: the pass's hint words mark the rays that must get their nearest hit (kNoStop:
+  // an infinite tmax, or a hint not proven beyond the reach, pass_hints.h); the stop
+  // leaves those blocks alone. Without it every block of the pass may stop.
+  void set_stop_guard(bool guard) { guard_ = guard; }
 
   // Appends the test of box b: SEL <- the block's ray may meet b before its best
   // (unselected blocks: 0), the selection saved in flag kTmp. Unless the host decides
@@ -93,13 +98,16 @@ class SharedBoxTest {
   void broadcast_sent() { reach_fresh_ = false; }
 
  private:
+  // The occlusion stop (set_stop), in the test that makes the blocks' reach word kD.
+  void append_stop(Program& p) const;
+
   glm::dvec3 origin_;
   double unit_;     // 2^vbits
   double t_scale_;  // 1/t = S_c t_scale sv
   double angle_;
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
-  bool has_cull_ = false, reach_ = false, stop_ = false;
+  bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
   unsigned count_[6];                // per class: the pass's rays of it

@@ -16,7 +16,8 @@ namespace fmpp::isect::layout {
 // once per pass, so that a product shares one step between two digits). Where the
 // FMPP has two words more (kCullWords), its box test also uses the ray's tmax as a
 // compared sum (reach) and the triangle its culling may leave out (hint: Ray::hint;
-// kNoHint for none), in the two words after the others (cull_words).
+// kNoHint for none, kNoStop where the occlusion stop must not act), in the two words
+// after the others (cull_words).
 namespace ray {
 inline constexpr unsigned kV = 0, kT = 3, kS = 6, kBest = 7, kIdx = 8, kD = 9, kCnt = 10, kOne = 11, kBB = 12,
                           kBN = 13, kX = 14;
@@ -24,6 +25,10 @@ inline constexpr unsigned kPair = kX;
 inline constexpr unsigned kWordsConst = kPair + 6, kWordsGeneric = kX + 9;
 // Above every triangle index (they are below 2^31 - 1); compared under mask 0.
 inline constexpr uint32_t kNoHint = 0x7FFFFFFFu;
+// The hint word of a ray the occlusion stop must answer with its nearest hit (pass_hints.h):
+// the one negative value the word holds, so equal to no triangle index; the stop acts
+// only in blocks whose hint word is at least 0.
+inline constexpr uint32_t kNoStop = 0x80000000u;
 struct CullWords {
   unsigned reach, hint, words;  // words: the words a block needs to hold them
 };

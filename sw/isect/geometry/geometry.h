@@ -23,7 +23,8 @@ struct Triangle {
 // triangles out of reach. `hint` names a triangle whose plane the caller expects beyond
 // tmax (a shadow ray's own surface): culling leaves it out for this ray where it can
 // prove that (plane_beyond_reach, cull.h), and ignores the hint otherwise. It never
-// changes a result.
+// changes a result (under KernelOptions::occlusion it decides which rays may stop at
+// their first occluder: those whose hint is proven).
 struct Ray {
   glm::dvec3 o;
   glm::dvec3 d;
@@ -68,6 +69,10 @@ struct Hit {
   // t_accuracy). The ray tracer offsets the rays it spawns from the hit by it.
   double t_err = 0;
   HostRedo redo = HostRedo::kNone;  // set by intersect_fmpp, for the per-ray-kind counts
+  // The pass of its kernel call that held the ray (1, 2, ... in the call's order; the
+  // ray-parallel mapping), 0 where no single pass answered it (the object-parallel
+  // mapping, the host alone): for the diagnostics of the ray-level exact check.
+  uint32_t pass = 0;
   bool hit() const { return tri >= 0; }
 };
 

@@ -78,14 +78,29 @@ double entry_distance(const RayPacket& p, const Box& b) {
   return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
 }
 
+namespace {
+
+// At least |v| (sqrt(3) max |v_k| <= 2 max |v_k|), with no square to underflow.
+double length_bound(const glm::dvec3& v) {
+  return 2 * std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z)));
+}
+
+}  // namespace
+
 bool plane_beyond_reach(const Ray& r, const Triangle& t) {
   const glm::dvec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], w = t.p[0] - r.o;
   const glm::dvec3 n = glm::cross(e1, e2);
   const double nd = glm::dot(n, r.d), dl = glm::length(r.d), nl = glm::length(n);
   // Rounding: each component of n is within 2^-50 |e1| |e2| of the exact cross product,
   // each dot product within 2^-50 of its terms' magnitudes; 1e-12 is far above both.
-  const double eps = 1e-12 * glm::length(e1) * glm::length(e2);
-  const double num_err = eps * glm::length(w), den_err = eps * dl;
+  // Those are relative bounds, for results in double's normal range: a product that
+  // underflows loses up to 2^-1075 outright (and eps itself may underflow), so each
+  // dot product also gets 8 2^-1074 times (1 + the other factor's length), above the
+  // three products' and n's own losses. The lengths are bounded by 2 max |component|,
+  // whose squares cannot underflow to 0 as glm::length's do for edges below 2^-537.
+  const double eps = 1e-12 * length_bound(e1) * length_bound(e2), wl = length_bound(w);
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  const double num_err = eps * wl + 8 * tiny * (1 + wl), den_err = eps * dl + 8 * tiny * (1 + dl);
   // Far from parallel (the hit's own angle of incidence is then not tiny either), and the
   // denominator's sign certain.
   if (!(std::abs(nd) >= 1e-6 * nl * dl) || !(std::abs(nd) > 2 * den_err)) return false;

@@ -64,10 +64,12 @@ struct KernelOptions {
   // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
   // place of the per-ray walk and the probe for those rays.
   bool fmpp_boxes = true;
-  // Occlusion queries (shadow rays): for a ray with a finite tmax, any certified hit
-  // certainly before tmax may come back instead of the nearest, so that the FMPP's box
-  // tests stop sending a ray further boxes once it has one (box_test.h). A ray without
-  // such a hit gets the nearest as always.
+  // Occlusion queries (shadow rays): for a ray with a finite tmax whose hint is -1 or
+  // proven beyond its reach (Ray::hint, plane_beyond_reach), any certified hit certainly
+  // before tmax may come back instead of the nearest, so that the FMPP's box tests stop
+  // sending a ray further boxes once it has one (box_test.h). Every other ray, and one
+  // without such a hit, gets the nearest as always. So whether the nearest hit before
+  // tmax is a triangle other than the hint reads the same from either answer.
   bool occlusion = false;
   // Gates (pass.h, ProgramMarks): a broadcast whose program has one sends its tail (the
   // distance, the comparison with the best) only when the ANY responder says some block

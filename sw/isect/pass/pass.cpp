@@ -14,6 +14,22 @@ void push_counted(Device& dev, const std::vector<uint64_t>& code, KernelStats* s
   st->instructions += code.size();
 }
 
+namespace {
+
+// Names the pass in the hits of its rays (Hit::pass), where the plan's passes each decide
+// their own items.
+void tag_pass(PassPlan& plan, size_t base, unsigned count, uint64_t pass) {
+  if (!plan.shareable()) return;
+  std::vector<std::pair<size_t, Hit>> res;
+  plan.results(base, count, &res);
+  for (auto& [index, hit] : res) {
+    hit.pass = static_cast<uint32_t>(pass);
+    plan.set_result(index, hit);
+  }
+}
+
+}  // namespace
+
 void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelStats* st) {
   const unsigned blocks = dev.config().blocks;
   const size_t items = plan.items();
@@ -54,6 +70,7 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
     plan.read_back(dev, base, count, order);
     st->readback_cycles += dev.cycles() - c0;
     plan.host(base, count);
+    tag_pass(plan, base, count, st->passes);
     if (opt.progress) opt.progress(turn + 1, planned);
   }
   if (opt.share) opt.share->finish(plan, blocks);
