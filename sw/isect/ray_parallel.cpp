@@ -2,7 +2,6 @@
 #include "sw/isect/ray_parallel.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -43,6 +42,7 @@ class RayParallelPlan : public PassPlan {
         if (words >= cw.words) {
           cull_words_ = cw;
           boxes_->set_cull_words(cw);
+          boxes_->set_stop(opt_.occlusion);
         }
         origin_ = *origin;
       }
@@ -113,17 +113,8 @@ class RayParallelPlan : public PassPlan {
     words_.begin(count);
     for (unsigned b = 0; b < count; ++b) form_.load_ray(words_, b, rays_[idx_[base + b]], number_of_);
     // For the FMPP's box tests, where the FMPP has the words: each ray's reach and hint.
-    if (boxes_ && cull_words_) {
-      hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
-      // The occlusion stop takes any certified hit certainly before a block's tmax. A ray
-      // without a tmax asks for its nearest hit (KernelOptions::occlusion), and its reach
-      // word (0) cannot tell the box test so: a pass holding one does not stop.
-      bool every_tmax = true;
-      for (unsigned b = 0; b < count; ++b) every_tmax = every_tmax && std::isfinite(rays_[idx_[base + b]].tmax);
-      boxes_->set_stop(opt_.occlusion && every_tmax);
-    } else {
-      hints_.clear();
-    }
+    if (boxes_ && cull_words_) hints_.write(words_, rays_, idx_, base, count, tris_, *shared_, *cull_words_, *boxes_);
+    else hints_.clear();
     words_.flush(dev, std::move(pre), st_);
     push_init(dev, Program());
   }
