@@ -60,7 +60,8 @@ TEST(PlanMapping, ObjectParallelWhereTheCostModelFindsItCheaper) {
   expect_rule(p);
   ASSERT_TRUE(p.object[static_cast<int>(BatchKind::kShadow)]) << p.why_mapping;
   EXPECT_NE(p.why_mapping.find("shadow rays"), std::string::npos) << p.why_mapping;
-  EXPECT_NE(p.why_mapping.find("the frame sample with shadow rays object-parallel"), std::string::npos) << p.why_mapping;
+  EXPECT_NE(p.why_mapping.find("on the frame's machine with shadow rays object-parallel"), std::string::npos)
+      << p.why_mapping;
   fmpp::isect::KernelStats chosen, ray;
   const Image a = render_plan(sc, p, r.width, p.object, &chosen);
   const Image b = render_plan(sc, p, r.width, {}, &ray);

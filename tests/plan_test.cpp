@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sw/rt/plan.h"
+#include "sw/rt/plan_cache.h"
 #include "sw/rt/plan_parts.h"
 
 #include <algorithm>
@@ -293,6 +294,8 @@ TEST(Plan, OverridesWin) {
   EXPECT_EQ(p.config.words, 30u);
   EXPECT_EQ(p.why_bits, "set by the user");
   EXPECT_TRUE(p.candidates.empty()) << "no sampling when n is given";
+  EXPECT_TRUE(p.checks.empty()) << "nor a check of the target";
+  EXPECT_EQ(plan_report(p).at("escalation").at("taken"), "none");
 }
 
 TEST(Plan, RtlChoosesABuiltConfiguration) {
@@ -309,8 +312,8 @@ TEST(Plan, RtlChoosesABuiltConfiguration) {
 }
 
 // When no n meets every criterion: a cost it misses (host work) still gives n = 32 if the
-// frame keeps the error target; a missed error target is said, and fmpp-render then
-// writes no picture unless asked to (tools_cli_test.sh checks the CLI).
+// frame keeps the error target; a target nothing the plan may do keeps is said, and
+// fmpp-render then writes no picture unless asked to (tools_cli_test.sh checks the CLI).
 // No triangle may go to the host: no n passes the primary-ray test, but the certified
 // kernels keep the frame within the target at n = 32, so the plan takes it.
 TEST(PlanMiss, CostsMissedButTargetKeptTakesTheWidest) {
@@ -326,18 +329,23 @@ TEST(PlanMiss, CostsMissedButTargetKeptTakesTheWidest) {
   EXPECT_GE(p.candidates.back().pixel_bound, 0) << "n = 32's frame was rendered to decide";
 }
 
-// A zero target cannot be shown on a sample of the frame (its upper confidence bound is
-// above 0 even with no pixel off): the plan says it missed, with n = 32's figure.
+// A zero target cannot be shown on a sample of the frame short of the whole frame (its
+// upper confidence bound is above 0 even with no pixel off), and a t accuracy set by the
+// user forbids taking every t from the host: the plan says it missed, with the figures of
+// the last rung it tried and the limit that stopped it (plan_escalate_test.cpp has the
+// rungs that keep such targets).
 TEST(PlanMiss, UnreachableTargetIsSaid) {
   PlanRequest r;
-  r.width = r.height = 32;
+  r.width = r.height = 64;  // 4,096 pixels; the sample may grow to 16 x 64
   r.sample_rays = 128;
   r.sample_pixels = 64;
   r.target_wrong_rate = 0;
+  r.base.t_accuracy = 0x1p-12;
   const Plan p = make_plan(shipped_scene("one_triangle"), r);
   EXPECT_FALSE(p.met_target);
-  EXPECT_NE(p.why_bits.find("no n meets the error target"), std::string::npos) << p.why_bits;
-  EXPECT_NE(p.why_bits.find("upper bound"), std::string::npos) << p.why_bits;
+  EXPECT_NE(p.why_check.find("no rung of the ladder keeps the target"), std::string::npos) << p.why_check;
+  EXPECT_NE(p.why_check.find("upper bound"), std::string::npos) << p.why_check;
+  EXPECT_NE(p.why_check.find("--t-accuracy"), std::string::npos) << p.why_check;
 }
 
 }  // namespace

@@ -48,15 +48,22 @@ fails "$dir: cannot read scene: is a directory" "$render" --scene "$dir" --backe
 grep -q '"backend": "reference"' "$dir/r.json"
 "$render" --help > "$dir/help.txt"
 grep -q -- "--scene TEXT=$src/scenes/cornell.json" "$dir/help.txt"
-# A plan that cannot keep its error target writes no picture unless asked to (a zero
-# target cannot be shown on 64 sampled pixels of a 32 x 32 frame).
-fails "the precision plan cannot keep --error-target 0: no n meets the error target" "$render" --scene "$scene" \
-  --backend cmodel --width 32 --height 32 --plan-pixels 64 --error-target 0 --out "$dir/miss.png"
+# A plan that cannot keep its error target writes no picture unless asked to, and names
+# the limit that stopped its ladder: a zero target cannot be shown on at most 16 x 64
+# sampled pixels of a 64 x 64 frame, and --t-accuracy forbids taking every t from the host.
+fails "the precision plan cannot keep --error-target 0: .*set by the user (--t-accuracy); no picture written (drop --t-accuracy" \
+  "$render" --scene "$scene" --backend cmodel --width 64 --height 64 --plan-pixels 64 --error-target 0 \
+  --t-accuracy 0.0002 --out "$dir/miss.png"
 test ! -e "$dir/miss.png"
-"$render" --scene "$scene" --backend cmodel --width 32 --height 32 --plan-pixels 64 --error-target 0 \
-  --accept-plan-miss --quiet --out "$dir/miss.png" --report "$dir/miss.json"
+"$render" --scene "$scene" --backend cmodel --width 64 --height 64 --plan-pixels 64 --error-target 0 \
+  --t-accuracy 0.0002 --accept-plan-miss --quiet --out "$dir/miss.png" --report "$dir/miss.json"
 grep -q '"accepted_miss": true' "$dir/miss.json"
 grep -q '"met_target": false' "$dir/miss.json"
+# Without that limit the plan escalates to every t from the host, and the report says so.
+"$render" --scene "$scene" --backend cmodel --width 64 --height 64 --plan-pixels 64 --error-target 0 \
+  --quiet --out "$dir/exact.png" --report "$dir/exact.json"
+grep -q '"taken": "exact_t"' "$dir/exact.json"
+grep -q '"met_target": true' "$dir/exact.json"
 # The plan is cached per scene files and options: the second render reuses it.
 "$render" --scene "$scene" --backend cmodel --width 16 --height 16 --quiet --plan-cache "$dir/plans" \
   --out "$dir/c1.png" --report "$dir/c1.json"

@@ -1,5 +1,5 @@
-// Mesh files: assimp confined to the file itself, and the project's own readers of
-// vertex values (see mesh.h).
+// Mesh files: assimp (OBJ, binary STL, glTF) confined to the file itself, and the
+// project's own readers (OFF, ASCII STL, PLY; see mesh.h).
 #include "sw/rt/mesh.h"
 
 #include <assimp/material.h>
@@ -60,18 +60,15 @@ struct Affine {
   }
 };
 
-// Where each vertex's coordinates come from: the file's own values where the project
-// reads them (OBJ through the library's tags, PLY in file order: obj_text.h,
-// mesh_text.h), else the library's (binary STL and glTF store single precision, so its
-// floats are the file's values).
+// Where each vertex's coordinates come from: the file's own values for OBJ (through the
+// library's tags: obj_text.h), else the library's (binary STL and glTF store single
+// precision, so its floats are the file's values).
 struct VertexSource {
   const ObjVertices* obj = nullptr;
-  const PlyVertices* ply = nullptr;
 
   glm::dvec3 position(const aiMesh& m, unsigned i) const {
     const aiVector3D& v = m.mVertices[i];
     if (obj) return obj->position(v.x, v.y, v.z);
-    if (ply) return ply->positions[i];
     return glm::dvec3(v.x, v.y, v.z);
   }
   // (0, 0, 0) where the mesh has no normals.
@@ -79,7 +76,6 @@ struct VertexSource {
     if (!m.mNormals) return glm::dvec3(0);
     const aiVector3D& v = m.mNormals[i];
     if (obj) return obj->normal(v.x, v.y, v.z);
-    if (ply && !ply->normals.empty()) return ply->normals[i];
     return glm::dvec3(v.x, v.y, v.z);
   }
 };
@@ -309,7 +305,7 @@ std::vector<int> file_materials(const std::string& path, const std::string& ext,
                                 const std::string& text, Mesh& m) {
   const std::string& obj_text = text;
   std::vector<int> index(sc.mNumMaterials, -1);
-  if (ext != ".obj" && ext != ".gltf" && ext != ".glb") return index;  // PLY, OFF, STL: none
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb") return index;  // binary STL: none
   std::map<std::string, MtlMaterial> mtl;
   std::map<std::string, size_t> first_use;
   if (ext == ".obj") {
@@ -347,7 +343,8 @@ std::vector<int> file_materials(const std::string& path, const std::string& ext,
   return index;
 }
 
-// A mesh the project reads itself (OFF, ASCII STL): its parts as groups, in order.
+// A mesh the project reads itself (OFF, ASCII STL, PLY): its parts as groups, in order;
+// each message names the file and the face's line (the file alone for a binary file).
 Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
   Mesh m;
   std::vector<Corner> corners;
@@ -359,7 +356,8 @@ Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
       for (uint32_t i : pm.faces[f]) {
         corners.push_back(Corner{pm.positions[i], pm.normals.empty() ? glm::dvec3(0) : pm.normals[i]});
       }
-      add_face(path + ":" + std::to_string(pm.face_line[f]), f, corners, Affine{}, -1, g);
+      const std::string where = pm.face_line[f] ? path + ":" + std::to_string(pm.face_line[f]) : path;
+      add_face(where, pm.face_number[f], corners, Affine{}, -1, g);
     }
     m.skipped_primitives += pm.skipped;
     m.triangles += g.triangles.size();
@@ -373,7 +371,7 @@ Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
 // (add_face), and its points and lines are counted, not kept.
 Mesh library_mesh(const std::string& path, const std::string& ext, std::string data) {
   std::unique_ptr<ObjVertices> obj;
-  std::string text, ply_data;  // OBJ, glTF: the text of its materials; PLY: its bytes
+  std::string text;  // OBJ, glTF: the text of its materials
   if (ext == ".obj") {
     text = normalize_obj(path, std::move(data));
     check_obj_indices(path, text);
@@ -381,8 +379,6 @@ Mesh library_mesh(const std::string& path, const std::string& ext, std::string d
     data = obj->library_text();
   } else if (ext == ".gltf" || ext == ".glb") {
     text = data;
-  } else if (ext == ".ply") {
-    ply_data = data;
   }
   Assimp::Importer imp;
   auto* io = new ConfinedIo(path, std::move(data));
@@ -393,13 +389,7 @@ Mesh library_mesh(const std::string& path, const std::string& ext, std::string d
     throw SceneError(path + ": cannot read mesh: not a valid " + ext.substr(1) + " file" +
                      (why.empty() ? "" : " (" + why + ")"));
   }
-  VertexSource source{obj.get(), nullptr};
-  PlyVertices ply;
-  if (ext == ".ply") {
-    ply = read_ply_vertices(path, ply_data);
-    check_ply_order(path, *sc, ply);
-    source.ply = &ply;
-  }
+  const VertexSource source{obj.get()};
   Mesh m;
   const std::vector<int> material_of = file_materials(path, ext, *sc, text, m);
   Walker{path, *sc, source, m, material_of}.node(*sc->mRootNode, "", Affine{});
@@ -410,6 +400,8 @@ Mesh parse_mesh(const std::string& path, const std::string& ext, std::string dat
   Mesh m;
   if (ext == ".off") {
     m = polygon_mesh(path, {read_off(path, data)});
+  } else if (ext == ".ply") {
+    m = polygon_mesh(path, {read_ply(path, data)});
   } else if (ext == ".stl" && is_stl_ascii(data)) {
     m = polygon_mesh(path, read_stl_ascii(path, data));
   } else {

@@ -1,5 +1,5 @@
-// Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb). OBJ, PLY,
-// binary STL and glTF are read by one library (assimp), OFF and ASCII STL by the project
+// Mesh files for the ray tracer: OBJ, PLY, OFF, STL and glTF (.gltf, .glb). OBJ, binary
+// STL and glTF are read by one library (assimp), PLY, OFF and ASCII STL by the project
 // (mesh_text.h); every coordinate is the file's own value, in double (mesh_text.h), and
 // every index and coordinate is checked here before use. Only the file itself is opened
 // (for .gltf, also buffer files in its directory; for .obj, the material libraries its

@@ -1,9 +1,9 @@
-// The vertices of PLY files, read by the project (see mesh_text.h).
-#include <assimp/fast_atof.h>
-
+// PLY files, read by the project in double (see mesh_text.h).
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "sw/isect/geometry/io.h"
 #include "sw/rt/mesh_text.h"
@@ -14,7 +14,7 @@ namespace {
 
 enum class Type { kChar, kUChar, kShort, kUShort, kInt, kUInt, kFloat, kDouble };
 
-// A property type by the names the mesh library takes.
+// A property type by its PLY names (the old ones and the sized ones).
 bool type_of(const std::string& s, Type* t) {
   static const std::pair<const char*, Type> kNames[] = {
       {"char", Type::kChar},   {"int8", Type::kChar},      {"uchar", Type::kUChar},     {"uint8", Type::kUChar},
@@ -41,14 +41,17 @@ size_t size_of(Type t) {
   return 0;
 }
 
+bool integral(Type t) { return t != Type::kFloat && t != Type::kDouble; }
+
 struct Property {
   std::string name;
   bool list = false;
-  Type count = Type::kUChar, type = Type::kFloat;
+  Type count = Type::kUChar, type = Type::kFloat;  // count: a list's length type
 };
 struct Element {
   std::string name;
   unsigned long long count = 0;
+  size_t line = 0;  // the header line that declares it
   std::vector<Property> props;
 };
 struct Header {
@@ -58,6 +61,16 @@ struct Header {
   size_t body_line = 0;  // its line number
 };
 
+// A "property" line's words into `p`; false if they are not a property of known types.
+bool property_of(const std::vector<std::string>& t, Property* p) {
+  p->list = t[1] == "list";
+  p->name = t.back();
+  return p->list ? t.size() == 5 && type_of(t[2], &p->count) && type_of(t[3], &p->type)
+                 : t.size() == 3 && type_of(t[1], &p->type);
+}
+
+// The header, up to and including its end_header line (which ends with '\n': the data
+// begins at the byte after it, whatever that byte is).
 Header header(const std::string& path, const std::string& data) {
   Header h;
   size_t pos = 0, line = 0;
@@ -85,17 +98,14 @@ Header header(const std::string& path, const std::string& data) {
     } else if (t[0] == "element" && t.size() == 3) {
       Element e;
       e.name = t[1];
+      e.line = line;
       std::istringstream n(t[2]);
       if (!(n >> e.count) || !n.eof()) throw SceneError(where + "an element count that is not a whole number");
       h.elements.push_back(e);
     } else if (t[0] == "property" && !h.elements.empty() && t.size() >= 3) {
       Property p;
-      p.list = t[1] == "list";
-      p.name = t.back();
-      if (p.list ? t.size() != 5 || !type_of(t[2], &p.count) || !type_of(t[3], &p.type)
-                 : t.size() != 3 || !type_of(t[1], &p.type)) {
-        throw SceneError(where + "a property of unknown type");
-      }
+      if (!property_of(t, &p)) throw SceneError(where + "a property of unknown type");
+      if (p.list && !integral(p.count)) throw SceneError(where + "a list whose length type is not an integer type");
       h.elements.back().props.push_back(p);
     } else {
       throw SceneError(where + "not a line of a PLY header");
@@ -107,50 +117,60 @@ Header header(const std::string& path, const std::string& data) {
   return h;
 }
 
-// The element's x, y, z, nx, ny, nz property indices (the last of each name), -1 if absent.
-std::array<int, 6> roles(const Element& e) {
-  static const char* const kRoles[6] = {"x", "y", "z", "nx", "ny", "nz"};
-  std::array<int, 6> r{-1, -1, -1, -1, -1, -1};
-  for (size_t p = 0; p < e.props.size(); ++p) {
-    for (int k = 0; k < 6; ++k) {
-      if (!e.props[p].list && e.props[p].name == kRoles[k]) r[k] = static_cast<int>(p);
+constexpr size_t kNone = std::numeric_limits<size_t>::max();
+
+// What is read of the file: the first "vertex" element's x, y, z, nx, ny, nz (property
+// indices, the last of each name, -1 if absent) and the first "face" element's list of
+// vertex indices. Every other element and property is passed over.
+struct Plan {
+  size_t vertex = kNone, face = kNone;
+  std::array<int, 6> role{-1, -1, -1, -1, -1, -1};
+  int indices = -1;
+  bool normals = false;  // the vertex element has nx, ny or nz
+};
+
+Plan plan_of(const std::string& path, const Header& h) {
+  Plan p;
+  for (size_t e = 0; e < h.elements.size(); ++e) {
+    const Element& el = h.elements[e];
+    if (el.name == "vertex" && p.vertex == kNone) p.vertex = e;
+    if (el.name == "face" && p.face == kNone) p.face = e;
+    if (el.name == "tristrips" && el.count > 0) {
+      throw SceneError(path + ":" + std::to_string(el.line) +
+                       ": triangle strips (a tristrips element) are not read: give the faces as a face element");
     }
   }
-  return r;
+  if (p.vertex == kNone) throw SceneError(path + ": the PLY header has no vertex element");
+  static const char* const kRoles[6] = {"x", "y", "z", "nx", "ny", "nz"};
+  const Element& v = h.elements[p.vertex];
+  for (size_t k = 0; k < v.props.size(); ++k) {
+    for (int r = 0; r < 6; ++r) {
+      if (!v.props[k].list && v.props[k].name == kRoles[r]) p.role[r] = static_cast<int>(k);
+    }
+  }
+  if (p.role[0] < 0 || p.role[1] < 0 || p.role[2] < 0) throw SceneError(path + ": the vertex element lacks x, y or z");
+  p.normals = p.role[3] >= 0 || p.role[4] >= 0 || p.role[5] >= 0;
+  if (p.face == kNone) return p;
+  const Element& f = h.elements[p.face];
+  for (size_t k = 0; k < f.props.size(); ++k) {
+    if (f.props[k].list && (f.props[k].name == "vertex_indices" || f.props[k].name == "vertex_index")) {
+      p.indices = static_cast<int>(k);
+    }
+  }
+  const std::string where = path + ":" + std::to_string(f.line) + ": the face element ";
+  if (p.indices < 0) throw SceneError(where + "has no vertex_indices list");
+  if (!integral(f.props[p.indices].type)) {
+    throw SceneError(where + "has vertex indices of a type that is not an integer type");
+  }
+  return p;
 }
 
-// What the library's number reader throws here (its own exception type is not exported).
-struct NotANumber {
-  template <class... Args>
-  explicit NotANumber(Args&&...) {}
-};
-
-// A value as the file holds it, and as the library makes it single precision.
-struct Value {
-  double exact;
-  float library;
-};
-
-// An ASCII value of type t: the double nearest the decimal (an integer type must hold a
-// whole number in its range), and what the library's number readers make of it.
-bool ascii_value(const std::string& tok, Type t, Value* v) {
-  if (t == Type::kFloat || t == Type::kDouble) {
-    if (!fmpp::isect::parse_finite(tok, &v->exact)) return false;
-    try {
-      if (t == Type::kFloat) {
-        Assimp::fast_atoreal_move<float, NotANumber>(tok.c_str(), v->library);
-      } else {
-        double d = 0;
-        Assimp::fast_atoreal_move<double, NotANumber>(tok.c_str(), d);
-        v->library = static_cast<float>(d);
-      }
-    } catch (const NotANumber&) {
-      return false;
-    }
-    return true;
-  }
-  const bool sign = tok.size() > 1 && (tok[0] == '-' || tok[0] == '+') &&
-                    (t == Type::kChar || t == Type::kShort || t == Type::kInt);
+// An ASCII value of type t: the double nearest the decimal; an integer type must hold a
+// whole number in its range.
+bool ascii_value(std::string_view tok, Type t, double* v) {
+  if (!integral(t)) return fmpp::isect::parse_finite(std::string(tok), v);
+  const bool is_signed = t == Type::kChar || t == Type::kShort || t == Type::kInt;
+  const bool sign = tok.size() > 1 && (tok[0] == '-' || tok[0] == '+') && is_signed;
   if (tok.size() > 12 || tok.size() == (sign ? 1u : 0u)) return false;
   long long n = 0;
   for (size_t k = sign ? 1 : 0; k < tok.size(); ++k) {
@@ -159,23 +179,21 @@ bool ascii_value(const std::string& tok, Type t, Value* v) {
   }
   if (sign && tok[0] == '-') n = -n;
   const int bits = static_cast<int>(8 * size_of(t));
-  const bool is_signed = t == Type::kChar || t == Type::kShort || t == Type::kInt;
   const long long lo = is_signed ? -(1ll << (bits - 1)) : 0;
   const long long hi = is_signed ? (1ll << (bits - 1)) - 1 : (1ll << bits) - 1;
   if (n < lo || n > hi) return false;
-  v->exact = static_cast<double>(n);
-  v->library = static_cast<float>(n);
+  *v = static_cast<double>(n);
   return true;
 }
 
-// A binary value of type t at p (in the file's byte order).
-Value binary_value(const char* p, Type t, bool big) {
+// A binary value of type t at p (in the file's byte order), exactly as a double.
+double binary_value(const char* p, Type t, bool big) {
   unsigned char b[8];
   const size_t n = size_of(t);
   for (size_t k = 0; k < n; ++k) b[k] = static_cast<unsigned char>(p[big ? n - 1 - k : k]);
   auto as = [&](auto x) {
     std::memcpy(&x, b, sizeof x);
-    return Value{static_cast<double>(x), static_cast<float>(x)};
+    return static_cast<double>(x);
   };
   switch (t) {
     case Type::kChar: return as(int8_t{});
@@ -187,153 +205,247 @@ Value binary_value(const char* p, Type t, bool big) {
     case Type::kFloat: return as(float{});
     case Type::kDouble: return as(double{});
   }
-  return Value{0, 0};
+  return 0;
 }
 
-// One vertex's x, y, z, nx, ny, nz into `out`.
-void keep(const std::array<int, 6>& role, size_t prop, const Value& v, PlyVertices& out, size_t vertex) {
-  for (int k = 0; k < 6; ++k) {
-    if (role[k] != static_cast<int>(prop)) continue;
-    if (k < 3) {
-      out.positions[vertex][k] = v.exact;
-      out.library[vertex][k] = v.library;
-    } else {
-      out.normals[vertex][k - 3] = v.exact;
-      out.library_normals[vertex][k - 3] = v.library;
+// What reading the next value of an element instance found.
+enum class Got { kValue, kEnd, kBad };
+
+// The data of an ASCII file: each element instance on a line of its own (lines that hold
+// nothing are passed over), its values separated by white space; values after the
+// instance's last property are not used.
+class AsciiBody {
+ public:
+  AsciiBody(const std::string& data, const Header& h) : data_(data), pos_(h.body), line_(h.body_line - 1) {}
+
+  // Begins the next instance: the next line that holds anything. False if there is none.
+  bool next_instance() {
+    while (pos_ < data_.size()) {
+      size_t end = data_.find('\n', pos_);
+      if (end == std::string::npos) end = data_.size();
+      tokens_.clear();
+      at_ = 0;
+      for (size_t k = pos_; k < end;) {
+        while (k < end && space(data_[k])) ++k;
+        const size_t from = k;
+        while (k < end && !space(data_[k])) ++k;
+        if (k > from) tokens_.emplace_back(data_.data() + from, k - from);
+      }
+      pos_ = end + 1;
+      ++line_;
+      if (!tokens_.empty()) return true;
+    }
+    return false;
+  }
+  // The instance's next value, of type t.
+  Got value(Type t, double* v) {
+    if (at_ >= tokens_.size()) return Got::kEnd;
+    return ascii_value(tokens_[at_++], t, v) ? Got::kValue : Got::kBad;
+  }
+  // Passes over the instance's next n values (of any type: they are not read).
+  Got skip(Type, unsigned long long n) {
+    if (n > tokens_.size() - at_) return Got::kEnd;
+    at_ += static_cast<size_t>(n);
+    return Got::kValue;
+  }
+  // Passes over the rest of the instance.
+  Got skip_instance(const Element&) { return Got::kValue; }
+  // The current instance's line.
+  size_t line() const { return line_; }
+  std::string where(const std::string& path) const { return path + ":" + std::to_string(line_); }
+  static const char* ended() { return "fewer values than its properties"; }
+
+ private:
+  static bool space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+  const std::string& data_;
+  size_t pos_, line_;
+  std::vector<std::string_view> tokens_;
+  size_t at_ = 0;
+};
+
+// The data of a binary file: the instances' values back to back, in the file's byte order.
+class BinaryBody {
+ public:
+  BinaryBody(const std::string& data, const Header& h) : data_(data), pos_(h.body), big_(h.format == Header::kBig) {}
+
+  // An instance of an element with properties takes at least one byte.
+  bool next_instance() const { return pos_ < data_.size(); }
+  Got value(Type t, double* v) {
+    if (size_of(t) > data_.size() - pos_) return Got::kEnd;
+    *v = binary_value(data_.data() + pos_, t, big_);
+    pos_ += size_of(t);
+    return std::isfinite(*v) ? Got::kValue : Got::kBad;
+  }
+  Got skip(Type t, unsigned long long n) {
+    if (n > (data_.size() - pos_) / size_of(t)) return Got::kEnd;
+    pos_ += static_cast<size_t>(n) * size_of(t);
+    return Got::kValue;
+  }
+  // kBad: a list of negative length.
+  Got skip_instance(const Element& el) {
+    for (const Property& p : el.props) {
+      double n = 0;
+      const Got g = p.list ? value(p.count, &n) : skip(p.type, 1);
+      if (g != Got::kValue) return g;
+      if (p.list && n < 0) return Got::kBad;
+      if (p.list && skip(p.type, static_cast<unsigned long long>(n)) != Got::kValue) return Got::kEnd;
+    }
+    return Got::kValue;
+  }
+  // Binary data has no lines.
+  static size_t line() { return 0; }
+  std::string where(const std::string& path) const { return path; }
+  static const char* ended() { return "the file ends within it"; }
+
+ private:
+  const std::string& data_;
+  size_t pos_;
+  bool big_;
+};
+
+// Reading one instance of the vertex or the face element into a PolyMesh.
+template <class Body>
+struct InstanceReader {
+  Body& b;
+  const std::string& path;
+  const Plan& plan;
+  unsigned long long vertices;  // the vertex element's count
+
+  [[noreturn]] void fail(bool face, unsigned long long i, const std::string& why) const {
+    throw SceneError(b.where(path) + ": " + (face ? "face " : "vertex ") + std::to_string(i) + ": " + why);
+  }
+  static std::string not_a_count(size_t p) {
+    return "property " + std::to_string(p) + ": a list length that is not a count";
+  }
+
+  // Vertex i: its x, y, z and normal; its other values are passed over.
+  void vertex(const Element& el, unsigned long long i, PolyMesh& m) {
+    for (size_t p = 0; p < el.props.size(); ++p) {
+      const Property& pr = el.props[p];
+      int role = -1;
+      for (int r = 0; r < 6; ++r) {
+        if (plan.role[r] == static_cast<int>(p)) role = r;
+      }
+      double v = 0;
+      Got g = Got::kValue;
+      if (pr.list) {
+        g = b.value(pr.count, &v);
+        if (g == Got::kBad || v < 0) fail(false, i, not_a_count(p));
+        if (g == Got::kValue) g = b.skip(pr.type, static_cast<unsigned long long>(v));
+      } else if (role < 0) {
+        g = b.skip(pr.type, 1);
+      } else {
+        g = b.value(pr.type, &v);
+        if (g == Got::kBad) fail(false, i, "property " + std::to_string(p) + " is not a finite number of its type");
+        (role < 3 ? m.positions[i][role] : m.normals[i][role - 3]) = v;
+      }
+      if (g == Got::kEnd) fail(false, i, b.ended());
     }
   }
+
+  // The vertex indices of a face: each a whole number naming one of the vertices.
+  std::vector<uint32_t> indices(const Property& pr, unsigned long long i, unsigned long long n) {
+    std::vector<uint32_t> f;
+    for (unsigned long long k = 0; k < n; ++k) {
+      double v = 0;
+      const Got g = b.value(pr.type, &v);
+      if (g == Got::kEnd) fail(true, i, b.ended());
+      if (g == Got::kBad) fail(true, i, "index " + std::to_string(k + 1) + " is not a whole number of its type");
+      if (v < 0 || v >= static_cast<double>(vertices)) {
+        fail(true, i, "refers to vertex " + std::to_string(static_cast<long long>(v)) + " of " +
+                          std::to_string(vertices) + " (indices start at 0)");
+      }
+      f.push_back(static_cast<uint32_t>(v));
+    }
+    return f;
+  }
+
+  // Face i: its vertex indices; its other values are passed over. A face of fewer than 3
+  // indices (a point or a line) is counted in m.skipped.
+  void face(const Element& el, unsigned long long i, size_t line, PolyMesh& m) {
+    std::vector<uint32_t> f;
+    for (size_t p = 0; p < el.props.size(); ++p) {
+      const Property& pr = el.props[p];
+      double n = 1;
+      Got g = Got::kValue;
+      if (pr.list) {
+        g = b.value(pr.count, &n);
+        if (g == Got::kBad || n < 0) fail(true, i, not_a_count(p));
+      }
+      if (g == Got::kEnd) fail(true, i, b.ended());
+      if (static_cast<int>(p) == plan.indices) {
+        f = indices(pr, i, static_cast<unsigned long long>(n));
+      } else if (b.skip(pr.type, static_cast<unsigned long long>(n)) == Got::kEnd) {
+        fail(true, i, b.ended());
+      }
+    }
+    if (f.size() < 3) {
+      ++m.skipped;
+      return;
+    }
+    m.faces.push_back(std::move(f));
+    m.face_line.push_back(line);
+    m.face_number.push_back(static_cast<size_t>(i));
+  }
+};
+
+// Every instance of every element, in file order: the vertex and face elements read,
+// the others passed over.
+template <class Body>
+void read_body(Body& b, const std::string& path, const Header& h, const Plan& plan, PolyMesh& m) {
+  InstanceReader<Body> r{b, path, plan, h.elements[plan.vertex].count};
+  for (size_t e = 0; e < h.elements.size(); ++e) {
+    const Element& el = h.elements[e];
+    if (el.props.empty()) continue;  // its instances hold nothing
+    const std::string element = "the element declared on line " + std::to_string(el.line);
+    for (unsigned long long i = 0; i < el.count; ++i) {
+      if (!b.next_instance()) {
+        const std::string what = e == plan.vertex ? "vertices" : e == plan.face ? "faces" : "instances of " + element;
+        throw SceneError(path + ": the file ends after " + std::to_string(i) + " of " + std::to_string(el.count) + " " +
+                         what);
+      }
+      if (e == plan.vertex) {
+        r.vertex(el, i, m);
+      } else if (e == plan.face) {
+        r.face(el, i, b.line(), m);
+      } else if (const Got g = b.skip_instance(el); g != Got::kValue) {
+        throw SceneError(path + ": instance " + std::to_string(i) + " of " + element + ": " +
+                         (g == Got::kEnd ? b.ended() : "a negative list length"));
+      }
+    }
+  }
+}
+
+// The fewest bytes an instance of `el` takes: a value and a separator per property in
+// ASCII, each scalar and list length in binary.
+unsigned long long min_bytes(const Element& el, bool ascii) {
+  unsigned long long n = 0;
+  for (const Property& p : el.props) n += ascii ? 2 : size_of(p.list ? p.count : p.type);
+  return n;
 }
 
 }  // namespace
-namespace {
 
-[[noreturn]] void ends(const std::string& path) { throw SceneError(path + ": the file ends before its vertices do"); }
-
-// Each instance of each element up to the vertex element `vi` on a line of its own.
-void read_ascii(const std::string& path, const std::string& data, const Header& h, size_t vi,
-                const std::array<int, 6>& role, PlyVertices& out) {
-  size_t pos = h.body, line = h.body_line - 1;
-  std::vector<std::string> t;
-  auto next_line = [&]() {
-    do {
-      if (pos >= data.size()) ends(path);
-      size_t end = data.find('\n', pos);
-      if (end == std::string::npos) end = data.size();
-      std::istringstream ss(data.substr(pos, end - pos));
-      pos = end + 1;
-      ++line;
-      t.clear();
-      for (std::string s; ss >> s;) t.push_back(s);
-    } while (t.empty());
-  };
-  for (size_t e = 0; e <= vi; ++e) {
-    const Element& el = h.elements[e];
-    for (unsigned long long i = 0; i < el.count; ++i) {
-      next_line();
-      if (e < vi) continue;
-      const std::string where = path + ":" + std::to_string(line) + ": vertex " + std::to_string(i) + ": ";
-      size_t k = 0;
-      for (size_t p = 0; p < el.props.size(); ++p) {
-        Value v{};
-        if (k >= t.size()) throw SceneError(where + "fewer values than its properties");
-        if (el.props[p].list) {
-          if (!ascii_value(t[k++], el.props[p].count, &v) || v.exact < 0) {
-            throw SceneError(where + "a list length that is not a count");
-          }
-          k += static_cast<size_t>(std::min<double>(v.exact, static_cast<double>(t.size())));
-          continue;
-        }
-        if (!ascii_value(t[k++], el.props[p].type, &v)) {
-          throw SceneError(where + "property " + std::to_string(p) + " is not a finite number of its type");
-        }
-        keep(role, p, v, out, i);
-      }
-      if (k > t.size()) throw SceneError(where + "fewer values than its properties");
-    }
-  }
-}
-
-void read_binary(const std::string& path, const std::string& data, const Header& h, size_t vi,
-                 const std::array<int, 6>& role, PlyVertices& out) {
-  const bool big = h.format == Header::kBig;
-  size_t pos = h.body;
-  auto need = [&](unsigned long long n) {
-    if (n > data.size() - pos) ends(path);
-  };
-  for (size_t e = 0; e <= vi; ++e) {
-    const Element& el = h.elements[e];
-    if (el.props.empty()) continue;
-    for (unsigned long long i = 0; i < el.count; ++i) {
-      for (size_t p = 0; p < el.props.size(); ++p) {
-        const Property& pr = el.props[p];
-        if (pr.list) {
-          need(size_of(pr.count));
-          const double n = binary_value(data.data() + pos, pr.count, big).exact;
-          pos += size_of(pr.count);
-          if (n < 0) throw SceneError(path + ": a negative list length");
-          need(static_cast<unsigned long long>(n) * size_of(pr.type));
-          pos += static_cast<size_t>(n) * size_of(pr.type);
-          continue;
-        }
-        need(size_of(pr.type));
-        if (e == vi) {
-          const Value v = binary_value(data.data() + pos, pr.type, big);
-          if (!std::isfinite(v.exact)) {
-            throw SceneError(path + ": vertex " + std::to_string(i) + ": property " + std::to_string(p) +
-                             " is not a finite number");
-          }
-          keep(role, p, v, out, i);
-        }
-        pos += size_of(pr.type);
-      }
-    }
-  }
-}
-
-}  // namespace
-
-PlyVertices read_ply_vertices(const std::string& path, const std::string& data) {
+PolyMesh read_ply(const std::string& path, const std::string& data) {
   const Header h = header(path, data);
-  size_t vi = 0;
-  while (vi < h.elements.size() && h.elements[vi].name != "vertex") ++vi;
-  if (vi == h.elements.size()) throw SceneError(path + ": the PLY header has no vertex element");
-  const Element& el = h.elements[vi];
-  const std::array<int, 6> role = roles(el);
-  if (role[0] < 0 || role[1] < 0 || role[2] < 0) throw SceneError(path + ": the vertex element lacks x, y or z");
-  if (el.count > data.size()) ends(path);
-  PlyVertices out;
-  out.positions.assign(el.count, glm::dvec3(0));
-  out.library.assign(el.count, glm::vec3(0));
-  if (role[3] >= 0 || role[4] >= 0 || role[5] >= 0) {  // the library keeps normals with any of the three
-    out.normals.assign(el.count, glm::dvec3(0));
-    out.library_normals.assign(el.count, glm::vec3(0));
+  const Plan plan = plan_of(path, h);
+  const unsigned long long nv = h.elements[plan.vertex].count;
+  // The vertices are allocated only if the data can hold them.
+  if (nv > (data.size() - h.body) / min_bytes(h.elements[plan.vertex], h.format == Header::kAscii)) {
+    throw SceneError(path + ": the file ends before its " + std::to_string(nv) + " vertices");
   }
+  PolyMesh m;
+  m.positions.assign(nv, glm::dvec3(0));
+  if (plan.normals) m.normals.assign(nv, glm::dvec3(0));
   if (h.format == Header::kAscii) {
-    read_ascii(path, data, h, vi, role, out);
+    AsciiBody b(data, h);
+    read_body(b, path, h, plan, m);
   } else {
-    read_binary(path, data, h, vi, role, out);
+    BinaryBody b(data, h);
+    read_body(b, path, h, plan, m);
   }
-  return out;
-}
-
-void check_ply_order(const std::string& path, const aiScene& scene, const PlyVertices& ply) {
-  const std::string why = path + ": cannot read mesh: the mesh library's vertices are not the file's (";
-  if (scene.mNumMeshes != 1 || !scene.mMeshes || !scene.mMeshes[0] || !scene.mMeshes[0]->mVertices) {
-    throw SceneError(why + std::to_string(scene.mNumMeshes) + " meshes)");
-  }
-  const aiMesh& m = *scene.mMeshes[0];
-  if (m.mNumVertices != ply.positions.size()) {
-    throw SceneError(why + std::to_string(m.mNumVertices) + " vertices, the file has " +
-                     std::to_string(ply.positions.size()) + ")");
-  }
-  if (!ply.normals.empty() && !m.mNormals) throw SceneError(why + "no normals)");
-  auto same = [](const aiVector3D& a, const glm::vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
-  for (size_t i = 0; i < ply.positions.size(); ++i) {
-    const bool normal_differs = !ply.normals.empty() && !same(m.mNormals[i], ply.library_normals[i]);
-    if (!same(m.mVertices[i], ply.library[i]) || normal_differs) {
-      throw SceneError(why + "vertex " + std::to_string(i) + " differs)");
-    }
-  }
+  return m;
 }
 
 }  // namespace rt

@@ -95,9 +95,9 @@ void off_vertex(const std::string& path, const Line& l, const OffHeader& h, unsi
   }
 }
 
-// A face line: its vertex count n, then n indices from 0 (a colour after them is not
-// used); fewer than 3 indices is a point or a line, counted in m.skipped.
-void off_face(const std::string& path, const Line& l, PolyMesh& m) {
+// Face `number`'s line: its vertex count n, then n indices from 0 (a colour after them is
+// not used); fewer than 3 indices is a point or a line, counted in m.skipped.
+void off_face(const std::string& path, const Line& l, size_t number, PolyMesh& m) {
   const std::string where = path + ":" + std::to_string(l.number) + ": face: ";
   unsigned long long n = 0;
   if (!parse_count(l.tokens[0], l.tokens.size() - 1, &n)) {
@@ -121,6 +121,7 @@ void off_face(const std::string& path, const Line& l, PolyMesh& m) {
   }
   m.faces.push_back(std::move(f));
   m.face_line.push_back(l.number);
+  m.face_number.push_back(number);
 }
 
 }  // namespace
@@ -171,7 +172,7 @@ PolyMesh read_off(const std::string& path, const std::string& text) {
     if (li >= lines.size()) {
       throw SceneError(path + ": ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     }
-    off_face(path, lines[li], m);
+    off_face(path, lines[li], static_cast<size_t>(f), m);
   }
   return m;
 }
@@ -241,6 +242,7 @@ void stl_facet(StlTokens& t, PolyMesh& m) {
   t.expect("loop");
   const uint32_t first = static_cast<uint32_t>(m.positions.size());
   m.face_line.push_back(t.line());
+  m.face_number.push_back(m.faces.size());
   for (int c = 0; c < 3; ++c) {
     t.expect("vertex");
     glm::dvec3 p;

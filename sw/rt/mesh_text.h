@@ -1,11 +1,9 @@
 // The coordinates of mesh files as the file writes them (docs/raytracer.md, "Numbers"):
-// the parts of the mesh reader (mesh.cpp) that read vertex values themselves instead of
-// taking the mesh library's single-precision ones. Text numbers become the double
-// nearest their decimal (strtod); binary values are taken as stored (a double stays a
-// double). Polygons are triangulated here, on those doubles.
+// the mesh files the project reads itself (OFF, ASCII STL, PLY) instead of taking the
+// mesh library's single-precision values. Text numbers become the double nearest their
+// decimal (strtod); binary values are taken as stored (a double stays a double).
+// Polygons are triangulated here, on those doubles.
 #pragma once
-
-#include <assimp/scene.h>
 
 #include <glm/glm.hpp>
 
@@ -16,7 +14,7 @@
 
 namespace rt {
 
-// A mesh read by the project itself (OFF, ASCII STL): one part, its vertices in file
+// A mesh read by the project itself (OFF, ASCII STL, PLY): one part, its vertices in file
 // order, its faces as indices into them. `normals` is empty or holds one per vertex
 // (zero where the file gives none). Faces of fewer than 3 indices (points, lines) are
 // counted in `skipped`, not kept.
@@ -25,7 +23,8 @@ struct PolyMesh {
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec3> normals;
   std::vector<std::vector<uint32_t>> faces;
-  std::vector<size_t> face_line;  // per face: the line it begins on (for messages)
+  std::vector<size_t> face_line;    // per face: the line it begins on, 0 in a binary file (for messages)
+  std::vector<size_t> face_number;  // per face: its number in the file from 0, points and lines counted
   size_t skipped = 0;
 };
 
@@ -46,23 +45,19 @@ std::vector<PolyMesh> read_stl_ascii(const std::string& path, const std::string&
 // "solid", and is not a binary STL whose size matches its triangle count).
 bool is_stl_ascii(const std::string& data);
 
-// The vertices of a PLY file's first "vertex" element (ASCII or binary, either byte
-// order), read by the project: x, y, z and, where the element has them, nx, ny, nz.
-// `library` holds what the mesh library makes of each value (single precision), to
-// check that its vertex i is the file's vertex i (check_ply_order).
-struct PlyVertices {
-  std::vector<glm::dvec3> positions;
-  std::vector<glm::dvec3> normals;  // empty when the element has no nx, ny, nz
-  std::vector<glm::vec3> library, library_normals;
-};
-// Throws SceneError "<path>: ..." for a header that is not PLY, a "vertex" element
-// without x, y or z, a value that is not a finite number (ASCII: an integer property
-// whose value is not an integer), or data that ends before the vertex element does.
-PlyVertices read_ply_vertices(const std::string& path, const std::string& data);
-// Checks that the library's scene is the one mesh of the file's vertices in file order
-// (the library's PLY reader keeps them so); throws SceneError naming `path` and the
-// first vertex that differs otherwise.
-void check_ply_order(const std::string& path, const aiScene& scene, const PlyVertices& ply);
+// Reads a PLY file (ASCII, or binary in either byte order; the data begins at the byte
+// after end_header's line, whatever that byte is): the first "vertex" element's x, y, z
+// and, where it has any of nx, ny, nz, its normals (a missing component 0); the first
+// "face" element's "vertex_indices" (or "vertex_index") lists, of any integer types.
+// Every other element and property, lists included, is passed over: an ASCII instance is
+// a line, whose values after its properties' are not used. One part, named ""; a face's
+// face_line is 0 in a binary file. Throws SceneError "<path>: ..." or
+// "<path>:<line>: ..." for a header that is not PLY or declares a property or list of
+// unknown or unsuitable type, a vertex element without x, y or z, a face element without
+// an index list, a "tristrips" element that holds anything, a value used that is not a
+// finite number of its type, a negative list length, an index outside the vertices (the
+// message names the face), or data that ends before its elements do.
+PolyMesh read_ply(const std::string& path, const std::string& data);
 
 // Triangles covering the polygon p[0], ..., p[n-1] (n >= 3), as indices into p, as the
 // mesh library's triangulation chooses them: a triangle as it is; a quadrilateral as a

@@ -16,6 +16,7 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/form_cache.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/rt/plan_parts.h"
@@ -105,6 +106,22 @@ Decision<fmpp::Config> fit_rtl(const std::vector<std::string>& built, unsigned b
                        std::to_string((pixels + largest.blocks - 1) / largest.blocks) + " passes"};
 }
 
+// The frame's settings the user chose in place of the plan's (PlanRequest).
+void take_users_choices(const PlanRequest& req, Plan* plan) {
+  if (req.coherent) {
+    plan->options.coherent = *req.coherent;
+    plan->why_order = std::string(*req.coherent ? "coherent" : "batch") + ": set by the user";
+  }
+  if (req.merge_below) {
+    plan->options.merge_below = *req.merge_below;
+    plan->why_merge = "set by the user";
+  }
+  if (req.kinds_together) {
+    plan->kinds_together = *req.kinds_together;
+    plan->why_kinds = std::string(*req.kinds_together ? "together" : "apart") + ": set by the user";
+  }
+}
+
 }  // namespace
 
 double upper_confidence_bound(size_t hits, size_t trials, double confidence) {
@@ -138,7 +155,11 @@ double upper_confidence_bound(size_t hits, size_t trials, double confidence) {
   return hi;
 }
 
-Plan make_plan(const Scene& scene, const PlanRequest& req) {
+Plan make_plan(const Scene& scene, const PlanRequest& request) {
+  // The forms the plan's golden-model runs prepare, shared by all of them (form_cache.h).
+  std::optional<fmpp::isect::FormCache> own_forms;
+  PlanRequest req = request;
+  if (!req.forms) req.forms = &own_forms.emplace(scene.triangles, kPlanFormBytes);
   Plan plan;
   plan.options = req.base;
   const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
@@ -231,12 +252,12 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     frame = record_frame(scene, exact, req.width, req.height, depth);
     steps.say("the frame traced with exact hits (the pass-size model's rays)");
   }
-  if (const FrameRecord* f = settled ? nullptr : traced()) {
+  const FrameRecord* f = settled ? nullptr : traced();
+  if (f) {
     // The frame sample is culled (plan_bits.cpp); a frame without culling has cheaper
     // broadcasts (most are gated off), measured on samples of its rays instead.
     const PassRates rates = rates_from(sample_stats);
     decide_pass_size(scene, req, pixels, *f, req.base.cull ? &rates : nullptr, &plan);
-    check_mappings(scene, req, depth, f->picture, &plan);
   }
   if (plan.pass_sizes.empty() && !settled) {
     plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
@@ -244,6 +265,8 @@ Plan make_plan(const Scene& scene, const PlanRequest& req) {
     plan.why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
     plan.why_kinds = "apart (not modelled)";
   }
+  take_users_choices(req, &plan);
+  check_on_frame_machine(scene, req, depth, exact, f ? &f->picture : nullptr, &plan);
   return plan;
 }
 

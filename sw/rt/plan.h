@@ -8,14 +8,19 @@
 //     drawn at random from the full frame (every ray type, traced exactly as in the
 //     frame) shows the target is kept: the one-sided upper confidence bound (Clopper-
 //     Pearson, at `confidence`) on the share of the frame's pixels off the reference
-//     render by more than 8 levels is at most the target. The primary rays alone do not
+//     render by more than 8 levels is at most the target (rendered on 64 blocks x 32
+//     words, whose short passes keep culling cheap; the check below renders on the
+//     frame's own machine). The primary rays alone do not
 //     see a shadow ray ending on a neighbouring triangle's edge; a small frame of its own
 //     (an earlier design) does not see errors that only the full resolution has. A frame
 //     of at most sample_pixels pixels is rendered whole, and its measured share decides.
 //     The same render must have at most max_flagged_share of its rays redone on the host
 //     to certify them (uncertain decisions, t beyond the requested accuracy:
 //     docs/intersection.md, "Certified results"): certification must not become "do it
-//     all on the host".
+//     all on the host". Where no n meets every criterion, n = 32, and the check below
+//     decides the target: the costs (wrong primary answers, triangles for the host, rays
+//     redone) are paid on the host without error, and a sample cut short for its cost is
+//     too short to decide the target.
 //   - Words per block: what the kernels need: 20 for rays that share an origin, 26 when
 //     the scene has mirrors or glass within the recursion depth (secondary rays take the
 //     arbitrary-origin kernel).
@@ -30,8 +35,19 @@
 //     depth's rays (cast together already), where the same cost model finds it cheaper.
 //   - The mapping of each kind of batch whose rays share an origin (primary, shadow):
 //     object-parallel where the same cost model, with that mapping's clocks measured on
-//     the golden model (object_cost.h), finds it cheaper; checked like the n, on the frame
-//     sample rendered again with it, and kept ray-parallel if that sample misses a target.
+//     the golden model (object_cost.h), finds it cheaper; checked on the frame's machine
+//     (below), and kept ray-parallel if that check misses the target or the allowance.
+//   - The check on the frame's machine (plan_check.cpp): pixels drawn from the frame are
+//     rendered on the golden model with the frame's configuration (blocks x words) and
+//     every choice above (kernel options, mappings, shadow calls, shadow stop), against
+//     the exact reference; the target is kept when the upper confidence bound on that
+//     sample is within it. Where it is not, the plan escalates, cheapest first, to what
+//     keeps it (the ladder, Rung below): a larger sample, then n = 32, then a tighter
+//     t accuracy (more t from the host), then every t from the host (the picture is then
+//     the exact reference's wherever the answers are certified). Only a limit the user
+//     set stops the ladder: a t accuracy given (KernelOptions::t_accuracy > 0) forbids
+//     the rungs that take t from the host. With n given (bits) the target is not judged
+//     (nothing is sampled but a mapping's check).
 // Every choice can be overridden; the plan says which were.
 #pragma once
 
@@ -74,6 +90,13 @@ struct PlanRequest {
   // Where the plan's golden-model runs keep the forms they prepare (form_cache.h), for
   // the frame to find those of the chosen n (fmpp-render); nullptr: a cache of its own.
   fmpp::isect::FormCache* forms = nullptr;
+  // How the frame runs beyond the kernel options, for the check on the frame's machine:
+  // shadow batches as occlusion queries (FmppIntersector::set_shadow_stop); and choices
+  // the user made that the plan would otherwise make (unset: the plan's): the pass order
+  // (KernelOptions::coherent), merge_below, and shadow calls together.
+  bool shadow_stop = true;
+  std::optional<bool> coherent, kinds_together;
+  std::optional<unsigned> merge_below;
 };
 
 // Rays redone on the host are a cost, not the error target, so an estimate refuses a
@@ -113,6 +136,35 @@ struct PlanCandidate {
   uint64_t sample_cycles;  // primary sample and frame, on the golden model
 };
 
+// The ladder of the check on the frame's machine, cheapest first (plan_check.cpp): the
+// sample as asked on the frame's machine at the plan's n; the same sample grown, up to
+// kSampleGrowth times --plan-pixels (at most the whole frame); n = 32; each t accuracy of
+// kTighterT (a hit whose certified t bound is looser gets its t from the host); every t
+// from the host (kExactT). Each rung that moves n or t starts a sample of its own.
+enum class Rung { kFrameMachine, kLargerSample, kWiderN, kTighterT, kExactT };
+// "frame_machine", "larger_sample", "wider_n", "tighter_t", "exact_t".
+const char* to_string(Rung r);
+inline constexpr size_t kSampleGrowth = 16;
+inline constexpr double kTighterT[] = {0x1p-16, 0x1p-20};
+// A t accuracy no certified bound above 0 meets: every t of a hit comes from the host.
+inline constexpr double kExactT = 0x1p-1022;
+
+// One step of the check: the sample's pixels rendered so far on the golden model at the
+// step's n and t accuracy, with every other choice of the plan.
+struct PlanCheck {
+  Rung rung = Rung::kFrameMachine;
+  unsigned n = 0;
+  double t_accuracy = 0;   // KernelOptions::t_accuracy (0: the default, 2^-12)
+  size_t pixels = 0;       // sampled pixels rendered, this step's and the step's it continues
+  size_t pixels_off = 0;   // of them, off the exact reference by more than 8 levels
+  double bound = -1;       // upper confidence bound on the frame's share off (a whole frame: the share)
+  bool kept = false;       // the step keeps the error target
+  // This step's own renders: rays the kernels answered, those the host redid (flagged,
+  // t from the host), clocks, wall seconds.
+  uint64_t rays = 0, redone = 0, clocks = 0;
+  double seconds = 0;
+};
+
 struct Plan {
   fmpp::Config config;
   fmpp::isect::KernelOptions options;  // base with n (and cond_bits) set
@@ -127,8 +179,14 @@ struct Plan {
   bool kinds_together = false;
   double kinds_apart_clocks = 0, kinds_together_clocks = 0;
   std::string why_bits, why_words, why_blocks, why_order, why_merge, why_mapping, why_kinds;
-  // False if no candidate n keeps the error target on the frame sample (why_bits says by
-  // how much): a render at the plan's n may then be off by more than the target.
+  // The check on the frame's machine, a step per rung tried (with n set by the user only
+  // the check of a moved mapping, if any),
+  // the rung taken (kLadder; "frame machine": no escalation) and why.
+  std::vector<PlanCheck> checks;
+  Rung escalation = Rung::kFrameMachine;
+  std::string why_check;
+  // False if no rung keeps the error target (why_check says by how much, and which limit
+  // the user set stopped the ladder): a render with the plan may then be off by more.
   bool met_target = true;
 };
 

@@ -9,13 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 namespace rt {
 namespace {
 
 // Bumped whenever what a plan decides, or how, changes.
-constexpr const char* kPlanVersion = "plan-8";
+constexpr const char* kPlanVersion = "plan-9";
 
 uint64_t fnv1a(const std::string& s, uint64_t h) {
   for (unsigned char c : s) {
@@ -58,7 +59,65 @@ nlohmann::json request_json(const PlanRequest& r) {
           {"fmpp_boxes", o.fmpp_boxes},
           {"gates", o.gates},
           {"coherent", o.coherent},
-          {"cond_bits", o.cond_bits}};
+          {"cond_bits", o.cond_bits},
+          {"shadow_stop", r.shadow_stop},
+          {"user_coherent", r.coherent ? static_cast<int>(*r.coherent) : -1},
+          {"user_kinds_together", r.kinds_together ? static_cast<int>(*r.kinds_together) : -1},
+          {"user_merge_below", r.merge_below ? static_cast<long long>(*r.merge_below) : -1}};
+}
+
+Rung rung_named(const std::string& name) {
+  for (Rung r : {Rung::kFrameMachine, Rung::kLargerSample, Rung::kWiderN, Rung::kTighterT, Rung::kExactT}) {
+    if (name == to_string(r)) return r;
+  }
+  throw std::invalid_argument("unknown rung " + name);
+}
+
+nlohmann::json check_json(const PlanCheck& c) {
+  return {{"rung", to_string(c.rung)}, {"n", c.n}, {"t_accuracy", c.t_accuracy}, {"pixels", c.pixels},
+          {"pixels_off", c.pixels_off}, {"bound", c.bound}, {"kept", c.kept}, {"rays", c.rays},
+          {"rays_redone", c.redone}, {"cycles", c.clocks}, {"seconds", c.seconds}};
+}
+
+PlanCheck check_from(const nlohmann::json& j) {
+  PlanCheck c;
+  c.rung = rung_named(j.at("rung").get<std::string>());
+  c.n = j.at("n").get<unsigned>();
+  c.t_accuracy = j.at("t_accuracy").get<double>();
+  c.pixels = j.at("pixels").get<size_t>();
+  c.pixels_off = j.at("pixels_off").get<size_t>();
+  c.bound = j.at("bound").get<double>();
+  c.kept = j.at("kept").get<bool>();
+  c.rays = j.at("rays").get<uint64_t>();
+  c.redone = j.at("rays_redone").get<uint64_t>();
+  c.clocks = j.at("cycles").get<uint64_t>();
+  c.seconds = j.at("seconds").get<double>();
+  return c;
+}
+
+// What the escalation cost: the share of the sample's rays redone on the rung taken and
+// on the first rung (the frame pays the difference), and the plan's clocks and seconds
+// on the rungs after the first.
+nlohmann::json escalation_json(const Plan& p) {
+  // "none": nothing checked (n set by the user).
+  nlohmann::json j = {{"taken", p.checks.empty() ? "none" : to_string(p.escalation)}, {"why", p.why_check}};
+  size_t first = 0;
+  for (size_t i = 0; i < p.checks.size(); ++i) {
+    if (p.checks[i].rung == Rung::kFrameMachine) first = i;
+  }
+  if (p.checks.empty()) return j;
+  const auto share = [](const PlanCheck& c) { return c.rays ? static_cast<double>(c.redone) / static_cast<double>(c.rays) : 0; };
+  uint64_t clocks = 0;
+  double seconds = 0;
+  for (size_t i = first + 1; i < p.checks.size(); ++i) {
+    clocks += p.checks[i].clocks;
+    seconds += p.checks[i].seconds;
+  }
+  j.update({{"rays_redone_share", share(p.checks.back())},
+            {"rays_redone_share_before", share(p.checks[first])},
+            {"cycles", clocks},
+            {"seconds", seconds}});
+  return j;
 }
 
 }  // namespace
@@ -109,6 +168,10 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     p.why_order = j.at("why_pass_order").get<std::string>();
     p.why_mapping = j.at("why_mapping").get<std::string>();
     p.kinds_together = j.at("shadow_calls").get<std::string>() == "together";
+    p.options.t_accuracy = j.at("t_accuracy").get<double>();
+    const std::string taken = j.at("escalation").at("taken").get<std::string>();
+    p.escalation = taken == "none" ? Rung::kFrameMachine : rung_named(taken);
+    p.why_check = j.at("escalation").at("why").get<std::string>();
     p.kinds_apart_clocks = j.at("shadow_calls_apart_cycles").get<double>();
     p.kinds_together_clocks = j.at("shadow_calls_together_cycles").get<double>();
     p.why_kinds = j.at("why_shadow_calls").get<std::string>();
@@ -135,6 +198,7 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
       pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
       p.candidates.push_back(pc);
     }
+    for (const auto& c : list("checks")) p.checks.push_back(check_from(c));
     for (const auto& e : list("pass_sizes")) {
       PassSizeEstimate s;
       s.blocks = e.at("blocks").get<unsigned>();
@@ -199,7 +263,9 @@ nlohmann::json plan_report(const Plan& p) {
                       {"why_merge", p.why_merge}, {"object_parallel", nlohmann::json::array()},
                       {"why_mapping", p.why_mapping}, {"shadow_calls", p.kinds_together ? "together" : "apart"},
                       {"shadow_calls_apart_cycles", p.kinds_apart_clocks},
-                      {"shadow_calls_together_cycles", p.kinds_together_clocks}, {"why_shadow_calls", p.why_kinds}};
+                      {"shadow_calls_together_cycles", p.kinds_together_clocks}, {"why_shadow_calls", p.why_kinds},
+                      {"t_accuracy", p.options.t_accuracy}, {"escalation", escalation_json(p)}};
+  for (const PlanCheck& c : p.checks) j["checks"].push_back(check_json(c));
   for (int k = 0; k < kNumBatchKinds; ++k) {
     if (p.object[k]) j["object_parallel"].push_back(to_string(static_cast<BatchKind>(k)));
   }

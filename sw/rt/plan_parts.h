@@ -23,14 +23,20 @@ struct Decision {
   std::string why;
 };
 
-// Rays the host redid to certify them (uncertain decisions, t beyond its accuracy), per
-// ray the kernels answered.
-inline double flagged_share(const fmpp::isect::KernelStats& st) {
-  uint64_t rays = 0, redone = 0;
+// The rays the kernels answered and, of them, those the host redid to certify them
+// (uncertain decisions, t beyond its accuracy).
+inline void ray_counts(const fmpp::isect::KernelStats& st, uint64_t* rays, uint64_t* redone) {
+  *rays = *redone = 0;
   for (int f = 0; f < fmpp::isect::KernelStats::kForms; ++f) {
-    rays += st.form_rays[f];
-    redone += st.flagged_rays[f] + st.t_bound_rays[f];
+    *rays += st.form_rays[f];
+    *redone += st.flagged_rays[f] + st.t_bound_rays[f];
   }
+}
+
+// Rays the host redid to certify them, per ray the kernels answered.
+inline double flagged_share(const fmpp::isect::KernelStats& st) {
+  uint64_t rays, redone;
+  ray_counts(st, &rays, &redone);
   return rays ? static_cast<double>(redone) / static_cast<double>(rays) : 0;
 }
 
@@ -77,9 +83,31 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
 // Why the plan may not move a kind of batch to the object-parallel mapping on a machine
 // of `words` words ("" where it may): the user's --mapping, the watertight form, words.
 std::string object_mapping_refused(const PlanRequest& req, unsigned words);
-// A kind of batch moved to the object-parallel mapping, checked on the frame sample
-// rendered again with it against the exact frame's picture (else moved back).
-void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan);
+// The check's sample (plan_check.cpp): up to kSampleGrowth times req.sample_pixels pixels
+// of the frame (at most all of them) in a random order with a fixed seed; its renders are
+// prefixes of that order. Its first `count` pixels, sorted (the pixels of a render of
+// that prefix).
+std::vector<uint32_t> check_order(const PlanRequest& req);
+std::vector<uint32_t> check_pixels(const PlanRequest& req, size_t count);
+
+// The rungs after the first that the check may climb, in order (plan.h, Rung): each with
+// the n and t accuracy it renders at; none that a limit the user set forbids (a t
+// accuracy given forbids the rungs that take more t from the host).
+struct LadderStep {
+  Rung rung;
+  unsigned n;
+  double t_accuracy;
+};
+std::vector<LadderStep> ladder(const PlanRequest& req, const Plan& plan);
+
+// The check on the frame's machine and its ladder (plan_check.cpp, plan.h): sets the
+// plan's checks, escalation, why_check and met_target, and where a rung moves them its n
+// and t accuracy. A kind of batch moved to the object-parallel mapping is checked first,
+// and moved back if that check misses the target or the allowance of rays redone (the
+// mapping is a cost). `whole`: the exact reference's picture of the frame, or nullptr
+// (then the sampled pixels are rendered with `exact`).
+void check_on_frame_machine(const Scene& scene, const PlanRequest& req, int depth, ReferenceIntersector& exact,
+                            const Image* whole, Plan* plan);
 
 // The plan's samples (plan_sample.cpp).
 //
@@ -109,6 +137,9 @@ PrimarySample primary_sample(const Scene& scene, const PlanRequest& req);
 // (one setup of each batch, the costly part on a large mesh) decides a clean candidate;
 // kPlanChunk more pixels at a time after it. A frame sampled whole is one chunk.
 inline constexpr size_t kPlanChunk = 500;
+// The fewest pixels whose sample can keep the target with no pixel off, at most `cap`
+// (`cap` for a target of 0).
+size_t fewest_to_show(const PlanRequest& req, size_t cap);
 struct FrameSample {
   RenderOptions frame;          // size and depth; pixels: the sample's, sorted (none: the whole frame)
   std::vector<uint32_t> order;  // the sample in random order

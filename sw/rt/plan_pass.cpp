@@ -126,50 +126,6 @@ bool decide_pass_size_by_bound(const Scene& scene, const PlanRequest& req, size_
   return true;
 }
 
-// A kind of batch the cost model moved to the object-parallel mapping is checked as the
-// n was (that mapping's form has its own precision: docs/intersection.md): the frame
-// sample rendered again with it must keep the error target and the allowance of rays
-// redone, or every kind goes back to the ray-parallel mapping.
-void check_mappings(const Scene& scene, const PlanRequest& req, int depth, const Image& reference, Plan* plan) {
-  const std::string kinds = object_kinds(*plan);
-  if (kinds.empty()) return;
-  Steps steps(req);
-  RenderOptions ro;
-  ro.width = req.width;
-  ro.height = req.height;
-  ro.max_depth = depth;
-  const size_t pixels = static_cast<size_t>(req.width) * req.height;
-  const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
-  if (want < pixels) ro.pixels = plan_pixels(pixels, want);
-  const size_t sampled = ro.pixels.empty() ? pixels : ro.pixels.size();
-  fmpp::ModelBus bus(fmpp::Config{static_cast<unsigned>(std::min<size_t>(sampled, 64)), 32});
-  fmpp::Device dev(bus);
-  fmpp::isect::KernelOptions o = plan->options;
-  o.forms = req.forms;
-  o.progress = nullptr;
-  FmppIntersector fi(dev, scene.triangles, o);
-  for (int k = 0; k < kNumBatchKinds; ++k) {
-    if (plan->object[k]) fi.set_mapping(static_cast<BatchKind>(k), fmpp::isect::Mapping::kObject);
-  }
-  const Image got = render(scene, fi, ro, nullptr);
-  const size_t over = compare(got, listed_pixels(reference, {}, ro.pixels)).pixels_over;
-  const double rate = static_cast<double>(over) / static_cast<double>(sampled);
-  const double bound = sampled == pixels ? rate : upper_confidence_bound(over, sampled, req.confidence);
-  const double redone = flagged_share(fi.stats());
-  const bool keeps = bound <= req.target_wrong_rate && redone <= req.max_flagged_share;
-  std::ostringstream why;
-  why << "; the frame sample with " << kinds << " rays object-parallel: " << pct(rate) << " of " << sampled
-      << " pixels off the reference (bound " << pct(bound) << "), " << pct(redone) << " of its rays redone"
-      << (keeps ? "" : ", over the target or the allowance: every kind kept ray-parallel");
-  plan->why_mapping += why.str();
-  if (!keeps) {
-    plan->object = {};
-    for (MappingEstimate& e : plan->mappings) e.chosen = false;
-  }
-  steps.say("the frame sample with " + kinds + " rays object-parallel: " + pct(rate) + " off, " + pct(redone) +
-            " redone" + (keeps ? "" : ": kept ray-parallel"));
-}
-
 }  // namespace rt::plan_parts
 
 namespace rt {

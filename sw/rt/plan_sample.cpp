@@ -76,6 +76,17 @@ PrimarySample primary_sample(const Scene& scene, const PlanRequest& req) {
   return s;
 }
 
+size_t fewest_to_show(const PlanRequest& req, size_t cap) {
+  if (!(req.target_wrong_rate > 0)) return cap;  // no sample shows a zero target
+  // With no pixel off the bound is 1 - (1 - confidence)^(1/k): start just below its k.
+  const double k = std::floor(std::log1p(-req.confidence) / std::log1p(-req.target_wrong_rate)) - 1;
+  size_t first = static_cast<size_t>(std::clamp(k, 0.0, static_cast<double>(cap)));
+  while (first < cap && (first == 0 || upper_confidence_bound(0, first, req.confidence) > req.target_wrong_rate)) {
+    first += 1;
+  }
+  return first;
+}
+
 FrameSample frame_sample(const PlanRequest& req, int depth) {
   FrameSample s;
   const size_t pixels = static_cast<size_t>(req.width) * static_cast<size_t>(req.height);
@@ -85,10 +96,7 @@ FrameSample frame_sample(const PlanRequest& req, int depth) {
   const size_t want = static_cast<size_t>(std::max(1, req.sample_pixels));
   if (want < pixels) s.frame.pixels = plan_pixels(pixels, want);
   s.sampled = s.frame.pixels.empty() ? pixels : s.frame.pixels.size();
-  // With no pixel off the bound is 1 - (1 - confidence)^(1/k): start just below its k.
-  s.first = std::max(kPlanChunk, static_cast<size_t>(std::max(
-                                     0.0, std::floor(std::log1p(-req.confidence) / std::log1p(-req.target_wrong_rate)) - 1)));
-  while (s.first < s.sampled && upper_confidence_bound(0, s.first, req.confidence) > req.target_wrong_rate) s.first += 1;
+  s.first = std::max(kPlanChunk, fewest_to_show(req, s.sampled));
   // The sample in random order, and the ends of its chunks (prefixes of that order); a
   // frame sampled whole is one chunk.
   s.order = s.frame.pixels;

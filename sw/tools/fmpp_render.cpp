@@ -298,6 +298,11 @@ int main(int argc, char** argv) {
       }
       if (app.count("--blocks")) pr.blocks = blocks;
       if (app.count("--words")) pr.words = words;
+      // The frame's settings the plan's check renders with (plan.h).
+      pr.shadow_stop = !no_shadow_stop;
+      if (app.count("--pass-order")) pr.coherent = pass_order == "coherent";
+      if (app.count("--merge-below")) pr.merge_below = merge_below;
+      if (!shadow_calls.empty()) pr.kinds_together = shadow_calls == "together";
       // The forms the plan's golden-model runs prepare are kept for the frame: those of the
       // chosen n it finds (the same answers and clocks) come off the plan's seconds.
       isect::FormCache forms(scene.triangles, rt::kPlanFormBytes);
@@ -312,8 +317,9 @@ int main(int argc, char** argv) {
       Device dev(be->bus());
       isect::KernelOptions ko = base;
       ko.n = bits;
-      ko.coherent = app.count("--pass-order") ? pass_order == "coherent" : plan.options.coherent;
-      ko.merge_below = app.count("--merge-below") ? merge_below : plan.options.merge_below;
+      ko.coherent = plan.options.coherent;  // the user's where given (PlanRequest), else the plan's
+      ko.merge_below = plan.options.merge_below;
+      ko.t_accuracy = plan.options.t_accuracy;  // the user's, or the plan's escalation
       ko.oracle = oracle;
       ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
       ko.forms = &forms;
@@ -324,7 +330,7 @@ int main(int argc, char** argv) {
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
         if (plan.object[k]) fi.set_mapping(static_cast<rt::BatchKind>(k), isect::Mapping::kObject);
       }
-      const bool together = shadow_calls.empty() ? plan.kinds_together : shadow_calls == "together";
+      const bool together = plan.kinds_together;
       fi.set_kinds_together(together);
       img = std::make_unique<rt::Image>(render_checked(scene, chips.wrap(fi), ro, &rs, verify, command, &rep));
       be->finish();
@@ -337,7 +343,7 @@ int main(int argc, char** argv) {
                      {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
                      {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
                      {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]},
-                     {"shadow_calls", together ? "together" : "apart"}};
+                     {"shadow_calls", together ? "together" : "apart"}, {"t_accuracy", ko.t_accuracy}};
       rep.update(isect::stats_json(st, clock_mhz));
       if (oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {

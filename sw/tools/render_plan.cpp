@@ -34,13 +34,15 @@ RenderPlan plan_render(const rt::Scene& scene, const rt::PlanRequest& req, const
   if (!plan.met_target && !cli.accept_miss) {
     std::ostringstream t;
     t << req.target_wrong_rate;
-    throw std::runtime_error("the precision plan cannot keep --error-target " + t.str() + ": " + plan.why_bits +
-                             "; no picture written (raise --error-target, or give --accept-plan-miss to render "
-                             "anyway)");
+    // The limit that stopped the ladder, named with the way around it.
+    const std::string limit = req.base.t_accuracy > 0 ? "drop --t-accuracy, " : "";
+    throw std::runtime_error("the precision plan cannot keep --error-target " + t.str() + ": " + plan.why_check +
+                             "; no picture written (" + limit + "raise --error-target, or give --accept-plan-miss "
+                             "to render anyway)");
   }
   if (!plan.met_target && !cli.quiet) {
     std::fprintf(stderr, "warning: rendering although the plan missed its target (--accept-plan-miss): %s\n",
-                 plan.why_bits.c_str());
+                 plan.why_check.c_str());
   }
   (*report)["plan"] = rt::plan_report(plan);
   (*report)["plan"].update({{"error_target", req.target_wrong_rate},
@@ -51,12 +53,19 @@ RenderPlan plan_render(const rt::Scene& scene, const rt::PlanRequest& req, const
   if (!cli.quiet) {
     // One short line; the reasons, every candidate and the cost model's estimates are in
     // the report's "plan".
+    const bool escalated = plan.escalation != rt::Rung::kFrameMachine;
     const std::string how = req.bits ? "n set by the user"
-                            : !plan.met_target ? "no n keeps the error target"
+                            : !plan.met_target ? "nothing the plan may do keeps the error target"
+                            : escalated ? std::string("escalated to keep the error target: ") + rt::to_string(plan.escalation)
                             : plan.why_bits.rfind("smallest n", 0) == 0 ? "the smallest n keeping the error target"
                                                                        : "the widest n; some costs over their limits";
     std::string object = rt::object_kinds(plan);
     if (!object.empty()) object = ", " + object + " rays object-parallel";
+    if (plan.options.t_accuracy > 0) {
+      std::ostringstream t;
+      t << plan.options.t_accuracy;
+      object += ", t accuracy " + (plan.options.t_accuracy == rt::kExactT ? std::string("exact") : t.str());
+    }
     std::fprintf(stderr, "plan: n = %u, %u blocks x %u words%s (%s; %.1f s%s); the reasons are in --report's plan\n",
                  plan.options.n, plan.config.blocks, plan.config.words, object.c_str(), how.c_str(), rp.seconds,
                  rp.cached ? ", cached" : "");

@@ -26,7 +26,8 @@ struct RenderPlan {
 };
 
 // The plan of `req` for `scene`; (*report)["plan"] gets it with its key, target and
-// seconds. Throws std::runtime_error when it misses the target and cli.accept_miss is off.
+// seconds. Throws std::runtime_error when it misses the target and cli.accept_miss is off,
+// naming the limit the user set that stopped its ladder (plan.h), if any.
 RenderPlan plan_render(const rt::Scene& scene, const rt::PlanRequest& req, const PlanCli& cli,
                        nlohmann::json* report);
 

@@ -61,14 +61,14 @@ std::string check_answer(const Ray& r, const Hit& got, const Hit& exact, const s
   const bool needed = exact.hit() && exact.t < r.tmax;  // a hit before tmax exists
   if (!got.hit()) return needed ? both + ": a hit before the ray's tmax " + num(r.tmax) + " was missed" : "";
   if (needed && !rules.any_occluder) return both + ": another triangle than the nearest";
-  if (needed && got.tri == r.hint) {
-    return both + ": the occlusion query stopped at the ray's own surface (its hint), which its caller counts as "
-                  "no occluder, while a nearer triangle occludes";
-  }
   const double te = intersect_reference(r, tris[static_cast<size_t>(got.tri)]);
   if (!(te < std::numeric_limits<double>::infinity())) return both + ": the ray does not meet the answer's triangle";
   if (needed && !(te < r.tmax)) {
     return both + ": an occluder was needed before tmax " + num(r.tmax) + ", the answer's lies at exact t = " + num(te);
+  }
+  if (needed && got.tri == r.hint) {
+    return both + ": the occlusion query stopped at the ray's own surface (its hint), which its caller counts as "
+                  "no occluder, while a nearer triangle occludes";
   }
   if (!needed && te < r.tmax) return both + ": the answer's triangle lies before the exact nearest hit";
   const std::string why = check_t(got, te, rules);
