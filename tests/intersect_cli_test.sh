@@ -140,4 +140,26 @@ grep -q "short.txt:1: ray direction is too short" "$dir/err.txt"
 printf '1e-310 0 0  0 0 1\n' > "$dir/sub.txt"
 "$bin" --triangles "$dir/tris.txt" --rays "$dir/sub.txt" --backend reference --out "$dir/sub.hits"
 grep -q "^0 5" "$dir/sub.hits"
+# A ray may carry tmin, tmax ("inf": none), the triangle it excludes and a hint: the first
+# ray's nearest hit (triangle 0 at 5) is left out by tmin, the second's by exclusion.
+cat > "$dir/extras.txt" <<'R'
+0 0 0  0 0 1  5 inf
+0 0 0  0 0 1  0 inf 0
+0 0 0  0 0 1  0 6 -1 0
+R
+printf '2 9\n2 9\n0 5\n' > "$dir/want_extras.txt"
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/extras.txt" --backend reference --out "$dir/extras_ref.txt"
+diff <(awk '{print $1, $2+0}' "$dir/extras_ref.txt") "$dir/want_extras.txt"
+# Every kernel option is an option of the tool; --hex-t writes t exactly.
+"$bin" --triangles "$dir/tris.txt" --rays "$dir/extras.txt" --backend cmodel --bits 12 --vbits 20 --mbits 20 \
+  --qbits 16 --no-cull --no-probe --no-fmpp-boxes --cull-packet 4 --pass-order batch --merge-below 2 \
+  --occlusion --oracle --no-gates --hex-t --out "$dir/extras_opts.txt" --report "$dir/extras_opts.json"
+diff <(cut -d' ' -f1 "$dir/extras_ref.txt") <(cut -d' ' -f1 "$dir/extras_opts.txt")
+grep -q '^0 0x1.4p+2$' "$dir/extras_opts.txt"
+grep -q '"oracle"' "$dir/extras_opts.json"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/rays.txt" --vbits 29 2> "$dir/err.txt"; then exit 1; fi
+grep -q -- "--vbits: value 29 not in \[2, 28\]" "$dir/err.txt"
+printf '0 0 0  0 0 1  1\n' > "$dir/seven.txt"
+if "$bin" --triangles "$dir/tris.txt" --rays "$dir/seven.txt" 2> "$dir/err.txt"; then exit 1; fi
+grep -q "seven.txt:1: a ray needs 6, 8, 9 or 10 numbers, found 7" "$dir/err.txt"
 echo "fmpp-intersect e2e: OK"

@@ -88,6 +88,37 @@ TEST(Io, SubnormalNumbersAreReadAsTheirValue) {
   EXPECT_EQ(r[0].d.x, 1e-310);
 }
 
+// A ray line may carry tmin and tmax ("inf" for none), then the triangle it excludes and
+// its hint (-1: none); anything else is an error naming the line.
+TEST(Io, RaysCarryTheirIntervalExclusionAndHint) {
+  const std::string path = ::testing::TempDir() + "/extras.ray";
+  {
+    std::ofstream f(path);
+    f << "0 0 0 0 0 1\n0 0 0 0 0 1 0.5 inf\n0 0 0 0 0 1 0 2.5 3\n0 0 0 0 0 1 1e-300 -1 -1 7\n";
+  }
+  const std::vector<Ray> r = read_rays(path);
+  ASSERT_EQ(r.size(), 4u);
+  EXPECT_EQ(r[0].tmin, 0);
+  EXPECT_EQ(r[0].tmax, kInf);
+  EXPECT_EQ(r[0].exclude, -1);
+  EXPECT_EQ(r[1].tmin, 0.5);
+  EXPECT_EQ(r[1].tmax, kInf);
+  EXPECT_EQ(r[2].tmax, 2.5);
+  EXPECT_EQ(r[2].exclude, 3);
+  EXPECT_EQ(r[2].hint, -1);
+  EXPECT_EQ(r[3].tmin, 1e-300);
+  EXPECT_EQ(r[3].tmax, -1);
+  EXPECT_EQ(r[3].exclude, -1);
+  EXPECT_EQ(r[3].hint, 7);
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 1 0.5\n", true), path + ":1: a ray needs 6, 8, 9 or 10 numbers, found 7");
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 1 inf 1\n", true), path + ":1: 'inf' is not a finite number");
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 1 -1 1\n", true), path + ":1: ray tmin -1 is negative");
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 1 0 1 2.5\n", true),
+            path + ":1: ray exclude 2.5 is not a triangle index (a whole number, -1 for none)");
+  EXPECT_EQ(read_error(path, "0 0 0 0 0 1 0 1 0 -2\n", true),
+            path + ":1: ray hint -2 is not a triangle index (a whole number, -1 for none)");
+}
+
 TEST(Io, DirectoriesAndEmptyPathsAreNamed) {
   std::string dir = ::testing::TempDir();
   while (dir.size() > 1 && dir.back() == '/') dir.pop_back();

@@ -234,29 +234,38 @@ TEST_P(Placement, GatesChangeNoAnswerAnywhere) {
 // rays that probed, before the rest is sent. Through five walls with holes, at every
 // scale and distance from the origin, the answers are those without culling and the
 // exact reference's.
+// Five walls of 2 x 8 x 8 triangles with random holes (2^e scale, shifted by `far` along
+// x), and 200 rays of their own origins through them along -x, every seventh excluding
+// a triangle.
+void walls_with_holes(std::mt19937_64& rng, int e, double far, std::vector<Triangle>* tris, std::vector<Ray>* rays) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto at = [&](glm::dvec3 p) { return glm::dvec3(std::ldexp(p.x + far, e), std::ldexp(p.y, e), std::ldexp(p.z, e)); };
+  tris->clear();
+  rays->clear();
+  for (int w = 0; w < 5; ++w) {
+    for (int i = 0; i < 8; ++i) {
+      for (int j = 0; j < 8; ++j) {
+        if (u(rng) < -0.4) continue;  // a hole: the rays through it go on to the next wall
+        const glm::dvec3 a(2.0 * w, i - 4.0, j - 4.0), b = a + glm::dvec3(0, 1, 0), c = a + glm::dvec3(0, 0, 1);
+        tris->push_back(Triangle{{at(a), at(b), at(c)}});
+        tris->push_back(Triangle{{at(b), at(b + glm::dvec3(0, 0, 1)), at(c)}});
+      }
+    }
+  }
+  for (int k = 0; k < 200; ++k) {
+    Ray r{at(glm::dvec3(12 + u(rng), 3 * u(rng), 3 * u(rng))), {-1, 0.2 * u(rng), 0.2 * u(rng)}};
+    r.exclude = k % 7 == 0 ? static_cast<int>(static_cast<size_t>(k) % tris->size()) : -1;
+    rays->push_back(r);
+  }
+}
+
 TEST_P(Placement, ProbeRoundsChangeNoAnswerAnywhere) {
   std::mt19937_64 rng(43);
-  std::uniform_real_distribution<double> u(-1, 1);
   for (int e : {-600, 0, 40}) {
     for (double far : {0.0, 0x1p40}) {
-      const auto at = [&](glm::dvec3 p) { return glm::dvec3(std::ldexp(p.x + far, e), std::ldexp(p.y, e), std::ldexp(p.z, e)); };
       std::vector<Triangle> tris;
-      for (int w = 0; w < 5; ++w) {
-        for (int i = 0; i < 8; ++i) {
-          for (int j = 0; j < 8; ++j) {
-            if (u(rng) < -0.4) continue;  // a hole: the rays through it go on to the next wall
-            const glm::dvec3 a(2.0 * w, i - 4.0, j - 4.0), b = a + glm::dvec3(0, 1, 0), c = a + glm::dvec3(0, 0, 1);
-            tris.push_back(Triangle{{at(a), at(b), at(c)}});
-            tris.push_back(Triangle{{at(b), at(b + glm::dvec3(0, 0, 1)), at(c)}});
-          }
-        }
-      }
       std::vector<Ray> rays;
-      for (int k = 0; k < 200; ++k) {
-        Ray r{at(glm::dvec3(12 + u(rng), 3 * u(rng), 3 * u(rng))), {-1, 0.2 * u(rng), 0.2 * u(rng)}};
-        r.exclude = k % 7 == 0 ? static_cast<int>(static_cast<size_t>(k) % tris.size()) : -1;
-        rays.push_back(r);
-      }
+      walls_with_holes(rng, e, far, &tris, &rays);
       SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
       KernelStats st[2];
       std::vector<Hit> got[2];
@@ -274,6 +283,58 @@ TEST_P(Placement, ProbeRoundsChangeNoAnswerAnywhere) {
       EXPECT_EQ(st[0].probe_rounds, 0u);
       EXPECT_LT(st[1].broadcasts, st[0].broadcasts);
       EXPECT_GT(std::count_if(ref.begin(), ref.end(), [](const Hit& h) { return h.hit(); }), 100);
+    }
+  }
+}
+
+// Specks 2^size across (`count` of them, in front of the walls of walls_with_holes at the
+// same scale and shift), and every other ray re-aimed from its origin at a point inside
+// one of them.
+void add_specks(std::mt19937_64& rng, int e, double far, int size, int count, std::vector<Triangle>* tris,
+                std::vector<Ray>* rays) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto at = [&](glm::dvec3 p) { return glm::dvec3(std::ldexp(p.x + far, e), std::ldexp(p.y, e), std::ldexp(p.z, e)); };
+  const double s = std::ldexp(1.0, size);
+  std::vector<glm::dvec3> centres;
+  for (int k = 0; k < count; ++k) {
+    const glm::dvec3 c(9 + u(rng), 3 * u(rng), 3 * u(rng));
+    tris->push_back(Triangle{{at(c), at(c + s * glm::dvec3(u(rng), 1, u(rng))), at(c + s * glm::dvec3(u(rng), u(rng), 1))}});
+    centres.push_back(c + s * glm::dvec3(0.2, 0.3, 0.3));
+  }
+  for (size_t i = 0; i < rays->size(); i += 2) {
+    Ray& r = (*rays)[i];
+    r.d = std::ldexp(1.0, -e) * (at(centres[i / 2 % centres.size()]) - r.o);  // exact: a power of two
+  }
+}
+
+// A broadcast the arbitrary-origin form refuses as it prepares it (its certainty
+// thresholds would exceed the words, so no hit of it could be certain) is merged on the
+// host by each pass that would send it. A probe round made only of such broadcasts used
+// to end its pass's broadcasts (an empty list), and the triangles left for the later
+// rounds and the final broadcasts were lost: misses where hits exist. At n = 8 and 10
+// every broadcast of these walls is refused; specks 2^-17 across with cond_bits 60 (no
+// triangle to the host for its condition) are refused among usable walls.
+TEST_P(Placement, RefusedBroadcastsInProbeRoundsAreMergedOnTheHost) {
+  std::mt19937_64 rng(47);
+  for (int e : {-600, 0, 40}) {
+    for (double far : {0.0, 0x1p40}) {
+      std::vector<Triangle> tris;
+      std::vector<Ray> rays;
+      walls_with_holes(rng, e, far, &tris, &rays);
+      add_specks(rng, e, far, -26, 40, &tris, &rays);
+      SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far));
+      const std::vector<Hit> ref = nearest_reference(rays, tris);
+      for (const auto& [n, cond] : {std::pair{8u, -1}, {10u, -1}, {16u, 60}, {32u, 60}}) {
+        KernelStats st;
+        std::vector<Hit> got;
+        ASSERT_NO_THROW(got = run_general(rays, tris, [&](KernelOptions& o) { o.n = n; o.cond_bits = cond; }, &st));
+        for (size_t i = 0; i < rays.size(); ++i) EXPECT_EQ(got[i].tri, ref[i].tri) << "n " << n << " ray " << i;
+        EXPECT_GT(st.host_triangles, 0u) << "n " << n << ": the form refused broadcasts";
+        if (cond > 0) {
+          EXPECT_GT(st.probe_rounds, 0u) << "n " << n << ": the rays probed in rounds";
+          EXPECT_LT(st.host_triangles, tris.size() / 4) << "n " << n << ": the walls are broadcast";
+        }
+      }
     }
   }
 }

@@ -314,6 +314,10 @@ class RayParallelPlan : public PassPlan {
     if (*appended) {
       for (size_t k : done) keep[k] = 0;
     }
+    // A broadcast the form refuses joins this pass's host merge before the next round is
+    // chosen: a round is never empty while usable broadcasts are left (an empty list ends
+    // the pass's broadcasts, run_passes).
+    form_.keep_usable(&keep, &refused_);
     std::vector<size_t> order = marked(keep);
     // Rays of their own origins: another probe round (probe.h), if it sends less than what
     // is left (all of which would be sent anyway: it adds only a read-back).

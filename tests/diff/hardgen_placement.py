@@ -89,6 +89,21 @@ def fam_far_speck(b, n):
         b.aim_weights(o, t, _weights(b.rng))
 
 
+def fam_specks_own_origins(b, n):
+    """Specks 2^-24 to 2^-8 of the scene among a few ordinary triangles, every ray from its
+    own origin inside the scene, most aimed at a speck."""
+    for _ in range(4):
+        b.tri(rand_tri(b.rng, b.f, centre=[b.rng.uniform(-1, 1) for _ in range(3)], size=0.5))
+    specks = []
+    for _ in range(12):
+        centre = b.f.place([b.rng.uniform(-1, 1) for _ in range(3)])
+        specks.append(b.tri(_small_tri(b, centre, b.rng.uniform(-24, -8))))
+    while len(b.rays) < n:
+        t = b.rng.choice(specks) if b.rng.random() < 0.8 else b.rng.choice(b.tris)
+        o = b.f.place([b.rng.uniform(-1.5, 1.5) for _ in range(3)])
+        b.aim_weights(o, t, _weights(b.rng))
+
+
 def fam_far_ties(b, n):
     """Copies of triangles (vertex order rotated or reversed), tied exactly."""
     for _ in range(4):
@@ -114,4 +129,5 @@ PLACEMENT = {
     "thin_slivers": (fam_thin_sliver, dict(local_bits=48, dist_exp=(0, 1))),
     "far_speck": (fam_far_speck, dict(local_bits=24, dist_exp=(0, 8))),
     "far_ties": (fam_far_ties, dict(dist_exp=(20, 50), always_far=True)),
+    "specks_own_origins": (fam_specks_own_origins, dict(local_bits=30, dist_exp=(0, 20))),
 }

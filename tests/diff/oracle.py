@@ -7,7 +7,10 @@ vertices count (u >= 0, v >= 0, u + v <= 1); t > 0 strictly; the smallest t wins
 exact tie goes to the lowest triangle index.
 
 nearest(tris, rays) -> [(triangle index or -1, Fraction t or None)] for lists of
-9-tuples and 6-tuples of floats (every float is a dyadic rational, so all is exact).
+9-tuples and rays of 6 floats (every float is a dyadic rational, so all is exact), or of
+8 to 10 (tmin, tmax, exclude, hint as fmpp-intersect reads them: t > tmin strictly, the
+excluded triangle never hit; tmax and hint change no answer); all_hits(tris, rays) gives
+every triangle each ray hits, with its exact t.
 """
 from fractions import Fraction
 
@@ -41,7 +44,18 @@ def _sub(a, b):
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-def nearest(tris, rays):
+def _ray_limits(r, dp, dd):
+    """tmin in units of t' / det (t' the integer distance along the integer direction d),
+    as a fraction, and the excluded triangle: a ray's 7th and 9th entries, if any."""
+    tmin = Fraction(r[6]) * dp / dd if len(r) > 6 else Fraction(0)
+    exclude = int(r[8]) if len(r) > 8 else -1
+    return tmin, exclude
+
+
+def all_hits(tris, rays):
+    """For each ray, {triangle index: exact Fraction t} of every triangle it hits at
+    t > tmin, the excluded one left out (rays of 6 entries, or 8 to 10: tmin, tmax,
+    exclude, hint; tmax and hint change no hit)."""
     dp = _common_scale([c for t in tris for c in t] + [c for r in rays for c in r[:3]])
     prepared = []
     for t in tris:
@@ -51,40 +65,58 @@ def nearest(tris, rays):
     out = []
     for r in rays:
         o = tuple(_ints(r[:3], dp))
-        dd = _common_scale(r[3:])
-        d = tuple(_ints(r[3:], dd))
-        best, bt, bd = -1, 0, 1  # best t = bt / bd (in units of the integer direction d)
+        dd = _common_scale(r[3:6])
+        d = tuple(_ints(r[3:6], dd))
+        tmin, exclude = _ray_limits(r, dp, dd)
+        hits = {}
         for k, (a, e1, e2) in enumerate(prepared):
             p = _cross(d, e2)
             det = _dot(e1, p)
-            if det == 0:
+            if det == 0 or k == exclude:
                 continue
             s = _sub(o, a)
             q = _cross(s, e1)
             u, v, t = _dot(s, p), _dot(d, q), _dot(e2, q)
             if det < 0:
                 det, u, v, t = -det, -u, -v, -t
-            if u < 0 or v < 0 or u + v > det or t <= 0:
+            if u < 0 or v < 0 or u + v > det or t * tmin.denominator <= tmin.numerator * det:
                 continue
-            if best < 0 or t * bd < bt * det:
-                best, bt, bd = k, t, det
-        # o + t' d (grid units, integer d) = O + t D: t = t' dd / dp
-        out.append((best, Fraction(bt, bd) * Fraction(dd, dp) if best >= 0 else None))
+            # o + t' d (grid units, integer d) = O + t D: t = t' dd / dp
+            hits[k] = Fraction(t, det) * Fraction(dd, dp)
+        out.append(hits)
     return out
 
 
+def nearest_of(hits):
+    """(triangle index or -1, Fraction t or None): the smallest t, an exact tie to the
+    lowest index."""
+    best = -1
+    for k in sorted(hits):
+        if best < 0 or hits[k] < hits[best]:
+            best = k
+    return (best, hits[best]) if best >= 0 else (-1, None)
+
+
+def nearest(tris, rays):
+    return [nearest_of(h) for h in all_hits(tris, rays)]
+
+
 def read(path, width):
+    """Rows of `width` numbers, or of any of the widths in a tuple ("inf" is read as a
+    float too)."""
+    widths = width if isinstance(width, tuple) else (width,)
     rows = []
     with open(path) as f:
         for line in f:
             line = line.split("#")[0].split()
             if line:
-                assert len(line) == width, path
+                assert len(line) in widths, path
                 rows.append(tuple(float(x) for x in line))
     return rows
 
 
 def hit_t(tri, ray):
-    """Exact t > 0 at which `ray` meets `tri`, or None (the semantics of nearest)."""
-    res = nearest([tri], [ray])[0]
+    """Exact t > tmin at which `ray` meets `tri`, or None (the semantics of nearest; the
+    ray's excluded triangle is not this one's index)."""
+    res = nearest([tri], [ray[:7]])[0]
     return res[1]

@@ -1,6 +1,8 @@
 // libFuzzer target: the triangle and ray files of fmpp-intersect (fmpp::isect::read_triangles,
 // read_rays). The same bytes are read as both. Any input must end in records within the
-// input limits, or a ParseError.
+// input limits (a ray's tmin >= 0, tmax not NaN, exclude and hint -1 or an index), or a
+// ParseError.
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -20,6 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     for (const auto& r : fmpp::isect::read_rays(path)) {
       if (!fmpp::isect::check_point(r.o).empty() || !fmpp::isect::check_direction(r.d).empty()) __builtin_trap();
+      if (!(r.tmin >= 0) || std::isnan(r.tmax) || r.exclude < -1 || r.hint < -1) __builtin_trap();
     }
   } catch (const fmpp::isect::ParseError&) {
   }

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
+#include <limits>
 #include <sstream>
 
 #include "common/util/output_file.h"
@@ -18,9 +20,11 @@
 namespace fmpp::isect {
 namespace {
 
-// Numbers on each non-empty line, exactly `count` of them, finite.
+// Numbers on each non-empty line, as many as one of `counts` (the first is the fewest),
+// each finite but for the token "inf" at position `inf_at` (none by default).
 template <class F>
-void read_records(const std::string& path, size_t count, const char* what, F&& take) {
+void read_records(const std::string& path, std::initializer_list<size_t> counts, const char* what, F&& take,
+                  size_t inf_at = SIZE_MAX) {
   std::string text;
   std::string err = read_input(path, std::string(what) + " file", kMaxRecordFileBytes, &text);
   if (err.empty()) err = check_text(path, &text);
@@ -32,18 +36,43 @@ void read_records(const std::string& path, size_t count, const char* what, F&& t
     v.clear();
     double x = 0;
     while (ss >> tok) {
-      if (!parse_finite(tok, &x)) {
+      if (v.size() == inf_at && tok == "inf") {
+        x = std::numeric_limits<double>::infinity();
+      } else if (!parse_finite(tok, &x)) {
         throw ParseError(path + ":" + std::to_string(lineno) + ": '" + tok + "' is not a finite number");
       }
       v.push_back(x);
     }
     if (v.empty()) return;
-    if (v.size() != count) {
-      throw ParseError(path + ":" + std::to_string(lineno) + ": a " + what + " needs " + std::to_string(count) +
-                       " numbers, found " + std::to_string(v.size()));
+    if (std::find(counts.begin(), counts.end(), v.size()) == counts.end()) {
+      std::string want;
+      for (size_t c : counts) want += (want.empty() ? "" : c == *(counts.end() - 1) ? " or " : ", ") + std::to_string(c);
+      throw ParseError(path + ":" + std::to_string(lineno) + ": a " + what + " needs " + want + " numbers, found " +
+                       std::to_string(v.size()));
     }
     take(v, lineno);
   });
+}
+
+// v as read (shortest round trip), for a message.
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  for (int digits = 1; digits < 17; ++digits) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", digits, v);
+    if (std::strtod(shorter, nullptr) == v) return shorter;
+  }
+  return buf;
+}
+
+// A ray file's triangle index (exclude, hint): a whole number >= -1 (-1: none).
+int triangle_index(double v, const std::string& path, size_t lineno, const char* what) {
+  if (!(v >= -1 && v <= 2147483646.0 && v == std::floor(v))) {
+    throw ParseError(path + ":" + std::to_string(lineno) + ": ray " + what + " " + number_text(v) +
+                     " is not a triangle index (a whole number, -1 for none)");
+  }
+  return static_cast<int>(v);
 }
 
 const char* file_kind(mode_t m) {
@@ -137,7 +166,7 @@ std::string check_text(const std::string& path, std::string* text) {
 
 std::vector<Triangle> read_triangles(const std::string& path) {
   std::vector<Triangle> out;
-  read_records(path, 9, "triangle", [&](const std::vector<double>& v, size_t lineno) {
+  read_records(path, {9}, "triangle", [&](const std::vector<double>& v, size_t lineno) {
     Triangle t;
     for (int k = 0; k < 3; ++k) {
       t.p[k] = glm::dvec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
@@ -154,23 +183,31 @@ std::vector<Triangle> read_triangles(const std::string& path) {
 
 std::vector<Ray> read_rays(const std::string& path) {
   std::vector<Ray> out;
-  read_records(path, 6, "ray", [&](const std::vector<double>& v, size_t lineno) {
-    const Ray r{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
+  const auto where = [&](size_t lineno) { return path + ":" + std::to_string(lineno) + ": ray "; };
+  read_records(path, {6, 8, 9, 10}, "ray", [&](const std::vector<double>& v, size_t lineno) {
+    Ray r{glm::dvec3(v[0], v[1], v[2]), glm::dvec3(v[3], v[4], v[5])};
     std::string why = check_point(r.o);
-    if (!why.empty()) throw ParseError(path + ":" + std::to_string(lineno) + ": ray origin " + why);
+    if (!why.empty()) throw ParseError(where(lineno) + "origin " + why);
     why = check_direction(r.d);
-    if (!why.empty()) throw ParseError(path + ":" + std::to_string(lineno) + ": ray direction " + why);
+    if (!why.empty()) throw ParseError(where(lineno) + "direction " + why);
+    if (v.size() >= 8) {
+      r.tmin = v[6];
+      r.tmax = v[7];
+      if (!(r.tmin >= 0)) throw ParseError(where(lineno) + "tmin " + number_text(r.tmin) + " is negative");
+    }
+    if (v.size() >= 9) r.exclude = triangle_index(v[8], path, lineno, "exclude");
+    if (v.size() >= 10) r.hint = triangle_index(v[9], path, lineno, "hint");
     out.push_back(r);
-  });
+  }, 7);
   return out;
 }
 
-void write_hits(const std::string& path, const std::vector<Hit>& hits) {
+void write_hits(const std::string& path, const std::vector<Hit>& hits, bool hex_t) {
   std::string text;
   char line[64];
   for (const Hit& h : hits) {
     if (h.hit()) {
-      std::snprintf(line, sizeof line, "%d %.9g\n", h.tri, h.t);
+      std::snprintf(line, sizeof line, hex_t ? "%d %a\n" : "%d %.9g\n", h.tri, h.t);
       text += line;
     } else {
       text += "-1 inf\n";

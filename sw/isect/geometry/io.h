@@ -1,6 +1,8 @@
 // Plain-text triangle and ray files for fmpp-intersect.
 //   triangles: one per line, "x1 y1 z1 x2 y2 z2 x3 y3 z3"
-//   rays:      one per line, "ox oy oz dx dy dz"
+//   rays:      one per line, "ox oy oz dx dy dz [tmin tmax [exclude [hint]]]" (Ray,
+//              geometry.h: tmin >= 0, tmax a number or "inf", exclude and hint a
+//              triangle index or -1 for none; by default 0, inf, -1, -1)
 // '#' starts a comment; blank lines are skipped; lines end with "\n", "\r\n" or a bare
 // "\r"; a UTF-8 byte-order mark at the start is skipped. Any other content is an error
 // that names the file and line (ParseError), and so is a NUL byte, a coordinate or
@@ -72,7 +74,8 @@ size_t for_each_line(const std::string& text, F&& take) {
 
 std::vector<Triangle> read_triangles(const std::string& path);
 std::vector<Ray> read_rays(const std::string& path);
-// One line per ray: "triangle_index t", "-1 inf" for a miss, in input order.
-void write_hits(const std::string& path, const std::vector<Hit>& hits);
+// One line per ray: "triangle_index t", "-1 inf" for a miss, in input order; t with 9
+// significant digits, or exactly as a hexadecimal float ("%a") with hex_t.
+void write_hits(const std::string& path, const std::vector<Hit>& hits, bool hex_t = false);
 
 }  // namespace fmpp::isect

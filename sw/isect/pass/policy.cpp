@@ -22,12 +22,12 @@ unsigned operand_bits(const KernelOptions& o) {
   return std::min(o.n, o.mapping == Mapping::kRay ? o.vbits : o.mbits);
 }
 
-unsigned paper_cond_bits(const KernelOptions& o) {
-  if (o.cond_bits >= 0) return static_cast<unsigned>(o.cond_bits);
-  return operand_bits(o) - 3;
+int paper_cond_bits(const KernelOptions& o) {
+  if (o.cond_bits >= 0) return o.cond_bits;
+  return static_cast<int>(operand_bits(o)) - 3;
 }
 
-double paper_cond_limit(const KernelOptions& o) { return std::ldexp(1.0, static_cast<int>(paper_cond_bits(o))); }
+double paper_cond_limit(const KernelOptions& o) { return std::ldexp(1.0, paper_cond_bits(o)); }
 
 int general_cond_bits(const KernelOptions& o) { return o.cond_bits >= 0 ? o.cond_bits : static_cast<int>(o.n) - 4; }
 

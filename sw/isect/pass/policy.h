@@ -29,8 +29,9 @@ unsigned operand_bits(const KernelOptions& o);
 // The P^-1 forms: a triangle whose condition number exceeds 2^paper_cond_bits goes to
 // the host. The relative error of T is about cond(P) 2^-operand_bits; beyond
 // 2^(operand_bits - 3) the inside test could be wrong by more than an eighth.
-// cond_bits >= 0 overrides.
-unsigned paper_cond_bits(const KernelOptions& o);
+// cond_bits >= 0 overrides. Below 3 operand bits the limit is below 1, which no
+// triangle meets (every condition is at least 1): all go to the host.
+int paper_cond_bits(const KernelOptions& o);
 double paper_cond_limit(const KernelOptions& o);
 
 // The arbitrary-origin form compares its edge-test condition (form_general.cpp) with

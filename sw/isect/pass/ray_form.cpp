@@ -19,6 +19,12 @@ std::vector<size_t> RayForm::usable(std::vector<size_t> order, std::vector<int>*
   return order;
 }
 
+void RayForm::keep_usable(std::vector<char>* marks, std::vector<int>* refused) const {
+  for (size_t k = 0; k < marks->size(); ++k) {
+    if ((*marks)[k] && !usable(k, refused)) (*marks)[k] = 0;
+  }
+}
+
 size_t RayForm::host_triangles() const {
   size_t n = host.size();
   for (const Broadcast& b : broadcasts) n += b.host;

@@ -83,6 +83,9 @@ class RayForm {
   // adding those left out to *dropped.
   bool usable(size_t k, std::vector<int>* refused) const;
   std::vector<size_t> usable(std::vector<size_t> order, std::vector<int>* refused, uint64_t* dropped) const;
+  // The same for the broadcasts marked in *marks (one entry per broadcast): a refused
+  // one is unmarked.
+  void keep_usable(std::vector<char>* marks, std::vector<int>* refused) const;
   // The host's triangles and those refused so far.
   size_t host_triangles() const;
 
