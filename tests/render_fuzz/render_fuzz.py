@@ -48,7 +48,7 @@ def draw_options(rng, backend):
             # Mostly enough for every form (26), sometimes fewer (a clear refusal, or a scene
             # whose rays need fewer).
             small = (2, 8, 10, 14, 16, 20, 22, 24)
-            o += ["--words", str(rng.choice(small if rng.random() < 0.3 else (26, 28, 30, 32, 40, 64)))]
+            o += ["--words", str(rng.choice(small if rng.random() < 0.15 else (26, 28, 30, 32, 40, 64)))]
         else:
             o += ["--plan-pixels", str(rng.choice((1, 50, 200, 500, 3000))), "--accept-plan-miss"]
             if rng.random() < 0.5:
