@@ -169,6 +169,22 @@ def main():
             yield i, master.getrandbits(63)
             i += 1
 
+    last = [t0]
+
+    def progress():
+        """A line a minute: renders done, their outcomes, and the time left."""
+        now = time.time()
+        if now - last[0] < 60:
+            return
+        last[0] = now
+        n = sum(counts.values())
+        left = ""
+        if args.renders and n:
+            left = ", about %.0f s left" % ((now - t0) / n * (args.renders - n))
+        elif args.seconds:
+            left = ", %.0f s left" % max(0, args.seconds - (now - t0))
+        print("render_fuzz: %d renders, %d failed, %.0f s%s" % (n, counts.get("fail", 0), now - t0, left), flush=True)
+
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
         pending = []
         for i, s in cases():
@@ -178,6 +194,7 @@ def main():
             for f in [f for f in pending if f.done()]:
                 pending.remove(f)
                 rays += _tally(f.result(), counts, failures)
+            progress()
         for f in pending:
             rays += _tally(f.result(), counts, failures)
     n = sum(counts.values())
