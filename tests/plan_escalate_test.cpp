@@ -206,6 +206,23 @@ TEST(PlanEscalate, CoplanarDecalsAndDuplicateTrianglesAreRendered) {
   }
 }
 
+// A pixel sample smaller than the cost rule's first 1,000 pixels (--plan-pixels 50): the
+// candidates' frame samples stay within the sample, also where the cost rule asks for an
+// early stop at 1,000 pixels (it used to read past the sample: "vector::_M_range_check").
+TEST(PlanEscalate, SmallPixelSampleOfACostlyScene) {
+  const std::string dir = own_dir("plan_small_sample_");
+  const Scene s = tie_scene(dir, "decal", false);
+  for (int pixels : {1, 50, 999}) {
+    PlanRequest r;
+    r.width = r.height = 96;
+    r.sample_pixels = pixels;
+    r.base.t_accuracy = 1e-12;  // most t from the host: the cost rule's early stop is asked for
+    const Plan p = make_plan(s, r);
+    ASSERT_FALSE(p.candidates.empty());
+    for (const PlanCandidate& c : p.candidates) EXPECT_LE(c.pixels_sampled, static_cast<size_t>(pixels)) << c.n;
+  }
+}
+
 // Finding 7: the check renders on the frame's own machine (blocks x words, kernel
 // options, mappings, shadow calls): its counters are those of a render of its pixels
 // there, clock for clock, and not those of the 64 x 32 machine the frame sample of the
