@@ -86,9 +86,9 @@ def draw_options(rng, backend):
     return o
 
 
-def draw_backend(rng, rtl_share):
+def draw_backend(rng, rtl_share, mpi):
     """The golden model, or for a share of the renders the RTL, lockstep, SystemC, or two
-    golden-model FMPPs under Open MPI (where mpirun is installed)."""
+    golden-model FMPPs under Open MPI (where the build has MPI and mpirun is installed)."""
     r = rng.random()
     if r >= rtl_share:
         return "cmodel"
@@ -97,9 +97,12 @@ def draw_backend(rng, rtl_share):
         return "rtl"
     if r < 0.7:
         return "lockstep"
-    if r < 0.85 or not shutil.which("mpirun"):
+    if r < 0.85 or not mpi:
         return "systemc"
     return "mpi"
+
+
+slowest = [0.0]  # the longest render that passed, in seconds
 
 
 def one_render(args, index, case_seed):
@@ -109,13 +112,14 @@ def one_render(args, index, case_seed):
     folder = os.path.join(args.out, "case%06d" % index)
     shutil.rmtree(folder, ignore_errors=True)
     scene, summary = scenegen.make_scene(rng, folder)
-    backend = draw_backend(rng, args.rtl_share)
+    backend = draw_backend(rng, args.rtl_share, args.mpi)
     w, h = rng.randint(3, args.max_side), rng.randint(3, args.max_side)
     cmd = [os.path.join(args.build, "fmpp-render"), "--scene", scene, "--width", str(w), "--height", str(h),
            "--verify-exact", "--quiet", "--plan-cache", "", "--out", os.path.join(folder, "out.png"),
            "--report", os.path.join(folder, "report.json")] + draw_options(rng, backend)
     if backend == "mpi":
         cmd = ["mpirun", "--oversubscribe", "-np", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
+    t0 = time.time()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
@@ -129,6 +133,7 @@ def one_render(args, index, case_seed):
             return "fail", folder, cmd, "exit 0 without the check's report (%s)" % e, summary
         if not args.keep:
             shutil.rmtree(folder, ignore_errors=True)
+        slowest[0] = max(slowest[0], time.time() - t0)
         return "ok", folder, cmd, checked, summary
     msg = (p.stderr or p.stdout).strip()
     for key, reason in ALLOWED_REFUSALS.items():
@@ -157,6 +162,7 @@ def main():
     if not args.seconds and not args.renders:
         ap.error("give --seconds or --renders")
     args.out = args.out or os.path.join(args.build, "render_fuzz")
+    args.mpi = _has_mpi(args.build)
     seed = _seed(args.seed)
     print("render_fuzz: seed %d (rerun with --seed %d)" % (seed, seed), flush=True)
     master = random.Random(seed)
@@ -198,12 +204,22 @@ def main():
         for f in pending:
             rays += _tally(f.result(), counts, failures)
     n = sum(counts.values())
-    print("render_fuzz: %d renders in %.0f s, %d rays checked; %s" % (
-        n, time.time() - t0, rays, ", ".join("%s %d" % kv for kv in sorted(counts.items()))))
+    print("render_fuzz: %d renders in %.0f s (the longest %.1f s), %d rays checked; %s" % (
+        n, time.time() - t0, slowest[0], rays, ", ".join("%s %d" % kv for kv in sorted(counts.items()))))
     for folder, cmd, detail, summary in failures:
         print("FAIL %s\n  scene: %s\n  command: %s\n  %s" % (folder, summary, " ".join(
             "'%s'" % c if c == "" or " " in c else c for c in cmd), detail))
     return 1 if failures else 0
+
+
+def _has_mpi(build):
+    """Whether the build's tools run under Open MPI (FMPP_MPI, off in make asan's build)."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as f:
+            off = any(line.strip() in ("FMPP_MPI:BOOL=OFF", "FMPP_MPI:BOOL=0") for line in f)
+    except OSError:
+        off = True
+    return not off and shutil.which("mpirun") is not None
 
 
 def _seed(arg):
