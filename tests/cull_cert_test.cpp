@@ -208,7 +208,9 @@ TEST(CullCertified, ProbeReachCoversTheBestsOwnBound) {
     for (size_t i = 0; i < rays.size(); ++i) wrong += got[i].tri != exact[i].tri;
     EXPECT_EQ(wrong, 0u);
     EXPECT_GT(st.culled, n >= 16 ? st.broadcasts : 0) << "the probe cut broadcasts (most from n = 16)";
-    if (n <= 16) EXPECT_GT(st.t_bound_rays[0], 0u) << "some certified t is loose";
+    if (n <= 16) {
+      EXPECT_GT(st.t_bound_rays[0], 0u) << "some certified t is loose";
+    }
   }
 }
 

@@ -198,8 +198,11 @@ TEST(Barycentric, TheSameAtEveryScale) {
     fmpp::isect::Triangle t = unit;
     for (auto& v : t.p) v = glm::dvec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e));
     const glm::dvec3 q(std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e));
-    if (e > -1000) EXPECT_EQ(barycentric(t, q), want) << "scale 2^" << e;  // exact scaling
-    else EXPECT_NEAR(barycentric(t, q).z, 0.5, 1e-3) << "scale 2^" << e;  // subnormal: rounded
+    if (e > -1000) {
+      EXPECT_EQ(barycentric(t, q), want) << "scale 2^" << e;  // exact scaling
+    } else {
+      EXPECT_NEAR(barycentric(t, q).z, 0.5, 1e-3) << "scale 2^" << e;  // subnormal: rounded
+    }
   }
 }
 
