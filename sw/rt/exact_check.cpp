@@ -63,13 +63,33 @@ Image render_checked(const Scene& scene, Intersector& isect, const RenderOptions
   if (!check) return render(scene, isect, opt, stats);
   ExactCheck c(isect, scene.triangles, context);
   Image img = render(scene, c, opt, stats);
-  if (counts) {
-    for (int k = 0; k < kNumBatchKinds; ++k) counts->rays[k] += c.stats().rays[k];
-    counts->batches += c.stats().batches;
-    counts->other_occluder += c.stats().other_occluder;
-    counts->seconds += c.stats().seconds;
-  }
+  if (counts) counts->add(c.stats());
   return img;
+}
+
+void ExactCheckStats::add(const ExactCheckStats& o) {
+  for (int k = 0; k < kNumBatchKinds; ++k) rays[k] += o.rays[k];
+  batches += o.batches;
+  other_occluder += o.other_occluder;
+  seconds += o.seconds;
+}
+
+uint64_t ExactCheckStats::total_rays() const {
+  uint64_t n = 0;
+  for (uint64_t r : rays) n += r;
+  return n;
+}
+
+nlohmann::json exact_check_json(const ExactCheckStats& frame, const ExactCheckStats& plan) {
+  nlohmann::json j;
+  for (int k = 0; k < kNumBatchKinds; ++k) j["rays"][to_string(static_cast<BatchKind>(k))] = frame.rays[k];
+  j["batches"] = frame.batches;
+  j["other_triangle_allowed"] = frame.other_occluder;
+  j["seconds"] = frame.seconds;
+  j["disagreements"] = 0;
+  j["plan_rays"] = plan.total_rays();
+  j["plan_seconds"] = plan.seconds;
+  return j;
 }
 
 }  // namespace rt

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "sw/isect/exact/reference_bvh.h"
 #include "sw/rt/render.h"
 
@@ -29,7 +31,13 @@ struct ExactCheckStats {
   uint64_t batches = 0;
   uint64_t other_occluder = 0;  // shadow answers naming an occluder other than the nearest (allowed)
   double seconds = 0;           // spent in the exact reference and the comparisons
+  void add(const ExactCheckStats& o);
+  uint64_t total_rays() const;
 };
+
+// The report's "verify_exact" block: the frame's counts, and the plan's renders' rays and
+// seconds (plan_rays 0 for a cached plan).
+nlohmann::json exact_check_json(const ExactCheckStats& frame, const ExactCheckStats& plan);
 
 class ExactCheck : public Intersector {
  public:

@@ -58,19 +58,12 @@ class Progress {
 };
 
 // The frame rendered through `isect`, every answer checked against the exact reference
-// where `verify` (rt::ExactCheck; its counts go into the report's "verify_exact", with the
-// plan's renders' under "plan").
-rt::Image render_frame(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro,
-                       rt::RenderStats* rs, bool verify, const std::string& command, nlohmann::json* rep) {
+// where `verify`: the report's "verify_exact" (with the plan's checked renders, `plan`).
+rt::Image render_frame(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro, rt::RenderStats* rs,
+                       bool verify, const std::string& command, const rt::ExactCheckStats& plan, nlohmann::json* rep) {
   rt::ExactCheckStats st;
   rt::Image img = rt::render_checked(scene, isect, ro, rs, verify, command, &st);
-  if (!verify) return img;
-  nlohmann::json& j = (*rep)["verify_exact"];
-  for (int k = 0; k < rt::kNumBatchKinds; ++k) j["rays"][rt::to_string(static_cast<rt::BatchKind>(k))] = st.rays[k];
-  j["batches"] = st.batches;
-  j["other_triangle_allowed"] = st.other_occluder;
-  j["seconds"] = st.seconds;
-  j["disagreements"] = 0;
+  if (verify) (*rep)["verify_exact"] = rt::exact_check_json(st, plan);
   return img;
 }
 
@@ -266,7 +259,7 @@ int main(int argc, char** argv) {
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
       rt::ReferenceIntersector ref(scene.triangles);
-      img = std::make_unique<rt::Image>(render_frame(scene, ref, ro, &rs, verify, command, &rep));
+      img = std::make_unique<rt::Image>(render_frame(scene, ref, ro, &rs, verify, command, {}, &rep));
     } else {
       // The precision plan chooses what the options leave open; the frame's kernel options
       // are the same as the plan's, with its choices.
@@ -335,13 +328,8 @@ int main(int argc, char** argv) {
       }
       const bool together = plan.kinds_together;
       fi.set_kinds_together(together);
-      img = std::make_unique<rt::Image>(render_frame(scene, chips.wrap(fi), ro, &rs, verify, command, &rep));
-      if (verify) {
-        uint64_t plan_rays = 0;
-        for (uint64_t n : plan_checked.rays) plan_rays += n;
-        rep["verify_exact"]["plan_rays"] = plan_rays;  // 0 for a cached plan
-        rep["verify_exact"]["plan_seconds"] = plan_checked.seconds;
-      }
+      img = std::make_unique<rt::Image>(
+          render_frame(scene, chips.wrap(fi), ro, &rs, verify, command, plan_checked, &rep));
       be->finish();
       // The plan's own seconds: its wall time less the preparation the frame reused.
       rep["plan"]["wall_seconds"] = rp.seconds;
