@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "sw/rt/mesh.h"
-#include "sw/rt/render.h"
 #include "sw/rt/scene.h"
 #include "tests/test_files.h"
 
@@ -264,7 +263,6 @@ TEST(LoaderExact, SceneNumbersAreTheirDecimals) {
   }
 }
 
-// The PNG of a 24 x 24 render on the exact reference.
 TEST(LoaderExact, OutOfRangeValuesAreQuotedExactly) {
   write("tri.obj", "v 0 0 -3\nv 1 0 -3\nv 0 1 -3\nf 1 2 3\n");
   auto json = [](const std::string& eye, const std::string& light) {

@@ -22,6 +22,7 @@ std::string g17(double v) {
   return b;
 }
 
+// The PNG of a 24 x 24 render on the exact reference.
 std::string reference_png(const std::string& json, const std::string& png) {
   const Scene s = load_scene(json);
   ReferenceIntersector ref(s.triangles);
