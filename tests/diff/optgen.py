@@ -148,9 +148,10 @@ def _cull_options(rng):
 
 def _machine(rng, d, rays, built_only):
     """blocks and words (or a named configuration) that hold what the drawn forms need;
-    built_only: a named configuration always (the RTL exists in those sizes only)."""
+    built_only: the names of the built configurations, one of which is always drawn
+    (the RTL exists in those sizes only)."""
     if built_only:
-        d["config"] = rng.choice(sorted(CONFIGS))
+        d["config"] = rng.choice(sorted(built_only))
         return
     blocks = _pick(rng, [(2, 64), (6, lambda: int(2 ** rng.uniform(0, 12))), (1, lambda: rng.randint(1, 65536))])
     general = _general_rays(rays, d["mapping"], d["origins"], d["merge-below"], blocks)
@@ -190,9 +191,9 @@ def _pinned(d, pins):
         d["watertight"] = False
 
 
-def case(seed, index, rays, built_only=False, pins=None, scene=None):
-    """Case `index` of `seed`, with `rays` rays; built_only: the machine a named
-    configuration with 32 words (for the RTL backends); pins: options given, not drawn
+def case(seed, index, rays, built_only=None, pins=None, scene=None):
+    """Case `index` of `seed`, with `rays` rays; built_only: the machine one of these
+    named configurations with 32 words (for the RTL backends: those built); pins: options given, not drawn
     (name: value, as fmpp-intersect spells them; flags True or False); scene: the
     family, size_exp or dist_exp given, not drawn."""
     rng = random.Random("optgen:%s:%d" % (seed, index))

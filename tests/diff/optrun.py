@@ -87,6 +87,17 @@ def check_reference(rays, all_hits, answers):
     return bad
 
 
+def built_configs(build):
+    """The named 32-word configurations whose Verilated FMPP this build holds (fmpp-sim --list)."""
+    out = subprocess.run([os.path.join(build, "fmpp-sim"), "--list"], capture_output=True, text=True, check=True)
+    names = {line.split()[0] for line in out.stdout.splitlines() if line.strip()}
+    built = sorted(names & set(optgen.CONFIGS))
+    if not built:
+        raise SystemExit("%s: no Verilated FMPP with 32 words is built (built: %s; needs one of %s)"
+                         % (build, ", ".join(sorted(names)) or "none", ", ".join(sorted(optgen.CONFIGS))))
+    return built
+
+
 def run_tool(cmd, report):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
@@ -150,8 +161,7 @@ def run_seed(a, seed, deadline, work, tally):
             break
         if a.case is None and (time.time() > deadline or (a.cases and index >= a.cases)):
             break
-        c = optgen.case(seed, index, a.rays, built_only=any(b in RTL_BACKENDS for b in a.backends.split(",")),
-                        pins=a.pins, scene=a.scene)
+        c = optgen.case(seed, index, a.rays, built_only=a.built, pins=a.pins, scene=a.scene)
         res = run_case(a, c, work)
         tally["cases"] += 1
         for k in ("rays", "hits", "flagged", "t_redone"):
@@ -187,6 +197,7 @@ def main():
     a.scene = {"family": a.family} if a.family else {}
     if a.place:
         a.scene["size_exp"], a.scene["dist_exp"] = (int(x) for x in a.place.split(","))
+    a.built = built_configs(a.build) if any(b in RTL_BACKENDS for b in a.backends.split(",")) else None
     a.pins = {}
     for p in a.pin:
         name, _, v = p.partition("=")
