@@ -42,6 +42,9 @@ module fmpp_alu_exec #(
   output logic                              wr_v_o,    // this op may set V
   output logic [Lanes-1:0]                  ge_o       // CMP: word A >= IMM (signed)
 );
+  // Not traced (the tile's ports and state are): its temporaries stay C++ locals in the
+  // Verilated model.
+  /* verilator tracing_off */
   localparam int unsigned W = fmpp_pkg::WordW;
 
   // The adder: h, half sums; g0, generate per bit with the carry-in folded into bit 0's.
@@ -185,5 +188,7 @@ module fmpp_alu_exec #(
   end
 
 `undef FMPP_RIPPLE_ADDER
+
+  /* verilator tracing_on */
 
 endmodule

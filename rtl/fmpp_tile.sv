@@ -86,6 +86,11 @@ module fmpp_tile #(
   // State. Words have no reset (memory); flags reset to 0 (nothing selected).
   word_t  mem_q [NumWords] /*verilator public_flat_rd*/;
   flags_t flag_q /*verilator public_flat_rd*/;
+
+  // Everything below the state is left out of waveform traces: the ports, the words and the
+  // flags show what the tile does, and a traced temporary is one Verilator must keep in the
+  // model's memory instead of a C++ local (a tenth of the simulation's time).
+  /* verilator tracing_off */
   flags_t flag_d;
 
   // Operand registers (stage 2 -> 3): A through the shifter, the ALU's addend (B, not B or
@@ -116,20 +121,29 @@ module fmpp_tile #(
       opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
       shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
           ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
-      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin  // the shifter: a level per bit of SHR_A
-        for (int k = 0; k < W; k++) begin  // plane k takes plane k + 2^j; the sign plane fills
-          if (shr[j]) opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+      // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign plane
+      // filling. Each level's condition stands outside its plane loop, so that a simulator
+      // tests it once (the same multiplexers).
+      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin
+        if (shr[j]) begin
+          for (int k = 0; k < W; k++) begin
+            opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+          end
         end
       end
       subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
       if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
       opa_q <= opa_rd;
       opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
-      for (int k = 0; k < W; k++) begin
-        if (opr_op_i == fmpp_pkg::OP_CMP) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
-        else if (opr_op_i == fmpp_pkg::OP_SUB) addend[k*Lanes +: Lanes] = ~opb_rd[k*Lanes +: Lanes];
-        else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
-        else addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes];
+      // The addend, the opcode tested once for all planes.
+      if (opr_op_i == fmpp_pkg::OP_CMP) begin
+        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
+      end else if (opr_op_i == fmpp_pkg::OP_SUB) begin
+        addend = ~opb_rd;
+      end else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) begin
+        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
+      end else begin
+        addend = opb_rd;
       end
       opb_q <= addend;
       if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
@@ -143,8 +157,12 @@ module fmpp_tile #(
                          d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
   end
 
+  // The ALU sees the opcode only while an instruction executes (NOP otherwise): its results
+  // are used only then, and a simulator so does no adder work on the other clocks.
+  logic [fmpp_pkg::F_OP_W-1:0] alu_op;
+  assign alu_op = (exec_i && kind_i == fmpp_pkg::QE_INSTR) ? op_i : fmpp_pkg::OP_NOP;
   fmpp_alu_exec #(.Lanes(Lanes)) u_alu (
-    .op_i    (op_i),
+    .op_i    (alu_op),
     .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
     .bit_i_i (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]),
     .bit_j_i (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W]),
@@ -346,17 +364,14 @@ module fmpp_tile #(
   // Host read port: the addressed lane's word (or flags) through a one-hot lane select, or a
   // whole flag plane; all inside the tile select, so a tile not addressed does no work.
   always_comb begin
-    word_t w;
     lane_t rd_lane_sel;
     rd_data_o = '0;
-    w = '0;
     rd_lane_sel = '0;
     if (rd_sel) begin
       rd_lane_sel = {{(Lanes-1){1'b0}}, 1'b1} << rd_lane;
       case (rd_kind_i)
         fmpp_pkg::RK_WORD: begin
-          w = mem_q[rd_word_i[WIdxW-1:0]];
-          for (int k = 0; k < W; k++) rd_data_o[k] = |(w[k*Lanes +: Lanes] & rd_lane_sel);
+          for (int k = 0; k < W; k++) rd_data_o[k] = |(mem_q[rd_word_i[WIdxW-1:0]][k*Lanes +: Lanes] & rd_lane_sel);
         end
         fmpp_pkg::RK_FLAGS: begin
           for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
@@ -401,5 +416,7 @@ module fmpp_tile #(
     $error("fmpp_tile: Lanes = %0d outside [1, %0d]", Lanes, fmpp_pkg::LaneW);
   end
 `endif
+
+  /* verilator tracing_on */
 
 endmodule

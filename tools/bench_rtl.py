@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""make bench-rtl: the Verilated FMPP against the golden model on the same frames.
+
+    tools/bench_rtl.py [--build build] [--rounds 3] [--json FILE]
+
+For each frame (the README's render command, `make render`'s, and one gallery frame at the
+README's gallery settings), runs fmpp-render with --backend rtl and with --backend cmodel
+one after the other, --rounds times (interleaved, so that a machine's slow minute falls on
+both), and reports the median wall time of each, their ratio, the FMPP clocks and the
+simulated clocks per second of the RTL. The pictures of every pair must be byte-identical
+(the RTL and the golden model are bit- and clock-exact): a difference is an error.
+Prints a Markdown table (and writes the figures as JSON with --json).
+"""
+import argparse
+import filecmp
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# (name, fmpp-render arguments): the README's main job, then a gallery frame.
+FRAMES = (
+    ("README render (make render)", []),
+    ("gallery: spheres_1k 256 x 256", ["--scene", "scenes/spheres_1k.json", "--bits", "24", "--blocks", "4096",
+                                       "--words", "32", "--width", "256", "--height", "256", "--oracle"]),
+)
+
+
+def render(build, args, backend, out_dir, tag):
+    png = os.path.join(out_dir, "%s_%s.png" % (tag, backend))
+    report = os.path.join(out_dir, "%s_%s.json" % (tag, backend))
+    cmd = [os.path.join(build, "fmpp-render")] + args + ["--backend", backend, "--out", png, "--report", report,
+                                                          "--quiet"]
+    t0 = time.monotonic()
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    wall = time.monotonic() - t0
+    if r.returncode != 0:
+        sys.exit("bench_rtl: %s failed (exit %d): %s" % (" ".join(cmd), r.returncode, r.stderr.strip()))
+    with open(report, encoding="utf-8") as f:
+        rep = json.load(f)
+    return wall, rep["cycles"], png
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown CPU"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory (fmpp-render)")
+    ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds per frame (median taken)")
+    ap.add_argument("--frames", type=int, default=len(FRAMES), help="the first N frames only")
+    ap.add_argument("--json", help="write the figures here")
+    a = ap.parse_args()
+    if a.rounds < 1 or not 1 <= a.frames <= len(FRAMES):
+        sys.exit("bench_rtl: --rounds must be >= 1 and --frames in [1, %d]" % len(FRAMES))
+    out_dir = os.path.join(a.build, "bench-rtl")
+    os.makedirs(out_dir, exist_ok=True)
+    rows = []
+    for k, (name, args) in enumerate(FRAMES[:a.frames]):
+        times = {"rtl": [], "cmodel": []}
+        clocks = None
+        for rnd in range(a.rounds):
+            pngs = {}
+            for be in ("rtl", "cmodel"):
+                wall, cyc, pngs[be] = render(a.build, args, be, out_dir, "f%d_r%d" % (k, rnd))
+                times[be].append(wall)
+                if clocks not in (None, cyc):
+                    sys.exit("bench_rtl: %s: %d clocks on one run, %d on another" % (name, clocks, cyc))
+                clocks = cyc
+            if not filecmp.cmp(pngs["rtl"], pngs["cmodel"], shallow=False):
+                sys.exit("bench_rtl: %s: the RTL's picture differs from the golden model's (%s, %s)"
+                         % (name, pngs["rtl"], pngs["cmodel"]))
+            print("%s, round %d: rtl %.2f s, cmodel %.2f s" % (name, rnd + 1, times["rtl"][-1], times["cmodel"][-1]),
+                  flush=True)
+        rtl, cm = statistics.median(times["rtl"]), statistics.median(times["cmodel"])
+        rows.append(dict(frame=name, args=args, rtl_s=round(rtl, 2), cmodel_s=round(cm, 2), ratio=round(rtl / cm, 2),
+                         clocks=clocks, rtl_clocks_per_s=round(clocks / rtl), rounds=a.rounds))
+    stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    print("\n%s, %s, %d cores, %d interleaved rounds, medians; pictures byte-identical\n"
+          % (stamp, cpu_name(), os.cpu_count() or 0, a.rounds))
+    print("| frame | FMPP clocks | rtl | cmodel | rtl / cmodel | RTL clocks/s |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: |")
+    for r in rows:
+        print("| %s | %s | %.2f s | %.2f s | **%.2f** | %s |" % (r["frame"], format(r["clocks"], ","), r["rtl_s"],
+                                                                r["cmodel_s"], r["ratio"],
+                                                                format(r["rtl_clocks_per_s"], ",")))
+    if a.json:
+        with open(a.json, "w", encoding="utf-8") as f:
+            json.dump(dict(date=stamp, cpu=cpu_name(), cores=os.cpu_count(), frames=rows), f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
