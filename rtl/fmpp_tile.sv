@@ -91,76 +91,22 @@ module fmpp_tile #(
   // flags show what the tile does, and a traced temporary is one Verilator must keep in the
   // model's memory instead of a C++ local (a tenth of the simulation's time).
   /* verilator tracing_off */
-  flags_t flag_d;
 
   // Operand registers (stage 2 -> 3): A through the shifter, the ALU's addend (B, not B or
   // not IMM) and its carry-in, made in stage 2 so that stage 3's adder starts from registers.
   // Word D, the flags and the mask are read in stage 3, when every earlier entry wrote them.
-  word_t opa_q, opb_q, opd;
+  word_t opa_q, opb_q;
   lane_t cin_q;
   word_t alu_r;
   lane_t alu_c, alu_v, alu_ge;
   logic  alu_wr_c, alu_wr_v;
-  word_t wr_data;
-  logic  wr_en;
-  logic  fwd_a, fwd_b;
 
-  assign opd = mem_q[d_i[WIdxW-1:0]];
-
-  // Stage 2: the word the entry in stage 3 writes at this edge is taken from its write data
-  // (forwarding), so an entry may use its predecessor's result. The shifted A and the addend
-  // are fmpp_alu_addend's function, written in the clocked block so that a simulator computes
-  // them only for an entry in stage 2 (formal job pipe_1x4 checks them).
-  assign fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-  assign fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-  always_ff @(posedge clk_i) begin
-    word_t opa_rd, opb_rd, addend;  // stage 2's A and B (forwarded or read), the addend from B
-    lane_t subs;
-    logic [fmpp_pkg::SHR_A_W-1:0] shr;
-    if (opr_en_i) begin
-      opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
-      shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
-          ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
-      // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign plane
-      // filling. Each level's condition stands outside its plane loop, so that a simulator
-      // tests it once (the same multiplexers).
-      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin
-        if (shr[j]) begin
-          for (int k = 0; k < W; k++) begin
-            opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
-          end
-        end
-      end
-      subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
-      if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
-      opa_q <= opa_rd;
-      opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
-      // The addend, the opcode tested once for all planes.
-      if (opr_op_i == fmpp_pkg::OP_CMP) begin
-        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
-      end else if (opr_op_i == fmpp_pkg::OP_SUB) begin
-        addend = ~opb_rd;
-      end else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) begin
-        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
-      end else begin
-        addend = opb_rd;
-      end
-      opb_q <= addend;
-      if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
-      else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) cin_q <= subs;
-      else cin_q <= '0;
-    end
-  end
-  if (WIdxW < 6) begin : g_unused_hi
-    logic unused_hi;
-    assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
-                         d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
-  end
-
-  // The ALU sees the opcode only while an instruction executes (NOP otherwise): its results
-  // are used only then, and a simulator so does no adder work on the other clocks.
+  // The ALU sees the opcode only while an instruction that uses it executes (NOP otherwise):
+  // its results are used only then, and a simulator so does no adder work on the other
+  // clocks. BITCOPY, which needs word D, is done by the next-state logic below, so the ALU's
+  // D input is not used.
   logic [fmpp_pkg::F_OP_W-1:0] alu_op;
-  assign alu_op = (exec_i && kind_i == fmpp_pkg::QE_INSTR) ? op_i : fmpp_pkg::OP_NOP;
+  assign alu_op = (exec_i && kind_i == fmpp_pkg::QE_INSTR && op_i != fmpp_pkg::OP_BITCOPY) ? op_i : fmpp_pkg::OP_NOP;
   fmpp_alu_exec #(.Lanes(Lanes)) u_alu (
     .op_i    (alu_op),
     .fn_i    (x_i[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]),
@@ -169,7 +115,7 @@ module fmpp_tile #(
     .a_i     (opa_q),
     .y_i     (opb_q),
     .cin_i   (cin_q),
-    .d_i     (opd),
+    .d_i     ('0),
     .r_o     (alu_r),
     .carry_o (alu_c),
     .ovf_o   (alu_v),
@@ -235,24 +181,38 @@ module fmpp_tile #(
   end
   assign flagop_any_o = |flagop_v;
 
-  // Next state. At most one flag plane (fl_dst) and one word (D) change per clock,
-  // besides the C and V updates of the ALU.
-  always_comb begin
-    lane_t match, src, fl_new;
+  // Stages 3 and 2 in one clocked block, stage 3 first: its next state is computed only for
+  // an entry that executes (a simulator does nothing on the other clocks), and stage 2 takes
+  // the word stage 3 writes at this edge from its write data (forwarding), so that an entry
+  // may use its predecessor's result. The shifted A and the addend are fmpp_alu_addend's
+  // function. At most one flag plane (fl_dst) and one word (D) change per clock, besides the
+  // C and V updates of the ALU. Every local is assigned before it is read on every path, so
+  // synthesis makes no flops of them (formal job pipe_1x4 checks the whole against the
+  // single-cycle tile).
+  always_ff @(posedge clk_i) begin
+    word_t  opd, wr_data;           // stage 3: word D as read, and as written
+    flags_t flags_n;                // stage 3: the flags after the entry
+    lane_t  match, src, fl_new, bit_x;
     logic [31:0] key_mask;
-    logic addr_part, fl_we;
+    logic addr_part, fl_we, wr_en;
     logic [fmpp_pkg::F_F_W-1:0] fl_dst;
-    flag_d   = flag_q;
-    wr_en    = 1'b0;
-    wr_data  = opd;
-    match    = '0;
-    src      = '0;
-    fl_new   = '0;
-    fl_we    = 1'b0;
-    fl_dst   = f_i;
-    key_mask = mask_i;
-    addr_part = 1'b0;
+    word_t  opa_rd, opb_rd, addend; // stage 2's A and B (forwarded or read), the addend from B
+    lane_t  subs;
+    logic [fmpp_pkg::SHR_A_W-1:0] shr;
+    wr_en   = 1'b0;
+    wr_data = '0;
     if (exec_i) begin
+      opd      = mem_q[d_i[WIdxW-1:0]];
+      wr_data  = opd;
+      flags_n  = flag_q;
+      match    = '0;
+      src      = '0;
+      fl_new   = '0;
+      bit_x    = '0;
+      fl_we    = 1'b0;
+      fl_dst   = f_i;
+      key_mask = mask_i;
+      addr_part = 1'b0;
       case (kind_i)
         fmpp_pkg::QE_INSTR: begin
           case (op_i)
@@ -308,14 +268,27 @@ module fmpp_tile #(
                 end
               end
             end
-            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP, fmpp_pkg::OP_BITCOPY,
+            fmpp_pkg::OP_BITCOPY: begin
+              // Bit BIT_I of A into bit BIT_J of D, in the predicated blocks.
+              bit_x = '0;
+              for (int k = 0; k < W; k++) begin
+                if (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W] == 5'(k)) bit_x = opa_q[k*Lanes +: Lanes];
+              end
+              wr_en = 1'b1;
+              for (int k = 0; k < W; k++) begin
+                if (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W] == 5'(k)) begin
+                  wr_data[k*Lanes +: Lanes] = (bit_x & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+                end
+              end
+            end
+            fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP,
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
                 wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (opd[k*Lanes +: Lanes] & ~pred);
               end
-              if (alu_wr_c) flag_d[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
-              if (alu_wr_v) flag_d[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
+              if (alu_wr_c) flags_n[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
+              if (alu_wr_v) flags_n[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
             end
             default: ;  // NOP and MASKSET do not touch the tile
           endcase
@@ -334,31 +307,63 @@ module fmpp_tile #(
         fmpp_pkg::QE_FLAGS: begin
           if (hw_sel) begin
             for (int f = 0; f < NF; f++) begin
-              flag_d[f*Lanes +: Lanes] = (flag_q[f*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[f]}} & hw_lane_sel);
+              flags_n[f*Lanes +: Lanes] = (flag_q[f*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[f]}} & hw_lane_sel);
             end
           end
         end
         default: ;
       endcase
-    end
-    if (fl_we) begin
-      for (int f = 0; f < NF; f++) begin
-        if (fl_dst == 3'(f)) flag_d[f*Lanes +: Lanes] = fl_new;
+      if (fl_we) begin
+        for (int f = 0; f < NF; f++) begin
+          if (fl_dst == 3'(f)) flags_n[f*Lanes +: Lanes] = fl_new;
+        end
       end
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
+      if (!rst_ni) flag_q <= '0;
+      else flag_q <= flags_n;
+    end else if (!rst_ni) begin
       flag_q <= '0;
-    end else begin
-      flag_q <= flag_d;
+    end
+    // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
+    if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
+    if (opr_en_i) begin
+      opa_rd = (wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0]) ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
+          ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
+      // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign plane
+      // filling. Each level's condition stands outside its plane loop, so that a simulator
+      // tests it once (the same multiplexers).
+      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin
+        if (shr[j]) begin
+          for (int k = 0; k < W; k++) begin
+            opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+          end
+        end
+      end
+      subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
+      if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
+      opa_q <= opa_rd;
+      opb_rd = (wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0]) ? wr_data : mem_q[b_i[WIdxW-1:0]];
+      // The addend, the opcode tested once for all planes.
+      if (opr_op_i == fmpp_pkg::OP_CMP) begin
+        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
+      end else if (opr_op_i == fmpp_pkg::OP_SUB) begin
+        addend = ~opb_rd;
+      end else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) begin
+        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
+      end else begin
+        addend = opb_rd;
+      end
+      opb_q <= addend;
+      if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
+      else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) cin_q <= subs;
+      else cin_q <= '0;
     end
   end
 
-  // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
-  always_ff @(posedge clk_i) begin
-    if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
+  if (WIdxW < 6) begin : g_unused_hi
+    logic unused_hi;
+    assign unused_hi = ^{a_i[fmpp_pkg::F_A_W-1:WIdxW], b_i[fmpp_pkg::F_B_W-1:WIdxW],
+                         d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
   end
 
   // Host read port: the addressed lane's word (or flags) through a one-hot lane select, or a
