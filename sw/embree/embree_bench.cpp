@@ -27,6 +27,7 @@
 #include "sw/rt/render.h"
 #include "sw/rt/scene.h"
 #include "common/util/cli_checks.h"
+#include "common/util/cli_usage.h"
 #include "common/util/files.h"
 
 namespace {
@@ -78,7 +79,9 @@ int main(int argc, char** argv) {
   app.add_flag("--stream", stream, "each batch as one coherent ray stream (rtcIntersect1M) instead of rtcIntersect1 per ray");
   app.add_option("--json", json_file, "JSON report ('-' for stdout)")->capture_default_str();
   app.add_option("--out", out, "PNG of Embree's render");
-  CLI11_PARSE(app, argc, argv);
+  app.footer(fmpp::exit_status_footer(
+      "an error (a scene or output the tool cannot use; the message says which)"));
+  if (const int status = fmpp::parse_command_line(app, argc, argv); status >= 0) return status;
 
   try {
     rt::check_resolution(width, height);

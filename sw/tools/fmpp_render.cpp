@@ -24,6 +24,7 @@
 #include "backends/backend.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/stats_json.h"
+#include "common/util/cli_usage.h"
 #include "sw/tools/cli_options.h"
 #include "sw/tools/render_plan.h"
 #include "sw/rt/plan.h"
@@ -195,7 +196,10 @@ int main(int argc, char** argv) {
   app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
       ->capture_default_str()
       ->check(CLI::IsMember({"work", "schedule"}));
-  CLI11_PARSE(app, argc, argv);
+  app.footer(exit_status_footer(
+      "an error (a scene or output the tool cannot use, options this scene or machine does not take, a precision "
+      "plan that misses its target; the message says which)"));
+  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
   std::string command = "The command:";
   for (int i = 0; i < argc; ++i) command += std::string(" ") + argv[i];
 
