@@ -44,13 +44,32 @@ usage "fmpp-render: --backend: foo not in {reference,cmodel,rtl,lockstep,systemc
 usage "fmpp-render: --width: 1 required INT:INT in [1 - 16384] missing" "$render" --width
 usage "fmpp-render: --blocks excludes --config" "$render" --config small --blocks 64
 usage "fmpp-render: --trace-start requires --trace" "$render" --trace-start 10
+# Values and combinations the tool's own checks refuse after parsing, from the options
+# alone: usage errors too.
+usage "fmpp-render: --out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)" \
+  "$render" --backend cmodel --out x.jpg
+usage "fmpp-render: --watertight with --mapping object: the watertight form exists in the ray-parallel mapping only; use --mapping ray" \
+  "$render" --backend cmodel --mapping object --watertight
+usage "fmpp-render: trace window: first cycle 10 is after the last cycle 5" \
+  "$render" --backend rtl --trace w.fst --trace-start 10 --trace-end 5
+usage "fmpp-render: resolution 16384x16384 needs about 8448 MiB for the image alone, over the limit of 4096 MiB; render a smaller picture" \
+  "$render" --backend reference --width 16384 --height 16384
 test ! -e render.png
+# Errors of the work stay 1, in the same voice.
+status=0
+"$render" --scene "$dir/none.json" --backend reference --out "$dir/x.png" 2> "$dir/err.txt" || status=$?
+[ "$status" -eq 1 ] && grep -q "^fmpp-render: $dir/none.json: cannot open scene" "$dir/err.txt"
+status=0
+"$render" --backend reference --out "$dir/no/such/x.png" 2> "$dir/err.txt" || status=$?
+[ "$status" -eq 1 ] && grep -q "^fmpp-render: --out $dir/no/such/x.png: cannot write" "$dir/err.txt"
 helps "$render" --help
 
 # ------------------------------------------------------------- fmpp-intersect
 usage "fmpp-intersect: --triangle: unknown option; did you mean --triangles?" "$intersect" --triangle t.txt --rays r.txt
 usage "fmpp-intersect: --triangles is required" "$intersect" --rays r.txt
 usage "fmpp-intersect: --blocks: value 0 not in [1, 65536]" "$intersect" --triangles t.txt --rays r.txt --blocks 0
+usage "fmpp-intersect: --out and --report both write to stdout ('-'): give one of them a file" \
+  "$intersect" --triangles t.txt --rays r.txt --report -
 helps "$intersect" --help
 
 # ---------------------------------------------------------------- fmpp-report
@@ -60,6 +79,10 @@ usage "fmpp-report: unknown subcommand 'foo' (one of: area, paper, precision)" "
 usage "fmpp-report: A subcommand is required" "$report"
 usage "fmpp-report: --quik: unknown option; did you mean --quick?" "$report" precision --quik
 usage "fmpp-report: --size: Value 1 not in range 2 to 256" "$report" precision --size 1
+usage "fmpp-report: --clock 'abc': expected MHZ:LABEL, MHz in (0, 1e6) and a label" "$report" paper --quick --clock abc \
+  --out "$dir/p.md"
+usage "fmpp-report: --out -: the report needs a file name (it is written beside its data and plots)" \
+  "$report" precision --quick --out -
 helps "$report" --help
 helps "$report" precision --help
 helps "$report" paper --help

@@ -3,9 +3,11 @@
 // on CLI11 and the standard library only, so any layer may use it.
 //
 // A usage error - an unknown option, a bad or missing value, options that exclude or
-// need each other - prints "<tool>: <message>" and a hint on stderr and gives exit status
-// 2 (kExitUsage), not CLI11's own codes (105, 109, ...); an unknown option names the
-// closest known one: "fmpp-render: --widht: unknown option; did you mean --width?".
+// need each other, whether CLI11 finds it or the tool's own checks of the options after
+// parsing (a UsageError, or a std::invalid_argument before any input is read:
+// error_status) - prints "<tool>: <message>" and a hint on stderr and gives exit
+// status 2 (kExitUsage), not CLI11's own codes (105, 109, ...); an unknown option names
+// the closest known one: "fmpp-render: --widht: unknown option; did you mean --width?".
 // --help prints the help (with the exit statuses in its footer) and gives 0.
 #pragma once
 
@@ -13,12 +15,35 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace fmpp {
 
 inline constexpr int kExitUsage = 2;
+
+// An option value or combination that the tool's own checks refuse after parsing, before
+// any work ("--out x.jpg: unknown image format", "--watertight with --mapping object"): a
+// usage error too. The tools catch it before std::exception.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Runs checks of the options; what they throw as std::invalid_argument (how the project's
+// checks refuse a value; a file that cannot be written is a std::runtime_error) is a
+// UsageError.
+template <class F>
+void usage_checks(F&& checks) {
+  try {
+    checks();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
 
 // The footer line of every tool's --help: what its exit statuses mean. `failure` is what
 // status 1 means for the tool.
@@ -80,11 +105,25 @@ inline std::string tool_name(const CLI::App& app) {
 
 }  // namespace cli_detail
 
+// The exit status of an error a tool caught: a std::invalid_argument (a UsageError
+// among them) thrown while the tool checked its options, before it read any input, is a
+// usage error; anything else is an error of the work (1).
+inline int error_status(const std::exception& e, bool checking_options) {
+  return dynamic_cast<const UsageError*>(&e) || (checking_options && dynamic_cast<const std::invalid_argument*>(&e))
+             ? kExitUsage
+             : 1;
+}
+
+// "<tool>: <what>" on stderr, with the --help hint after a usage error; returns `status`.
+inline int print_error(const std::string& tool, const std::string& what, int status) {
+  std::fprintf(stderr, "%s: %s\n%s", tool.c_str(), what.c_str(),
+               status == kExitUsage ? "Run with --help for more information.\n" : "");
+  return status;
+}
+
 // "<tool>: <what>" and the hint on stderr; returns kExitUsage.
 inline int usage_error(const CLI::App& app, const std::string& what) {
-  std::fprintf(stderr, "%s: %s\nRun with --help for more information.\n", cli_detail::tool_name(app).c_str(),
-               what.c_str());
-  return kExitUsage;
+  return print_error(cli_detail::tool_name(app), what, kExitUsage);
 }
 
 // The message of an unexpected argument: an option the tool does not know, with the

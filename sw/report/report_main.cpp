@@ -45,8 +45,7 @@ int main(int argc, char** argv) {
     }
     return fmpp::parse_error_exit(app, e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fmpp-report: %s\n", e.what());
-    return 1;
+    return fmpp::print_error("fmpp-report", e.what(), fmpp::error_status(e, false));  // 2: a UsageError
   }
   return 0;
 }

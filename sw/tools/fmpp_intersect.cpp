@@ -256,7 +256,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fmpp-intersect: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fmpp-intersect: %s\n", e.what());
-    return 1;
+    return print_error("fmpp-intersect", e.what(), error_status(e, stage == "checking the options"));
   }
 }
