@@ -27,6 +27,7 @@
 #include "sw/rt/render.h"
 #include "sw/rt/scene.h"
 #include "common/util/cli_checks.h"
+#include "common/util/cli_usage.h"
 #include "common/util/files.h"
 
 namespace {
@@ -78,12 +79,16 @@ int main(int argc, char** argv) {
   app.add_flag("--stream", stream, "each batch as one coherent ray stream (rtcIntersect1M) instead of rtcIntersect1 per ray");
   app.add_option("--json", json_file, "JSON report ('-' for stdout)")->capture_default_str();
   app.add_option("--out", out, "PNG of Embree's render");
-  CLI11_PARSE(app, argc, argv);
+  app.footer(fmpp::exit_status_footer(
+      "an error (a scene or output the tool cannot use; the message says which)"));
+  if (const int status = fmpp::parse_command_line(app, argc, argv); status >= 0) return status;
 
+  bool checking_options = true;  // until the scene is read: a refused value is a usage error
   try {
     rt::check_resolution(width, height);
     fmpp::check_writable("--json", json_file);
     if (!out.empty()) fmpp::check_writable("--out", out, false);
+    checking_options = false;
     const rt::Scene scene = rt::load_scene(scene_file);
     rt::EmbreeOptions eo;
     eo.robust = robust;
@@ -172,7 +177,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fmpp-embree-bench: out of memory\n");
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fmpp-embree-bench: %s\n", e.what());
-    return 1;
+    return fmpp::print_error("fmpp-embree-bench", e.what(), fmpp::error_status(e, checking_options));
   }
 }

@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/util/cli_usage.h"
 #include "common/util/files.h"
 #include "common/util/output_file.h"
 #include "common/util/process.h"
@@ -72,12 +73,13 @@ void prepare_outputs(ReportOutput& o) {
   if (o.quick && o.out_opt->count() == 0) o.out = quick + ".md";
   if (o.quick && o.img_opt->count() == 0) o.img_dir = quick;
   if (o.quick && o.data_opt->count() == 0) o.data_dir = quick;
+  // The options alone: usage errors (exit 2).
   if (o.out == "-") {
-    throw std::invalid_argument("--out -: the report needs a file name (it is written beside its data and plots)");
+    throw UsageError("--out -: the report needs a file name (it is written beside its data and plots)");
   }
-  if (o.out.empty()) throw std::invalid_argument("--out: empty path");
-  if (o.img_dir.empty()) throw std::invalid_argument("--img-dir: empty path");
-  if (o.data_dir.empty()) throw std::invalid_argument("--data-dir: empty path");
+  if (o.out.empty()) throw UsageError("--out: empty path");
+  if (o.img_dir.empty()) throw UsageError("--img-dir: empty path");
+  if (o.data_dir.empty()) throw UsageError("--data-dir: empty path");
   // The report first, so that a bad --out creates nothing.
   const std::filesystem::path md(o.out);
   std::error_code ec;

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "common/util/cli_usage.h"
 #include "sw/report/output.h"
 #include "sw/report/paper.h"
 #include "sw/report/report.h"
@@ -41,7 +42,9 @@ Command add_paper(CLI::App& app) {
   c.run = [opt]() -> int {
     const FpgaData fpga = read_fpga(opt->fpga_csv);  // before any output or measurement: a bad file fails at once
     std::vector<paper::Clock> clocks;
-    for (const std::string& text : opt->clocks) clocks.push_back(paper::parse_clock(text));
+    usage_checks([&] {  // a bad --clock is a usage error (exit 2)
+      for (const std::string& text : opt->clocks) clocks.push_back(paper::parse_clock(text));
+    });
     prepare_outputs(*opt);
     const paper::Options& o = *opt;
     const Config rcfg = named_config(o.rtl_config);

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/util/cli_checks.h"
+#include "common/util/cli_usage.h"
 #include "sw/report/report.h"
 
 int main(int argc, char** argv) {
@@ -21,6 +23,11 @@ int main(int argc, char** argv) {
   std::vector<fmpp::report::Command> cmds;
   cmds.push_back(fmpp::report::add_paper(app));
   cmds.push_back(fmpp::report::add_precision(app));
+  // Every subcommand's --help ends with the exit statuses too.
+  const std::string footer = fmpp::exit_status_footer(
+      "an error (an input or output the report cannot use, measurements that disagree; the message says which)");
+  app.footer(footer);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) sub->footer(footer);
   try {
     app.parse(argc, argv);
     for (auto& c : cmds) {
@@ -29,19 +36,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // "fmpp-report foo": CLI11 only says that a subcommand is required; name the word.
     const std::vector<std::string> rest = app.remaining();
-    if (app.get_subcommands().empty() && !rest.empty() && rest.front().rfind("-", 0) != 0) {
-      std::string names;
-      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-        names += (names.empty() ? "" : ", ") + sub->get_name();
-      }
-      std::fprintf(stderr, "fmpp-report: unknown subcommand '%s' (one of: %s)\nRun with --help for more information.\n",
-                   rest.front().c_str(), names.c_str());
-      return static_cast<int>(CLI::ExitCodes::RequiredError);
+    if (e.get_exit_code() != 0 && app.get_subcommands().empty() && !rest.empty() && rest.front().rfind("-", 0) != 0) {
+      std::vector<std::string> names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
+      const std::string near = fmpp::closest_word(rest.front(), names);
+      return fmpp::usage_error(app, "unknown subcommand '" + rest.front() + "' (one of: " + fmpp::join(names, ", ") +
+                                        ")" + (near.empty() ? "" : "; did you mean " + near + "?"));
     }
-    return app.exit(e);
+    return fmpp::parse_error_exit(app, e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fmpp-report: %s\n", e.what());
-    return 1;
+    return fmpp::print_error("fmpp-report", e.what(), fmpp::error_status(e, false));  // 2: a UsageError
   }
   return 0;
 }

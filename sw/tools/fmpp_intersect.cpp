@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include "backends/backend.h"
+#include "common/util/cli_usage.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/geometry/io.h"
 #include "sw/isect/kernels.h"
@@ -210,7 +211,10 @@ int main(int argc, char** argv) {
   app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
   BackendOptions bo;
   add_trace_options(app, bo);
-  CLI11_PARSE(app, argc, argv);
+  app.footer(exit_status_footer(
+      "an error (a triangle, ray or output file the tool cannot use, options this machine does not take; the "
+      "message says which)"));
+  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
 
   std::string stage = "checking the options";  // for an out-of-memory message
   try {
@@ -252,7 +256,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fmpp-intersect: out of memory while %s (limits: docs/reliability.md)\n", stage.c_str());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "fmpp-intersect: %s\n", e.what());
-    return 1;
+    return print_error("fmpp-intersect", e.what(), error_status(e, stage == "checking the options"));
   }
 }

@@ -24,6 +24,7 @@
 #include "backends/backend.h"
 #include "sw/isect/form_cache.h"
 #include "sw/isect/stats_json.h"
+#include "common/util/cli_usage.h"
 #include "sw/tools/cli_options.h"
 #include "sw/tools/render_plan.h"
 #include "sw/rt/plan.h"
@@ -195,7 +196,8 @@ int main(int argc, char** argv) {
   app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
       ->capture_default_str()
       ->check(CLI::IsMember({"work", "schedule"}));
-  CLI11_PARSE(app, argc, argv);
+  app.footer(exit_status_footer("an error of the work (a scene or output it cannot use, a plan that misses its target)"));
+  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
   std::string command = "The command:";
   for (int i = 0; i < argc; ++i) command += std::string(" ") + argv[i];
 
@@ -390,8 +392,8 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::exception& e) {
     // On several ranks: the rank and the cause, and every rank ends (no picture is written).
-    if (session->size() > 1) session->abort("fmpp-render", e.what(), 1);
-    std::fprintf(stderr, "fmpp-render: %s\n", e.what());
-    return 1;
+    const int status = error_status(e, stage == "checking the options");  // 2: a usage error
+    if (session->size() > 1) session->abort("fmpp-render", e.what(), status);
+    return print_error("fmpp-render", e.what(), status);
   }
 }

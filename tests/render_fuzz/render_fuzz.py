@@ -137,7 +137,7 @@ def one_render(args, index, case_seed):
         return "ok", folder, cmd, checked, summary
     msg = (p.stderr or p.stdout).strip()
     for key, reason in ALLOWED_REFUSALS.items():
-        if p.returncode == 1 and key in msg and "exact check" not in msg:
+        if p.returncode in (1, 2) and key in msg and "exact check" not in msg:  # 2: a usage error
             if not args.keep:
                 shutil.rmtree(folder, ignore_errors=True)
             return "refused:" + reason, folder, cmd, 0, summary
