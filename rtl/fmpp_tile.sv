@@ -87,10 +87,6 @@ module fmpp_tile #(
   word_t  mem_q [NumWords] /*verilator public_flat_rd*/;
   flags_t flag_q /*verilator public_flat_rd*/;
 
-  // Everything below the state is left out of waveform traces: the ports, the words and the
-  // flags show what the tile does, and a traced temporary is one Verilator must keep in the
-  // model's memory instead of a C++ local (a tenth of the simulation's time).
-  /* verilator tracing_off */
 
   // Operand registers (stage 2 -> 3): A through the shifter, the ALU's addend (B, not B or
   // not IMM) and its carry-in, made in stage 2 so that stage 3's adder starts from registers.
@@ -181,29 +177,34 @@ module fmpp_tile #(
   end
   assign flagop_any_o = |flagop_v;
 
+  // The locals of the clocked and read-port blocks are left out of waveform traces: a traced
+  // temporary is one Verilator must keep in the model's memory instead of a C++ local (a
+  // third of the simulation's time). The state, the operand registers and the module's
+  // nets stay traced.
+  /* verilator tracing_off */
   // Stages 3 and 2 in one clocked block, stage 3 first: its next state is computed only for
   // an entry that executes (a simulator does nothing on the other clocks), and stage 2 takes
   // the word stage 3 writes at this edge from its write data (forwarding), so that an entry
   // may use its predecessor's result. The shifted A and the addend are fmpp_alu_addend's
-  // function. At most one flag plane (fl_dst) and one word (D) change per clock, besides the
-  // C and V updates of the ALU. Every local is assigned before it is read on every path, so
-  // synthesis makes no flops of them (formal job pipe_1x4 checks the whole against the
-  // single-cycle tile).
+  // function; an operand that needs neither goes straight into its register (for a
+  // simulator, one copy of the word instead of three). At most one flag plane (fl_dst) and
+  // one word (D) change per clock, besides the C and V updates of the ALU. Every local is
+  // assigned before it is read on every path, so synthesis makes no flops of them (formal
+  // job pipe_1x4 checks the whole against the single-cycle tile).
   always_ff @(posedge clk_i) begin
-    word_t  opd, wr_data;           // stage 3: word D as read, and as written
+    word_t  wr_data;                // stage 3: word D, as read and then as written
     flags_t flags_n;                // stage 3: the flags after the entry
     lane_t  match, src, fl_new, bit_x;
     logic [31:0] key_mask;
     logic addr_part, fl_we, wr_en;
     logic [fmpp_pkg::F_F_W-1:0] fl_dst;
-    word_t  opa_rd, opb_rd, addend; // stage 2's A and B (forwarded or read), the addend from B
+    word_t  opa_rd, opb_rd;         // stage 2's A and B (forwarded or read) where transformed
     lane_t  subs;
+    logic   fwd_a, fwd_b;
     logic [fmpp_pkg::SHR_A_W-1:0] shr;
     wr_en   = 1'b0;
-    wr_data = '0;
+    wr_data = mem_q[d_i[WIdxW-1:0]];  // each branch below merges a plane into its own old value
     if (exec_i) begin
-      opd      = mem_q[d_i[WIdxW-1:0]];
-      wr_data  = opd;
       flags_n  = flag_q;
       match    = '0;
       src      = '0;
@@ -264,7 +265,7 @@ module fmpp_tile #(
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
                 if (!mask_i[k]) begin
-                  wr_data[k*Lanes +: Lanes] = ({Lanes{imm_i[k]}} & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+                  wr_data[k*Lanes +: Lanes] = ({Lanes{imm_i[k]}} & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
                 end
               end
             end
@@ -277,7 +278,7 @@ module fmpp_tile #(
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
                 if (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W] == 5'(k)) begin
-                  wr_data[k*Lanes +: Lanes] = (bit_x & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+                  wr_data[k*Lanes +: Lanes] = (bit_x & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
                 end
               end
             end
@@ -285,7 +286,7 @@ module fmpp_tile #(
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
-                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (opd[k*Lanes +: Lanes] & ~pred);
+                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
               end
               if (alu_wr_c) flags_n[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
               if (alu_wr_v) flags_n[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
@@ -299,7 +300,7 @@ module fmpp_tile #(
             wr_en = 1'b1;
             for (int k = 0; k < W; k++) begin
               if (hw_strb_i[k / 8]) begin
-                wr_data[k*Lanes +: Lanes] = (opd[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);
+                wr_data[k*Lanes +: Lanes] = (wr_data[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);
               end
             end
           end
@@ -326,39 +327,46 @@ module fmpp_tile #(
     // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
     if (opr_en_i) begin
-      opa_rd = (wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0]) ? wr_data : mem_q[a_i[WIdxW-1:0]];
+      fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+      fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
       shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
           ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
-      // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign plane
-      // filling. Each level's condition stands outside its plane loop, so that a simulator
-      // tests it once (the same multiplexers).
-      for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin
-        if (shr[j]) begin
-          for (int k = 0; k < W; k++) begin
-            opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+      subs = '0;
+      if (shr == '0 && opr_op_i != fmpp_pkg::OP_DIVSTEP) begin
+        opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];  // A as read: no copy to shift
+      end else begin
+        opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+        // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign
+        // plane filling. Each level's condition stands outside its plane loop, so that a
+        // simulator tests it once (the same multiplexers).
+        for (int j = 0; j < fmpp_pkg::SHR_A_W; j++) begin
+          if (shr[j]) begin
+            for (int k = 0; k < W; k++) begin
+              opa_rd[k*Lanes +: Lanes] = opa_rd[(k + (1 << j) < W ? k + (1 << j) : W - 1)*Lanes +: Lanes];
+            end
           end
         end
+        subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
+        if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
+        opa_q <= opa_rd;
       end
-      subs = ~opa_rd[(W-1)*Lanes +: Lanes];  // DIVSTEP: the lanes whose A >= 0 subtract
-      if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
-      opa_q <= opa_rd;
-      opb_rd = (wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0]) ? wr_data : mem_q[b_i[WIdxW-1:0]];
       // The addend, the opcode tested once for all planes.
       if (opr_op_i == fmpp_pkg::OP_CMP) begin
-        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = {Lanes{~opr_imm_i[k]}};
+        for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= {Lanes{~opr_imm_i[k]}};
       end else if (opr_op_i == fmpp_pkg::OP_SUB) begin
-        addend = ~opb_rd;
+        opb_q <= ~(fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]]);
       end else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) begin
-        for (int k = 0; k < W; k++) addend[k*Lanes +: Lanes] = opb_rd[k*Lanes +: Lanes] ^ subs;
+        opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+        for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= opb_rd[k*Lanes +: Lanes] ^ subs;
       end else begin
-        addend = opb_rd;
+        opb_q <= fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
       end
-      opb_q <= addend;
       if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
       else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) cin_q <= subs;
       else cin_q <= '0;
     end
   end
+  /* verilator tracing_on */
 
   if (WIdxW < 6) begin : g_unused_hi
     logic unused_hi;
@@ -366,6 +374,7 @@ module fmpp_tile #(
                          d_i[fmpp_pkg::F_D_W-1:WIdxW], rd_word_i[5:WIdxW]};
   end
 
+  /* verilator tracing_off */
   // Host read port: the addressed lane's word (or flags) through a one-hot lane select, or a
   // whole flag plane; all inside the tile select, so a tile not addressed does no work.
   always_comb begin
