@@ -192,7 +192,7 @@ module fmpp_tile #(
   // assigned before it is read on every path, so synthesis makes no flops of them (formal
   // job pipe_1x4 checks the whole against the single-cycle tile).
   always_ff @(posedge clk_i) begin
-    word_t  wr_data;                // stage 3: word D, as read and then as written
+    word_t  wr_data;                // stage 3: word D as written
     flags_t flags_n;                // stage 3: the flags after the entry
     lane_t  match, src, fl_new, bit_x;
     logic [31:0] key_mask;
@@ -203,7 +203,7 @@ module fmpp_tile #(
     logic   fwd_a, fwd_b;
     logic [fmpp_pkg::SHR_A_W-1:0] shr;
     wr_en   = 1'b0;
-    wr_data = mem_q[d_i[WIdxW-1:0]];  // each branch below merges a plane into its own old value
+    wr_data = '0;  // a writing branch below starts from word D: the others do not read it
     if (exec_i) begin
       flags_n  = flag_q;
       match    = '0;
@@ -263,6 +263,7 @@ module fmpp_tile #(
             fmpp_pkg::OP_WRITES: begin
               // Masked parallel write: masked bits and unselected blocks keep their value.
               wr_en = 1'b1;
+              wr_data = mem_q[d_i[WIdxW-1:0]];
               for (int k = 0; k < W; k++) begin
                 if (!mask_i[k]) begin
                   wr_data[k*Lanes +: Lanes] = ({Lanes{imm_i[k]}} & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
@@ -276,6 +277,7 @@ module fmpp_tile #(
                 if (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W] == 5'(k)) bit_x = opa_q[k*Lanes +: Lanes];
               end
               wr_en = 1'b1;
+              wr_data = mem_q[d_i[WIdxW-1:0]];
               for (int k = 0; k < W; k++) begin
                 if (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W] == 5'(k)) begin
                   wr_data[k*Lanes +: Lanes] = (bit_x & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
@@ -286,7 +288,7 @@ module fmpp_tile #(
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
-                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
+                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (mem_q[d_i[WIdxW-1:0]][k*Lanes +: Lanes] & ~pred);
               end
               if (alu_wr_c) flags_n[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
               if (alu_wr_v) flags_n[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
@@ -298,6 +300,7 @@ module fmpp_tile #(
           // One word of one block: the lane's word line, byte enables from the strobes.
           if (hw_sel) begin
             wr_en = 1'b1;
+            wr_data = mem_q[d_i[WIdxW-1:0]];
             for (int k = 0; k < W; k++) begin
               if (hw_strb_i[k / 8]) begin
                 wr_data[k*Lanes +: Lanes] = (wr_data[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);

@@ -2,6 +2,8 @@
 // random program (also under random bus stalls) must run clean.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "backends/lockstep.h"
 #include "tb/progen.h"
 #include "backends/rtl/rtl_bus.h"
@@ -130,6 +132,24 @@ TEST(Lockstep, ConfigurationsMustMatch) {
   ModelBus model(Config{2, 8});
   EXPECT_THROW(Lockstep(*rtl, model, {}), std::invalid_argument);
   EXPECT_THROW(make_rtl_bus("nonexistent"), std::invalid_argument);
+}
+
+// The state extractor's transposition against the bit-by-bit one, on random planes.
+TEST(ArchState, PlanesToWordsIsTheTransposition) {
+  std::mt19937_64 rng(7);
+  for (unsigned nplanes : {8u, 16u, 32u}) {
+    for (int round = 0; round < 50; ++round) {
+      uint64_t planes[32];
+      for (auto& p : planes) p = rng();
+      uint32_t got[64];
+      planes_to_words(planes, nplanes, got);
+      for (unsigned l = 0; l < 64; ++l) {
+        uint32_t want = 0;
+        for (unsigned k = 0; k < nplanes; ++k) want |= static_cast<uint32_t>((planes[k] >> l) & 1u) << k;
+        ASSERT_EQ(got[l], want) << "lane " << l << ", " << nplanes << " planes";
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // Architectural state snapshots shared by the RTL extractor and the golden model,
 // and their comparison (the lockstep checker's "differing state" report).
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <sstream>
 
@@ -10,6 +12,33 @@ namespace fmpp::backends {
 uint64_t ArchState::hash() const {
   return state_digest(
       cfg, [this](unsigned b, unsigned w) { return word(b, w); }, [this](unsigned b) { return flags[b]; }, mask);
+}
+
+namespace {
+
+// kSpread[b]: bit i of b moved to bit 8 i (one byte per lane of a group of eight).
+constexpr std::array<uint64_t, 256> spread_table() {
+  std::array<uint64_t, 256> t{};
+  for (unsigned b = 0; b < 256; ++b) {
+    for (unsigned i = 0; i < 8; ++i) t[b] |= uint64_t{(b >> i) & 1u} << (8 * i);
+  }
+  return t;
+}
+constexpr std::array<uint64_t, 256> kSpread = spread_table();
+
+}  // namespace
+
+void planes_to_words(const uint64_t* planes, unsigned nplanes, uint32_t out[64]) {
+  std::fill(out, out + 64, 0u);
+  // Eight planes by eight lanes at a time: byte i of acc gathers the eight planes' bits of
+  // lane 8 c + i, which then become bits 8 g .. 8 g + 7 of that lane's word.
+  for (unsigned g = 0; g * 8 < nplanes; ++g) {
+    for (unsigned c = 0; c < 8; ++c) {
+      uint64_t acc = 0;
+      for (unsigned j = 0; j < 8; ++j) acc |= kSpread[(planes[8 * g + j] >> (8 * c)) & 0xffu] << j;
+      for (unsigned i = 0; i < 8; ++i) out[8 * c + i] |= static_cast<uint32_t>((acc >> (8 * i)) & 0xffu) << (8 * g);
+    }
+  }
 }
 
 ArchState model_state(const ModelBus& m) {

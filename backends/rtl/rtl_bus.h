@@ -40,6 +40,11 @@ struct ArchState {
 // Reads the golden model's state into the same form.
 ArchState model_state(const ModelBus& m);
 
+// Bit planes to words: planes[k] holds bit k of every lane (lane l at bit l), for k below
+// nplanes (a multiple of 8, at most 32); out[l] receives lane l's nplanes bits, for all 64
+// lanes. The RTL stores its words as planes; the state extractor turns them into words.
+void planes_to_words(const uint64_t* planes, unsigned nplanes, uint32_t out[64]);
+
 // Lists up to `max_diffs` differences, one per line ("block 3 word 7: rtl 0x.. model 0x..").
 std::string diff_states(const ArchState& rtl, const ArchState& model, unsigned max_diffs = 16);
 

@@ -9,6 +9,7 @@
 #include <verilated_cov.h>
 #endif
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <stdexcept>
@@ -30,8 +31,6 @@ class VarView {
     data_ = static_cast<const uint8_t*>(v->datap());
     ent_ = v->entSize();
   }
-  // Bit `bit` of element `elem` (elem = index of the unpacked dimension, 0 if none).
-  unsigned bit(size_t elem, size_t bit) const { return (data_[elem * ent_ + bit / 8] >> (bit % 8)) & 1u; }
   uint64_t u64(size_t elem = 0) const {
     uint64_t v = 0;
     std::memcpy(&v, data_ + elem * ent_, ent_ < 8 ? ent_ : 8);
@@ -42,6 +41,19 @@ class VarView {
     uint64_t v = 0;
     std::memcpy(&v, data_ + elem * ent_ + lsb / 8, 8);
     return v;
+  }
+  // n <= 64 bits starting at bit `lsb` of element `elem` (read within the element).
+  uint64_t bits(size_t elem, size_t lsb, unsigned n) const {
+    uint8_t buf[16] = {};
+    const size_t first = lsb / 8;
+    const size_t len = std::min<size_t>(ent_ - first, (lsb % 8 + n + 7) / 8);
+    std::memcpy(buf, data_ + elem * ent_ + first, len);
+    uint64_t lo = 0, hi = 0;
+    std::memcpy(&lo, buf, 8);
+    std::memcpy(&hi, buf + 8, 8);
+    const unsigned sh = lsb % 8;
+    const uint64_t v = sh ? (lo >> sh) | (hi << (64 - sh)) : lo;
+    return n == 64 ? v : v & ((uint64_t{1} << n) - 1);
   }
 
  private:
@@ -175,24 +187,20 @@ class RtlBusImpl final : public RtlBus {
     s.cfg = cfg_;
     s.words.assign(size_t{cfg_.blocks} * cfg_.words, 0);
     s.flags.assign(cfg_.blocks, 0);
+    uint64_t planes[32];
+    uint32_t lane_words[64];
     for (unsigned t = 0; t < tiles_.size(); ++t) {
       const Tile& tile = tiles_[t];
       const unsigned base = t * map::kLaneW;
       for (unsigned w = 0; w < cfg_.words; ++w) {
-        for (unsigned k = 0; k < 32; ++k) {
-          const uint64_t plane = plane_bits(tile.mem, w, k, tile.lanes);
-          for (uint64_t p = plane; p != 0; p &= p - 1) {
-            const unsigned l = static_cast<unsigned>(__builtin_ctzll(p));
-            s.words[size_t{base + l} * cfg_.words + w] |= 1u << k;
-          }
-        }
+        for (unsigned k = 0; k < 32; ++k) planes[k] = plane_bits(tile.mem, w, k, tile.lanes);
+        planes_to_words(planes, 32, lane_words);
+        for (unsigned l = 0; l < tile.lanes; ++l) s.words[size_t{base + l} * cfg_.words + w] = lane_words[l];
       }
-      for (unsigned f = 0; f < map::kNumFlags; ++f) {
-        const uint64_t plane = plane_bits(tile.flags, 0, f, tile.lanes);
-        for (uint64_t p = plane; p != 0; p &= p - 1) {
-          s.flags[base + static_cast<unsigned>(__builtin_ctzll(p))] |= static_cast<uint8_t>(1u << f);
-        }
-      }
+      static_assert(map::kNumFlags == 8, "the flags are read as one group of eight planes");
+      for (unsigned f = 0; f < map::kNumFlags; ++f) planes[f] = plane_bits(tile.flags, 0, f, tile.lanes);
+      planes_to_words(planes, 8, lane_words);
+      for (unsigned l = 0; l < tile.lanes; ++l) s.flags[base + l] = static_cast<uint8_t>(lane_words[l]);
     }
     s.mask = static_cast<uint32_t>(mask_.u64());
     s.instret = instret_.u64();
@@ -227,9 +235,7 @@ class RtlBusImpl final : public RtlBus {
   // Plane k (lanes bits) of element `elem` of a tile variable.
   static uint64_t plane_bits(const VarView& v, size_t elem, unsigned k, unsigned lanes) {
     if (lanes == 64) return v.plane64(elem, size_t{k} * 64);
-    uint64_t p = 0;
-    for (unsigned l = 0; l < lanes; ++l) p |= uint64_t{v.bit(elem, size_t{k} * lanes + l)} << l;
-    return p;
+    return v.bits(elem, size_t{k} * lanes, lanes);
   }
 
   // Parts of the Verilator runtime ($error, scope teardown) use the thread's current
