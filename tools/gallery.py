@@ -57,6 +57,16 @@ def command(scene, side, report="r.json", out="out.png"):
         "--width", str(side), "--height", str(side), "--oracle", "--report", report, "--out", out]
 
 
+def readme_mkdir(folder="gallery"):
+    """The README's command that makes the folder its gallery commands write into (fmpp-render makes none)."""
+    return "mkdir -p build/%s" % folder
+
+
+def readme_command(scene, side, folder="gallery"):
+    """The README's command for one frame: the command render() runs, with the same files under build/."""
+    return command(scene, side, report_path("build", scene, side, folder), png_path("build", scene, side, folder))
+
+
 def render(build, scene, side, folder="gallery"):
     """Renders one frame into BUILD/folder (tools/docs.py's check renders a few into its own folder)."""
     os.makedirs(os.path.join(build, folder), exist_ok=True)
@@ -177,8 +187,10 @@ def readme_block(build):
                                        for s in row) + " |" + pad)
         lines.append("| " + " | ".join(CAPTION[s] for s in row) + " |" + pad)
     lines += ["", "Each picture's command (golden model; n = 24 and 4096 blocks of 32 words fixed, as in the culling "
-              "tables, not chosen by the precision plan; `make gallery` runs them all):", ""]
-    lines += ["    " + " ".join(command(s, PICTURE[s], "NAME.json", "NAME.png")).replace("NAME", s) for s in scenes]
+              "tables, not chosen by the precision plan; `make gallery` runs them all and writes the same files, then "
+              "copies the pictures to build/docs/img/gallery/):", ""]
+    lines += ["    " + readme_mkdir()]
+    lines += ["    " + " ".join(readme_command(s, PICTURE[s])) for s in scenes]
     lines += ["", "and its clocks against the oracles of culling ([raytracer.md](docs/raytracer.md#culling-against-the-oracle)):",
               ""]
     lines += figures_table(build, [(s, PICTURE[s]) for s in scenes])
@@ -187,7 +199,8 @@ def readme_block(build):
 
 
 def raytracer_block(build):
-    lines = ["`%s` for each frame S, N x N (golden model). %s" % (" ".join(command("S", "N")), provenance()), ""]
+    cmd = command("S", "N", "build/gallery/S_N.json", "build/gallery/S_N.png")
+    lines = ["`%s` for each frame S, N x N (golden model; `make gallery` runs them all). %s" % (" ".join(cmd), provenance()), ""]
     lines += figures_table(build, FRAMES)
     if ("scans", 256) in FRAMES:
         lines += [""] + by_kind_table(build, "scans", 256)

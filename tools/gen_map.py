@@ -4,7 +4,7 @@
 Outputs (all committed, all checked by the `map_generated` ctest):
   rtl/fmpp_pkg.sv               SystemVerilog package (no imports needed by yosys)
   cmodel/include/fmpp/map.h     C++ constants in namespace fmpp::map
-  docs/memory-map.md            register, window and encoding tables, and how to change them
+  docs/generated/memory-map.md  register, window and encoding tables, and how to change them
   docs/isa.md                   only its encoding section, between the BEGIN/END markers
 
 Usage: gen_map.py [--check] [--root DIR]
@@ -29,7 +29,7 @@ def outputs(root, m):
     return {
         os.path.join("rtl", "fmpp_pkg.sv"): gen_sv(m),
         os.path.join("cmodel", "include", "fmpp", "map.h"): gen_h(m),
-        os.path.join("docs", "memory-map.md"): gen_md(m),
+        os.path.join("docs", "generated", "memory-map.md"): gen_md(m),
         os.path.join("docs", "isa.md"): isa_text,
     }
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Plot FMPP clocks per frame against pass size (blocks) as an SVG, from the JSON
-reports of `fmpp-render --oracle` (docs/perf.md, "Culling against the oracle").
+reports of `fmpp-render --oracle` (docs/perf-history.md, "Culling against the oracle").
 
     tools/plot_pass_size.py OUT.svg report_1024.json report_2048.json ...
 

@@ -98,7 +98,7 @@ def check_generated(old, new, scratch):
     """(a): the generated files of the scratch copy show the moved layout, not the old one."""
     pkg = read(os.path.join(scratch, "rtl", "fmpp_pkg.sv"))
     hdr = read(os.path.join(scratch, "cmodel", "include", "fmpp", "map.h"))
-    mm = read(os.path.join(scratch, "docs", "memory-map.md"))
+    mm = read(os.path.join(scratch, "docs", "generated", "memory-map.md"))
     isa = read(os.path.join(scratch, "docs", "isa.md"))
     want = []
     for f in new["fields"]:
