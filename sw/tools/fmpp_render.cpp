@@ -120,7 +120,8 @@ int main(int argc, char** argv) {
                      std::to_string(rt::kDefaultSeed) + ")")
       ->check(non_negative());
   app.add_option("--out", out,
-                 "output image: .png (8-bit) or .pfm (linear radiance, unclamped); by default in the current directory")
+                 "output image: .png (8-bit), .pfm or .exr (linear radiance, 32-bit float, unclamped); by default in the "
+                 "current directory")
       ->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
@@ -198,7 +199,7 @@ int main(int argc, char** argv) {
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the image needs a file name (stdout is only for --report -)");
-    rt::image_format(out);  // .png or .pfm, refused before any work otherwise
+    rt::image_format(out);  // .png, .pfm or .exr, refused before any work otherwise
     if (leader) check_writable("--out", out, false);
     if (leader && !report_file.empty()) check_writable("--report", report_file);
     stage = "loading " + scene_file;
