@@ -170,7 +170,11 @@ int main(int argc, char** argv) {
   app.add_flag("--watertight", watertight, "certified edge functions for primary and shadow rays (no cracks, no vertex moved)");
   BackendOptions bo;
   add_trace_options(app, bo);
-  app.add_flag("--quiet", quiet, "no progress output");
+  app.add_flag("--quiet", quiet,
+               "no progress display and no closing summary on the console (the report keeps the figures); without "
+               "it, stderr gets one progress line for the frame (rays of the rays expected, rate, ETA), redrawn on a "
+               "terminal and printed every 3 s otherwise (FMPP_PROGRESS_INTERVAL=seconds sets another interval), "
+               "and a summary at the end");
   std::string rank0 = "work";
   app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
       ->capture_default_str()
