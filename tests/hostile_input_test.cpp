@@ -185,5 +185,25 @@ TEST(HostileInput, RealMeshesInEveryFormat) {
   EXPECT_EQ(g.triangles, 1u);
 }
 
+TEST(HostileInput, GltfFacesTheLibraryDropsAreAnError) {
+  // Three triangles, the last with index 9 of 4 vertices: assimp drops that face and only
+  // logs it; the loader makes its words an error naming the file.
+  const std::string d = std::string(FMPP_SOURCE_DIR) + "/tests/data/";
+  const std::string range = d + "gltf_index_out_of_range.gltf";
+  EXPECT_EQ(error_of([&] { load_mesh(range); }),
+            range + ": cannot read mesh: faces lost by the mesh library (Some faces had out-of-range indices. Those "
+                    "faces were dropped); fix the file");
+  // A member of the wrong type: the library's message with its names, not "...".
+  const std::string type = d + "gltf_member_type.gltf";
+  EXPECT_EQ(error_of([&] { load_mesh(type); }),
+            type + ": cannot read mesh: not a valid gltf file (Member \"indices\" was not of type \"uint\" when "
+                   "reading meshes[0])");
+  // A quoted token that is not a short name may be text of a file that is no mesh: "...".
+  const std::string secret = write("secret.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [{\"primitives\": "
+                                                  "[{\"attributes\": {\"POSITION\": \"root:x:0:0 secret\"}}]}]}");
+  const std::string e = error_of([&] { load_mesh(secret); });
+  EXPECT_EQ(e.find("root:x"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace rt

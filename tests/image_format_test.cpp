@@ -1,14 +1,21 @@
-// Output formats: the extension chooses PNG (8-bit) or PFM (linear radiance,
+// Output formats: the extension chooses PNG (8-bit), PFM or OpenEXR (linear radiance,
 // unclamped); any other is refused by name. The PFM is read back here by a reader
-// written from the format's definition, independent of the writer.
+// written from the format's definition, independent of the writer; the OpenEXR file by
+// the OpenEXR library, and compared with the PFM of the same render.
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "sw/rt/image.h"
 #include "sw/rt/render.h"
@@ -102,11 +109,13 @@ TEST(ImageFormat, ExtensionChoosesTheFormat) {
     return std::string("no error");
   };
   EXPECT_EQ(error_of("x.jpg"),
-            "--out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm (linear radiance, "
-            "32-bit float)");
+            "--out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit), .pfm or .exr (linear "
+            "radiance, 32-bit float)");
   EXPECT_EQ(error_of("render"),
-            "--out render: no extension: the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)");
-  EXPECT_NE(error_of("x.png.exr").find("unknown image format '.exr'"), std::string::npos);
+            "--out render: no extension: the name must end in .png (8-bit), .pfm or .exr (linear radiance, 32-bit "
+            "float)");
+  EXPECT_NE(error_of("x.exr.tif").find("unknown image format '.tif'"), std::string::npos);
+  EXPECT_EQ(image_format("a.EXR"), ImageFormat::kExr);
 }
 
 TEST(ImageFormat, PfmHoldsTheUnclampedLinearValues) {
@@ -157,6 +166,60 @@ TEST(ImageFormat, RenderedRadianceAboveOneSurvivesInPfmOnly) {
   char sig[8] = {};
   in.read(sig, 8);
   EXPECT_EQ(std::memcmp(sig, "\x89PNG\r\n\x1a\n", 8), 0);
+}
+
+// An OpenEXR file's R, G, B as floats, row-major from the top (the library's reader).
+struct Exr {
+  int w = 0, h = 0;
+  std::vector<float> v;
+  float at(int x, int y, int c) const { return v[3 * (static_cast<size_t>(y) * w + x) + c]; }
+};
+
+Exr read_exr(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  Exr e;
+  e.w = dw.max.x - dw.min.x + 1;
+  e.h = dw.max.y - dw.min.y + 1;
+  e.v.assign(static_cast<size_t>(e.w) * e.h * 3, -1.0f);
+  Imf::FrameBuffer fb;
+  const char* names[3] = {"R", "G", "B"};
+  for (int c = 0; c < 3; ++c) {
+    char* base = reinterpret_cast<char*>(e.v.data() + c) -
+                 (static_cast<ptrdiff_t>(dw.min.x) + static_cast<ptrdiff_t>(dw.min.y) * e.w) * 3 * sizeof(float);
+    fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * e.w));
+  }
+  file.setFrameBuffer(fb);
+  file.readPixels(dw.min.y, dw.max.y);
+  return e;
+}
+
+TEST(ImageFormat, ExrHoldsThePfmsValues) {
+  // The bright one-triangle render to .exr and .pfm: the same floats, pixel for pixel.
+  Scene s = load_scene(std::string(FMPP_SOURCE_DIR) + "/scenes/one_triangle.json");
+  for (Light& l : s.lights) l.color *= 4.0;
+  ReferenceIntersector ref(s.triangles);
+  RenderOptions ro;
+  ro.width = 24;
+  ro.height = 16;
+  const Image img = render(s, ref, ro, nullptr);
+  const std::string pfm = tmp_path("same.pfm"), exr = tmp_path("same.exr");
+  img.write(pfm);
+  img.write(exr);
+  const Pfm p = read_pfm(pfm);
+  const Exr e = read_exr(exr);
+  ASSERT_EQ(e.w, 24);
+  ASSERT_EQ(e.h, 16);
+  float brightest = 0;
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 24; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(e.at(x, y, c), p.at(x, y, c)) << x << " " << y << " " << c;
+        brightest = std::max(brightest, e.at(x, y, c));
+      }
+    }
+  }
+  EXPECT_GT(brightest, 1.5f);
 }
 
 }  // namespace

@@ -137,7 +137,7 @@ test -s "$dir/ok.png" && test -s "$dir/ok.json" && test -z "$(ls "$dir" | grep -
 # The output format follows the extension: .png or .pfm; any other (.jpg, none) is
 # refused before any work - before the scene is read (a scene that does not exist is
 # not what the error names) and with no file written.
-fails "--out $dir/x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm" \
+fails "--out $dir/x.jpg: unknown image format '.jpg': the name must end in .png (8-bit), .pfm or .exr" \
   "$render" --scene "$dir/no-such-scene.json" --backend cmodel --out "$dir/x.jpg"
 fails "--out $dir/x: no extension" "$render" --scene "$scene" --backend reference --out "$dir/x"
 test ! -e "$dir/x.jpg" && test ! -e "$dir/x"

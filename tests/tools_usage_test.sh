@@ -46,7 +46,7 @@ usage "fmpp-render: --blocks excludes --config" "$render" --config small --block
 usage "fmpp-render: --trace-start requires --trace" "$render" --trace-start 10
 # Values and combinations the tool's own checks refuse after parsing, from the options
 # alone: usage errors too.
-usage "fmpp-render: --out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)" \
+usage "fmpp-render: --out x.jpg: unknown image format '.jpg': the name must end in .png (8-bit), .pfm or .exr (linear radiance, 32-bit float)" \
   "$render" --backend cmodel --out x.jpg
 usage "fmpp-render: --watertight with --mapping object: the watertight form exists in the ray-parallel mapping only; use --mapping ray" \
   "$render" --backend cmodel --mapping object --watertight

@@ -119,6 +119,7 @@ void Image::write(const std::string& path) const {
   switch (image_format(path)) {
     case ImageFormat::kPng: return write_png(path);
     case ImageFormat::kPfm: return write_pfm(path);
+    case ImageFormat::kExr: return write_exr(path);
   }
 }
 
@@ -127,9 +128,10 @@ ImageFormat image_format(const std::string& path, const std::string& option) {
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".png") return ImageFormat::kPng;
   if (ext == ".pfm") return ImageFormat::kPfm;
+  if (ext == ".exr") return ImageFormat::kExr;
   throw std::invalid_argument(option + " " + path + ": " +
                               (ext.empty() ? std::string("no extension") : "unknown image format '" + ext + "'") +
-                              ": the name must end in .png (8-bit) or .pfm (linear radiance, 32-bit float)");
+                              ": the name must end in .png (8-bit), .pfm or .exr (linear radiance, 32-bit float)");
 }
 
 ImageDiff compare(const Image& a, const Image& b, int tolerance) {

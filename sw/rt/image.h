@@ -29,6 +29,10 @@ class Image {
   // the bottom up, as the format defines): the linear radiance, unclamped, no gamma.
   // Atomic and checked like write_png.
   void write_pfm(const std::string& path) const;
+  // Writes an OpenEXR file (Debian's OpenEXR library; sw/rt/image_exr.cpp): R, G, B as
+  // 32-bit floats, the linear radiance, unclamped, no gamma, rows from the top; atomic and
+  // checked like write_png.
+  void write_exr(const std::string& path) const;
   // Writes the format that image_format(path) names.
   void write(const std::string& path) const;
 
@@ -44,8 +48,9 @@ uint8_t to_level(double v);
 uint8_t to_level_by_formula(double v);
 
 // The output formats, chosen by the file name's extension (case-insensitive): ".png"
-// (8-bit, tone-mapped as to_rgb8) and ".pfm" (linear radiance, 32-bit float, unclamped).
-enum class ImageFormat { kPng, kPfm };
+// (8-bit, tone-mapped as to_rgb8), ".pfm" and ".exr" (linear radiance, 32-bit float,
+// unclamped).
+enum class ImageFormat { kPng, kPfm, kExr };
 // The format of `path`; throws std::invalid_argument("<option> <path>: ...") naming the
 // extension and the accepted ones for any other (".jpg", none).
 ImageFormat image_format(const std::string& path, const std::string& option = "--out");

@@ -228,8 +228,22 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   // A band holds at most kPrimaryBatch primary rays: all the samples of its pixels.
   const size_t band = std::max<size_t>(1, kPrimaryBatch / static_cast<size_t>(spp));
   uint64_t traced = 0;
+  BatchProgress bp;
+  bp.depth = depth;
+  bp.primary_total = static_cast<uint64_t>(pixels) * static_cast<uint64_t>(spp);
+  const auto tell = [&](BatchKind kind, int level, uint64_t n, uint64_t next, bool done) {
+    if (!opt.progress) return;
+    bp.kind = kind;
+    bp.level = level;
+    bp.rays = n;
+    bp.next_rays = next;
+    bp.traced = traced;
+    bp.done = done;
+    opt.progress(bp);
+  };
   for (size_t first = 0; first < pixels; first += band) {
     const size_t last = std::min(pixels, first + band);
+    bp.primary_started = static_cast<uint64_t>(last) * static_cast<uint64_t>(spp);
     std::vector<Ray> rays;
     std::vector<Path> paths;
     for (size_t k = first; k < last; ++k) {
@@ -257,11 +271,14 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
     for (int level = 0; level < depth && !rays.empty(); ++level) {
       auto t0 = std::chrono::steady_clock::now();
       std::vector<Hit> hits;
+      const bool from_merged = have_ahead;  // traced with the last level's last shadows
       if (have_ahead) {
         hits.swap(ahead);
         have_ahead = false;
       } else {
-        isect.set_batch_kind(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary);
+        const BatchKind kind = level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary;
+        tell(kind, level, rays.size(), 0, false);
+        isect.set_batch_kind(kind);
         hits = isect.intersect(rays);
       }
       st.intersect_seconds += seconds_since(t0);
@@ -270,8 +287,10 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         ++st.rays[static_cast<int>(paths[i].kind)];
         count_redo(hits[i], static_cast<int>(paths[i].kind), st);
       }
-      traced += rays.size();
-      if (opt.progress) opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(rays.size()) + " rays");
+      if (!from_merged) {
+        traced += rays.size();
+        tell(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary, level, rays.size(), 0, true);
+      }
 
       t0 = std::chrono::steady_clock::now();
       ShadeOutput out;
@@ -284,6 +303,8 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         if (out.shadow_rays.empty()) return;
         const auto ts = std::chrono::steady_clock::now();
         std::vector<Hit> sh;
+        const uint64_t next = with_next ? out.next.size() : 0, n = out.shadow_rays.size() + next;
+        tell(BatchKind::kShadow, level, n, next, false);
         if (with_next) {
           std::tie(sh, ahead) = isect.intersect_two(out.shadow_rays, BatchKind::kShadow, out.next, BatchKind::kSecondary);
           have_ahead = true;
@@ -295,11 +316,8 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
         ++st.batches;
         st.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
         for (const Hit& h : sh) count_redo(h, static_cast<int>(RayKind::kShadow), st);
-        traced += out.shadow_rays.size();
-        if (opt.progress) {
-          opt.progress(traced, "depth " + std::to_string(level) + ": " + std::to_string(out.shadow_rays.size()) +
-                                   " shadow rays");
-        }
+        traced += n;
+        tell(BatchKind::kShadow, level, n, next, true);
         Shader::add_unshadowed(out.shadows, sh, img);
         out.shadow_rays.clear();
         out.shadows.clear();

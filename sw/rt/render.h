@@ -125,6 +125,19 @@ class FmppIntersector : public Intersector {
   fmpp::isect::KernelStats together_stats_;
 };
 
+// One call of the intersector, for a progress display (sw/tools/render_progress.h).
+struct BatchProgress {
+  BatchKind kind = BatchKind::kPrimary;  // kShadow for the shadow rays of a merged call
+  int level = 0;                         // 0: primary rays and their shadows
+  int depth = 1;                         // the frame's recursion depth
+  uint64_t rays = 0;                     // rays of this call (both kinds' in a merged call)
+  uint64_t next_rays = 0;                // of them, the next level's (a merged call), else 0
+  uint64_t traced = 0;                   // rays traced before this call (with it, when done)
+  uint64_t primary_started = 0;          // primary rays of the bands begun so far
+  uint64_t primary_total = 0;            // primary rays of the frame (pixels x samples)
+  bool done = false;
+};
+
 struct RenderOptions {
   int width = 64;
   int height = 64;
@@ -141,9 +154,10 @@ struct RenderOptions {
   // image holds them alone, the k-th listed at index k (pixels.size() x 1): a sample of a
   // large frame costs no image of the frame.
   std::vector<uint32_t> pixels;
-  // Called after each batch of rays: (rays traced so far, a description of the batch).
-  std::function<void(uint64_t, const std::string&)> progress;
+  // Called before (done false) and after (done true) each call of the intersector.
+  std::function<void(const BatchProgress&)> progress;
 };
+
 
 struct RenderStats {
   uint64_t rays[kNumRayKinds] = {};

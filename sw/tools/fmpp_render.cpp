@@ -14,8 +14,6 @@
 // (sw/mpi/, docs/multichip.md); rank 0 writes the picture and the report.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -27,6 +25,7 @@
 #include "common/util/cli_usage.h"
 #include "sw/tools/cli_options.h"
 #include "sw/tools/render_plan.h"
+#include "sw/tools/render_progress.h"
 #include "sw/rt/plan.h"
 #include "sw/rt/plan_cache.h"
 #include "sw/rt/exact_check.h"
@@ -36,27 +35,6 @@
 using namespace fmpp;
 
 namespace {
-
-// A progress line on stderr: redrawn in place on a terminal, one line per batch otherwise.
-class Progress {
- public:
-  explicit Progress(bool quiet) : quiet_(quiet), tty_(isatty(2)) {}
-  void batch(const std::string& what) {
-    label_ = what;
-    if (!quiet_ && !tty_) std::fprintf(stderr, "%s\n", what.c_str());
-  }
-  void pass(uint64_t done, uint64_t total) {
-    if (quiet_ || !tty_) return;
-    const int width = 30, fill = total ? static_cast<int>(width * done / total) : width;
-    std::fprintf(stderr, "\r[%s%s] %3d%% %s   ", std::string(fill, '#').c_str(), std::string(width - fill, ' ').c_str(),
-                 total ? static_cast<int>(100 * done / total) : 100, label_.c_str());
-    if (done == total) std::fprintf(stderr, "\n");
-  }
-
- private:
-  bool quiet_, tty_;
-  std::string label_;
-};
 
 // The frame rendered through `isect`, every answer checked against the exact reference
 // where `verify`: the report's "verify_exact" (with the plan's checked renders, `plan`).
@@ -142,7 +120,8 @@ int main(int argc, char** argv) {
                      std::to_string(rt::kDefaultSeed) + ")")
       ->check(non_negative());
   app.add_option("--out", out,
-                 "output image: .png (8-bit) or .pfm (linear radiance, unclamped); by default in the current directory")
+                 "output image: .png (8-bit), .pfm or .exr (linear radiance, 32-bit float, unclamped); by default in the "
+                 "current directory")
       ->capture_default_str();
   app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
   app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
@@ -191,7 +170,11 @@ int main(int argc, char** argv) {
   app.add_flag("--watertight", watertight, "certified edge functions for primary and shadow rays (no cracks, no vertex moved)");
   BackendOptions bo;
   add_trace_options(app, bo);
-  app.add_flag("--quiet", quiet, "no progress output");
+  app.add_flag("--quiet", quiet,
+               "no progress display and no closing summary on the console (the report keeps the figures); without "
+               "it, stderr gets one progress line for the frame (rays of the rays expected, rate, ETA), redrawn on a "
+               "terminal and printed every 3 s otherwise (FMPP_PROGRESS_INTERVAL=seconds sets another interval), "
+               "and a summary at the end");
   std::string rank0 = "work";
   app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
       ->capture_default_str()
@@ -220,10 +203,15 @@ int main(int argc, char** argv) {
     rt::check_resolution(width, height);
     // Every output is checked before the render, not after it.
     if (out == "-") throw std::invalid_argument("--out -: the image needs a file name (stdout is only for --report -)");
-    rt::image_format(out);  // .png or .pfm, refused before any work otherwise
+    rt::image_format(out);  // .png, .pfm or .exr, refused before any work otherwise
     if (leader) check_writable("--out", out, false);
     if (leader && !report_file.empty()) check_writable("--report", report_file);
     stage = "loading " + scene_file;
+    const auto t_load = std::chrono::steady_clock::now();
+    const auto since = [](std::chrono::steady_clock::time_point t) {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    nlohmann::json phases;  // wall time by phase: the report's "phase_seconds" and the summary
     rt::Scene loaded = rt::load_scene(scene_file);
     // --spp and --seed replace the scene's, for the plan's sample as for the frame.
     if (app.count("--spp")) loaded.spp = spp;
@@ -234,6 +222,7 @@ int main(int argc, char** argv) {
       for (const auto& f : scene.files) inputs.push_back({f == scene_file ? "--scene" : "mesh of --scene", f});
       check_no_alias({{"--out", out}, {"--report", report_file}, {"--trace", bo.trace_file}}, inputs);
     }
+    phases["load"] = since(t_load);
     nlohmann::json rep;
     rep["scene"] = scene_file;
     rep["triangles"] = scene.triangles.size();
@@ -249,19 +238,21 @@ int main(int argc, char** argv) {
       }
       rep["lights"].push_back(jl);
     }
-    Progress progress(quiet);
+    tools::RenderProgress progress(quiet, tools::shadow_prior(scene));
     rt::RenderOptions ro;
     ro.width = width;
     ro.height = height;
     ro.max_depth = depth;
-    ro.progress = [&](uint64_t, const std::string& what) { progress.batch(what); };
+    ro.progress = [&](const rt::BatchProgress& b) { progress.batch(b); };
     rt::RenderStats rs;
     stage = "rendering " + std::to_string(width) + "x" + std::to_string(height);
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<rt::Image> img;
     if (backend == "reference") {
       rt::ReferenceIntersector ref(scene.triangles);
+      const auto t_frame = std::chrono::steady_clock::now();
       img = std::make_unique<rt::Image>(render_frame(scene, ref, ro, &rs, verify, command, {}, &rep));
+      phases["frame"] = since(t_frame);
     } else {
       // The precision plan chooses what the options leave open; the frame's kernel options
       // are the same as the plan's, with its choices.
@@ -305,7 +296,9 @@ int main(int argc, char** argv) {
       rt::ExactCheckStats plan_checked;
       pr.verify_exact = verify;
       pr.verified = &plan_checked;
+      const auto t_plan = std::chrono::steady_clock::now();
       const tools::RenderPlan rp = tools::plan_render(scene, pr, {plan_cache, replan, accept_miss, quiet}, &rep);
+      phases["plan"] = since(t_plan);
       const rt::Plan& plan = rp.plan;
       forms.next_phase();
       const Config cfg = plan.config;
@@ -319,7 +312,7 @@ int main(int argc, char** argv) {
       ko.merge_below = plan.options.merge_below;
       ko.t_accuracy = plan.options.t_accuracy;  // the user's, or the plan's escalation
       ko.oracle = oracle;
-      ko.progress = [&](uint64_t done, uint64_t total) { progress.pass(done, total); };
+      ko.progress = [&](uint64_t done, uint64_t planned) { progress.pass(done, planned); };
       ko.forms = &forms;
       chips.agree(scene.triangles, cfg, ko);
       ko.share = chips.attach(dev, rank0 == "work");
@@ -330,9 +323,11 @@ int main(int argc, char** argv) {
       }
       const bool together = plan.kinds_together;
       fi.set_kinds_together(together);
+      const auto t_frame = std::chrono::steady_clock::now();
       img = std::make_unique<rt::Image>(
           render_frame(scene, chips.wrap(fi), ro, &rs, verify, command, plan_checked, &rep));
       be->finish();
+      phases["frame"] = since(t_frame);
       // The plan's own seconds: its wall time less the preparation the frame reused.
       rep["plan"]["wall_seconds"] = rp.seconds;
       rep["plan"]["reused_by_frame_seconds"] = forms.carried_seconds();
@@ -361,7 +356,10 @@ int main(int argc, char** argv) {
       }
       if (nlohmann::json c = chips.report(fi.stats(), clock_mhz); !c.is_null()) rep["chips"] = c;
     }
+    progress.finish();
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    phases["intersect"] = rs.intersect_seconds;
+    phases["shade"] = rs.shade_seconds;
     rep["intersect_seconds"] = rs.intersect_seconds;
     for (int k = 0; k < rt::kNumRayKinds; ++k) {
       const char* kind = rt::to_string(static_cast<rt::RayKind>(k));
@@ -373,18 +371,26 @@ int main(int argc, char** argv) {
     }
     if (!leader) return 0;  // rank 0 writes
     stage = "writing " + out;
+    const auto t_write = std::chrono::steady_clock::now();
     img->write(out);
+    phases["write"] = since(t_write);
     if (compare) {
+      const auto t_compare = std::chrono::steady_clock::now();
       rt::ReferenceIntersector ref(scene.triangles);
       rt::RenderOptions quiet_ro = ro;
       quiet_ro.progress = nullptr;
       const rt::Image want = rt::render(scene, ref, quiet_ro, nullptr);
       const rt::ImageDiff d = rt::compare(*img, want);
       rep["reference_diff"] = {{"pixels", d.pixels}, {"pixels_over_8_levels", d.pixels_over}, {"max_delta", d.max_delta}};
+      phases["compare"] = since(t_compare);
     }
+    phases["total"] = since(t_load);
+    rep["phase_seconds"] = phases;
     if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
-    if (!quiet) std::fprintf(stderr, "wrote %s (%dx%d, %s, %.1f s)\n", out.c_str(), width, height, backend.c_str(),
-                             rep["wall_seconds"].get<double>());
+    if (!quiet) {
+      std::fprintf(stderr, "wrote %s (%dx%d, %s)\n", out.c_str(), width, height, backend.c_str());
+      tools::print_summary(stderr, rep);
+    }
     return 0;
   } catch (const std::bad_alloc&) {
     if (session->size() > 1) session->abort("fmpp-render", "out of memory while " + stage, 1);
