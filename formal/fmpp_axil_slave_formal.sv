@@ -2,7 +2,7 @@
 // for what the AXI4 specification asks of a master (VALID and the payload held until
 // READY) and what the queue can show (never full and empty at once). The harness keeps
 // its own account of the requests and checks the slave against it and against the
-// access rules of docs/memory-map.md, written here independently of the RTL decoder:
+// access rules of docs/generated/memory-map.md, written here independently of the RTL decoder:
 // the legality of an instruction comes from fmpp_instr_ref (generated from the map).
 // Run by tools/formal.sh (bounded model check, then k-induction).
 module fmpp_axil_slave_formal #(

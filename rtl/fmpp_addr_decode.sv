@@ -3,7 +3,7 @@
 // Used once for the write address and once for the read address. It only locates
 // the target (register, flag plane, block flags, block word) and says whether that
 // target exists on this machine; the access rules (read-only, strobes, legality)
-// are applied by fmpp_axil_slave. Map: docs/memory-map.md.
+// are applied by fmpp_axil_slave. Map: docs/generated/memory-map.md.
 module fmpp_addr_decode #(
   parameter int unsigned NumBlocks = 64,
   parameter int unsigned NumWords  = 32

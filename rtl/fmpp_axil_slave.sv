@@ -5,7 +5,7 @@
 // (all reads, CTRL and ERROR writes) waits until the queue is empty and the array's
 // pipeline has drained (q_empty_i), so reads see every earlier push. A bad access
 // answers SLVERR, has no other effect, and is recorded in the sticky ERROR register
-// one clock later; a read waits for that clock. Rules and timing: docs/memory-map.md.
+// one clock later; a read waits for that clock. Rules and timing: docs/generated/memory-map.md.
 //
 // A write is accepted when AWVALID and WVALID are both high (AWREADY = WREADY),
 // a read when ARVALID is high; the response follows one clock later. With

@@ -1,7 +1,7 @@
 // fmpp_reg_read: what a read returns, and its error cause. The registers' values are
 // packed by the map's layouts (fmpp_pkg::<name>_reg_t, reserved bits 0); a read of a
 // window returns the array's read port; anything else is an error with no data.
-// Combinational: fmpp_axil_slave registers the answer. Map: docs/memory-map.md.
+// Combinational: fmpp_axil_slave registers the answer. Map: docs/generated/memory-map.md.
 module fmpp_reg_read #(
   parameter int unsigned NumBlocks = 64,
   parameter int unsigned NumWords  = 32

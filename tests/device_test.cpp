@@ -96,7 +96,7 @@ TEST(Device, RefusesAnotherVersionOrBlockStride) {
   EXPECT_THROW(Device{stride}, DeviceError);
 }
 
-// docs/memory-map.md, "Ordering and timing", on the golden model and the RTL alike.
+// docs/generated/memory-map.md, "Ordering and timing", on the golden model and the RTL alike.
 class BusRules : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BusRules, ReservedRegisterBitsAreIgnoredAndReadAsZero) {

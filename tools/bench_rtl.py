@@ -17,11 +17,13 @@ import argparse
 import filecmp
 import json
 import os
-import platform
 import statistics
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import docblock  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -46,17 +48,6 @@ def render(build, args, backend, out_dir, tag):
     with open(report, encoding="utf-8") as f:
         rep = json.load(f)
     return wall, rep["cycles"], png
-
-
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
 
 
 def main():
@@ -92,7 +83,7 @@ def main():
                          rtl_clocks_per_s=round(clocks["rtl"] / rtl), rounds=a.rounds))
     stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     print("\n%s, %s, %d cores, %d interleaved rounds, medians; pictures byte-identical\n"
-          % (stamp, cpu_name(), os.cpu_count() or 0, a.rounds))
+          % (stamp, docblock.cpu_model(), os.cpu_count() or 0, a.rounds))
     print("| frame | FMPP clocks (rtl, cmodel) | rtl | cmodel | rtl / cmodel | RTL clocks/s |")
     print("| --- | ---: | ---: | ---: | ---: | ---: |")
     for r in rows:
@@ -102,7 +93,7 @@ def main():
                                                                 format(r["rtl_clocks_per_s"], ",")))
     if a.json:
         with open(a.json, "w", encoding="utf-8") as f:
-            json.dump(dict(date=stamp, cpu=cpu_name(), cores=os.cpu_count(), frames=rows), f, indent=1)
+            json.dump(dict(date=stamp, cpu=docblock.cpu_model(), cores=os.cpu_count(), frames=rows), f, indent=1)
     return 0
 
 

@@ -2,7 +2,7 @@
 // front of any fmpp::Bus (the Verilated RTL, the golden model).
 //
 // A generic payload maps onto one AXI4-Lite beat of the FMPP's 64-bit port
-// (docs/memory-map.md): a read or write of 8 bytes at a 32-bit byte address, the
+// (docs/generated/memory-map.md): a read or write of 8 bytes at a 32-bit byte address, the
 // TLM byte enables becoming the AXI write strobes (byte i of the data array is
 // strobe bit i; the platform is little-endian, like the AXI data bus). The device
 // answers OKAY -> TLM_OK_RESPONSE or SLVERR -> TLM_GENERIC_ERROR_RESPONSE, and the

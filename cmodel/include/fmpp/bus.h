@@ -1,4 +1,4 @@
-// The one way into an FMPP: AXI4-Lite beats at byte addresses (docs/memory-map.md).
+// The one way into an FMPP: AXI4-Lite beats at byte addresses (docs/generated/memory-map.md).
 //
 // Implemented by the golden model (fmpp::ModelBus), the Verilated RTL (tb/ RtlBus),
 // the lockstep checker that drives both, and the SystemC TLM platform. Host

@@ -1,7 +1,7 @@
 // The golden model behind the Bus interface: address decode, access rules, the
 // ERROR/CTRL registers, and the instruction queue with the RTL's exact timing.
 //
-// Timing contract (docs/memory-map.md, "Ordering and timing"), clock by clock:
+// Timing contract (docs/generated/memory-map.md, "Ordering and timing"), clock by clock:
 // at each rising edge the entry at the end of the array's pipeline executes (it
 // retires), the pipeline advances, the array pops the queue head into the pipeline
 // if there is one and its GAP counter is zero, then the bus may push. An entry popped
