@@ -5,14 +5,11 @@
 #include <assimp/material.h>
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
-#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
-#include <assimp/LogStream.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -22,6 +19,7 @@
 
 #include "sw/isect/geometry/io.h"
 #include "sw/rt/isolate.h"
+#include "sw/rt/mesh_library_log.h"
 #include "sw/rt/mesh_parts.h"
 #include "sw/rt/mesh_text.h"
 #include "sw/rt/obj_text.h"
@@ -238,48 +236,6 @@ struct Walker {
   }
 };
 
-// Whether a quoted token of the library's message is repeated as it is: a short name
-// (letters, digits, _ . - [ ]), such as a glTF member or type name ("indices", "number").
-bool plain_token(const std::string& t) {
-  if (t.empty() || t.size() > 32) return false;
-  for (char c : t) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.' && c != '-' && c != '[' && c != ']') {
-      return false;
-    }
-  }
-  return true;
-}
-
-// The library's error message with any quoted token but a short name (plain_token)
-// replaced by "...": a longer token may be text of the file, which need not be a mesh
-// at all (a password file named as one), and is not repeated. Control characters go
-// too, and the length is bounded.
-std::string without_quotes(const char* msg) {
-  std::string out, token;
-  char quote = 0;
-  for (const char* p = msg ? msg : ""; *p && out.size() < 200; ++p) {
-    const char c = *p;
-    if (quote) {
-      if (c == quote) {
-        out += plain_token(token) ? token : "...";
-        out += c;
-        quote = 0;
-        token.clear();
-      } else if (token.size() <= 32) {
-        token += c;
-      }
-    } else if (c == '\'' || c == '"' || c == '`') {
-      out += c;
-      quote = c;
-    } else if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) {
-      out += c;
-    }
-  }
-  if (quote) out += "...";
-  while (!out.empty() && (out.back() == ' ' || out.back() == '.')) out.pop_back();
-  return out;
-}
-
 }  // namespace
 
 const std::vector<std::string>& mesh_extensions() {
@@ -383,49 +339,6 @@ Mesh polygon_mesh(const std::string& path, const std::vector<PolyMesh>& parts) {
     if (!g.triangles.empty()) m.groups.push_back(std::move(g));
   }
   return m;
-}
-
-// The library's warnings and errors while it reads one file, their text as it gives it
-// ("Warn,  T0: " and the line's end taken off). Assimp's logger is global: one capture at
-// a time (the reader runs in a child process of its own, load_mesh).
-class LibraryLog {
- public:
-  LibraryLog() {
-    Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);
-    Assimp::DefaultLogger::get()->attachStream(new Stream(&lines_), Assimp::Logger::Warn | Assimp::Logger::Err);
-  }
-  ~LibraryLog() { Assimp::DefaultLogger::kill(); }  // deletes the stream
-  LibraryLog(const LibraryLog&) = delete;
-  LibraryLog& operator=(const LibraryLog&) = delete;
-  const std::vector<std::string>& lines() const { return lines_; }
-
- private:
-  struct Stream : Assimp::LogStream {
-    explicit Stream(std::vector<std::string>* to) : to_(to) {}
-    void write(const char* message) override {
-      std::string s = message ? message : "";
-      if (const size_t colon = s.find(": "); colon != std::string::npos && colon < 16) s.erase(0, colon + 2);
-      while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-      to_->push_back(s);
-    }
-    std::vector<std::string>* to_;
-  };
-  std::vector<std::string> lines_;
-};
-
-// A face the library could not read is an error naming the file and the library's own
-// words (its glTF reader drops a face with an out-of-range index and only logs it).
-void check_library_log(const std::string& path, const std::vector<std::string>& lines) {
-  for (const std::string& l : lines) {
-    std::string low = l;
-    for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    for (const char* word : {"dropped", "out-of-range", "out of range", "skipping", "invalid"}) {
-      if (low.find(word) != std::string::npos) {
-        throw SceneError(path + ": cannot read mesh: faces lost by the mesh library (" + without_quotes(l.c_str()) +
-                         "); fix the file");
-      }
-    }
-  }
 }
 
 // The library's part: `data` is the file's bytes (already checked and read). The
