@@ -29,6 +29,7 @@ import argparse
 import glob
 import json
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -62,6 +63,86 @@ SOURCES = [
 RESULT_GLOBS = ("docs/asic/**/*.csv", "docs/asic/**/*.json", "docs/data/fpga/**/*", "docs/data/synth/**/*.csv")
 
 
+# Hand-typed figures: outside the generated blocks (<!-- NAME:begin --> ... <!-- NAME:end -->)
+# of README.md and docs/ (generated/ is generated whole; perf-history.md is the record of
+# older RTL, each figure labelled with its RTL), a number with a unit of clock, time, area,
+# energy or power is an error, unless it is one of these, which describe no measurement of
+# the RTL: (file, regular expression, why).
+FIGURE = re.compile(r"\d[\d,.]*\s*(?:MHz|GHz|mm\^2|um\^2|pJ|nJ|uJ|mW|ns)\b")
+PROSE_ALLOWED = (
+    ("*", r"50 MHz", "the paper's clock"),
+    ("docs/perf.md", r"2\.6 GHz", "the CPU's nominal clock"),
+    ("docs/perf.md", r"8 to 19 ns", "the SystemC platform's cost per access (software)"),
+    ("docs/architecture.md", r"0\.1 ns", "the iCE40's carry logic per bit (the device's data sheet)"),
+    ("docs/asic/notes.md", r"10 ns|1\.0 ns|100 MHz", "the flow's constraints: the clock period, input and output delays, the power's clock"),
+    ("docs/asic/notes.md", r"\d+ um\^2", "the library's cell areas"),
+)
+PROSE_SKIP = ("docs/perf-history.md", "docs/generated/")
+
+
+def hand_typed(root):
+    """[(file, line, figure)] of the figures typed outside generated blocks."""
+    import fnmatch
+    found = []
+    docs = ["README.md"] + sorted(os.path.relpath(p, root) for p in glob.glob(os.path.join(root, "docs", "**", "*.md"),
+                                                                                recursive=True))
+    for rel in docs:
+        if rel.startswith(PROSE_SKIP) or not os.path.isfile(os.path.join(root, rel)):
+            continue
+        allowed = [re.compile(rx) for f, rx, _ in PROSE_ALLOWED if fnmatch.fnmatch(rel, f)]
+        block = None
+        with open(os.path.join(root, rel), encoding="utf-8") as f:
+            for n, line in enumerate(f, 1):
+                m = re.match(r"<!-- ([\w-]+):(begin|end)", line)
+                if m:
+                    block = m.group(1) if m.group(2) == "begin" else None
+                    continue
+                if block:
+                    continue
+                spans = [m.span() for a in allowed for m in a.finditer(line)]
+                for fig in FIGURE.finditer(line):
+                    if not any(a <= fig.start() and fig.end() <= b for a, b in spans):
+                        found.append((rel, n, fig.group(0)))
+    return found
+
+
+# Clocks quoted with their source: each must be the value today's result file gives (as
+# tools/gallery.py reads it), at the precision it is printed with.
+QUOTED_CLOCKS = (
+    (re.compile(r"([\d.]+) MHz \((?:iCE40, measured|measured, iCE40)"), "fpga"),
+    (re.compile(r"([\d.]+) MHz \(0\.18 um cells"), "asic"),
+    (re.compile(r"([\d.]+) MHz \(projected to 10 nm"), "projected"),
+    (re.compile(r"measured clock of this design is ([\d.]+) MHz"), "fpga"),
+)
+
+
+def quoted_clocks(root):
+    """[(file, line, quoted, today's, which)] of the quoted clocks that are not today's result files'."""
+    import gallery
+    import node_scale
+    try:
+        now = {"fpga": gallery.fpga_mhz(os.path.join(root, "docs", "data", "fpga", "summary.csv")),
+               "asic": gallery.asic_clock(os.path.join(root, "docs", "asic", "summary.csv"))[0]}
+    except (OSError, SystemExit, KeyError, ValueError) as e:
+        return [("docs/asic/summary.csv or docs/data/fpga/summary.csv", 0, "?", str(e), "clock")]
+    now["projected"] = node_scale.project_mhz(now["asic"])
+    bad = []
+    docs = ["README.md"] + sorted(os.path.relpath(p, root) for p in glob.glob(os.path.join(root, "docs", "**", "*.md"),
+                                                                                recursive=True))
+    for rel in docs:
+        if rel.startswith("docs/perf-history.md") or not os.path.isfile(os.path.join(root, rel)):
+            continue
+        with open(os.path.join(root, rel), encoding="utf-8") as f:
+            for n, line in enumerate(f, 1):
+                for rx, which in QUOTED_CLOCKS:
+                    for m in rx.finditer(line):
+                        q = m.group(1).rstrip(".")
+                        digits = len(q.split(".")[1]) if "." in q else 0
+                        if abs(float(q) - now[which]) > 0.5 * 10 ** -digits + 1e-9:
+                            bad.append((rel, n, q, now[which], which))
+    return bad
+
+
 def recorded_hash(path):
     """The RTL hash a result file records, or None."""
     if path.endswith(".json"):
@@ -69,7 +150,7 @@ def recorded_hash(path):
             return json.load(f).get("rtl_sha256") or None
     with open(path, encoding="utf-8", errors="replace") as f:
         for line in f:
-            if line.startswith(rtl_hash.PREFIX):
+            if line.startswith(rtl_hash.PREFIX):  # noqa: SIM102
                 return line[len(rtl_hash.PREFIX):].split()[0]
             if not line.startswith("#") and line.strip() and not line.startswith("Critical path"):
                 break  # the comment lines are at the top
@@ -107,6 +188,12 @@ def check(root):
         for rel in expand(root, pattern):
             if rel not in listed:
                 errors.append(f"{rel}: a result file that tools/figures_check.py SOURCES does not list")
+    for rel, n, q, now, which in quoted_clocks(root):
+        errors.append(f"{rel}:{n}: quotes {q} MHz as the {which} clock; today's result file gives {now:.2f} MHz "
+                      "(make docs regenerates it)")
+    for rel, n, fig in hand_typed(root):
+        errors.append(f"{rel}:{n}: '{fig}' typed by hand outside a generated block (make it a block of tools/docs.py, "
+                      "or move it to docs/perf-history.md with the RTL it was measured on)")
     return errors, notes, today
 
 
@@ -115,8 +202,8 @@ def report(root):
     for e in errors:
         print("figures_check: STALE: " + e, file=sys.stderr)
     if errors:
-        print(f"figures_check: {len(errors)} result file(s) do not describe today's rtl/ ({today}); run the flows "
-              "again (docs/verification.md, 'Figures and the RTL they were measured on')", file=sys.stderr)
+        print(f"figures_check: {len(errors)} figure(s) or result file(s) do not describe today's rtl/ ({today}); run "
+              "the flows again (docs/verification.md, 'Figures and the RTL they were measured on')", file=sys.stderr)
         return 1
     print(f"figures_check: every current result file was measured on today's rtl/ ({today}); "
           f"{len(notes)} history file(s) labelled with their RTL")
@@ -174,7 +261,14 @@ def self_test():
             lines = [ln for ln in f if not ln.startswith(rtl_hash.PREFIX)]
         with open(os.path.join(d, "docs", "data", "synth", "summary.csv"), "w", encoding="utf-8") as f:
             f.write("".join(lines))
+        # A clock typed by hand into prose, and a generated clock that is not today's.
+        with open(os.path.join(d, "docs", "prose.md"), "w", encoding="utf-8") as f:
+            f.write("The chip runs at 123.4 MHz.\n<!-- x:begin -->\nat 1.0 MHz (iCE40, measured)\n<!-- x:end -->\n")
         errors, _, _ = check(d)
+        if not any(e.startswith("docs/prose.md:1:") and "typed by hand" in e for e in errors):
+            bad.append("a clock typed by hand into prose is not reported")
+        if not any(e.startswith("docs/prose.md:3:") and "quotes 1.0 MHz" in e for e in errors):
+            bad.append("a quoted iCE40 clock that is not the result file's is not reported")
         if not any(e.startswith("docs/data/fpga/extra.csv:") and "does not list" in e for e in errors):
             bad.append("an unlisted result file is not reported")
         if not any(e.startswith("docs/data/synth/summary.csv:") and "records no RTL hash" in e for e in errors):
