@@ -19,6 +19,7 @@ import argparse
 import filecmp
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -28,6 +29,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import docblock  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CPU = {}  # picture path -> the render's CPU seconds (user + system): less moved by a loaded machine than wall time
 
 # (name, fmpp-render arguments): the README's main job, then a gallery frame.
 FRAMES = (
@@ -42,9 +44,11 @@ def render(build, args, backend, out_dir, tag):
     report = os.path.join(out_dir, "%s_%s.json" % (tag, backend))
     cmd = [os.path.join(build, "fmpp-render")] + args + ["--backend", backend, "--out", png, "--report", report,
                                                           "--quiet"]
-    t0 = time.monotonic()
+    t0, c0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     wall = time.monotonic() - t0
+    c1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU[png] = (c1.ru_utime - c0.ru_utime) + (c1.ru_stime - c0.ru_stime)
     if r.returncode != 0:
         sys.exit("bench_rtl: %s failed (exit %d): %s" % (" ".join(cmd), r.returncode, r.stderr.strip()))
     with open(report, encoding="utf-8") as f:
@@ -70,6 +74,7 @@ def main():
         runs = (("before", "rtl"),) if a.before else ()
         runs += (("rtl", "rtl"), ("cmodel", "cmodel"))
         times = {tag: [] for tag, _ in runs}
+        cpu = {}
         clocks = {}
         for rnd in range(a.rounds):
             pngs = {}
@@ -77,6 +82,7 @@ def main():
                 build = os.path.abspath(a.before) if tag == "before" else a.build
                 wall, cyc, pngs[tag] = render(build, args, be, out_dir, "f%d_r%d_%s" % (k, rnd, tag))
                 times[tag].append(wall)
+                cpu.setdefault(tag, []).append(CPU[pngs[tag]])
                 if clocks.setdefault(tag, cyc) != cyc:
                     sys.exit("bench_rtl: %s on %s: %d clocks on one run, %d on another" % (name, tag, clocks[tag], cyc))
             for tag, _ in runs[:-1]:
@@ -89,6 +95,7 @@ def main():
         rows.append(dict(frame=name, args=args, rtl_s=round(rtl, 2), cmodel_s=round(cm, 2), ratio=round(rtl / cm, 2),
                          rtl_clocks=clocks["rtl"], cmodel_clocks=clocks["cmodel"],
                          rtl_clocks_per_s=round(clocks["rtl"] / rtl), rounds=a.rounds))
+        rows[-1]["cpu_s"] = {t: round(statistics.median(v), 2) for t, v in cpu.items()}
         if a.before:
             bt = statistics.median(times["before"])
             rows[-1].update(before_s=round(bt, 2), before_ratio=round(bt / cm, 2), before_clocks=clocks["before"])
@@ -104,6 +111,14 @@ def main():
         extra = " | %.2f s | %.2f" % (r["before_s"], r["before_ratio"]) if a.before else ""
         print("| %s | %s | %.2f s | %.2f s | **%.2f** | %s%s |" % (r["frame"], cyc, r["rtl_s"], r["cmodel_s"], r["ratio"],
                                                                   format(r["rtl_clocks_per_s"], ","), extra))
+    print("\nCPU time (user + system) of the same renders, medians:\n")
+    tags = list(rows[0]["cpu_s"]) if rows else []
+    print("| frame | " + " | ".join(tags) + " | " + " | ".join("%s / cmodel" % t for t in tags if t != "cmodel") + " |")
+    print("| --- |" + " ---: |" * (2 * len(tags) - 1))
+    for r in rows:
+        c = r["cpu_s"]
+        print("| %s | %s | %s |" % (r["frame"], " | ".join("%.2f s" % c[t] for t in tags),
+                                    " | ".join("%.2f" % (c[t] / c["cmodel"]) for t in tags if t != "cmodel")))
     if a.json:
         with open(a.json, "w", encoding="utf-8") as f:
             json.dump(dict(date=stamp, cpu=docblock.cpu_model(), cores=os.cpu_count(), frames=rows), f, indent=1)
