@@ -135,6 +135,10 @@ def chip_block():
         o.append("| OSU 0.18 um, energy from a traced frame, extrapolated to %s blocks x 32 words | %s | %.2f uJ per "
                  "clock of instructions (%.2f uJ frame average); per ray-triangle test (S instructions a broadcast): %s "
                  "| %s |" % (fmt(B), "8 x 32 and 16 x 32", e_instr / 1e6, e_all / 1e6, tests, rtl_of(ac)))
+    else:
+        o.append("| OSU 0.18 um, energy from a traced frame | - | not measured on this RTL (docs/asic/ holds no "
+                 "energy.csv; the last figures, of an earlier RTL: [perf-history.md](perf-history.md#the-clock-of-each-"
+                 "design-step-on-the-rtl-of-its-day)) | - |")
     if big:
         proj = node_scale.project_mhz(float(big["fmax_mhz"]))
         o.append("| projection of the %s x %s clock above to 10 nm (%s; not a measurement) | %s x %s | %.0f MHz | "
