@@ -25,7 +25,7 @@ ROOT = rtl_hash.ROOT
 ASIC = os.path.join(ROOT, "docs", "asic")
 FPGA_CSV = os.path.join(ROOT, "docs", "data", "fpga", "summary.csv")
 WHAT_A_PROJECTION_LEAVES_OUT = (
-    "it scales the gate delay of the unplaced 16 x 32 path only: it leaves out the wires (no "
+    "it scales the gate delay of the unplaced %s path only: it leaves out the wires (no "
     "wire load in the measured figure), the clock tree and its skew, the global networks of a "
     "4,096-block chip (the broadcast to every tile, the any-flag and responder reductions across "
     "tiles, none of them timed here), other corners than the typical one, and hold")
@@ -147,7 +147,8 @@ def chip_block():
     o.append("")
     o.append("Standard cells: `%s` (%s). iCE40: `%s` (%s)." % (
         acmd, awhen, fcmd, header(fc, "# Yosys").split("; ")[-1] if header(fc, "# Yosys") else "?"))
-    o.append("The 10 nm projection: %s." % WHAT_A_PROJECTION_LEAVES_OUT)
+    if big:
+        o.append("The 10 nm projection: %s." % (WHAT_A_PROJECTION_LEAVES_OUT % ("%s x %s" % (big["blocks"], big["words"]))))
     return "\n".join(o)
 
 
