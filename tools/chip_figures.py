@@ -152,6 +152,21 @@ def chip_block():
     return "\n".join(o)
 
 
+def critical(dev, b, w):
+    """(LUTs on the path, carry cells on it, ns of logic, ns of routing) of a run's critical path listing, or None."""
+    import re
+    path = os.path.join(os.path.dirname(FPGA_CSV), "critical_%s_%sx%s.txt" % (dev, b, w))
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    t = re.search(r"([\d.]+) ns logic, ([\d.]+) ns routing", text)
+    srcs = re.findall(r"Source (\S+)", text)
+    luts = sum(1 for x in srcs if x.endswith("_LC.O"))
+    carries = sum(1 for x in srcs if x.endswith("COUT"))
+    return luts, carries, (float(t.group(1)) if t else None), (float(t.group(2)) if t else None)
+
+
 def fpga_block():
     fc, frows, fcmd = fpga()
     o = ["`%s`; %s; RTL %s (tools/rtl_hash.py):" % (fcmd, header(fc, "# Yosys") and ("Yosys " + header(fc, "# Yosys")),
@@ -171,6 +186,14 @@ def fpga_block():
             o.append("| %s | %s x %s | %s of %s: does not fit | %s | %s | %s | - | - |" % (
                 dev, r["blocks"], r["words"], fmt(r["lcs"]), fmt(r["lcs_avail"]), fmt(r["luts"]), fmt(r["dffs"]),
                 r["brams"]))
+    for r in frows:
+        c = critical(r["device"], r["blocks"], r["words"]) if r["placed"] == "1" else None
+        if c and c[2] is not None:
+            o.append("")
+            o.append("%s %s x %s, the critical path of the fastest seed: %s -> %s; %d LUTs and %d carry cells on it, "
+                     "%.1f ns of logic and %.1f ns of routing (docs/data/fpga/critical_%s_%sx%s.txt)." % (
+                         r["device"].upper(), r["blocks"], r["words"], r["crit_from"], r["crit_to"], c[0], c[1], c[2], c[3],
+                         r["device"], r["blocks"], r["words"]))
     return "\n".join(o)
 
 
