@@ -127,9 +127,9 @@ const FpgaRun& reference_run(const FpgaData& d) {
 
 void write_fpga_section(const FpgaData& d, std::ostream& out) {
   out << "\n## On an FPGA: measured clock and size\n\n";
-  out << "Placed and routed by `make fpga` (tools/fpga.sh: yosys `synth_ice40`, nextpnr-ice40 with a 50 MHz "
-         "target) behind the pin-saving harness fpga/fmpp_fpga_top.sv (every input from one shift chain, every "
-         "output folded into one registered pin; the full AXI port needs about 220 pins, more than the packages "
+  out << "Placed and routed by `make fpga` (tools/fpga.sh: yosys `synth_ice40`, nextpnr-ice40 with the target "
+         "frequency its provenance line gives) behind the pin-saving harness fpga/fmpp_fpga_top.sv (every input from "
+         "one shift chain, every output folded into one registered pin; the full AXI port needs about 220 pins, more than the packages "
          "have). All paths of the FMPP start and end at flip-flops of one clock, so the frequency is the FMPP's.\n\n";
   std::istringstream prov(d.provenance);
   for (std::string l; std::getline(prov, l);) out << "    " << l << "\n";
