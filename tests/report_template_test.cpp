@@ -67,7 +67,9 @@ TEST(ReportTemplate, UnknownTemplateIsAnError) {
 // Every file of sw/report/templates/ is built in, and each one's placeholders are well
 // formed: filling it with a value for each name it holds succeeds and leaves no "{{".
 TEST(ReportTemplate, EveryTemplateIsEmbeddedAndWellFormed) {
-  const std::set<std::string> want = {"precision.md.in",
+  const std::set<std::string> want = {"paper-reproduction.md.in",
+                                      "paper_no_broadcast.md.in",
+                                      "precision.md.in",
                                       "precision_inconsistent.md.in",
                                       "precision_reading.md.in",
                                       "precision_reading_quick.md.in"};
