@@ -67,7 +67,12 @@ TEST(ReportTemplate, UnknownTemplateIsAnError) {
 // Every file of sw/report/templates/ is built in, and each one's placeholders are well
 // formed: filling it with a value for each name it holds succeeds and leaves no "{{".
 TEST(ReportTemplate, EveryTemplateIsEmbeddedAndWellFormed) {
-  const std::set<std::string> want = {"paper-reproduction.md.in",
+  const std::set<std::string> want = {"area.md.in",
+                                      "area_baseline.md.in",
+                                      "area_fpga.md.in",
+                                      "area_odd_words.md.in",
+                                      "paper-reproduction.md.in",
+                                      "paper_fpga_clock.md.in",
                                       "paper_no_broadcast.md.in",
                                       "precision.md.in",
                                       "precision_inconsistent.md.in",
