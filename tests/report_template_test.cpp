@@ -52,6 +52,17 @@ TEST(ReportTemplate, MalformedPlaceholderNamesTemplateAndLine) {
   }
 }
 
+// The same errors through an embedded template, as a report meets them.
+TEST(ReportTemplate, EmbeddedTemplateErrorsNameTheFile) {
+  std::string e = error_of([] { fill_template("paper_no_broadcast.md.in", {{"n", "8"}}); });
+  EXPECT_NE(e.find("template paper_no_broadcast.md.in: placeholder {{mantissa_bits}} has no value"),
+            std::string::npos)
+      << e;
+  e = error_of([] { fill_template("precision_reading_quick.md.in", {{"date", "2026-01-01"}}); });
+  EXPECT_NE(e.find("template precision_reading_quick.md.in: value 'date'"), std::string::npos) << e;
+  EXPECT_EQ(error_of([] { fill_template("paper_no_broadcast.md.in", {{"n", "8"}, {"mantissa_bits", "7"}}); }), "");
+}
+
 TEST(ReportTemplate, InlineDropsTheFinalNewline) {
   const std::string quick = fill_inline("precision_reading_quick.md.in", {});
   EXPECT_FALSE(quick.empty());
