@@ -56,7 +56,7 @@ std::string_view report_template(std::string_view file) {
   for (const EmbeddedTemplate* t = kEmbeddedTemplates; t->name; ++t) {
     if (file == t->name) return {t->text, t->size};
   }
-  throw std::runtime_error("template " + std::string(file) + ": not among the templates built in (sw/report/templates/)");
+  fail(file, "not among the templates built in (sw/report/templates/)");
 }
 
 std::vector<std::string> report_template_names() {
