@@ -57,6 +57,8 @@ SOURCES = [
     ("docs/asic/history_b1f3c2c/*", "history",
      "1 x 8 placed and routed, energy of 8 x 32 and 16 x 32, RTL of commit b1f3c2c: docs/perf-history.md"),
     ("docs/asic/single_cycle/*.csv", "history", "the single-cycle design, RTL of commit 2dae345: docs/perf-history.md"),
+    ("docs/data/fpga/history_a1b3b0b/*", "history",
+     "the iCE40 runs of 1 x 8, 2 x 8 and the UP5K not repeated on today's RTL, RTL of commit a1b3b0b: docs/perf-history.md"),
     ("docs/data/synth/before_shr/*.csv", "history", "baseline of docs/generated/area.md, RTL of commit 4709c66"),
     ("docs/data/synth/before_cmp/*.csv", "history", "baseline of docs/generated/area.md, RTL of commit b28488d"),
     ("docs/data/synth/before_divstep/*.csv", "history", "baseline of docs/generated/area.md, RTL of commit 1f73d13"),
