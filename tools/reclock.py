@@ -3,8 +3,8 @@
 
     reclock.py [--out-dir build/docs]    saves the blocks for tools/docs.py update
 
-The README's gallery table, docs/raytracer.md's gallery-oracle table and docs/perf.md's
-Embree table give each frame's time at the clocks `make fpga` and `make asic` measured
+The README's gallery table, docs/raytracer.md's gallery-oracle table, docs/perf.md's
+Embree table and docs/generated/paper-reproduction.md's comparison with the CPU give each frame's time at the clocks `make fpga` and `make asic` measured
 (and the projection of the latter to 10 nm). The frames' clock counts do not depend on
 those clocks, so when the flows are run again on new RTL the columns are recomputed here
 from each row's FMPP clocks (and, in the Embree table, its rays and Embree's rates as
@@ -116,6 +116,46 @@ def embree_table(text):
     return "\n".join(with_note(out))
 
 
+def paper_file(text):
+    """docs/generated/paper-reproduction.md's clock columns and sentences at today's clocks: tests/s scale with
+    the clock; the CPU's rate (measured with the rest of the file) and every count stay."""
+    fpga, asic, size, proj, label = clocks()
+    rtl = rtl_short()
+    cpu = float(re.search(r"\*\*([\d.e+]+) ray-triangle tests per second\*\*", text).group(1))
+    out = []
+    for line in text.split("\n"):
+        cs = cells(line) if line.startswith("|") else None
+        if cs and len(cs) == 7 and cs[0] == "blocks":
+            cs[3] = "tests/s at %.1f MHz (0.18 um cells, %s, measured unplaced)" % (asic, size)
+            cs[5] = "tests/s at %.1f MHz (%s)" % (proj, label)
+            line = row(cs)
+        elif cs and len(cs) == 7 and cs[0].endswith("^2"):
+            base = float(cs[1])
+            cs[3], cs[4] = "%.3g" % (base * asic / 50), "%.1f" % (base * asic / 50 / cpu)
+            cs[5], cs[6] = "%.3g" % (base * proj / 50), "%.1f" % (base * proj / 50 / cpu)
+            line = row(cs)
+        elif cs and len(cs) == 5 and cs[0] == "blocks":
+            cs[3] = "tests/s at %.1f MHz (measured, iCE40)" % fpga
+            line = row(cs)
+        elif cs and len(cs) == 5 and cs[0].endswith("^2"):
+            base = float(cs[1])
+            cs[3], cs[4] = "%.3g" % (base * fpga / 50), "%.1f" % (base * fpga / 50 / cpu)
+            line = row(cs)
+        line = re.sub(r"The one measured clock of this design is [\d.]+ MHz",
+                      "The one measured clock of this design is %.1f MHz" % fpga, line)
+        line = re.sub(r"with the FMPP at the measured [\d.]+ MHz and the sequential machine at 50 MHz each would be "
+                      r"[\d.]+ times as large\. The times of Fig\. 7 are multiplied by [\d.]+ at the measured clock",
+                      "with the FMPP at the measured %.1f MHz and the sequential machine at 50 MHz each would be %.2f "
+                      "times as large. The times of Fig. 7 are multiplied by %.2f at the measured clock"
+                      % (fpga, fpga / 50, 50 / fpga), line)
+        out.append(line)
+    text = "\n".join(out)
+    note = ("(The clock columns and sentences of this section and the next recomputed for the result files of RTL %s by "
+            "`tools/reclock.py`, from the rates at 50 MHz and the CPU's rate above.)" % rtl)
+    text = re.sub(r"\n\(The clock columns and sentences of this section.*?\)\n", "\n", text)
+    return text.replace("\n## The paper's 50 MHz beside a measured clock", "\n" + note + "\n\n## The paper's 50 MHz beside a measured clock", 1)
+
+
 BLOCKS = (("README.md", "gallery", gallery_table), ("docs/raytracer.md", "gallery-oracle", gallery_table),
           ("docs/perf.md", "embree", embree_table))
 
@@ -129,6 +169,14 @@ def main():
         if text is None:
             sys.exit("reclock: %s has no block %s" % (target, name))
         docblock.save_block(a.out_dir, target, name, fn(text))
+    paper = os.path.join(ROOT, "docs", "generated", "paper-reproduction.md")
+    out = os.path.join(a.out_dir, "generated", "paper-reproduction.md")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    with open(paper, encoding="utf-8") as f:
+        text = paper_file(f.read())
+    with open(out, "w", encoding="utf-8") as f:
+        f.write(text)
+    print("wrote %s (docs/generated/paper-reproduction.md at today's clocks)" % out)
     return 0
 
 
