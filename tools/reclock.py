@@ -152,7 +152,7 @@ def paper_file(text):
     text = "\n".join(out)
     note = ("(The clock columns and sentences of this section and the next recomputed for the result files of RTL %s by "
             "`tools/reclock.py`, from the rates at 50 MHz and the CPU's rate above.)" % rtl)
-    text = re.sub(r"\n\(The clock columns and sentences of this section.*?\)\n", "\n", text)
+    text = re.sub(r"\n\(The clock columns and sentences of this section[^\n]*\)\n\n", "\n", text)
     return text.replace("\n## The paper's 50 MHz beside a measured clock", "\n" + note + "\n\n## The paper's 50 MHz beside a measured clock", 1)
 
 
