@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "sw/isect/stats_json.h"
+
 namespace rt {
 namespace {
 
@@ -31,39 +33,6 @@ std::string read_all(const std::string& path) {
   std::ostringstream o;
   o << f.rdbuf();
   return o.str();
-}
-
-nlohmann::json request_json(const PlanRequest& r) {
-  const fmpp::isect::KernelOptions& o = r.base;
-  return {{"width", r.width},
-          {"height", r.height},
-          {"max_depth", r.max_depth},
-          {"target", r.target_wrong_rate},
-          {"max_host_share", r.max_host_share},
-          {"max_flagged_share", r.max_flagged_share},
-          {"sample_rays", r.sample_rays},
-          {"sample_pixels", r.sample_pixels},
-          {"confidence", r.confidence},
-          {"rtl_configs", r.rtl_configs},
-          {"bits", r.bits ? static_cast<int>(*r.bits) : -1},
-          {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
-          {"words", r.words ? static_cast<int>(*r.words) : -1},
-          {"mapping", static_cast<int>(o.mapping)},
-          {"choose_mapping", r.choose_mapping},
-          {"mul", static_cast<int>(o.mul)},
-          {"watertight", o.watertight},
-          {"t_accuracy", o.t_accuracy},
-          {"cull", o.cull},
-          {"cull_packet", o.cull_packet},
-          {"cull_probe", o.cull_probe},
-          {"fmpp_boxes", o.fmpp_boxes},
-          {"gates", o.gates},
-          {"coherent", o.coherent},
-          {"cond_bits", o.cond_bits},
-          {"shadow_stop", r.shadow_stop},
-          {"user_coherent", r.coherent ? static_cast<int>(*r.coherent) : -1},
-          {"user_kinds_together", r.kinds_together ? static_cast<int>(*r.kinds_together) : -1},
-          {"user_merge_below", r.merge_below ? static_cast<long long>(*r.merge_below) : -1}};
 }
 
 Rung rung_named(const std::string& name) {
@@ -121,6 +90,31 @@ nlohmann::json escalation_json(const Plan& p) {
 }
 
 }  // namespace
+
+// The request's fields and every kernel option with the role kPlanKey
+// (sw/isect/pass/options.h) of its base.
+nlohmann::json request_json(const PlanRequest& r) {
+  nlohmann::json j = fmpp::isect::options_json(r.base, fmpp::isect::kPlanKey);
+  j.update({{"width", r.width},
+            {"height", r.height},
+            {"max_depth", r.max_depth},
+            {"target", r.target_wrong_rate},
+            {"max_host_share", r.max_host_share},
+            {"max_flagged_share", r.max_flagged_share},
+            {"sample_rays", r.sample_rays},
+            {"sample_pixels", r.sample_pixels},
+            {"confidence", r.confidence},
+            {"rtl_configs", r.rtl_configs},
+            {"bits", r.bits ? static_cast<int>(*r.bits) : -1},
+            {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
+            {"words", r.words ? static_cast<int>(*r.words) : -1},
+            {"choose_mapping", r.choose_mapping},
+            {"shadow_stop", r.shadow_stop},
+            {"user_coherent", r.coherent ? static_cast<int>(*r.coherent) : -1},
+            {"user_kinds_together", r.kinds_together ? static_cast<int>(*r.kinds_together) : -1},
+            {"user_merge_below", r.merge_below ? static_cast<long long>(*r.merge_below) : -1}});
+  return j;
+}
 
 std::string default_plan_cache_dir() {
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/fmpp/plans";

@@ -24,6 +24,7 @@
 #include "sw/isect/stats_json.h"
 #include "common/util/cli_usage.h"
 #include "sw/tools/cli_options.h"
+#include "sw/tools/kernel_flags.h"
 #include "sw/tools/render_plan.h"
 #include "sw/tools/render_progress.h"
 #include "sw/rt/plan.h"
@@ -60,12 +61,11 @@ int main(int argc, char** argv) {
   CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
   // The default scene is the repository's Cornell box wherever the tool is started; the
   // picture goes to the path given, by default render.png in the current directory.
-  std::string scene_file = repo_file("scenes/cornell.json"), backend = "rtl", mapping = "ray", mul = "const", config,
-              out = "render.png", report_file;
+  std::string scene_file = repo_file("scenes/cornell.json"), backend = "rtl", config, out = "render.png", report_file;
   int width = 128, height = 128, depth = -1;
-  unsigned blocks = 4096, words = 32, bits = 24;  // the plan decides unless given
+  unsigned blocks = 4096, words = 32;  // the plan decides unless given
   double clock_mhz = 50;
-  bool compare = false, no_cull = false, quiet = false, watertight = false;
+  bool compare = false, quiet = false;
   app.add_option("--scene", scene_file, "scene JSON file (default: the repository's Cornell box)")->capture_default_str();
   app.add_option("--backend", backend,
                  "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
@@ -73,19 +73,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(tool_backends()));
   app.add_option("--width", width, "image width")->capture_default_str()->check(int_range(1, 16384));
   app.add_option("--height", height, "image height")->capture_default_str()->check(int_range(1, 16384));
-  app.add_option("--mapping", mapping,
-                 "ray | object: every batch of rays sharing an origin in that mapping (default: ray-parallel, and "
-                 "object-parallel for a kind of batch, primary or shadow, where the precision plan's cost model finds "
-                 "it cheaper; secondary rays always ray-parallel)")
-      ->check(CLI::IsMember({"ray", "object"}));
-  app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
+  // The kernel options' flags (sw/tools/kernel_flags.h); the plan chooses --bits,
+  // --mapping, --merge-below and --pass-order unless given.
+  tools::KernelFlags kernel_flags;
+  kernel_flags.add(app, tools::FlagTool::kRender);
   CLI::Option* blocks_opt = app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
                                ->check(int_range(1, map::kMaxBlocks));
   CLI::Option* words_opt = app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
                               ->check(even_words());
   exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
                        blocks_opt, words_opt);
-  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(bits_range());
   double target = 0.002;
   app.add_option("--error-target", target,
                  "precision plan: wrong-triangle rate allowed per primary ray, and share of the frame's "
@@ -133,41 +130,15 @@ int main(int argc, char** argv) {
                "check every answer of the frame against the exact reference's answer for the same ray; the first "
                "answer the intersection contract does not allow stops the render with the ray, its pass, n, the "
                "machine and the options (docs/certification.md)");
-  app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
-  bool oracle = false;
-  std::string pass_order = "coherent";
-  unsigned cull_packet = 1;
-  app.add_flag("--oracle", oracle,
-               "also count, per pass, the triangles some ray hits and the nearest hits (the bound of culling; slow)");
-  app.add_option("--pass-order", pass_order, "coherent (image tiles, octant and origin) | batch (the rays' own order)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"coherent", "batch"}));
-  app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  unsigned merge_below = 0;
-  app.add_option("--merge-below", merge_below,
-                 "rays of an origin shared by fewer rays than this join the arbitrary-origin batch (1: none; 0: "
-                 "max(16, blocks / 8)); default: the plan's choice, from its cost model")
-      ->check(int_range(0, 1 << 24));
-  bool no_probe = false, no_fmpp_boxes = false, no_gates = false, no_shadow_stop = false;
+  bool no_shadow_stop = false;
   std::string shadow_calls;
   app.add_option("--shadow-calls", shadow_calls,
                  "together | apart: each depth's last shadow batch in one kernel call with the next depth's rays, or "
                  "in its own (default: the precision plan's choice, from its cost model)")
       ->check(CLI::IsMember({"together", "apart"}));
-  app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
-  app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
-               "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
-  add_no_gates_flag(app, no_gates);
   app.add_flag("--no-shadow-stop", no_shadow_stop,
                "shadow rays as nearest-hit queries, not stopped at their first certified occluder (the same image, "
                "more clocks)");
-  double t_accuracy = 0;
-  app.add_option("--t-accuracy", t_accuracy,
-                 "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
-                 "(0: the default, docs/intersection.md)")
-      ->capture_default_str()
-      ->check(finite_range(0.0, 0.5));
-  app.add_flag("--watertight", watertight, "certified edge functions for primary and shadow rays (no cracks, no vertex moved)");
   BackendOptions bo;
   add_trace_options(app, bo);
   app.add_flag("--quiet", quiet,
@@ -186,8 +157,9 @@ int main(int argc, char** argv) {
 
   std::string stage = "checking the options";  // for an out-of-memory message
   quiet = quiet || !leader;
+  const isect::KernelOptions given = kernel_flags.options();
   try {
-    if (session->size() > 1 && mapping == "object") {
+    if (session->size() > 1 && given.mapping == isect::Mapping::kObject) {
       throw std::invalid_argument("--mapping object cannot run on several FMPPs (its passes keep each ray's best "
                                   "across passes); use --mapping ray or one rank");
     }
@@ -196,7 +168,7 @@ int main(int argc, char** argv) {
     }
     check_trace_options(backend, bo);
     check_config_name(backend, config);
-    if (mapping == "object" && watertight) {
+    if (given.mapping == isect::Mapping::kObject && given.watertight) {
       throw std::invalid_argument("--watertight with --mapping object: the watertight form exists in the ray-parallel "
                                   "mapping only; use --mapping ray");
     }
@@ -255,17 +227,15 @@ int main(int argc, char** argv) {
       phases["frame"] = since(t_frame);
     } else {
       // The precision plan chooses what the options leave open; the frame's kernel options
-      // are the same as the plan's, with its choices.
-      isect::KernelOptions base;
-      base.mapping = isect::parse_mapping(mapping);
-      base.mul = isect::parse_mul_mode(mul);
-      base.cull = !no_cull;
-      base.cull_packet = cull_packet;
-      base.cull_probe = !no_probe;
-      base.fmpp_boxes = !no_fmpp_boxes;
-      base.gates = !no_gates;
-      base.watertight = watertight;
-      base.t_accuracy = t_accuracy;
+      // are the same as the plan's, with its choices. The plan starts from the defaults of
+      // what it chooses (n, the pass order, merge_below: the user's, where given, go in the
+      // request below) and never counts for the oracle.
+      const isect::KernelOptions defaults;
+      isect::KernelOptions base = given;
+      base.n = defaults.n;
+      base.coherent = defaults.coherent;
+      base.merge_below = defaults.merge_below;
+      base.oracle = false;
       rt::PlanRequest pr;
       pr.width = width;
       pr.height = height;
@@ -275,7 +245,7 @@ int main(int argc, char** argv) {
       if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
       pr.base = base;
       pr.choose_mapping = !app.count("--mapping") && session->size() == 1;
-      if (app.count("--bits")) pr.bits = bits;
+      if (app.count("--bits")) pr.bits = given.n;
       if (!quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
       if (!config.empty()) {
         const Config c = named_config(config);
@@ -286,8 +256,8 @@ int main(int argc, char** argv) {
       if (app.count("--words")) pr.words = words;
       // The frame's settings the plan's check renders with (plan.h).
       pr.shadow_stop = !no_shadow_stop;
-      if (app.count("--pass-order")) pr.coherent = pass_order == "coherent";
-      if (app.count("--merge-below")) pr.merge_below = merge_below;
+      if (app.count("--pass-order")) pr.coherent = given.coherent;
+      if (app.count("--merge-below")) pr.merge_below = given.merge_below;
       if (!shadow_calls.empty()) pr.kinds_together = shadow_calls == "together";
       // The forms the plan's golden-model runs prepare are kept for the frame: those of the
       // chosen n it finds (the same answers and clocks) come off the plan's seconds.
@@ -302,16 +272,15 @@ int main(int argc, char** argv) {
       const rt::Plan& plan = rp.plan;
       forms.next_phase();
       const Config cfg = plan.config;
-      bits = plan.options.n;
       mpi::RenderChips chips(*session);
       auto be = make_backend(backend, cfg, bo);
       Device dev(be->bus());
       isect::KernelOptions ko = base;
-      ko.n = bits;
+      ko.n = plan.options.n;
       ko.coherent = plan.options.coherent;  // the user's where given (PlanRequest), else the plan's
       ko.merge_below = plan.options.merge_below;
       ko.t_accuracy = plan.options.t_accuracy;  // the user's, or the plan's escalation
-      ko.oracle = oracle;
+      ko.oracle = given.oracle;
       ko.progress = [&](uint64_t done, uint64_t planned) { progress.pass(done, planned); };
       ko.forms = &forms;
       chips.agree(scene.triangles, cfg, ko);
@@ -333,25 +302,24 @@ int main(int argc, char** argv) {
       rep["plan"]["reused_by_frame_seconds"] = forms.carried_seconds();
       rep["plan"]["seconds"] = rp.seconds - forms.carried_seconds();
       const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
-      rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
-                     {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
-                     {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
-                     {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]},
-                     {"shadow_calls", together ? "together" : "apart"}, {"t_accuracy", ko.t_accuracy}};
+      rep["fmpp"] = isect::options_json(ko, isect::kReported);
+      rep["fmpp"].update({{"blocks", cfg.blocks}, {"words", cfg.words}, {"shadow_stop", !no_shadow_stop},
+                          {"object_parallel", rep["plan"]["object_parallel"]},
+                          {"shadow_calls", together ? "together" : "apart"}});
       rep.update(isect::stats_json(st, clock_mhz));
-      if (oracle) rep["oracle"] = isect::oracle_json(st);
+      if (ko.oracle) rep["oracle"] = isect::oracle_json(st);
       for (int k = 0; k < rt::kNumBatchKinds; ++k) {
         const auto kind = static_cast<rt::BatchKind>(k);
         const isect::KernelStats kst = chips.total(fi.stats(kind));
         nlohmann::json j = isect::stats_json(kst, clock_mhz);
-        if (oracle) j["oracle"] = isect::oracle_json(kst);
+        if (ko.oracle) j["oracle"] = isect::oracle_json(kst);
         rep["by_kind"][rt::to_string(kind)] = j;
       }
       // The calls of shadow and secondary rays together (--shadow-calls together): not
       // in either kind's counters above, in the totals.
       if (fi.stats_together().cycles > 0) {
         nlohmann::json j = isect::stats_json(chips.total(fi.stats_together()), clock_mhz);
-        if (oracle) j["oracle"] = isect::oracle_json(fi.stats_together());
+        if (ko.oracle) j["oracle"] = isect::oracle_json(fi.stats_together());
         rep["by_kind"]["shadow_and_secondary"] = j;
       }
       if (nlohmann::json c = chips.report(fi.stats(), clock_mhz); !c.is_null()) rep["chips"] = c;
