@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/options.h"
 #include "sw/isect/stats_json.h"
 #include "sw/rt/plan_cache.h"
@@ -121,6 +122,31 @@ TEST(KernelOptions, EveryOptionInEveryUseItsRolesName) {
 TEST(KernelOptions, FlagsDefaultToTheOptions) {
   EXPECT_EQ(all(parsed(FlagTool::kIntersect, {})), all(KernelOptions{}));
   EXPECT_EQ(all(parsed(FlagTool::kRender, {})), all(KernelOptions{}));
+}
+
+// --form NAME picks the form of that name, gives the options its aliases give, and is
+// refused beside them.
+TEST(KernelOptions, FormByNameOrAlias) {
+  for (const FormInfo& f : all_forms()) {
+    SCOPED_TRACE(f.name);
+    KernelOptions o;
+    f.choose(o);
+    EXPECT_STREQ(form_for(o, f.shared_origin).name, f.name);
+    EXPECT_EQ(all(parsed(FlagTool::kIntersect, {"--form", f.name})), all(o));
+  }
+  const auto same = [](std::vector<std::string> form, std::vector<std::string> alias) {
+    EXPECT_EQ(all(parsed(FlagTool::kIntersect, form)), all(parsed(FlagTool::kIntersect, alias)));
+  };
+  same({"--form", "paper"}, {"--mapping", "ray"});
+  same({"--form", "watertight"}, {"--watertight"});
+  same({"--form", "paper-object"}, {"--mapping", "object"});
+  same({"--form", "arbitrary-origin"}, {"--origins", "general"});
+  EXPECT_EQ(all(parsed(FlagTool::kRender, {"--form", "watertight"})), all(parsed(FlagTool::kRender, {"--watertight"})));
+  EXPECT_THROW(parsed(FlagTool::kIntersect, {"--form", "paper", "--watertight"}), CLI::ParseError);
+  EXPECT_THROW(parsed(FlagTool::kIntersect, {"--form", "paper", "--mapping", "ray"}), CLI::ParseError);
+  EXPECT_THROW(parsed(FlagTool::kIntersect, {"--form", "nonesuch"}), CLI::ParseError);
+  EXPECT_THROW(parsed(FlagTool::kRender, {"--form", "arbitrary-origin"}), CLI::ParseError);
+  EXPECT_THROW(form_named("nonesuch"), std::invalid_argument);
 }
 
 // The reports' names and values, pinned: their readers (tools/gallery.py, the docs) know these.

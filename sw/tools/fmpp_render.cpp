@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
       pr.sample_pixels = sample_pixels;
       if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
       pr.base = base;
-      pr.choose_mapping = !app.count("--mapping") && session->size() == 1;
+      pr.choose_mapping = !app.count("--mapping") && !kernel_flags.form_given() && session->size() == 1;
       if (app.count("--bits")) pr.bits = given.n;
       if (!quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
       if (!config.empty()) {

@@ -1,6 +1,8 @@
 // The kernel options' command-line flags, derived from their list (FMPP_KERNEL_OPTIONS,
 // sw/isect/pass/options.h): fmpp-intersect declares every option's flag, fmpp-render
-// those with a render role. A new option needs nothing here.
+// those with a render role. A new option needs nothing here. And --form NAME, a form of
+// the form table (sw/isect/form_table.cpp) by its name, which sets the options that
+// choose it (FormInfo::choose): --mapping, --watertight and --origins are its aliases.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "common/util/cli_checks.h"
+#include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/options.h"
 
 namespace fmpp::tools {
@@ -51,7 +54,11 @@ class KernelFlags {
       }
       if (flag && !(render && o.has(isect::kRenderPlanned))) flag->capture_default_str();
     });
+    add_form(app, tool);
   }
+
+  // Whether --form was given.
+  bool form_given() const { return !form_.empty(); }
 
   // The options the command line gave (once parsed); the others at their defaults.
   isect::KernelOptions options() const {
@@ -68,10 +75,37 @@ class KernelFlags {
         }
       }
     });
+    if (!form_.empty()) isect::form_named(form_).choose(out);  // its aliases are excluded
     return out;
   }
 
  private:
+  // --form NAME: fmpp-intersect takes every form, fmpp-render those for rays sharing an
+  // origin (its other rays always take the arbitrary-origin form). It excludes its aliases.
+  void add_form(CLI::App& app, FlagTool tool) {
+    std::vector<std::string> names;
+    std::string list;
+    for (const isect::FormInfo& f : isect::all_forms()) {
+      if (tool == FlagTool::kRender && !f.shared_origin) continue;
+      names.push_back(f.name);
+      list += std::string(list.empty() ? "" : " | ") + f.name;
+    }
+    std::vector<CLI::Option*> aliases;
+    std::string alias_names;
+    for (const char* alias : {"--mapping", "--watertight", "--origins"}) {
+      if (CLI::Option* a = app.get_option_no_throw(alias)) {
+        aliases.push_back(a);
+        alias_names += std::string(alias_names.empty() ? "" : ", ") + alias;
+      }
+    }
+    CLI::Option* form = app.add_option("--form", form_,
+                                       list + ": the form, by its name in the form table, and with it the mapping (" +
+                                           alias_names + " name the same choices)")
+                            ->check(CLI::IsMember(names));
+    for (CLI::Option* a : aliases) form->excludes(a);
+  }
+
+  std::string form_;
   isect::KernelOptions opt_;
   std::map<std::string, std::string> names_;  // by field: the name a choice was given
   std::map<std::string, bool> cleared_;       // by field: whether its --no-... flag was given
