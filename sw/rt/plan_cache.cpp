@@ -141,6 +141,11 @@ std::string plan_key(const Scene& scene, const PlanRequest& req) {
 
 namespace {
 
+// A list of the plan as plan_report writes it (a list with no entry is left out).
+nlohmann::json list_of(const nlohmann::json& j, const char* name) {
+  return j.contains(name) ? j.at(name) : nlohmann::json::array();
+}
+
 // The plan's choices and their reasons, as plan_report writes them, into *p (whose
 // options are the request's); false for a pass order or a kind of batch it does not know.
 bool read_choices(const nlohmann::json& j, Plan* p) {
@@ -176,11 +181,9 @@ bool read_choices(const nlohmann::json& j, Plan* p) {
   return true;
 }
 
-// The candidates and the checks, as plan_report writes them (a list with no entry is
-// left out), into *p.
+// The candidates and the checks, as plan_report writes them, into *p.
 void read_candidates(const nlohmann::json& j, Plan* p) {
-  const auto list = [&](const char* name) { return j.contains(name) ? j.at(name) : nlohmann::json::array(); };
-  for (const auto& c : list("candidates")) {
+  for (const auto& c : list_of(j, "candidates")) {
     PlanCandidate pc;
     pc.n = c.at("n").get<unsigned>();
     pc.wrong_rate = c.at("wrong_rate").get<double>();
@@ -194,14 +197,13 @@ void read_candidates(const nlohmann::json& j, Plan* p) {
     pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
     p->candidates.push_back(pc);
   }
-  for (const auto& c : list("checks")) p->checks.push_back(check_from(c));
+  for (const auto& c : list_of(j, "checks")) p->checks.push_back(check_from(c));
 }
 
 // The cost model's estimates (pass sizes, merges, mappings), as plan_report writes them,
 // into *p.
 void read_estimates(const nlohmann::json& j, Plan* p) {
-  const auto list = [&](const char* name) { return j.contains(name) ? j.at(name) : nlohmann::json::array(); };
-  for (const auto& e : list("pass_sizes")) {
+  for (const auto& e : list_of(j, "pass_sizes")) {
     PassSizeEstimate s;
     s.blocks = e.at("blocks").get<unsigned>();
     s.passes = e.at("passes").get<size_t>();
@@ -209,7 +211,7 @@ void read_estimates(const nlohmann::json& j, Plan* p) {
     s.clocks = e.at("estimated_cycles").get<double>();
     p->pass_sizes.push_back(s);
   }
-  for (const auto& e : list("merges")) {
+  for (const auto& e : list_of(j, "merges")) {
     MergeEstimate m;
     m.below = e.at("below").get<unsigned>();
     m.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
@@ -217,7 +219,7 @@ void read_estimates(const nlohmann::json& j, Plan* p) {
     m.merged_rays = e.at("merged_rays").get<size_t>();
     p->merges.push_back(m);
   }
-  for (const auto& e : list("mappings")) {
+  for (const auto& e : list_of(j, "mappings")) {
     MappingEstimate m;
     const std::string kind = e.at("kind").get<std::string>();
     m.kind = kind == "primary" ? BatchKind::kPrimary : kind == "shadow" ? BatchKind::kShadow : BatchKind::kSecondary;
