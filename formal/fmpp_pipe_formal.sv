@@ -1,6 +1,7 @@
 // Formal harness of the pipelined array (fmpp_array): it must behave as the
-// single-cycle array it replaced (fmpp_array_sc, formal/fmpp_array_sc.sv) run two clocks
-// later. Both start from the same state (every register and word 0, then reset); the queue head, its validity,
+// single-cycle array it replaced (fmpp_array_sc, formal/fmpp_array_sc.sv), or, with
+// IsaRef, as the instruction set itself (fmpp_isa_ref, formal/fmpp_isa_ref.sv), run two
+// clocks later. Both start from the same state (every register and word 0, then reset); the queue head, its validity,
 // CTRL.GAP, the reset and the host's read and responder requests are free inputs, each
 // queue entry constrained to what the slave lets into the queue (a legal instruction
 // by fmpp_instr_check, a window write inside the machine). Every entry the pipelined
@@ -13,7 +14,8 @@
 // (its depth is in docs/verification.md).
 module fmpp_pipe_formal #(
   parameter int unsigned NumBlocks = 2,
-  parameter int unsigned NumWords  = 4
+  parameter int unsigned NumWords  = 4,
+  parameter bit          IsaRef    = 0   // 1: the reference is the ISA (fmpp_isa_ref.sv)
 ) (
   input logic                 clk_i,
   input logic                 rst_ni,
@@ -55,13 +57,23 @@ module fmpp_pipe_formal #(
   logic [63:0] ref_rd_data, ref_instret;
   logic [31:0] ref_count, ref_mask;
   logic [30:0] ref_first;
-  fmpp_array_sc #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_ref (
-    .clk_i, .rst_ni, .head_i (f_entry3_q), .head_valid_i (f_valid3_q),
-    .pop_o (ref_pop), .gap_i (8'd0),
-    .rd_en_i, .rd_kind_i, .rd_block_i, .rd_word_i, .rd_flag_i, .rd_data_o (ref_rd_data),
-    .resp_en_i, .resp_any_o (ref_any), .resp_count_o (ref_count), .resp_first_o (ref_first),
-    .ovf_any_o (ref_ovf), .mask_o (ref_mask), .instret_o (ref_instret)
-  );
+  if (IsaRef) begin : g_isa
+    fmpp_isa_ref #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_ref (
+      .clk_i, .rst_ni, .head_i (f_entry3_q), .head_valid_i (f_valid3_q),
+      .pop_o (ref_pop), .gap_i (8'd0),
+      .rd_en_i, .rd_kind_i, .rd_block_i, .rd_word_i, .rd_flag_i, .rd_data_o (ref_rd_data),
+      .resp_en_i, .resp_any_o (ref_any), .resp_count_o (ref_count), .resp_first_o (ref_first),
+      .ovf_any_o (ref_ovf), .mask_o (ref_mask), .instret_o (ref_instret)
+    );
+  end else begin : g_sc
+    fmpp_array_sc #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_ref (
+      .clk_i, .rst_ni, .head_i (f_entry3_q), .head_valid_i (f_valid3_q),
+      .pop_o (ref_pop), .gap_i (8'd0),
+      .rd_en_i, .rd_kind_i, .rd_block_i, .rd_word_i, .rd_flag_i, .rd_data_o (ref_rd_data),
+      .resp_en_i, .resp_any_o (ref_any), .resp_count_o (ref_count), .resp_first_o (ref_first),
+      .ovf_any_o (ref_ovf), .mask_o (ref_mask), .instret_o (ref_instret)
+    );
+  end
 
   // What the slave lets into the queue.
   logic legal;

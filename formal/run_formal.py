@@ -36,6 +36,9 @@ import rtl_files  # noqa: E402  (tools/rtl_files.py: the one RTL file list)
 # forwarded result is compared. Depth 8 did not finish in 15 minutes (one block of 4 words).
 PIPE_DEPTH = 6
 PIPE_DEPTH_QUICK = 6
+# The array against the ISA: (blocks, words, depth) per job.
+ISA_SIZES = [(3, 4, 6), (65, 2, 6)]
+ISA_SIZES_QUICK = [(3, 4, 6)]
 
 
 def jobs(root, out, quick):
@@ -66,6 +69,13 @@ def jobs(root, out, quick):
     js.append(dict(name="pipe_1x4", top="fmpp_pipe_formal",
                    src=rtl + [frm("fmpp_array_sc.sv"), frm("fmpp_tile_sc.sv"), frm("fmpp_pipe_formal.sv")], params={"NumBlocks": 1, "NumWords": 4},
                    depth=PIPE_DEPTH_QUICK if quick else PIPE_DEPTH, engine="sat"))
+    # The pipelined array against the instruction set (fmpp_isa_ref.sv, word by word from
+    # docs/isa.md): several lanes of one tile, and two tiles (65 blocks: the 64-lane tile
+    # and a partial one), so that the networks between tiles are in the check.
+    isa_src = rtl + [frm("fmpp_array_sc.sv"), frm("fmpp_tile_sc.sv"), frm("fmpp_isa_ref.sv"), frm("fmpp_pipe_formal.sv")]
+    for blocks, words, depth in ISA_SIZES_QUICK if quick else ISA_SIZES:
+        js.append(dict(name=f"isa_{blocks}x{words}", top="fmpp_pipe_formal", src=isa_src,
+                       params={"NumBlocks": blocks, "NumWords": words, "IsaRef": 1}, depth=depth, engine="sat"))
     for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
         js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal",
                        src=rtl + [frm("fmpp_axil_slave_formal.sv")],

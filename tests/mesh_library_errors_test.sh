@@ -18,6 +18,8 @@ check() {  # check <mesh file under tests/data> <expected text of the error>
   grep -qF "fmpp-render: $dir/$1: cannot read mesh: $2" "$dir/err.txt" || { echo "$1: want '$2'" >&2; cat "$dir/err.txt" >&2; exit 1; }
   [ ! -e "$dir/o.png" ] && [ ! -e "$dir/o.json" ] || { echo "$1: an output was written" >&2; exit 1; }
 }
-check gltf_index_out_of_range.gltf "faces lost by the mesh library (Some faces had out-of-range indices. Those faces were dropped)"
+check gltf_index_out_of_range.gltf "faces lost by the mesh library in meshes[0] primitive 0: 2 of 3 faces read (Some faces had out-of-range indices. Those faces were dropped)"
+check gltf_named_primitive_out_of_range.gltf 'faces lost by the mesh library in meshes[0] ("wing") primitive 1: 2 of 3 faces read (Some faces had out-of-range indices. Those faces were dropped)'
+check glb_named_primitive_out_of_range.glb 'faces lost by the mesh library in meshes[0] ("wing") primitive 1: 2 of 3 faces read (Some faces had out-of-range indices. Those faces were dropped)'
 check gltf_member_type.gltf 'not a valid gltf file (Member "indices" was not of type "uint" when reading meshes[0])'
 echo "mesh_library_errors: ok"

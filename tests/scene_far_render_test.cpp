@@ -32,7 +32,7 @@ std::string reference_png(const std::string& json, const std::string& png) {
   return test_files::slurp(dir() + "/" + png);
 }
 
-// ../shared/repro/obj_far: a quad written 2^29 from the origin renders as the same quad
+// A quad written 2^29 from the origin in an OBJ file renders as the same quad
 // placed there by a transform (it rendered as nothing when its vertices were floats).
 TEST(LoaderExact, ObjQuadFarOutRendersAsTheTransformedOne) {
   const std::string head = R"({"camera": {"eye": [536870912, 536870912, 536870912], "look_at": [536870912, 536870912, 536870911],

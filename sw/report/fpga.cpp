@@ -1,5 +1,7 @@
-// FPGA figures for the reports (fpga.h).
+// FPGA figures for the reports (fpga.h); their prose is in sw/report/templates/area_fpga.md.in
+// and paper_fpga_clock.md.in (md_template.h).
 #include "sw/report/fpga.h"
+#include "sw/report/md_template.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,15 +127,11 @@ const FpgaRun& reference_run(const FpgaData& d) {
   return *best;
 }
 
-void write_fpga_section(const FpgaData& d, std::ostream& out) {
-  out << "\n## On an FPGA: measured clock and size\n\n";
-  out << "Placed and routed by `make fpga` (tools/fpga.sh: yosys `synth_ice40`, nextpnr-ice40 with a 50 MHz "
-         "target) behind the pin-saving harness fpga/fmpp_fpga_top.sv (every input from one shift chain, every "
-         "output folded into one registered pin; the full AXI port needs about 220 pins, more than the packages "
-         "have). All paths of the FMPP start and end at flip-flops of one clock, so the frequency is the FMPP's.\n\n";
-  std::istringstream prov(d.provenance);
-  for (std::string l; std::getline(prov, l);) out << "    " << l << "\n";
-  out << "\n| device | blocks x words | logic cells | LUTs | flip-flops | block RAMs | Fmax (MHz) | critical path (ns) |\n";
+namespace {
+
+std::string runs_table(const FpgaData& d) {
+  std::ostringstream out;
+  out << "| device | blocks x words | logic cells | LUTs | flip-flops | block RAMs | Fmax (MHz) | critical path (ns) |\n";
   out << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const FpgaRun& r : d.runs) {
     out << "| iCE40" << r.device << "-" << r.package << " | " << r.blocks << " x " << r.words << " | " << r.lcs << " / "
@@ -141,9 +139,12 @@ void write_fpga_section(const FpgaData& d, std::ostream& out) {
         << " | " << r.brams << " | " << (r.placed ? fixed(r.fmax_mhz, 1) : "does not fit") << " | "
         << (r.placed ? fixed(r.crit_ns, 1) : "-") << " |\n";
   }
-  // Cost per block: slope between the smallest and the largest block count of one device and word count.
-  out << "\n**Per block** (difference between the runs of one device, the same words, and different block "
-         "counts, divided by the block difference):\n\n";
+  return out.str();
+}
+
+// Cost per block: slope between the smallest and the largest block count of one device and word count.
+std::string per_block_table(const FpgaData& d) {
+  std::ostringstream out;
   out << "| device | words | blocks | LUTs per block | flip-flops per block | logic cells per block | Fmax lost per block (MHz) |\n";
   out << "| --- | ---: | --- | ---: | ---: | ---: | ---: |\n";
   std::map<std::pair<std::string, unsigned>, std::vector<const FpgaRun*>> groups;
@@ -159,28 +160,36 @@ void write_fpga_section(const FpgaData& d, std::ostream& out) {
         << fixed((double(hi.lcs) - lo.lcs) / db, 0) << " | "
         << (hi.placed && lo.placed ? fixed((lo.fmax_mhz - hi.fmax_mhz) / db, 2) : "-") << " |\n";
   }
+  return out.str();
+}
+
+}  // namespace
+
+void write_fpga_section(const FpgaData& d, std::ostream& out) {
   const FpgaRun& ref = reference_run(d);
   const FpgaRun* small = &ref;
   for (const FpgaRun& r : d.runs) {
     if (r.placed && r.device == ref.device && r.words == ref.words && r.blocks < small->blocks) small = &r;
   }
-  out << "\nThe critical path of the " << ref.blocks << " x " << ref.words << " run on iCE40" << ref.device << " ("
-      << fixed(ref.crit_ns, 1) << " ns) starts at `" << ref.crit_from << "` and ends at `" << ref.crit_to
-      << "`; docs/data/fpga/ keeps nextpnr's listing of each run's path, net by net.\n\n";
-  out << "**What this implies.** The measured " << fixed(ref.fmax_mhz, 1) << " MHz (" << ref.blocks
-      << " blocks; " << fixed(small->fmax_mhz, 1) << " MHz with " << small->blocks
-      << ") is "
-      << (ref.fmax_mhz >= 50.0 ? "above the paper's assumed 50 MHz by a factor of " + fixed(ref.fmax_mhz / 50.0, 2)
-                               : "below the paper's assumed 50 MHz by a factor of " + fixed(50.0 / ref.fmax_mhz, 2))
-      << ". For a chip it is a pessimistic bound: each level of iCE40 logic is a 4-input LUT plus programmable "
-         "routing (the listings show routing as more than half of the path), where a standard-cell gate of a current "
-         "process switches in tens of picoseconds (the standard-cell section below measures 0.18 um cells). "
-         "The array runs a three-stage pipeline, its adder on the iCE40's carry chain (docs/architecture.md, \"The "
-         "pipeline\"), so one block's datapath is no longer one long path from the queue to a word; where the "
-         "longest path now runs is named above, by its first and last cell. The FPGA counts also "
-         "confirm the gate-level picture above: a block's words are flip-flops with multiplexers in front, not "
-         "memory; the block RAMs hold only the instruction queue, because each block reads three words and the "
-         "host a fourth in one clock, more ports than a block RAM has.\n";
+  std::string provenance;
+  std::istringstream prov(d.provenance);
+  for (std::string l; std::getline(prov, l);) provenance += "    " + l + "\n";
+  const bool above = ref.fmax_mhz >= 50.0;
+  out << fill_template("area_fpga.md.in",
+                       {{"provenance", provenance},
+                        {"runs_table", runs_table(d)},
+                        {"per_block_table", per_block_table(d)},
+                        {"blocks", std::to_string(ref.blocks)},
+                        {"words", std::to_string(ref.words)},
+                        {"device", ref.device},
+                        {"critical_ns", fixed(ref.crit_ns, 1)},
+                        {"critical_from", ref.crit_from},
+                        {"critical_to", ref.crit_to},
+                        {"fmax", fixed(ref.fmax_mhz, 1)},
+                        {"small_fmax", fixed(small->fmax_mhz, 1)},
+                        {"small_blocks", std::to_string(small->blocks)},
+                        {"above_or_below", above ? "above" : "below"},
+                        {"factor", fixed(above ? ref.fmax_mhz / 50.0 : 50.0 / ref.fmax_mhz, 2)}});
 }
 
 void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, double cpu_tests_per_s,
@@ -191,25 +200,23 @@ void write_clock_comparison(const FpgaData& d, double clocks_per_broadcast, doub
   }
   const FpgaRun& ref = reference_run(d);
   const double f = ref.fmax_mhz * 1e6;
-  out << "## The paper's 50 MHz beside a measured clock\n\n";
-  out << "Every clock figure above assumes the paper's 50 MHz. The one measured clock of this design is "
-      << fixed(ref.fmax_mhz, 1) << " MHz: " << ref.blocks << " blocks of " << ref.words << " words placed and routed on "
-      << "an iCE40" << ref.device << " FPGA (`make fpga`, docs/generated/area.md). The ray-parallel test rates at both clocks:\n\n";
-  out << "| blocks | tests/s at 50 MHz (paper) | x one CPU core | tests/s at " << fixed(ref.fmax_mhz, 1)
-      << " MHz (measured, iCE40) | x one CPU core |\n| --- | --- | --- | --- | --- |\n";
+  std::ostringstream rates;
+  rates << "| blocks | tests/s at 50 MHz (paper) | x one CPU core | tests/s at " << fixed(ref.fmax_mhz, 1)
+        << " MHz (measured, iCE40) | x one CPU core |\n| --- | --- | --- | --- | --- |\n";
   for (double side : {64.0, 256.0, 1024.0}) {
     const double p = side * side;
     const double t50 = p * 50e6 / clocks_per_broadcast, tf = p * f / clocks_per_broadcast;
-    out << "| " << fixed(side, 0) << "^2 | " << sig3(t50) << " | " << fixed(t50 / cpu_tests_per_s, 1) << " | " << sig3(tf)
-        << " | " << fixed(tf / cpu_tests_per_s, 1) << " |\n";
+    rates << "| " << fixed(side, 0) << "^2 | " << sig3(t50) << " | " << fixed(t50 / cpu_tests_per_s, 1) << " | "
+          << sig3(tf) << " | " << fixed(tf / cpu_tests_per_s, 1) << " |\n";
   }
-  out << "\nTable 2 compares the FMPP with the sequential machine at one and the same clock, so its speed-ups do "
-         "not depend on the clock; with the FMPP at the measured "
-      << fixed(ref.fmax_mhz, 1) << " MHz and the sequential machine at 50 MHz each would be "
-      << fixed(ref.fmax_mhz / 50.0, 2) << " times as large. The times of Fig. 7 are multiplied by "
-      << fixed(50.0 / ref.fmax_mhz, 2)
-      << " at the measured clock. An FPGA clock is a lower bound for the chip the paper has in mind "
-         "(docs/generated/area.md explains why).\n\n";
+  out << fill_template("paper_fpga_clock.md.in",
+                       {{"fmax", fixed(ref.fmax_mhz, 1)},
+                        {"blocks", std::to_string(ref.blocks)},
+                        {"words", std::to_string(ref.words)},
+                        {"device", ref.device},
+                        {"rates_table", rates.str()},
+                        {"speedup", fixed(ref.fmax_mhz / 50.0, 2)},
+                        {"slowdown", fixed(50.0 / ref.fmax_mhz, 2)}});
 }
 
 }  // namespace fmpp::report

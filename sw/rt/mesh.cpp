@@ -365,7 +365,7 @@ Mesh library_mesh(const std::string& path, const std::string& ext, std::string d
     throw SceneError(path + ": cannot read mesh: not a valid " + ext.substr(1) + " file" +
                      (why.empty() ? "" : " (" + why + ")"));
   }
-  check_library_log(path, log.lines());
+  check_library_log(path, log.lines(), [&] { return ext == ".obj" ? std::string() : gltf_short_primitives(text, *sc); });
   const VertexSource source{obj.get()};
   Mesh m;
   const std::vector<int> material_of = file_materials(path, ext, *sc, text, m);

@@ -5,8 +5,11 @@
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/LogStream.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
+
+struct aiScene;
 
 namespace rt {
 
@@ -43,8 +46,17 @@ class LibraryLog {
 // named as one), and is not repeated. Control characters go too, and the length is bounded.
 std::string without_quotes(const char* msg);
 
-// A face the library could not read is an error naming the file and the library's own
-// words (its glTF reader drops a face with an out-of-range index and only logs it).
-void check_library_log(const std::string& path, const std::vector<std::string>& lines);
+// A face the library could not read is an error naming the file, the element that lost
+// faces when `where` can tell (empty when not) and the library's own words (its glTF
+// reader drops a face with an out-of-range index and only logs it, naming no element).
+void check_library_log(const std::string& path, const std::vector<std::string>& lines,
+                       const std::function<std::string()>& where);
+
+// The glTF primitives whose faces the library read fewer of than the file declares, as
+// "meshes[0] (\"name\") primitive 1: 1 of 2 faces read; ...": `text` is the file's bytes
+// (.gltf JSON or .glb), `scene` what the library made of it (one mesh per primitive, in
+// the file's order). Empty when the file's JSON cannot say (then the message names the
+// file alone).
+std::string gltf_short_primitives(const std::string& text, const aiScene& scene);
 
 }  // namespace rt
