@@ -49,13 +49,18 @@ const char* form_name(int id) {
 }
 
 const FormInfo& form_for(const KernelOptions& opt, bool shared) {
+  const FormInfo* of_mapping = nullptr;  // the first form of the options' mapping
   for (const FormInfo& f : all_forms()) {
     if (f.shared_origin != shared) continue;
     if (!shared) return f;  // one form takes rays with their own origins, whatever the options
     KernelOptions chosen = opt;
     f.choose(chosen);
     if (same_form_options(chosen, opt)) return f;
+    if (!of_mapping && f.mapping == opt.mapping) of_mapping = &f;
   }
+  // Options no form is chosen by (watertight in the object-parallel mapping): the
+  // mapping's form, so that validate() names what is wrong with them.
+  if (of_mapping) return *of_mapping;
   throw std::invalid_argument(std::string("no form takes rays sharing an origin in the ") + to_string(opt.mapping) +
                               "-parallel mapping" + (opt.watertight ? ", watertight" : ""));
 }

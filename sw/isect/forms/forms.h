@@ -75,7 +75,8 @@ const std::vector<FormInfo>& all_forms();
 const char* form_name(int id);
 // The form that takes a group of rays sharing an origin (shared = true) or rays with
 // their own origins, under `opt`: the first of the table's forms of that kind whose
-// choose() leaves `opt` as it is. Throws std::invalid_argument if none does.
+// choose() leaves `opt` as it is, else (options that validate() refuses) the first of the
+// options' mapping.
 const FormInfo& form_for(const KernelOptions& opt, bool shared);
 // The form of that name (FormInfo::name); throws std::invalid_argument naming the others.
 const FormInfo& form_named(const std::string& name);
