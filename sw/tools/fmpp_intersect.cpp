@@ -89,42 +89,56 @@ std::vector<Hit> run_fmpp(const std::vector<Ray>& rays, const std::vector<Triang
   return hits;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
+// The command line, as given.
+struct Args {
   std::string tri_file, ray_file, out_file = "-", report_file, backend = "cmodel", config;
   unsigned blocks = 64, words = 0;
   bool hex_t = false;
-  tools::KernelFlags flags;
-  app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
+  tools::KernelFlags flags;  // the kernel options' flags (sw/tools/kernel_flags.h)
+  BackendOptions bo;
+};
+
+// Parses the command line into *a: -1 to go on, else the exit status (help, a usage error).
+int parse(int argc, char** argv, Args* a) {
+  CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
+  app.add_option("--triangles", a->tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
       ->required();
-  app.add_option("--rays", ray_file,
+  app.add_option("--rays", a->ray_file,
                  "ray file: ox oy oz dx dy dz [tmin tmax [exclude [hint]]] per line, |o| <= 1e100, largest |d| in "
                  "[1e-100, 1e100], tmin >= 0, tmax a number or inf, exclude and hint a triangle index or -1")
       ->required();
-  app.add_option("--backend", backend, "reference (double precision on the host) or the machine: " +
-                                           join(backend_names(), " | "))
+  app.add_option("--backend", a->backend,
+                 "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
       ->capture_default_str()
       ->check(CLI::IsMember(tool_backends()));
-  CLI::Option* blocks_opt =
-      app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
-  CLI::Option* words_opt = app.add_option("--words", words,
-                 "words per block, even (default: what the mapping and multiply need, 26 when rays take the "
-                 "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
-      ->check(even_words());
-  exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
-                       blocks_opt, words_opt);
-  flags.add(app, tools::FlagTool::kIntersect);
-  app.add_option("--out", out_file, "hits file ('-' for stdout)")->capture_default_str();
-  app.add_flag("--hex-t", hex_t, "write each t exactly, as a hexadecimal float (default: 9 significant digits)");
-  app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
-  BackendOptions bo;
-  add_trace_options(app, bo);
+  CLI::Option* blocks =
+      app.add_option("--blocks", a->blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
+  CLI::Option* words = app.add_option("--words", a->words,
+                                      "words per block, even (default: what the mapping and multiply need, 26 when "
+                                      "rays take the arbitrary-origin kernel: --origins general, or rays of origins "
+                                      "too few to share one with auto)")
+                           ->check(even_words());
+  exclude_config_sizes(app.add_option("--config", a->config, "a named FMPP configuration instead of --blocks/--words"),
+                       blocks, words);
+  a->flags.add(app, tools::FlagTool::kIntersect);
+  app.add_option("--out", a->out_file, "hits file ('-' for stdout)")->capture_default_str();
+  app.add_flag("--hex-t", a->hex_t, "write each t exactly, as a hexadecimal float (default: 9 significant digits)");
+  app.add_option("--report", a->report_file, "JSON summary file ('-' for stdout, if --out is a file)");
+  add_trace_options(app, a->bo);
   app.footer(exit_status_footer(
       "an error (a triangle, ray or output file the tool cannot use, options this machine does not take; the "
       "message says which)"));
-  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
+  return parse_command_line(app, argc, argv);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (const int status = parse(argc, argv, &a); status >= 0) return status;
+  const std::string &tri_file = a.tri_file, &ray_file = a.ray_file, &out_file = a.out_file,
+                    &report_file = a.report_file, &backend = a.backend, &config = a.config;
+  const BackendOptions& bo = a.bo;
 
   std::string stage = "checking the options";  // for an out-of-memory message
   try {
@@ -154,12 +168,12 @@ int main(int argc, char** argv) {
     stage = "intersecting " + std::to_string(rays.size()) + " rays with " + std::to_string(tris.size()) + " triangles";
     const std::vector<Hit> hits = backend == "reference"
                                       ? nearest_reference(rays, tris)
-                                      : run_fmpp(rays, tris, flags.options(), MachineFlags{backend, config, blocks, words}, bo, &rep);
+                                      : run_fmpp(rays, tris, a.flags.options(), MachineFlags{backend, config, a.blocks, a.words}, bo, &rep);
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t nhit = 0;
     for (const Hit& h : hits) nhit += h.hit();
     rep["hits"] = nhit;
-    write_hits(out_file, hits, hex_t);
+    write_hits(out_file, hits, a.hex_t);
     if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     return 0;
   } catch (const std::bad_alloc&) {
