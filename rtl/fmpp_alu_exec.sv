@@ -163,10 +163,10 @@ module fmpp_alu_exec #(
         end
       end
       fmpp_pkg::OP_BITCOPY: begin
-        // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder).
-        for (int k = 0; k < W; k++) begin
-          if (bit_i_i == 5'(k)) x = a_i[k*Lanes +: Lanes];
-        end
+        // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder). The
+        // plane is an indexed part-select: synthesis makes a balanced tree of 2:1 multiplexers
+        // (5 levels), not a 32-deep priority chain; a simulator reads one slice.
+        x = a_i[bit_i_i*Lanes +: Lanes];
         for (int k = 0; k < W; k++) begin
           r_o[k*Lanes +: Lanes] = (bit_j_i == 5'(k)) ? x : d_i[k*Lanes +: Lanes];
         end

@@ -142,16 +142,11 @@ module fmpp_tile #(
     if (!CmpFsIsFs && op_i == fmpp_pkg::OP_CMP) fa_idx = x_i[fmpp_pkg::CMP_FS_LSB +: fmpp_pkg::CMP_FS_W];
   end
   assign fb_idx = x_i[fmpp_pkg::FLAG_FB_LSB +: fmpp_pkg::FLAG_FB_W];
-  always_comb begin
-    pred = '0;
-    flag_a = '0;
-    flag_b = '0;
-    for (int k = 0; k < NF; k++) begin
-      if (f_i == 3'(k))    pred   = flag_q[k*Lanes +: Lanes];
-      if (fa_idx == 3'(k)) flag_a = flag_q[k*Lanes +: Lanes];
-      if (fb_idx == 3'(k)) flag_b = flag_q[k*Lanes +: Lanes];
-    end
-  end
+  // Each an indexed part-select (NF = 8 planes, every index in range): a balanced tree of
+  // 2:1 multiplexers in synthesis (3 levels), not a priority chain of compares.
+  assign pred   = flag_q[f_i*Lanes +: Lanes];
+  assign flag_a = flag_q[fa_idx*Lanes +: Lanes];
+  assign flag_b = flag_q[fb_idx*Lanes +: Lanes];
 
   // Bit k of every lane's block index (the ROM address part): low bits from the lane
   // number, high bits from base_i. Constant for a given tile.
@@ -272,10 +267,9 @@ module fmpp_tile #(
             end
             fmpp_pkg::OP_BITCOPY: begin
               // Bit BIT_I of A into bit BIT_J of D, in the predicated blocks.
-              bit_x = '0;
-              for (int k = 0; k < W; k++) begin
-                if (imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W] == 5'(k)) bit_x = opa_q[k*Lanes +: Lanes];
-              end
+              // The source plane through a tree multiplexer (an indexed part-select: 5 levels
+              // of 2:1 multiplexers in synthesis, not a 32-deep priority chain).
+              bit_x = opa_q[imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]*Lanes +: Lanes];
               wr_en = 1'b1;
               wr_data = mem_q[d_i[WIdxW-1:0]];
               for (int k = 0; k < W; k++) begin
@@ -394,9 +388,7 @@ module fmpp_tile #(
           for (int f = 0; f < NF; f++) rd_data_o[f] = |(flag_q[f*Lanes +: Lanes] & rd_lane_sel);
         end
         default: begin  // RK_PLANE
-          for (int f = 0; f < NF; f++) begin
-            if (rd_flag_i == 3'(f)) rd_data_o[Lanes-1:0] = flag_q[f*Lanes +: Lanes];
-          end
+          rd_data_o[Lanes-1:0] = flag_q[rd_flag_i*Lanes +: Lanes];  // a tree multiplexer
         end
       endcase
     end

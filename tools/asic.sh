@@ -114,11 +114,13 @@ stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
 machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
+rtl_sha=$("$py" "$root/tools/rtl_hash.py" --root "$root") || exit 2
 sta_version=$(echo exit | sta -no_init 2>&1 | head -1 | sed 's/ Copyright.*//')
 {
   echo "# FMPP standard cells: tools/asic.sh ${sizes[*]} --pnr ${pnr_sizes[*]:-none} --pnr-until $pnr_until --energy ${energy_sizes[*]:-none}"
   echo "# $(yosys -V | head -1); $sta_version; qflow $(dpkg-query -W -f='${Version}' qflow 2>/dev/null || echo '?'); OSU018 ($lib)"
   echo "# commit $commit, $stamp, on $machine"
+  echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "# clock period $period ns (ideal clock), input delay $in_delay ns from $drive_cell, output delay $out_delay ns, output load $out_load pF; blifFanout $fanout_opts; global activity $activity"
 } > "$out/provenance.txt"
 

@@ -127,7 +127,8 @@ def cmd_collect(a):
         import json
         rj = json.loads(read(render))
         args = read(os.path.join(a.dir, "energy", "render.args")).strip()
-        frame = {"render_args": args, "period_ns": a.period,
+        sha = [ln.split()[2] for ln in prov if ln.startswith("# rtl-sha256 ")]
+        frame = {"rtl_sha256": sha[0] if sha else "", "render_args": args, "period_ns": a.period,
                  "gallery_clocks": gallery_clocks(a.readme) if a.readme else {}, "cycles": rj.get("cycles"), "instructions": rj.get("instructions"),
                  "broadcasts": rj.get("broadcasts"),
                  "steps_per_broadcast": {k: v.get("steps_per_broadcast") for k, v in rj.get("by_kind", {}).items()},

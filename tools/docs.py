@@ -26,6 +26,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import chip_figures  # noqa: E402
 import docblock  # noqa: E402
 import form_steps  # noqa: E402
 import gallery  # noqa: E402
@@ -196,7 +197,13 @@ def gen_steps(build):
     docblock.save_block(out_dir(build), "docs/perf.md", "form-steps", steps_block(build, os.path.join(build, "form-steps")))
 
 
-GENERATORS = {"area": gen_area, "inject": gen_inject, "plan": gen_plan, "render": gen_render, "paper": gen_paper,
+def gen_chip(build):
+    """docs/architecture.md's and docs/perf.md's chip-figures, docs/verification.md's fpga-figures (tools/chip_figures.py)."""
+    for target, name, which in chip_figures.TARGETS:
+        docblock.save_block(out_dir(build), target, name, chip_figures.BLOCKS[which]())
+
+
+GENERATORS = {"chip": gen_chip, "area": gen_area, "inject": gen_inject, "plan": gen_plan, "render": gen_render, "paper": gen_paper,
               "precision": gen_precision, "gallery": gen_gallery, "embree": gen_embree, "steps": gen_steps}
 
 
@@ -276,6 +283,11 @@ def check(build):
         area = os.path.join(tmp, "area.md")
         area_md(build, area)
         c.same("docs/generated/area.md", committed("docs/generated/area.md"), open(area, encoding="utf-8").read())
+
+        # The blocks of today's clock, area and energy figures (made from the committed results).
+        for target, name, which in chip_figures.TARGETS:
+            c.same("%s, block %s" % (target, name), docblock.read_block(os.path.join(ROOT, target), name),
+                   chip_figures.BLOCKS[which]())
 
         # docs/debugging.md: the lockstep report and the figures read from it.
         if INJECT["config"] in subprocess.run([tool(build, "fmpp-sim"), "--list"], capture_output=True,

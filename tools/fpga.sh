@@ -11,8 +11,9 @@
 #
 # Writes under $FPGA_OUT (default $BUILD/fpga, BUILD defaulting to build):
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
-#   summary.csv   device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
-#   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing
+#   summary.csv   (comment lines: the command, the tools, the date and machine, the RTL hash of
+#                 tools/rtl_hash.py) device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to
+#   critical_<dev>_<B>x<W>.txt   nextpnr's critical path listing (after a line with the RTL hash)
 #   <dev>_<B>x<W>.nofit.txt     for a run that does not fit: the cell types it overfills
 # A run that does not fit the device is a result ("no fit", placed=0); any other failure of
 # yosys or nextpnr stops the flow with its name and the end of its log.
@@ -47,11 +48,13 @@ sources="$("$root/tools/rtl_files.py" --root "$root" --synth --sep ' ') $root/fp
 stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
 machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"
+rtl_sha=$(python3 "$root/tools/rtl_hash.py" --root "$root") || exit 2
 summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 {
   echo "# FMPP on iCE40: tools/fpga.sh ${runs[*]}"
   echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); target ${freq} MHz, seeds $seeds (the fastest kept); $stamp, on $machine"
+  echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to,seeds"
 } > "$summary"
 
@@ -104,9 +107,9 @@ for r in "${runs[@]}"; do
     cp "$out/$name.s$best.report.json" "$out/$name.report.json"
   fi
   secs=$(( $(date +%s) - t0 ))
-  python3 - "$out" "$name" "$dev" "$pkg" "$b" "$w" "$placed" "$seed_list" >> "$summary" <<'PY'
+  python3 - "$out" "$name" "$dev" "$pkg" "$b" "$w" "$placed" "$seed_list" "$rtl_sha" >> "$summary" <<'PY'
 import json, re, sys
-out, name, dev, pkg, b, w, placed, seed_list = sys.argv[1:]
+out, name, dev, pkg, b, w, placed, seed_list, rtl_sha = sys.argv[1:]
 stat = open(f"{out}/{name}.stat").read()
 def cells(pattern):
     return sum(int(n) for c, n in re.findall(r"^\s+(SB_\w+)\s+(\d+)\s*$", stat, re.M) if re.fullmatch(pattern, c))
@@ -133,6 +136,7 @@ if placed == "1":
         if srcs and sinks:
             cfrom, cto = srcs[0], sinks[-1]
         with open(f"{out}/critical_{name}.txt", "w") as f:
+            f.write("# rtl-sha256 %s (tools/rtl_hash.py: the RTL measured)\n" % rtl_sha)
             f.write("Critical path report for clock" + last + "\n")
 print(",".join([dev, pkg, b, w, lcs, avail, str(luts), str(dffs), str(brams), ios, fmax, placed, crit, cfrom, cto,
                 seed_list]))

@@ -42,6 +42,7 @@ trap 'rm -f "$summary" "$cells"' EXIT
   echo "# FMPP synthesis: tools/synth.sh ${sizes[*]}"
   echo "# $version, $stamp, on $machine"
   echo "# yosys synth -flatten, flip-flops legalized to \$_DFF_P_, stat -tech cmos"
+  echo "# rtl-sha256 $(python3 "$root/tools/rtl_hash.py" --root "$root") (tools/rtl_hash.py: the RTL measured)"
 } | tee "$summary" > "$cells"
 echo "blocks,words,cells,transistors,flops" >> "$summary"
 echo "blocks,words,cell,count" >> "$cells"
