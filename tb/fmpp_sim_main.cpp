@@ -28,6 +28,9 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "common/util/cli_usage.h"
 #include "fmpp/config.h"
@@ -35,6 +38,73 @@
 #include "tb/sim_jobs.h"
 
 using namespace fmpp;
+
+namespace {
+
+// The runs the command line asks for: the --jobs file's, or --seeds runs of its options.
+std::vector<tb::SimOptions> jobs_of(const CLI::App& app, const tb::SimOptions& o, uint64_t seeds,
+                                    const std::string& jobs_file) {
+  std::vector<tb::SimOptions> jobs;
+  if (!jobs_file.empty()) {
+    for (const CLI::Option* opt : app.get_options()) {
+      if (opt->count() > 0 && opt->get_name() != "--jobs") {
+        throw std::invalid_argument("--jobs " + jobs_file + " takes every run's options from the file; " +
+                                    opt->get_name() + " is not allowed with it");
+      }
+    }
+    return tb::read_job_list(jobs_file);
+  }
+  if (seeds > 1 && (!o.trace.empty() || !o.coverage_out.empty())) {
+    throw std::invalid_argument("--seeds " + std::to_string(seeds) +
+                                ": every run would write the same --trace or --coverage-out file");
+  }
+  for (uint64_t k = 0; k < seeds; ++k) {
+    jobs.push_back(o);
+    jobs.back().seed = o.seed + k;
+  }
+  return jobs;
+}
+
+// Each run's line, its coverage hole on stderr, the total line (several runs), and the
+// first mismatch with the command that repeats it; the exit status.
+int report(const std::vector<tb::SimOptions>& jobs, const std::vector<tb::JobOutcome>& out, bool single, int ranks,
+           double secs) {
+  int status = 0;
+  const tb::JobOutcome* first = nullptr;
+  size_t first_job = 0;
+  for (size_t k = 0; k < out.size(); ++k) {
+    const tb::SimResult& r = out[k].result;
+    std::printf("%s\n", r.line.c_str());
+    if (r.mismatches) {
+      status = 1;
+      if (!first) {
+        first = &out[k];
+        first_job = k;
+      }
+    } else if (!r.missing.empty()) {
+      std::fprintf(stderr, "coverage hole: never exercised: %s%s\n", r.missing.c_str(),
+                   r.coverage_fail ? "" : " (not an error below 20000 accesses)");
+      if (r.coverage_fail) status = 1;
+    }
+  }
+  if (!single) std::printf("%s\n", tb::total_line(out, ranks, secs).c_str());
+  std::fflush(stdout);
+  if (!first) return status;
+  const tb::SimOptions& j = jobs[first_job];
+  if (!single) {
+    std::fprintf(stderr,
+                 "first mismatch: run %zu of %zu on rank %d: config %s seed %llu, at access index %llu "
+                 "(from 0) after %llu instructions\n",
+                 first_job + 1, jobs.size(), first->rank, j.config.c_str(), static_cast<unsigned long long>(j.seed),
+                 static_cast<unsigned long long>(first->result.mismatch_access),
+                 static_cast<unsigned long long>(first->result.mismatch_instruction));
+  }
+  std::fprintf(stderr, "%s\nreproduce: %s\n", first->result.report.c_str(), tb::reproduce_command(j).c_str());
+  if (!first->result.waveform.empty()) std::fprintf(stderr, "%s\n", first->result.waveform.c_str());
+  return status;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::unique_ptr<mpi::Session> session;  // MPI only under a launcher (docs/multichip.md)
@@ -70,65 +140,13 @@ int main(int argc, char** argv) {
   }
 
   try {
-    std::vector<tb::SimOptions> jobs;
-    if (!jobs_file.empty()) {
-      for (const CLI::Option* opt : app.get_options()) {
-        if (opt->count() > 0 && opt->get_name() != "--jobs") {
-          throw std::invalid_argument("--jobs " + jobs_file + " takes every run's options from the file; " +
-                                      opt->get_name() + " is not allowed with it");
-        }
-      }
-      jobs = tb::read_job_list(jobs_file);
-    } else {
-      if (seeds > 1 && (!o.trace.empty() || !o.coverage_out.empty())) {
-        throw std::invalid_argument("--seeds " + std::to_string(seeds) +
-                                    ": every run would write the same --trace or --coverage-out file");
-      }
-      for (uint64_t k = 0; k < seeds; ++k) {
-        jobs.push_back(o);
-        jobs.back().seed = o.seed + k;
-      }
-    }
+    const std::vector<tb::SimOptions> jobs = jobs_of(app, o, seeds, jobs_file);
     const bool single = jobs.size() == 1 && session->size() == 1 && jobs_file.empty();
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<tb::JobOutcome> out = tb::run_jobs(*session, jobs);
     if (!session->leader()) return 0;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    int status = 0;
-    const tb::JobOutcome* first = nullptr;
-    size_t first_job = 0;
-    for (size_t k = 0; k < out.size(); ++k) {
-      const tb::SimResult& r = out[k].result;
-      std::printf("%s\n", r.line.c_str());
-      if (r.mismatches) {
-        status = 1;
-        if (!first) {
-          first = &out[k];
-          first_job = k;
-        }
-      } else if (!r.missing.empty()) {
-        std::fprintf(stderr, "coverage hole: never exercised: %s%s\n", r.missing.c_str(),
-                     r.coverage_fail ? "" : " (not an error below 20000 accesses)");
-        if (r.coverage_fail) status = 1;
-      }
-    }
-    if (!single) std::printf("%s\n", tb::total_line(out, session->size(), secs).c_str());
-    std::fflush(stdout);
-    if (first) {
-      const tb::SimOptions& j = jobs[first_job];
-      if (!single) {
-        std::fprintf(stderr,
-                     "first mismatch: run %zu of %zu on rank %d: config %s seed %llu, at access index %llu "
-                     "(from 0) after %llu instructions\n",
-                     first_job + 1, jobs.size(), first->rank, j.config.c_str(),
-                     static_cast<unsigned long long>(j.seed),
-                     static_cast<unsigned long long>(first->result.mismatch_access),
-                     static_cast<unsigned long long>(first->result.mismatch_instruction));
-      }
-      std::fprintf(stderr, "%s\nreproduce: %s\n", first->result.report.c_str(), tb::reproduce_command(j).c_str());
-      if (!first->result.waveform.empty()) std::fprintf(stderr, "%s\n", first->result.waveform.c_str());
-    }
-    return status;
+    return report(jobs, out, single, session->size(), secs);
   } catch (const std::exception& e) {
     if (session->size() > 1) session->abort("fmpp-sim", e.what(), 2);
     std::fprintf(stderr, "fmpp-sim: %s\n", e.what());

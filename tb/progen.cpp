@@ -163,19 +163,24 @@ void ProgramGenerator::push_instruction(Bus& bus, uint64_t raw) {
 }
 
 void ProgramGenerator::bad_access(Bus& bus) {
-  using map::Err;
   const unsigned kind = std::uniform_int_distribution<unsigned>(0, 12)(rng_);
-  uint64_t data = 0;
-  Err cause = Err::kNone;
   uint32_t addr = 0;
   Resp r = Resp::kOkay;
+  const map::Err cause = kind < 6 ? bad_register_access(kind, bus, &addr, &r) : bad_window_access(kind, bus, &addr, &r);
+  expect(r, Resp::kSlvErr, "bad access", addr);
+  ++stats_.bad;
+  ++stats_.per_error[static_cast<unsigned>(cause)];
+}
+
+map::Err ProgramGenerator::bad_register_access(unsigned kind, Bus& bus, uint32_t* addr, Resp* r) {
+  using map::Err;
+  uint64_t data = 0;
   switch (kind) {
     case 0: {  // unknown opcode
       const unsigned op_max = static_cast<unsigned>(map::kFieldOp.max());
       const uint64_t op = std::uniform_int_distribution<unsigned>(map::kNumOpcodes, op_max)(rng_);
-      r = bus.write(addr = map::kRegQueue, map::kFieldOp.put(op));
-      cause = Err::kIllegal;
-      break;
+      *r = bus.write(*addr = map::kRegQueue, map::kFieldOp.put(op));
+      return Err::kIllegal;
     }
     case 1: {  // a legal instruction with one bit flipped in a field it must leave zero, or an operand out of range
       uint64_t raw = 0;
@@ -184,86 +189,78 @@ void ProgramGenerator::bad_access(Bus& bus) {
         if (!is_legal(raw, cfg_.words)) break;
       }
       if (is_legal(raw, cfg_.words)) raw = map::kFieldOp.put(map::kFieldOp.max());
-      r = bus.write(addr = map::kRegQueue, raw);
-      cause = Err::kIllegal;
-      break;
+      *r = bus.write(*addr = map::kRegQueue, raw);
+      return Err::kIllegal;
     }
     case 2:  // partial strobe on the queue
-      r = bus.write(addr = map::kRegQueue, ins::nop().encode(), 0x0F);
-      cause = Err::kStrobe;
-      break;
+      *r = bus.write(*addr = map::kRegQueue, ins::nop().encode(), 0x0F);
+      return Err::kStrobe;
     case 3: {  // write to a read-only register
       static const uint32_t kRo[] = {map::kRegId, map::kRegConfig, map::kRegStatus, map::kRegResp,
                                      map::kRegCycles, map::kRegInstret, map::kRegMask};
-      r = bus.write(addr = kRo[std::uniform_int_distribution<unsigned>(0, 6)(rng_)], edge_value());
-      cause = Err::kReadonly;
-      break;
+      *r = bus.write(*addr = kRo[std::uniform_int_distribution<unsigned>(0, 6)(rng_)], edge_value());
+      return Err::kReadonly;
     }
     case 4:  // read of the write-only queue
-      r = bus.read(addr = map::kRegQueue, &data);
-      cause = Err::kWriteonly;
-      break;
-    case 5:  // unmapped register offset
-      addr = 0x50 + 8 * std::uniform_int_distribution<unsigned>(0, 400)(rng_);
-      r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(addr, &data) : bus.write(addr, 0);
-      cause = Err::kUnmapped;
-      break;
+      *r = bus.read(*addr = map::kRegQueue, &data);
+      return Err::kWriteonly;
+    default:  // 5: unmapped register offset
+      *addr = 0x50 + 8 * std::uniform_int_distribution<unsigned>(0, 400)(rng_);
+      *r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(*addr, &data) : bus.write(*addr, 0);
+      return Err::kUnmapped;
+  }
+}
+
+map::Err ProgramGenerator::bad_window_access(unsigned kind, Bus& bus, uint32_t* addr, Resp* r) {
+  using map::Err;
+  uint64_t data = 0;
+  switch (kind) {
     case 6:  // misaligned
-      addr = (std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? map::kRegId : word_addr(block_index(), 0)) +
+      *addr = (std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? map::kRegId : word_addr(block_index(), 0)) +
              std::uniform_int_distribution<unsigned>(1, 7)(rng_);
-      r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(addr, &data) : bus.write(addr, 0);
-      cause = Err::kAlign;
-      break;
+      *r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(*addr, &data) : bus.write(*addr, 0);
+      return Err::kAlign;
     case 7:  // block past the end, in the WORDS or FLAGS window
-      addr = std::uniform_int_distribution<unsigned>(0, 1)(rng_)
+      *addr = std::uniform_int_distribution<unsigned>(0, 1)(rng_)
                  ? word_addr(cfg_.blocks + std::uniform_int_distribution<unsigned>(0, 3)(rng_), word_index())
                  : map::kWinFlagsBase + 8 * (cfg_.blocks + std::uniform_int_distribution<unsigned>(0, 3)(rng_));
-      r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(addr, &data) : bus.write(addr, 1, 0x01);
-      cause = Err::kUnmapped;
-      break;
+      *r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(*addr, &data) : bus.write(*addr, 1, 0x01);
+      return Err::kUnmapped;
     case 8: {  // word past NumWords inside the block stride (only exists when NumWords is not a power of 2)
       const unsigned stride_words = 1u << (cfg_.word_shift() - 3);
       if (stride_words == cfg_.words) {
-        addr = map::kWinPlanesBase + 8 * cfg_.tiles();  // a tile past the end instead
+        *addr = map::kWinPlanesBase + 8 * cfg_.tiles();  // a tile past the end instead
       } else {
-        addr = word_addr(block_index(), std::uniform_int_distribution<unsigned>(cfg_.words, stride_words - 1)(rng_));
+        *addr = word_addr(block_index(), std::uniform_int_distribution<unsigned>(cfg_.words, stride_words - 1)(rng_));
       }
-      r = bus.read(addr, &data);
-      cause = Err::kUnmapped;
-      break;
+      *r = bus.read(*addr, &data);
+      return Err::kUnmapped;
     }
     case 9:  // bad strobes on the windows
       if (std::uniform_int_distribution<unsigned>(0, 1)(rng_)) {
         static const uint8_t kBad[] = {0x00, 0x10, 0xF0, 0xFF, 0x1F};
-        r = bus.write(addr = word_addr(block_index(), word_index()), edge_value(),
+        *r = bus.write(*addr = word_addr(block_index(), word_index()), edge_value(),
                       kBad[std::uniform_int_distribution<unsigned>(0, 4)(rng_)]);
       } else {
         static const uint8_t kBad[] = {0x00, 0x02, 0x03, 0xFF};
-        r = bus.write(addr = map::kWinFlagsBase + 8 * block_index(), 1,
+        *r = bus.write(*addr = map::kWinFlagsBase + 8 * block_index(), 1,
                       kBad[std::uniform_int_distribution<unsigned>(0, 3)(rng_)]);
       }
-      cause = Err::kStrobe;
-      break;
+      return Err::kStrobe;
     case 10:  // write to the read-only plane window
-      r = bus.write(addr = map::kWinPlanesBase + (flag_index() << map::kWinPlanesFlagShift) +
+      *r = bus.write(*addr = map::kWinPlanesBase + (flag_index() << map::kWinPlanesFlagShift) +
                            8 * std::uniform_int_distribution<unsigned>(0, cfg_.tiles() - 1)(rng_),
                     ~0ull);
-      cause = Err::kReadonly;
-      break;
+      return Err::kReadonly;
     case 11:  // outside every region
-      addr = 0x10000000u + 8 * std::uniform_int_distribution<unsigned>(0, 1 << 20)(rng_);
-      r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(addr, &data) : bus.write(addr, 0);
-      cause = Err::kUnmapped;
-      break;
+      *addr = 0x10000000u + 8 * std::uniform_int_distribution<unsigned>(0, 1 << 20)(rng_);
+      *r = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? bus.read(*addr, &data) : bus.write(*addr, 0);
+      return Err::kUnmapped;
     default:  // partial strobe on CTRL or ERROR
-      r = bus.write(addr = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? map::kRegCtrl : map::kRegError, 0,
+      *r = bus.write(*addr = std::uniform_int_distribution<unsigned>(0, 1)(rng_) ? map::kRegCtrl : map::kRegError, 0,
                     0x01);
-      cause = Err::kStrobe;
-      break;
+      return Err::kStrobe;
   }
-  expect(r, Resp::kSlvErr, "bad access", addr);
-  ++stats_.bad;
-  ++stats_.per_error[static_cast<unsigned>(cause)];
 }
 
 void ProgramGenerator::step(Bus& bus) {

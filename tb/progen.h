@@ -58,7 +58,12 @@ class ProgramGenerator {
   // A random code among those a sub-field's legal mask (map::k<Sub>Legal) defines.
   unsigned legal_code(uint32_t legal);
   void push_instruction(Bus& bus, uint64_t raw);
+  // One access the bus must refuse (SLVERR), counted by its ERROR cause: of kind 0 .. 5
+  // on the registers and the queue (bad_register_access), 6 .. 12 on the windows and the
+  // address space (bad_window_access); each returns the cause and sets the address.
   void bad_access(Bus& bus);
+  map::Err bad_register_access(unsigned kind, Bus& bus, uint32_t* addr, Resp* r);
+  map::Err bad_window_access(unsigned kind, Bus& bus, uint32_t* addr, Resp* r);
   void expect(Resp got, Resp want, const char* what, uint32_t addr);
   uint32_t word_addr(unsigned block, unsigned word) const;
 

@@ -108,10 +108,10 @@ std::string reproduce_command(const SimOptions& o) {
   return again;
 }
 
-SimResult run_sim(const SimOptions& o) {
-  check_trace_window(o.trace_start, o.trace_end);
-  check_trace_file(o.trace);
-  const Config cfg = named_config(o.config);
+namespace {
+
+// The RTL side's options of run o, its combinations checked.
+RtlOptions rtl_options(const SimOptions& o) {
   RtlOptions ro;
   ro.trace_file = o.trace;
   ro.trace_start = o.trace_start;
@@ -123,6 +123,36 @@ SimResult run_sim(const SimOptions& o) {
   ro.random_init = o.random_init;
   ro.max_backpressure = o.max_backpressure;
   ro.coverage_file = o.coverage_out;
+  return ro;
+}
+
+// The run's summary line.
+std::string summary_line(const SimOptions& o, const Config& cfg, const GenStats& st, const Lockstep& lock,
+                         uint64_t cycles, const SimResult& res) {
+  char line[1024];
+  std::snprintf(
+      line, sizeof line,
+      "config=%s blocks=%u words=%u backend=%s seed=%llu mode=%s%s accesses=%llu instructions=%llu entries=%llu "
+      "cycles=%llu state_checks=%llu bad_accesses=%llu resets=%llu mismatches=%llu seconds=%.1f",
+      o.config.c_str(), cfg.blocks, cfg.words, o.backend.c_str(), static_cast<unsigned long long>(o.seed),
+      o.mode.c_str(),
+      (std::string(o.stress ? "+stress" : "") + (o.max_backpressure ? "+maxbp" : "") + (o.storms ? "+storms" : "") +
+       (o.random_init ? "+randinit" : "") + (o.reset_every ? "+resets" : ""))
+          .c_str(),
+      static_cast<unsigned long long>(st.accesses), static_cast<unsigned long long>(st.instructions),
+      static_cast<unsigned long long>(lock.entries()), static_cast<unsigned long long>(cycles),
+      static_cast<unsigned long long>(lock.state_checks()), static_cast<unsigned long long>(st.bad),
+      static_cast<unsigned long long>(lock.resets()), static_cast<unsigned long long>(res.mismatches), res.seconds);
+  return line;
+}
+
+}  // namespace
+
+SimResult run_sim(const SimOptions& o) {
+  check_trace_window(o.trace_start, o.trace_end);
+  check_trace_file(o.trace);
+  const Config cfg = named_config(o.config);
+  const RtlOptions ro = rtl_options(o);
   const unsigned iblock = o.inject_block < 0 ? cfg.blocks - 1 : static_cast<unsigned>(o.inject_block);
   if (o.inject && (o.inject_at >= o.ops || iblock >= cfg.blocks || o.inject_word >= cfg.words)) {
     throw std::invalid_argument("--inject-at " + std::to_string(o.inject_at) + " block " + std::to_string(iblock) +
@@ -168,21 +198,7 @@ SimResult run_sim(const SimOptions& o) {
   res.accesses = st.accesses;
   res.instructions = st.instructions;
   res.cycles = rtl->cycles();
-  char line[1024];
-  std::snprintf(
-      line, sizeof line,
-      "config=%s blocks=%u words=%u backend=%s seed=%llu mode=%s%s accesses=%llu instructions=%llu entries=%llu "
-      "cycles=%llu state_checks=%llu bad_accesses=%llu resets=%llu mismatches=%llu seconds=%.1f",
-      o.config.c_str(), cfg.blocks, cfg.words, o.backend.c_str(), static_cast<unsigned long long>(o.seed),
-      o.mode.c_str(),
-      (std::string(o.stress ? "+stress" : "") + (o.max_backpressure ? "+maxbp" : "") + (o.storms ? "+storms" : "") +
-       (o.random_init ? "+randinit" : "") + (o.reset_every ? "+resets" : ""))
-          .c_str(),
-      static_cast<unsigned long long>(st.accesses), static_cast<unsigned long long>(st.instructions),
-      static_cast<unsigned long long>(lock.entries()), static_cast<unsigned long long>(rtl->cycles()),
-      static_cast<unsigned long long>(lock.state_checks()), static_cast<unsigned long long>(st.bad),
-      static_cast<unsigned long long>(lock.resets()), static_cast<unsigned long long>(res.mismatches), res.seconds);
-  res.line = line;
+  res.line = summary_line(o, cfg, st, lock, rtl->cycles(), res);
   if (res.mismatches && !o.trace.empty()) {
     // The harness dumps clock low at 10c and the rising edge at 10c + 5 (backends/rtl/rtl_bus_impl.h),
     // so the state after the edge that made cycles() = c is visible from 10c - 5.

@@ -11,24 +11,6 @@
 #include "sw/isect/pass/policy.h"
 
 namespace fmpp::isect {
-namespace {
-
-// Whether forms prepared under a and b are the same: every option but the ones that only
-// steer a call (the pass order, which origins' rays are merged, the oracle's counts,
-// gates, occlusion, progress, sharing, this cache) and the conditioning limit, which the
-// form compares itself (RayForm::serves).
-// A field added to KernelOptions must be placed on one side or the other: the size below
-// is that of the fields known here.
-static_assert(sizeof(void*) != 8 || sizeof(KernelOptions) == 112,
-              "a field added to KernelOptions: is it in same_options?");
-bool same_options(const KernelOptions& a, const KernelOptions& b) {
-  return a.mapping == b.mapping && a.mul == b.mul && a.n == b.n && a.vbits == b.vbits && a.mbits == b.mbits &&
-         a.qbits == b.qbits && a.origins == b.origins && a.cull == b.cull && a.cull_packet == b.cull_packet &&
-         a.cull_probe == b.cull_probe && a.fmpp_boxes == b.fmpp_boxes && a.watertight == b.watertight &&
-         a.t_accuracy == b.t_accuracy;
-}
-
-}  // namespace
 
 void CoordinateRange::add(const glm::dvec3& p) {
   for (int k = 0; k < 3; ++k) {
@@ -70,7 +52,7 @@ const std::vector<Triangle>& FormCache::scaled(int s) {
 
 FormCache::Prepared FormCache::form(const FormInfo& info, const FormInputs& in, int s) {
   for (auto it = cache_.begin(); it != cache_.end(); ++it) {
-    if (it->id == info.id && it->s == s && it->origin == in.origin && same_options(it->opt, in.opt) &&
+    if (it->id == info.id && it->s == s && it->origin == in.origin && same_form_options(it->opt, in.opt) &&
         it->form->serves(in)) {
       cache_.splice(cache_.begin(), cache_, it);  // the last used first
       it->reused = true;

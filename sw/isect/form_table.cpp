@@ -10,28 +10,68 @@
 namespace fmpp::isect {
 
 const std::vector<FormInfo>& all_forms() {
+  // The options each form is chosen by (--form NAME sets them; --mapping, --watertight and
+  // --origins are their aliases).
+  const auto paper = [](KernelOptions& o) {
+    o.mapping = Mapping::kRay;
+    o.watertight = false;
+  };
+  const auto watertight = [](KernelOptions& o) {
+    o.mapping = Mapping::kRay;
+    o.watertight = true;
+  };
+  const auto general = [](KernelOptions& o) {
+    o.mapping = Mapping::kRay;
+    o.watertight = false;
+    o.origins = Origins::kGeneral;
+  };
+  const auto paper_object = [](KernelOptions& o) {
+    o.mapping = Mapping::kObject;
+    o.watertight = false;
+  };
   static const std::vector<FormInfo> forms = {
-      {kFormPaper, "paper", Mapping::kRay, true, shared_origin_words, make_paper_form, nullptr},
-      {kFormWatertight, "watertight", Mapping::kRay, true, shared_origin_words, make_watertight_form, nullptr},
-      {kFormGeneral, "arbitrary-origin", Mapping::kRay, false, general_words, make_general_form, nullptr},
-      {kFormPaperObject, "paper-object", Mapping::kObject, true, paper_object_words, nullptr, run_object_parallel},
+      {kFormPaper, "paper", Mapping::kRay, true, shared_origin_words, make_paper_form, nullptr, paper},
+      {kFormWatertight, "watertight", Mapping::kRay, true, shared_origin_words, make_watertight_form, nullptr,
+       watertight},
+      {kFormGeneral, "arbitrary-origin", Mapping::kRay, false, general_words, make_general_form, nullptr, general},
+      {kFormPaperObject, "paper-object", Mapping::kObject, true, paper_object_words, nullptr, run_object_parallel,
+       paper_object},
   };
   return forms;
 }
 
 const char* form_name(int id) {
   const auto& forms = all_forms();
+  for (size_t i = 0; i < forms.size(); ++i) {
+    if (forms[i].id != static_cast<int>(i)) throw std::logic_error("fmpp::isect: the form table is not in FormId order");
+  }
   return id >= 0 && static_cast<size_t>(id) < forms.size() ? forms[static_cast<size_t>(id)].name : "?";
 }
 
 const FormInfo& form_for(const KernelOptions& opt, bool shared) {
-  const FormId id = !shared                              ? kFormGeneral
-                    : opt.mapping == Mapping::kObject    ? kFormPaperObject
-                    : opt.watertight                     ? kFormWatertight
-                                                         : kFormPaper;
-  const FormInfo& f = all_forms()[static_cast<size_t>(id)];
-  if (f.id != id) throw std::logic_error("fmpp::isect: the form table is not in FormId order");
-  return f;
+  const FormInfo* of_mapping = nullptr;  // the first form of the options' mapping
+  for (const FormInfo& f : all_forms()) {
+    if (f.shared_origin != shared) continue;
+    if (!shared) return f;  // one form takes rays with their own origins, whatever the options
+    KernelOptions chosen = opt;
+    f.choose(chosen);
+    if (same_form_options(chosen, opt)) return f;
+    if (!of_mapping && f.mapping == opt.mapping) of_mapping = &f;
+  }
+  // Options no form is chosen by (watertight in the object-parallel mapping): the
+  // mapping's form, so that validate() names what is wrong with them.
+  if (of_mapping) return *of_mapping;
+  throw std::invalid_argument(std::string("no form takes rays sharing an origin in the ") + to_string(opt.mapping) +
+                              "-parallel mapping" + (opt.watertight ? ", watertight" : ""));
+}
+
+const FormInfo& form_named(const std::string& name) {
+  std::string names;
+  for (const FormInfo& f : all_forms()) {
+    if (name == f.name) return f;
+    names += std::string(names.empty() ? "" : ", ") + f.name;
+  }
+  throw std::invalid_argument("no form named '" + name + "' (the forms: " + names + ")");
 }
 
 unsigned words_needed(const KernelOptions& opt) { return form_for(opt, true).words(opt); }

@@ -75,6 +75,100 @@ int scene_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tr
   return exponent_of(r);
 }
 
+namespace {
+
+// The exponent s that scales the call (scene_exponent): of the cache's triangles, whose
+// range it keeps, or of the call's own.
+int call_exponent(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const FormCache* cache) {
+  if (!cache) return scene_exponent(rays, tris);
+  CoordinateRange r = cache->range();
+  for (const Ray& ray : rays) r.add(ray.o);
+  return exponent_of(r);
+}
+
+// The rays scaled: origins by 2^s, every direction by a power of two to a largest
+// component in [1, 2), and its parameters (tmin, tmax, the hit's t) by the inverse:
+// exact, and the kernels' scales then never see a direction's magnitude, only its shape.
+// *t_exp gets each ray's t = t' 2^t_exp, *tmin_rounded the rays whose tmin rounded.
+std::vector<Ray> scaled_rays(const std::vector<Ray>& in_rays, int s, std::vector<int>* t_exp,
+                             std::vector<size_t>* tmin_rounded) {
+  std::vector<Ray> rays(in_rays);
+  t_exp->assign(rays.size(), 0);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    Ray& r = rays[i];
+    const int dexp = policy::direction_exponent(r.d);
+    (*t_exp)[i] = dexp - s;
+    r.o = glm::dvec3(std::ldexp(r.o.x, s), std::ldexp(r.o.y, s), std::ldexp(r.o.z, s));
+    r.d = glm::dvec3(std::ldexp(r.d.x, dexp), std::ldexp(r.d.y, dexp), std::ldexp(r.d.z, dexp));
+    // tmin may overflow to infinity here: no hit within the scene is then beyond it,
+    // as none is beyond the exact tmin 2^s (the scene's hits are all below 4 / |d|).
+    // One that underflows and rounds is no longer exact: such a ray is answered by the
+    // exact reference on the caller's own values (counted with the overflow redos).
+    // tmax only limits what the caller needs, so a rounded one is rounded up.
+    r.tmin = std::ldexp(r.tmin, -(*t_exp)[i]);
+    if (std::ldexp(r.tmin, (*t_exp)[i]) != in_rays[i].tmin) tmin_rounded->push_back(i);
+    const double tmax = r.tmax;
+    r.tmax = std::ldexp(tmax, -(*t_exp)[i]);
+    if (std::ldexp(r.tmax, (*t_exp)[i]) < tmax) {
+      r.tmax = std::nextafter(r.tmax, std::numeric_limits<double>::infinity());
+    }
+  }
+  return rays;
+}
+
+// The scaled call on the FMPP: each group of rays sharing an origin through its form (a
+// prepared one from the cache where there is one), then the rays with their own origins.
+void run_forms(Device& dev, const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const KernelOptions& opt,
+               FormCache* cache, int s, std::vector<Hit>& out, KernelStats& st) {
+  const auto [groups, general] = route_rays(rays, opt, dev.config().blocks);
+  for (const auto& [key, idx] : groups) {
+    ++st.groups;
+    const glm::dvec3 origin(std::get<0>(key), std::get<1>(key), std::get<2>(key));
+    const FormInfo& f = form_for(opt, true);
+    if (f.run_object) {
+      f.run_object(dev, rays, idx, tris, origin, opt, out, &st);
+    } else if (cache) {
+      const FormCache::Prepared p = cache->form(f, FormInputs{opt, tris, rays, idx, origin, &st}, s);
+      run_ray_parallel(dev, rays, idx, tris, *p.form, opt, out, &st, &origin, p.cull, &cache->shapes());
+    } else {
+      const std::unique_ptr<RayForm> form = f.make(FormInputs{opt, tris, rays, idx, origin, &st});
+      run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);
+    }
+  }
+  if (general.empty()) return;
+  if (dev.config().words < own_origin_words(opt)) {
+    throw std::invalid_argument("rays with their own origins need " + std::to_string(own_origin_words(opt)) +
+                                " words per block; the FMPP has " + std::to_string(dev.config().words));
+  }
+  const std::unique_ptr<RayForm> form =
+      form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st, nullptr, dev.config().words});
+  run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr, nullptr, cache ? &cache->shapes() : nullptr);
+}
+
+// The answers in the caller's units: the rays whose tmin rounded answered by the exact
+// reference on the caller's values, every other hit's t scaled back (exact, but for a t
+// in the subnormal range, which rounds within an ulp; it stays above tmin, and so above
+// 0, as the reference's).
+void to_callers_units(const std::vector<Ray>& in_rays, const std::vector<Triangle>& in_tris,
+                      const std::vector<size_t>& tmin_rounded, std::vector<int>& t_exp, std::vector<Hit>& out,
+                      KernelStats& st) {
+  for (size_t i : tmin_rounded) {
+    out[i] = nearest_reference(std::vector<Ray>{in_rays[i]}, in_tris)[0];
+    out[i].redo = HostRedo::kOverflow;
+    t_exp[i] = 0;
+    ++st.overflow_rays;
+    st.host_tests += in_tris.size();
+  }
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!out[i].hit()) continue;
+    out[i].t = std::ldexp(out[i].t, t_exp[i]);
+    const double tmin = in_rays[i].tmin;
+    if (out[i].t <= tmin) out[i].t = std::nextafter(tmin, std::numeric_limits<double>::infinity());
+  }
+}
+
+}  // namespace
+
 std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, const std::vector<Triangle>& in_tris,
                                 const KernelOptions& opt, KernelStats* stats) {
   opt.validate(dev.config());
@@ -93,14 +187,7 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
   // underflows for a scene of subnormal size nor overflows for one near the limit.
   // A cache of prepared forms (form_cache.h) knows the triangles' share and keeps them scaled.
   FormCache* cache = opt.forms && opt.forms->holds(in_tris) ? opt.forms : nullptr;
-  int s;
-  if (cache) {
-    CoordinateRange r = cache->range();
-    for (const Ray& ray : in_rays) r.add(ray.o);
-    s = exponent_of(r);
-  } else {
-    s = scene_exponent(in_rays, in_tris);
-  }
+  const int s = call_exponent(in_rays, in_tris, cache);
   std::vector<Triangle> scaled;
   if (s != 0 && !cache) {
     scaled = in_tris;
@@ -109,69 +196,11 @@ std::vector<Hit> intersect_fmpp(Device& dev, const std::vector<Ray>& in_rays, co
     }
   }
   const std::vector<Triangle>& tris = cache ? cache->scaled(s) : s != 0 ? scaled : in_tris;
-  // Every direction is scaled by a power of two to a largest component in [1, 2), and its
-  // parameters (tmin, tmax, the hit's t) by the inverse: exact, and the kernels' scales
-  // then never see a direction's magnitude, only its shape.
-  std::vector<Ray> rays(in_rays);
-  std::vector<int> t_exp(rays.size(), 0);  // t = t' 2^t_exp
+  std::vector<int> t_exp;
   std::vector<size_t> tmin_rounded;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    Ray& r = rays[i];
-    const int dexp = policy::direction_exponent(r.d);
-    t_exp[i] = dexp - s;
-    r.o = glm::dvec3(std::ldexp(r.o.x, s), std::ldexp(r.o.y, s), std::ldexp(r.o.z, s));
-    r.d = glm::dvec3(std::ldexp(r.d.x, dexp), std::ldexp(r.d.y, dexp), std::ldexp(r.d.z, dexp));
-    // tmin may overflow to infinity here: no hit within the scene is then beyond it,
-    // as none is beyond the exact tmin 2^s (the scene's hits are all below 4 / |d|).
-    // One that underflows and rounds is no longer exact: such a ray is answered by the
-    // exact reference on the caller's own values (counted with the overflow redos).
-    // tmax only limits what the caller needs, so a rounded one is rounded up.
-    r.tmin = std::ldexp(r.tmin, -t_exp[i]);
-    if (std::ldexp(r.tmin, t_exp[i]) != in_rays[i].tmin) tmin_rounded.push_back(i);
-    const double tmax = r.tmax;
-    r.tmax = std::ldexp(tmax, -t_exp[i]);
-    if (std::ldexp(r.tmax, t_exp[i]) < tmax) r.tmax = std::nextafter(r.tmax, std::numeric_limits<double>::infinity());
-  }
-  const auto [groups, general] = route_rays(rays, opt, dev.config().blocks);
-  for (const auto& [key, idx] : groups) {
-    ++st.groups;
-    const glm::dvec3 origin(std::get<0>(key), std::get<1>(key), std::get<2>(key));
-    const FormInfo& f = form_for(opt, true);
-    if (f.run_object) {
-      f.run_object(dev, rays, idx, tris, origin, opt, out, &st);
-    } else if (cache) {
-      const FormCache::Prepared p = cache->form(f, FormInputs{opt, tris, rays, idx, origin, &st}, s);
-      run_ray_parallel(dev, rays, idx, tris, *p.form, opt, out, &st, &origin, p.cull, &cache->shapes());
-    } else {
-      const std::unique_ptr<RayForm> form = f.make(FormInputs{opt, tris, rays, idx, origin, &st});
-      run_ray_parallel(dev, rays, idx, tris, *form, opt, out, &st, &origin);
-    }
-  }
-  if (!general.empty()) {
-    if (dev.config().words < own_origin_words(opt)) {
-      throw std::invalid_argument("rays with their own origins need " + std::to_string(own_origin_words(opt)) +
-                                  " words per block; the FMPP has " + std::to_string(dev.config().words));
-    }
-    const std::unique_ptr<RayForm> form =
-        form_for(opt, false).make(FormInputs{opt, tris, rays, general, glm::dvec3(0), &st, nullptr, dev.config().words});
-    run_ray_parallel(dev, rays, general, tris, *form, opt, out, &st, nullptr, nullptr,
-                     cache ? &cache->shapes() : nullptr);
-  }
-  for (size_t i : tmin_rounded) {
-    out[i] = nearest_reference(std::vector<Ray>{in_rays[i]}, in_tris)[0];
-    out[i].redo = HostRedo::kOverflow;
-    t_exp[i] = 0;
-    ++st.overflow_rays;
-    st.host_tests += in_tris.size();
-  }
-  for (size_t i = 0; i < out.size(); ++i) {
-    if (!out[i].hit()) continue;
-    // Back to the caller's units: exact, but for a t in the subnormal range, which
-    // rounds within an ulp; it stays above tmin (and so above 0), as the reference's.
-    out[i].t = std::ldexp(out[i].t, t_exp[i]);
-    const double tmin = in_rays[i].tmin;
-    if (out[i].t <= tmin) out[i].t = std::nextafter(tmin, std::numeric_limits<double>::infinity());
-  }
+  const std::vector<Ray> rays = scaled_rays(in_rays, s, &t_exp, &tmin_rounded);
+  run_forms(dev, rays, tris, opt, cache, s, out, st);
+  to_callers_units(in_rays, in_tris, tmin_rounded, t_exp, out, st);
   st.cycles += dev.cycles() - c0;
   return out;
 }

@@ -2,10 +2,48 @@
 #include "sw/isect/stats_json.h"
 
 #include <cmath>
+#include <type_traits>
 
 #include "sw/isect/forms/forms.h"
 
 namespace fmpp::isect {
+namespace {
+
+template <class T>
+nlohmann::json plain(T v) {
+  if constexpr (std::is_enum_v<T>) {
+    return static_cast<int>(v);
+  } else {
+    return v;
+  }
+}
+// A value as the reports write it: a choice by its name.
+template <class T, class Kind>
+nlohmann::json named(T v, Kind) {
+  return plain(v);
+}
+template <class T, class Names>
+nlohmann::json named(T v, OptNamed<Names>) {
+  for (const auto& [name, value] : Names::kAll) {
+    if (value == v) return name;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+nlohmann::json options_json(const KernelOptions& opt, OptionRole role) {
+  nlohmann::json j = nlohmann::json::object();
+  for_each_kernel_option([&](const OptionInfo& o, auto member, auto kind) {
+    if (!o.has(role)) return;
+    if (role == kReported) {
+      j[o.report] = named(opt.*member, kind);
+    } else {
+      j[o.field] = plain(opt.*member);
+    }
+  });
+  return j;
+}
 
 nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
   nlohmann::json forms = nlohmann::json::object();

@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <string>
 #include <type_traits>
+
+#include "sw/isect/stats_json.h"
 
 namespace fmpp::mpi {
 namespace {
@@ -79,19 +82,10 @@ void RenderChips::agree(const std::vector<isect::Triangle>& tris, const Config& 
                         const isect::KernelOptions& ko) const {
   uint64_t h = fnv1a(tris.data(), tris.size() * sizeof(isect::Triangle));
   s_.check_same(h, "the scene's triangles");
-  const unsigned machine[12] = {cfg.blocks,
-                                cfg.words,
-                                ko.n,
-                                static_cast<unsigned>(ko.mapping),
-                                static_cast<unsigned>(ko.mul),
-                                ko.cull,
-                                ko.cull_packet,
-                                ko.coherent,
-                                ko.cull_probe,
-                                ko.watertight,
-                                ko.fmpp_boxes,
-                                ko.gates};
-  s_.check_same(fnv1a(&ko.t_accuracy, sizeof ko.t_accuracy, fnv1a(machine, sizeof machine)),
+  // The machine's size and every kAgreed kernel option (sw/isect/pass/options.h).
+  const unsigned machine[2] = {cfg.blocks, cfg.words};
+  const std::string options = isect::options_json(ko, isect::kAgreed).dump();
+  s_.check_same(fnv1a(options.data(), options.size(), fnv1a(machine, sizeof machine)),
                 "the FMPP configuration or the kernel options (plan)");
 }
 

@@ -26,7 +26,7 @@ class RenderChips {
  public:
   explicit RenderChips(const Session& s) : s_(s) {}
   // Throws std::runtime_error naming the first rank that differs: the triangles, the
-  // configuration, and the kernel options that decide the passes.
+  // configuration, and every kernel option with the role kAgreed (sw/isect/pass/options.h).
   void agree(const std::vector<isect::Triangle>& tris, const Config& cfg, const isect::KernelOptions& ko) const;
   // leader_works = false: rank 0 only schedules (fmpp-render --rank0 schedule).
   isect::PassShare* attach(const Device& dev, bool leader_works = true);

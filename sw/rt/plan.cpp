@@ -155,16 +155,12 @@ double upper_confidence_bound(size_t hits, size_t trials, double confidence) {
   return hi;
 }
 
-Plan make_plan(const Scene& scene, const PlanRequest& request) {
-  // The forms the plan's golden-model runs prepare, shared by all of them (form_cache.h).
-  std::optional<fmpp::isect::FormCache> own_forms;
-  PlanRequest req = request;
-  if (!req.forms) req.forms = &own_forms.emplace(scene.triangles, kPlanFormBytes);
-  Plan plan;
-  plan.options = req.base;
-  const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
-  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+namespace {
 
+// The machine's words and blocks (decide_words, decide_blocks), fitted to a built RTL
+// configuration where the backend is the RTL's; sizes the user gave are kept or refused.
+void choose_machine(const Scene& scene, const PlanRequest& req, int depth, size_t pixels, Plan* out) {
+  Plan& plan = *out;
   const Decision<unsigned> words = decide_words(scene, req, depth);
   const Decision<unsigned> blocks = decide_blocks(req, pixels);
   plan.why_words = words.why;
@@ -197,6 +193,29 @@ Plan make_plan(const Scene& scene, const PlanRequest& request) {
     plan.why_blocks += rtl.why;
   }
   plan.config.validate();
+}
+
+// The reasons of what the cost model did not model (no pass size priced).
+void not_modelled(const PlanRequest& req, Plan* plan) {
+  plan->why_order = plan->options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
+  plan->why_merge = "the default (not modelled)";
+  plan->why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
+  plan->why_kinds = "apart (not modelled)";
+}
+
+}  // namespace
+
+Plan make_plan(const Scene& scene, const PlanRequest& request) {
+  // The forms the plan's golden-model runs prepare, shared by all of them (form_cache.h).
+  std::optional<fmpp::isect::FormCache> own_forms;
+  PlanRequest req = request;
+  if (!req.forms) req.forms = &own_forms.emplace(scene.triangles, kPlanFormBytes);
+  Plan plan;
+  plan.options = req.base;
+  const int depth = req.max_depth > 0 ? req.max_depth : scene.max_depth;
+  const size_t pixels = static_cast<size_t>(req.width) * req.height;
+
+  choose_machine(scene, req, depth, pixels, &plan);
 
   // The pass-size model's exact render of the frame: its picture is the reference the
   // frame sample is compared with, and the frame sample at the chosen n prices the
@@ -259,12 +278,7 @@ Plan make_plan(const Scene& scene, const PlanRequest& request) {
     const PassRates rates = rates_from(sample_stats);
     decide_pass_size(scene, req, pixels, *f, req.base.cull ? &rates : nullptr, &plan);
   }
-  if (plan.pass_sizes.empty() && !settled) {
-    plan.why_order = plan.options.coherent ? "coherent (not modelled)" : "batch (not modelled)";
-    plan.why_merge = "the default (not modelled)";
-    plan.why_mapping = std::string(fmpp::isect::to_string(req.base.mapping)) + "-parallel (not modelled)";
-    plan.why_kinds = "apart (not modelled)";
-  }
+  if (plan.pass_sizes.empty() && !settled) not_modelled(req, &plan);
   take_users_choices(req, &plan);
   check_on_frame_machine(scene, req, depth, exact, f ? &f->picture : nullptr, &plan);
   return plan;

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "sw/isect/stats_json.h"
+
 namespace rt {
 namespace {
 
@@ -31,39 +33,6 @@ std::string read_all(const std::string& path) {
   std::ostringstream o;
   o << f.rdbuf();
   return o.str();
-}
-
-nlohmann::json request_json(const PlanRequest& r) {
-  const fmpp::isect::KernelOptions& o = r.base;
-  return {{"width", r.width},
-          {"height", r.height},
-          {"max_depth", r.max_depth},
-          {"target", r.target_wrong_rate},
-          {"max_host_share", r.max_host_share},
-          {"max_flagged_share", r.max_flagged_share},
-          {"sample_rays", r.sample_rays},
-          {"sample_pixels", r.sample_pixels},
-          {"confidence", r.confidence},
-          {"rtl_configs", r.rtl_configs},
-          {"bits", r.bits ? static_cast<int>(*r.bits) : -1},
-          {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
-          {"words", r.words ? static_cast<int>(*r.words) : -1},
-          {"mapping", static_cast<int>(o.mapping)},
-          {"choose_mapping", r.choose_mapping},
-          {"mul", static_cast<int>(o.mul)},
-          {"watertight", o.watertight},
-          {"t_accuracy", o.t_accuracy},
-          {"cull", o.cull},
-          {"cull_packet", o.cull_packet},
-          {"cull_probe", o.cull_probe},
-          {"fmpp_boxes", o.fmpp_boxes},
-          {"gates", o.gates},
-          {"coherent", o.coherent},
-          {"cond_bits", o.cond_bits},
-          {"shadow_stop", r.shadow_stop},
-          {"user_coherent", r.coherent ? static_cast<int>(*r.coherent) : -1},
-          {"user_kinds_together", r.kinds_together ? static_cast<int>(*r.kinds_together) : -1},
-          {"user_merge_below", r.merge_below ? static_cast<long long>(*r.merge_below) : -1}};
 }
 
 Rung rung_named(const std::string& name) {
@@ -122,6 +91,31 @@ nlohmann::json escalation_json(const Plan& p) {
 
 }  // namespace
 
+// The request's fields and every kernel option with the role kPlanKey
+// (sw/isect/pass/options.h) of its base.
+nlohmann::json request_json(const PlanRequest& r) {
+  nlohmann::json j = fmpp::isect::options_json(r.base, fmpp::isect::kPlanKey);
+  j.update({{"width", r.width},
+            {"height", r.height},
+            {"max_depth", r.max_depth},
+            {"target", r.target_wrong_rate},
+            {"max_host_share", r.max_host_share},
+            {"max_flagged_share", r.max_flagged_share},
+            {"sample_rays", r.sample_rays},
+            {"sample_pixels", r.sample_pixels},
+            {"confidence", r.confidence},
+            {"rtl_configs", r.rtl_configs},
+            {"bits", r.bits ? static_cast<int>(*r.bits) : -1},
+            {"blocks", r.blocks ? static_cast<int>(*r.blocks) : -1},
+            {"words", r.words ? static_cast<int>(*r.words) : -1},
+            {"choose_mapping", r.choose_mapping},
+            {"shadow_stop", r.shadow_stop},
+            {"user_coherent", r.coherent ? static_cast<int>(*r.coherent) : -1},
+            {"user_kinds_together", r.kinds_together ? static_cast<int>(*r.kinds_together) : -1},
+            {"user_merge_below", r.merge_below ? static_cast<long long>(*r.merge_below) : -1}});
+  return j;
+}
+
 std::string default_plan_cache_dir() {
   if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/fmpp/plans";
   if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/fmpp/plans";
@@ -145,6 +139,101 @@ std::string plan_key(const Scene& scene, const PlanRequest& req) {
   return hex;
 }
 
+namespace {
+
+// A list of the plan as plan_report writes it (a list with no entry is left out).
+nlohmann::json list_of(const nlohmann::json& j, const char* name) {
+  return j.contains(name) ? j.at(name) : nlohmann::json::array();
+}
+
+// The plan's choices and their reasons, as plan_report writes them, into *p (whose
+// options are the request's); false for a pass order or a kind of batch it does not know.
+bool read_choices(const nlohmann::json& j, Plan* p) {
+  p->config = fmpp::Config{j.at("blocks").get<unsigned>(), j.at("words").get<unsigned>()};
+  p->config.validate();
+  p->options.n = j.at("bits").get<unsigned>();
+  const std::string order = j.at("pass_order").get<std::string>();
+  if (order != "coherent" && order != "batch") return false;
+  p->options.coherent = order == "coherent";
+  p->options.merge_below = j.at("merge_below").get<unsigned>();
+  p->why_merge = j.at("why_merge").get<std::string>();
+  p->met_target = j.at("met_target").get<bool>();
+  p->why_bits = j.at("why_bits").get<std::string>();
+  p->why_words = j.at("why_words").get<std::string>();
+  p->why_blocks = j.at("why_blocks").get<std::string>();
+  p->why_order = j.at("why_pass_order").get<std::string>();
+  p->why_mapping = j.at("why_mapping").get<std::string>();
+  p->kinds_together = j.at("shadow_calls").get<std::string>() == "together";
+  p->options.t_accuracy = j.at("t_accuracy").get<double>();
+  const std::string taken = j.at("escalation").at("taken").get<std::string>();
+  p->escalation = taken == "none" ? Rung::kFrameMachine : rung_named(taken);
+  p->why_check = j.at("escalation").at("why").get<std::string>();
+  p->kinds_apart_clocks = j.at("shadow_calls_apart_cycles").get<double>();
+  p->kinds_together_clocks = j.at("shadow_calls_together_cycles").get<double>();
+  p->why_kinds = j.at("why_shadow_calls").get<std::string>();
+  for (const auto& k : j.at("object_parallel")) {
+    bool known = false;
+    for (int i = 0; i < kNumBatchKinds; ++i) {
+      if (k.get<std::string>() == to_string(static_cast<BatchKind>(i))) p->object[i] = known = true;
+    }
+    if (!known) return false;
+  }
+  return true;
+}
+
+// The candidates and the checks, as plan_report writes them, into *p.
+void read_candidates(const nlohmann::json& j, Plan* p) {
+  for (const auto& c : list_of(j, "candidates")) {
+    PlanCandidate pc;
+    pc.n = c.at("n").get<unsigned>();
+    pc.wrong_rate = c.at("wrong_rate").get<double>();
+    pc.host_share = c.at("host_share").get<double>();
+    pc.pixel_rate = c.at("pixel_rate").get<double>();
+    pc.pixel_bound = c.at("pixel_bound").get<double>();
+    pc.pixels_sampled = c.at("pixels_sampled").get<size_t>();
+    pc.flagged_share = c.at("flagged_share").get<double>();
+    pc.primary_redone = c.at("primary_redone").get<double>();
+    pc.primary_sampled = c.at("primary_sampled").get<size_t>();
+    pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
+    p->candidates.push_back(pc);
+  }
+  for (const auto& c : list_of(j, "checks")) p->checks.push_back(check_from(c));
+}
+
+// The cost model's estimates (pass sizes, merges, mappings), as plan_report writes them,
+// into *p.
+void read_estimates(const nlohmann::json& j, Plan* p) {
+  for (const auto& e : list_of(j, "pass_sizes")) {
+    PassSizeEstimate s;
+    s.blocks = e.at("blocks").get<unsigned>();
+    s.passes = e.at("passes").get<size_t>();
+    s.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
+    s.clocks = e.at("estimated_cycles").get<double>();
+    p->pass_sizes.push_back(s);
+  }
+  for (const auto& e : list_of(j, "merges")) {
+    MergeEstimate m;
+    m.below = e.at("below").get<unsigned>();
+    m.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
+    m.clocks = e.at("estimated_cycles").get<double>();
+    m.merged_rays = e.at("merged_rays").get<size_t>();
+    p->merges.push_back(m);
+  }
+  for (const auto& e : list_of(j, "mappings")) {
+    MappingEstimate m;
+    const std::string kind = e.at("kind").get<std::string>();
+    m.kind = kind == "primary" ? BatchKind::kPrimary : kind == "shadow" ? BatchKind::kShadow : BatchKind::kSecondary;
+    m.rays = e.at("rays").get<size_t>();
+    m.ray_clocks = e.at("ray_parallel_cycles").get<double>();
+    m.object_clocks = e.at("object_parallel_cycles").get<double>();
+    m.searched = e.at("search_measured").get<bool>();
+    m.chosen = e.at("chosen").get<bool>();
+    p->mappings.push_back(m);
+  }
+}
+
+}  // namespace
+
 std::optional<Plan> load_plan(const std::string& dir, const std::string& key, const PlanRequest& req) {
   if (dir.empty()) return std::nullopt;
   std::ifstream f(dir + "/" + key + ".json");
@@ -153,79 +242,9 @@ std::optional<Plan> load_plan(const std::string& dir, const std::string& key, co
     const nlohmann::json j = nlohmann::json::parse(f);
     Plan p;
     p.options = req.base;
-    p.config = fmpp::Config{j.at("blocks").get<unsigned>(), j.at("words").get<unsigned>()};
-    p.config.validate();
-    p.options.n = j.at("bits").get<unsigned>();
-    const std::string order = j.at("pass_order").get<std::string>();
-    if (order != "coherent" && order != "batch") return std::nullopt;
-    p.options.coherent = order == "coherent";
-    p.options.merge_below = j.at("merge_below").get<unsigned>();
-    p.why_merge = j.at("why_merge").get<std::string>();
-    p.met_target = j.at("met_target").get<bool>();
-    p.why_bits = j.at("why_bits").get<std::string>();
-    p.why_words = j.at("why_words").get<std::string>();
-    p.why_blocks = j.at("why_blocks").get<std::string>();
-    p.why_order = j.at("why_pass_order").get<std::string>();
-    p.why_mapping = j.at("why_mapping").get<std::string>();
-    p.kinds_together = j.at("shadow_calls").get<std::string>() == "together";
-    p.options.t_accuracy = j.at("t_accuracy").get<double>();
-    const std::string taken = j.at("escalation").at("taken").get<std::string>();
-    p.escalation = taken == "none" ? Rung::kFrameMachine : rung_named(taken);
-    p.why_check = j.at("escalation").at("why").get<std::string>();
-    p.kinds_apart_clocks = j.at("shadow_calls_apart_cycles").get<double>();
-    p.kinds_together_clocks = j.at("shadow_calls_together_cycles").get<double>();
-    p.why_kinds = j.at("why_shadow_calls").get<std::string>();
-    for (const auto& k : j.at("object_parallel")) {
-      bool known = false;
-      for (int i = 0; i < kNumBatchKinds; ++i) {
-        if (k.get<std::string>() == to_string(static_cast<BatchKind>(i))) p.object[i] = known = true;
-      }
-      if (!known) return std::nullopt;
-    }
-    // The lists, as plan_report writes them (a list with no entry is left out).
-    const auto list = [&](const char* name) { return j.contains(name) ? j.at(name) : nlohmann::json::array(); };
-    for (const auto& c : list("candidates")) {
-      PlanCandidate pc;
-      pc.n = c.at("n").get<unsigned>();
-      pc.wrong_rate = c.at("wrong_rate").get<double>();
-      pc.host_share = c.at("host_share").get<double>();
-      pc.pixel_rate = c.at("pixel_rate").get<double>();
-      pc.pixel_bound = c.at("pixel_bound").get<double>();
-      pc.pixels_sampled = c.at("pixels_sampled").get<size_t>();
-      pc.flagged_share = c.at("flagged_share").get<double>();
-      pc.primary_redone = c.at("primary_redone").get<double>();
-      pc.primary_sampled = c.at("primary_sampled").get<size_t>();
-      pc.sample_cycles = c.at("sample_cycles").get<uint64_t>();
-      p.candidates.push_back(pc);
-    }
-    for (const auto& c : list("checks")) p.checks.push_back(check_from(c));
-    for (const auto& e : list("pass_sizes")) {
-      PassSizeEstimate s;
-      s.blocks = e.at("blocks").get<unsigned>();
-      s.passes = e.at("passes").get<size_t>();
-      s.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
-      s.clocks = e.at("estimated_cycles").get<double>();
-      p.pass_sizes.push_back(s);
-    }
-    for (const auto& e : list("merges")) {
-      MergeEstimate m;
-      m.below = e.at("below").get<unsigned>();
-      m.broadcasts = e.at("estimated_broadcasts").get<uint64_t>();
-      m.clocks = e.at("estimated_cycles").get<double>();
-      m.merged_rays = e.at("merged_rays").get<size_t>();
-      p.merges.push_back(m);
-    }
-    for (const auto& e : list("mappings")) {
-      MappingEstimate m;
-      const std::string kind = e.at("kind").get<std::string>();
-      m.kind = kind == "primary" ? BatchKind::kPrimary : kind == "shadow" ? BatchKind::kShadow : BatchKind::kSecondary;
-      m.rays = e.at("rays").get<size_t>();
-      m.ray_clocks = e.at("ray_parallel_cycles").get<double>();
-      m.object_clocks = e.at("object_parallel_cycles").get<double>();
-      m.searched = e.at("search_measured").get<bool>();
-      m.chosen = e.at("chosen").get<bool>();
-      p.mappings.push_back(m);
-    }
+    if (!read_choices(j, &p)) return std::nullopt;
+    read_candidates(j, &p);
+    read_estimates(j, &p);
     if (p.options.n < 2 || p.options.n > 32) return std::nullopt;
     return p;
   } catch (const std::exception&) {

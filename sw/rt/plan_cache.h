@@ -23,6 +23,9 @@ std::string default_plan_cache_dir();
 // version and the running program (its path, size and time: a rebuild plans again), as
 // 16 hex digits.
 std::string plan_key(const Scene& scene, const PlanRequest& req);
+// The request's part of that hash: its fields and every kernel option of req.base with
+// the role kPlanKey (sw/isect/pass/options.h).
+nlohmann::json request_json(const PlanRequest& req);
 
 // The cached plan of `key` in `dir`, or nothing (none, or a file that does not parse as
 // one: it is then planned again and overwritten).

@@ -194,6 +194,172 @@ void check_resolution(int width, int height) {
   }
 }
 
+namespace {
+
+// The listed pixels checked against the frame; their count (the frame's without a list).
+size_t checked_pixels(const RenderOptions& opt) {
+  const size_t frame = static_cast<size_t>(opt.width) * static_cast<size_t>(opt.height);
+  for (uint32_t i : opt.pixels) {
+    if (i >= frame) {
+      throw std::invalid_argument("pixel " + std::to_string(i) + " outside the " + std::to_string(opt.width) + "x" +
+                                  std::to_string(opt.height) + " frame");
+    }
+  }
+  const size_t pixels = opt.pixels.empty() ? frame : opt.pixels.size();
+  if (pixels > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    throw std::invalid_argument("render: " + std::to_string(pixels) + " listed pixels, more than one image holds");
+  }
+  return pixels;
+}
+
+// The primary rays of pixels [first, last) of the list (else the frame), spp samples each,
+// and their paths.
+void band_rays(const PixelRays& at, const RenderOptions& opt, size_t first, size_t last, int spp, uint64_t seed,
+               std::vector<Ray>* rays, std::vector<Path>* paths) {
+  for (size_t k = first; k < last; ++k) {
+    const uint32_t i = opt.pixels.empty() ? static_cast<uint32_t>(k) : opt.pixels[k];
+    const auto slot = static_cast<uint32_t>(k);  // the pixel's place in the image
+    if (spp == 1) {
+      rays->push_back(at(i));
+      paths->push_back(Path{slot, glm::dvec3(1), RayKind::kPrimary, i});
+      continue;
+    }
+    // The pixel's samples share the eye, so they travel with the other primary rays in
+    // the paper's form; each weighs 1 / spp (the box filter).
+    for (int j = 0; j < spp; ++j) {
+      SampleRng rng(seed, kPixelSample, i, static_cast<uint64_t>(j));
+      const double u1 = rng.next(), u2 = rng.next();
+      const glm::dvec2 d = stratified(j, spp, u1, u2);
+      rays->push_back(at(i, d.x, d.y));
+      paths->push_back(Path{slot, glm::dvec3(1.0 / spp), RayKind::kPrimary,
+                            static_cast<uint64_t>(i) * static_cast<uint64_t>(spp) + static_cast<uint64_t>(j)});
+    }
+  }
+}
+
+// The tracing of a frame's bands: each band's rays to the full depth, level by level
+// (intersect, count, shade), its shadow rays in batches; the progress told as it goes.
+class FrameTracer {
+ public:
+  FrameTracer(Intersector& isect, const RenderOptions& opt, RenderStats& st, const Shader& shader, Image& img,
+              int depth, uint64_t primary_total)
+      : isect_(isect), opt_(opt), st_(st), shader_(shader), img_(img), depth_(depth) {
+    bp_.depth = depth;
+    bp_.primary_total = primary_total;
+  }
+
+  // One band, whose primary rays end the first `primary_started` of the frame's.
+  void trace_band(std::vector<Ray> rays, std::vector<Path> paths, uint64_t primary_started) {
+    bp_.primary_started = primary_started;
+    ahead_.clear();
+    have_ahead_ = false;
+    for (int level = 0; level < depth_ && !rays.empty(); ++level) {
+      const std::vector<Hit> hits = level_hits(level, rays, paths);
+      ShadeOutput out;
+      shade_level(level, rays, paths, hits, out);
+      rays.swap(out.next);
+      paths.swap(out.next_paths);
+    }
+  }
+
+ private:
+  void tell(BatchKind kind, int level, uint64_t n, uint64_t next, bool done) {
+    if (!opt_.progress) return;
+    bp_.kind = kind;
+    bp_.level = level;
+    bp_.rays = n;
+    bp_.next_rays = next;
+    bp_.traced = traced_;
+    bp_.done = done;
+    opt_.progress(bp_);
+  }
+
+  // The level's hits: intersected now, or found with the last level's last shadows.
+  std::vector<Hit> level_hits(int level, const std::vector<Ray>& rays, const std::vector<Path>& paths) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<Hit> hits;
+    const bool from_merged = have_ahead_;  // traced with the last level's last shadows
+    const BatchKind kind = level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary;
+    if (have_ahead_) {
+      hits.swap(ahead_);
+      have_ahead_ = false;
+    } else {
+      tell(kind, level, rays.size(), 0, false);
+      isect_.set_batch_kind(kind);
+      hits = isect_.intersect(rays);
+    }
+    st_.intersect_seconds += seconds_since(t0);
+    ++st_.batches;
+    for (size_t i = 0; i < paths.size(); ++i) {
+      ++st_.rays[static_cast<int>(paths[i].kind)];
+      count_redo(hits[i], static_cast<int>(paths[i].kind), st_);
+    }
+    if (!from_merged) {
+      traced_ += rays.size();
+      tell(kind, level, rays.size(), 0, true);
+    }
+    return hits;
+  }
+
+  // Shades the level's hits into the image and `out` (the next level's rays), casting the
+  // shadow rays in batches of about kShadowBatch (many lights times many pixels would
+  // otherwise be built at once); the level's last shadows go with the next level's rays.
+  void shade_level(int level, const std::vector<Ray>& rays, const std::vector<Path>& paths,
+                   const std::vector<Hit>& hits, ShadeOutput& out) {
+    auto t0 = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < rays.size(); ++i) {
+      shader_.shade(rays[i], paths[i], hits[i], level + 1 < depth_, img_, out);
+      if (out.shadow_rays.size() >= kShadowBatch) {
+        st_.shade_seconds += seconds_since(t0);
+        cast_shadows(level, out, false);
+        t0 = std::chrono::steady_clock::now();
+      }
+    }
+    st_.shade_seconds += seconds_since(t0);
+    cast_shadows(level, out, level + 1 < depth_ && !out.next.empty());
+  }
+
+  // The shadow rays of `out`, and with_next: the level's last shadows, with the next
+  // level's rays (independent of them) in the same call; their hits wait in ahead_. The
+  // same calls, in the same order, as one after the other.
+  void cast_shadows(int level, ShadeOutput& out, bool with_next) {
+    if (out.shadow_rays.empty()) return;
+    const auto ts = std::chrono::steady_clock::now();
+    std::vector<Hit> sh;
+    const uint64_t next = with_next ? out.next.size() : 0, n = out.shadow_rays.size() + next;
+    tell(BatchKind::kShadow, level, n, next, false);
+    if (with_next) {
+      std::tie(sh, ahead_) = isect_.intersect_two(out.shadow_rays, BatchKind::kShadow, out.next, BatchKind::kSecondary);
+      have_ahead_ = true;
+    } else {
+      isect_.set_batch_kind(BatchKind::kShadow);
+      sh = isect_.intersect(out.shadow_rays);
+    }
+    st_.intersect_seconds += seconds_since(ts);
+    ++st_.batches;
+    st_.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
+    for (const Hit& h : sh) count_redo(h, static_cast<int>(RayKind::kShadow), st_);
+    traced_ += n;
+    tell(BatchKind::kShadow, level, n, next, true);
+    Shader::add_unshadowed(out.shadows, sh, img_);
+    out.shadow_rays.clear();
+    out.shadows.clear();
+  }
+
+  Intersector& isect_;
+  const RenderOptions& opt_;
+  RenderStats& st_;
+  const Shader& shader_;
+  Image& img_;
+  const int depth_;
+  uint64_t traced_ = 0;
+  BatchProgress bp_;
+  std::vector<Hit> ahead_;  // the next level's hits, found with the last level's last shadows
+  bool have_ahead_ = false;
+};
+
+}  // namespace
+
 Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, RenderStats* stats) {
   check_resolution(opt.width, opt.height);
   RenderStats local;
@@ -207,134 +373,21 @@ Image render(const Scene& sc, Intersector& isect, const RenderOptions& opt, Rend
   if (spp < 1 || spp > kMaxSpp) {
     throw std::invalid_argument("samples per pixel " + std::to_string(spp) + " outside 1.." + std::to_string(kMaxSpp));
   }
-
-  // Pixels in bands of at most kPrimaryBatch primary rays, each traced to the full
-  // depth before the next: the rays, paths and hits in memory stay bounded whatever the
-  // resolution (only the image grows with it).
-  const size_t frame = static_cast<size_t>(opt.width) * static_cast<size_t>(opt.height);
-  for (uint32_t i : opt.pixels) {
-    if (i >= frame) {
-      throw std::invalid_argument("pixel " + std::to_string(i) + " outside the " + std::to_string(opt.width) + "x" +
-                                  std::to_string(opt.height) + " frame");
-    }
-  }
-  const size_t pixels = opt.pixels.empty() ? frame : opt.pixels.size();
-  if (pixels > static_cast<size_t>(std::numeric_limits<int>::max())) {
-    throw std::invalid_argument("render: " + std::to_string(pixels) + " listed pixels, more than one image holds");
-  }
+  const size_t pixels = checked_pixels(opt);
   // The image: the frame, or the listed pixels alone (a path's pixel is then its slot).
   Image img = opt.pixels.empty() ? Image(opt.width, opt.height) : Image(static_cast<int>(pixels), 1);
   const PixelRays at(sc.camera, opt.width, opt.height);
-  // A band holds at most kPrimaryBatch primary rays: all the samples of its pixels.
+  // Pixels in bands of at most kPrimaryBatch primary rays (all the samples of its
+  // pixels), each traced to the full depth before the next: the rays, paths and hits in
+  // memory stay bounded whatever the resolution (only the image grows with it).
   const size_t band = std::max<size_t>(1, kPrimaryBatch / static_cast<size_t>(spp));
-  uint64_t traced = 0;
-  BatchProgress bp;
-  bp.depth = depth;
-  bp.primary_total = static_cast<uint64_t>(pixels) * static_cast<uint64_t>(spp);
-  const auto tell = [&](BatchKind kind, int level, uint64_t n, uint64_t next, bool done) {
-    if (!opt.progress) return;
-    bp.kind = kind;
-    bp.level = level;
-    bp.rays = n;
-    bp.next_rays = next;
-    bp.traced = traced;
-    bp.done = done;
-    opt.progress(bp);
-  };
+  FrameTracer tracer(isect, opt, st, shader, img, depth, static_cast<uint64_t>(pixels) * static_cast<uint64_t>(spp));
   for (size_t first = 0; first < pixels; first += band) {
     const size_t last = std::min(pixels, first + band);
-    bp.primary_started = static_cast<uint64_t>(last) * static_cast<uint64_t>(spp);
     std::vector<Ray> rays;
     std::vector<Path> paths;
-    for (size_t k = first; k < last; ++k) {
-      const uint32_t i = opt.pixels.empty() ? static_cast<uint32_t>(k) : opt.pixels[k];
-      const auto slot = static_cast<uint32_t>(k);  // the pixel's place in the image
-      if (spp == 1) {
-        rays.push_back(at(i));
-        paths.push_back(Path{slot, glm::dvec3(1), RayKind::kPrimary, i});
-        continue;
-      }
-      // The pixel's samples share the eye, so they travel with the other primary rays in
-      // the paper's form; each weighs 1 / spp (the box filter).
-      for (int j = 0; j < spp; ++j) {
-        SampleRng rng(seed, kPixelSample, i, static_cast<uint64_t>(j));
-        const double u1 = rng.next(), u2 = rng.next();
-        const glm::dvec2 d = stratified(j, spp, u1, u2);
-        rays.push_back(at(i, d.x, d.y));
-        paths.push_back(Path{slot, glm::dvec3(1.0 / spp), RayKind::kPrimary,
-                             static_cast<uint64_t>(i) * static_cast<uint64_t>(spp) + static_cast<uint64_t>(j)});
-      }
-    }
-
-    std::vector<Hit> ahead;  // this level's hits, found with the last level's last shadows
-    bool have_ahead = false;
-    for (int level = 0; level < depth && !rays.empty(); ++level) {
-      auto t0 = std::chrono::steady_clock::now();
-      std::vector<Hit> hits;
-      const bool from_merged = have_ahead;  // traced with the last level's last shadows
-      if (have_ahead) {
-        hits.swap(ahead);
-        have_ahead = false;
-      } else {
-        const BatchKind kind = level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary;
-        tell(kind, level, rays.size(), 0, false);
-        isect.set_batch_kind(kind);
-        hits = isect.intersect(rays);
-      }
-      st.intersect_seconds += seconds_since(t0);
-      ++st.batches;
-      for (size_t i = 0; i < paths.size(); ++i) {
-        ++st.rays[static_cast<int>(paths[i].kind)];
-        count_redo(hits[i], static_cast<int>(paths[i].kind), st);
-      }
-      if (!from_merged) {
-        traced += rays.size();
-        tell(level == 0 ? BatchKind::kPrimary : BatchKind::kSecondary, level, rays.size(), 0, true);
-      }
-
-      t0 = std::chrono::steady_clock::now();
-      ShadeOutput out;
-      // Shadow rays go out in batches of about kShadowBatch (many lights times many
-      // pixels would otherwise be built at once).
-      // with_next: the level's last shadows, with the next level's rays (independent of
-      // them) in the same call; their hits wait in `ahead`. The same calls, in the same
-      // order, as one after the other.
-      auto cast_shadows = [&](bool with_next) {
-        if (out.shadow_rays.empty()) return;
-        const auto ts = std::chrono::steady_clock::now();
-        std::vector<Hit> sh;
-        const uint64_t next = with_next ? out.next.size() : 0, n = out.shadow_rays.size() + next;
-        tell(BatchKind::kShadow, level, n, next, false);
-        if (with_next) {
-          std::tie(sh, ahead) = isect.intersect_two(out.shadow_rays, BatchKind::kShadow, out.next, BatchKind::kSecondary);
-          have_ahead = true;
-        } else {
-          isect.set_batch_kind(BatchKind::kShadow);
-          sh = isect.intersect(out.shadow_rays);
-        }
-        st.intersect_seconds += seconds_since(ts);
-        ++st.batches;
-        st.rays[static_cast<int>(RayKind::kShadow)] += out.shadow_rays.size();
-        for (const Hit& h : sh) count_redo(h, static_cast<int>(RayKind::kShadow), st);
-        traced += n;
-        tell(BatchKind::kShadow, level, n, next, true);
-        Shader::add_unshadowed(out.shadows, sh, img);
-        out.shadow_rays.clear();
-        out.shadows.clear();
-      };
-      for (size_t i = 0; i < rays.size(); ++i) {
-        shader.shade(rays[i], paths[i], hits[i], level + 1 < depth, img, out);
-        if (out.shadow_rays.size() >= kShadowBatch) {
-          st.shade_seconds += seconds_since(t0);
-          cast_shadows(false);
-          t0 = std::chrono::steady_clock::now();
-        }
-      }
-      st.shade_seconds += seconds_since(t0);
-      cast_shadows(level + 1 < depth && !out.next.empty());
-      rays.swap(out.next);
-      paths.swap(out.next_paths);
-    }
+    band_rays(at, opt, first, last, spp, seed, &rays, &paths);
+    tracer.trace_band(std::move(rays), std::move(paths), static_cast<uint64_t>(last) * static_cast<uint64_t>(spp));
   }
   return img;
 }

@@ -92,59 +92,83 @@ glm::dvec3 rotate(const Step& st, const glm::dvec3& p) {
 }
 
 
+// A placement by its 'matrix' (an affine 4 x 4, alone): its linear part with the
+// inverse transpose for the normals, and its translation.
+Placement matrix_placement(const json& t, const std::string& file, const std::string& where) {
+  Placement pl;
+  for (const char* other : {"scale", "rotate", "rotate_y_deg", "translate"}) {
+    if (t.contains(other)) field_error(file, where + "." + other, "cannot be given with 'matrix'");
+  }
+  const json& m = t["matrix"];
+  const std::string w = where + ".matrix";
+  if (!m.is_array() || m.size() != 4) field_error(file, w, "expected 4 rows of 4 numbers");
+  Step lin;
+  lin.kind = Step::kLinear;
+  Step tr;
+  tr.kind = Step::kTranslate;
+  for (int r = 0; r < 4; ++r) {
+    const std::string wr = w + "[" + std::to_string(r) + "]";
+    if (!m[r].is_array() || m[r].size() != 4) field_error(file, wr, "expected a row of 4 numbers");
+    for (int c = 0; c < 4; ++c) {
+      const std::string wc = wr + "[" + std::to_string(c) + "]";
+      if (r == 3) {
+        if (number(m[r][c], file, wc, -1e9, 1e9) != (c == 3 ? 1 : 0)) {
+          field_error(file, wr, "must be [0, 0, 0, 1] (an affine transform)");
+        }
+      } else if (c == 3) {
+        tr.v[r] = number(m[r][c], file, wc, -kMaxScenePosition, kMaxScenePosition);
+      } else {
+        lin.m[r][c] = number(m[r][c], file, wc, -1e6, 1e6);
+      }
+    }
+  }
+  const auto& a = lin.m;
+  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                     a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (!(std::abs(det) >= 1e-18) || !std::isfinite(det)) {
+    field_error(file, w, "is singular (determinant " + exact_text(det) + "): it would flatten the mesh");
+  }
+  // Inverse transpose = cofactor matrix / det.
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      lin.n[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+    }
+  }
+  pl.mirrors = det < 0;
+  bool is_identity = true;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) is_identity = is_identity && a[r][c] == (r == c ? 1 : 0);
+  }
+  if (!is_identity) pl.steps.push_back(lin);
+  if (tr.v != glm::dvec3(0)) pl.steps.push_back(tr);
+  return pl;
+}
+
+// The steps of 'rotate' (one {"axis", "deg"} or a list of them), in order, into *pl.
+void add_rotations(const json& t, const std::string& file, const std::string& where, Placement* pl) {
+  const json& r = t["rotate"];
+  const std::string w = where + ".rotate";
+  if (!r.is_object() && !(r.is_array() && !r.empty())) {
+    field_error(file, w, "expected {\"axis\": [x, y, z], \"deg\": a} or a non-empty array of them");
+  }
+  const size_t n = r.is_array() ? r.size() : 1;
+  for (size_t k = 0; k < n; ++k) {
+    const json& one = r.is_array() ? r[k] : r;
+    const std::string wk = r.is_array() ? w + "[" + std::to_string(k) + "]" : w;
+    reject_unknown(one, {"axis", "deg"}, file, wk);
+    const glm::dvec3 axis = direction(require(one, "axis", file, wk), file, wk + ".axis");
+    const double deg = number(require(one, "deg", file, wk), file, wk + ".deg", -360, 360);
+    const Step st = rotation(axis, deg, file, wk);
+    if (deg != 0) pl->steps.push_back(st);
+  }
+}
+
 Placement placement(const json& t, const std::string& file, const std::string& where) {
   reject_unknown(t, {"matrix", "scale", "rotate", "rotate_y_deg", "translate"}, file, where);
+  if (t.contains("matrix")) return matrix_placement(t, file, where);
   Placement pl;
-  if (t.contains("matrix")) {
-    for (const char* other : {"scale", "rotate", "rotate_y_deg", "translate"}) {
-      if (t.contains(other)) field_error(file, where + "." + other, "cannot be given with 'matrix'");
-    }
-    const json& m = t["matrix"];
-    const std::string w = where + ".matrix";
-    if (!m.is_array() || m.size() != 4) field_error(file, w, "expected 4 rows of 4 numbers");
-    Step lin;
-    lin.kind = Step::kLinear;
-    Step tr;
-    tr.kind = Step::kTranslate;
-    for (int r = 0; r < 4; ++r) {
-      const std::string wr = w + "[" + std::to_string(r) + "]";
-      if (!m[r].is_array() || m[r].size() != 4) field_error(file, wr, "expected a row of 4 numbers");
-      for (int c = 0; c < 4; ++c) {
-        const std::string wc = wr + "[" + std::to_string(c) + "]";
-        if (r == 3) {
-          if (number(m[r][c], file, wc, -1e9, 1e9) != (c == 3 ? 1 : 0)) {
-            field_error(file, wr, "must be [0, 0, 0, 1] (an affine transform)");
-          }
-        } else if (c == 3) {
-          tr.v[r] = number(m[r][c], file, wc, -kMaxScenePosition, kMaxScenePosition);
-        } else {
-          lin.m[r][c] = number(m[r][c], file, wc, -1e6, 1e6);
-        }
-      }
-    }
-    const auto& a = lin.m;
-    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    if (!(std::abs(det) >= 1e-18) || !std::isfinite(det)) {
-      field_error(file, w, "is singular (determinant " + exact_text(det) + "): it would flatten the mesh");
-    }
-    // Inverse transpose = cofactor matrix / det.
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) {
-        const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-        lin.n[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
-      }
-    }
-    pl.mirrors = det < 0;
-    bool is_identity = true;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) is_identity = is_identity && a[r][c] == (r == c ? 1 : 0);
-    }
-    if (!is_identity) pl.steps.push_back(lin);
-    if (tr.v != glm::dvec3(0)) pl.steps.push_back(tr);
-    return pl;
-  }
   if (t.contains("scale")) {
     const std::string w = where + ".scale";
     Step st;
@@ -163,23 +187,7 @@ Placement placement(const json& t, const std::string& file, const std::string& w
     const double deg = number(t["rotate_y_deg"], file, where + ".rotate_y_deg", -360, 360);
     if (deg != 0) pl.steps.push_back(rotation(glm::dvec3(0, 1, 0), deg, file, where + ".rotate_y_deg"));
   }
-  if (t.contains("rotate")) {
-    const json& r = t["rotate"];
-    const std::string w = where + ".rotate";
-    if (!r.is_object() && !(r.is_array() && !r.empty())) {
-      field_error(file, w, "expected {\"axis\": [x, y, z], \"deg\": a} or a non-empty array of them");
-    }
-    const size_t n = r.is_array() ? r.size() : 1;
-    for (size_t k = 0; k < n; ++k) {
-      const json& one = r.is_array() ? r[k] : r;
-      const std::string wk = r.is_array() ? w + "[" + std::to_string(k) + "]" : w;
-      reject_unknown(one, {"axis", "deg"}, file, wk);
-      const glm::dvec3 axis = direction(require(one, "axis", file, wk), file, wk + ".axis");
-      const double deg = number(require(one, "deg", file, wk), file, wk + ".deg", -360, 360);
-      const Step st = rotation(axis, deg, file, wk);
-      if (deg != 0) pl.steps.push_back(st);
-    }
-  }
+  if (t.contains("rotate")) add_rotations(t, file, where, &pl);
   if (t.contains("translate")) {
     Step st;
     st.kind = Step::kTranslate;

@@ -156,6 +156,12 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
   // The hit point's own error: from t's (exact, or the FMPP's certified bound), never
   // from the scene's size.
   const double off = spawn_offset(r, hx.t, s.nf, std::max(hx.t_err, kDoubleTError)) + spawn_margin_;
+  cast_to_lights(path, h, m, s, off, out);
+  if (spawn) spawn_rays(path, h, m, s, off, out);
+}
+
+void Shader::cast_to_lights(const Path& path, const Hit& h, const Surface& m, const SurfacePoint& s, double off,
+                            ShadeOutput& out) const {
   // A shadow ray cast from a point q of a light to the shaded point: every shadow ray
   // from q shares its origin. It asks only what lies before kShadowEnd (hits beyond count
   // as lit), so its own triangle, whose plane it meets at t = 1, is a culling hint
@@ -204,7 +210,10 @@ void Shader::shade(const Ray& r, const Path& path, const Hit& h, bool spawn, Ima
       }
     }
   }
-  if (!spawn) return;
+}
+
+void Shader::spawn_rays(const Path& path, const Hit& h, const Surface& m, const SurfacePoint& s, double off,
+                        ShadeOutput& out) {
   int part_index = 0;
   for (const auto& part : m.parts()) {
     Spawn sp;

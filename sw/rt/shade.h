@@ -79,6 +79,13 @@ class Shader {
   // Sample k of area light `li` for the shading point whose stream is `rng`: the point q
   // on the light and the light's unit outward normal there.
   void light_sample(size_t li, int k, SampleRng& rng, glm::dvec3* q, glm::dvec3* nq) const;
+  // The shadow queries of the shaded point s (surface m, hit h, off the surface by off)
+  // towards every light, into out.
+  void cast_to_lights(const Path& path, const fmpp::isect::Hit& h, const Surface& m, const SurfacePoint& s,
+                      double off, ShadeOutput& out) const;
+  // The reflection and refraction rays of the shaded point s, into out.
+  static void spawn_rays(const Path& path, const fmpp::isect::Hit& h, const Surface& m, const SurfacePoint& s,
+                         double off, ShadeOutput& out);
 
   const Scene& scene_;
   std::vector<Surface> surfaces_;  // one per scene material

@@ -49,13 +49,6 @@ inline std::string repo_file(const std::string& rel) {
   return (fs::path(FMPP_SOURCE_DIR) / rel).lexically_normal().string();
 }
 
-// --no-gates, the same in every tool that runs the kernels (KernelOptions::gates).
-inline void add_no_gates_flag(CLI::App& app, bool& no_gates) {
-  app.add_flag("--no-gates", no_gates,
-               "send every broadcast whole, without asking the ANY responder whether some block may be inside its "
-               "triangle before its distance part (the same answers, more clocks)");
-}
-
 // --config NAME beside --blocks and --words: one or the other, never both (a named
 // configuration fixes both sizes). Declared on the options, so CLI11 refuses the
 // combination while parsing; the name itself is checked here, before any work.

@@ -6,8 +6,9 @@
 // Output: one line per ray, in input order: "triangle_index t" (hit point o + t d), or
 // "-1 inf" for a miss. The JSON report holds the machine's counts: cycles (load,
 // compute, readback), passes, broadcasts, steps per broadcast, overflows, host work.
-// Every option of the kernels (KernelOptions) is one of the command line's, so that the
-// differential tests (tests/diff/optrun.py) can draw any of them.
+// Every option of the kernels (KernelOptions) is one of the command line's (declared from
+// their list: sw/tools/kernel_flags.h), so that the differential tests
+// (tests/diff/optrun.py) can draw any of them; the report names those with kReported.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -23,99 +24,13 @@
 #include "sw/isect/exact/reference.h"
 #include "sw/isect/stats_json.h"
 #include "sw/tools/cli_options.h"
+#include "sw/tools/kernel_flags.h"
 #include "backends/rtl/rtl_bus.h"
 
 using namespace fmpp;
 using namespace fmpp::isect;
 
 namespace {
-
-// The command line's kernel options, as given (strings where the tool names a choice).
-struct KernelFlags {
-  std::string mapping = "ray", mul = "const", origins = "auto", pass_order = "coherent";
-  unsigned bits = 24, vbits = 28, mbits = 28, qbits = 20, cull_packet = 1, merge_below = 0;
-  int cond_bits = -1;
-  double t_accuracy = 0;
-  bool watertight = false, no_gates = false, no_cull = false, no_probe = false, no_fmpp_boxes = false;
-  bool occlusion = false, oracle = false;
-};
-
-void add_form_options(CLI::App& app, KernelFlags& f) {
-  app.add_option("--mapping", f.mapping, "ray | object")->capture_default_str()->check(CLI::IsMember({"ray", "object"}));
-  app.add_option("--mul", f.mul, "multiply: const (CSD, specialised to the broadcast constant) | generic")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"const", "generic"}));
-  app.add_option("--bits", f.bits, "multiplier bits n")->capture_default_str()->check(bits_range());
-  app.add_option("--vbits", f.vbits, "ray-parallel: bits of the ray components (the multiplicand)")
-      ->capture_default_str()
-      ->check(int_range(2, 28));
-  app.add_option("--mbits", f.mbits, "object-parallel: bits of the matrix mantissas (the multiplicand)")
-      ->capture_default_str()
-      ->check(int_range(2, 28));
-  app.add_option("--cond-bits", f.cond_bits,
-                 "triangles with condition number above 2^this go to the host (-1: chosen from the bits)")
-      ->capture_default_str()
-      ->check(int_range(-1, 60));
-  app.add_option("--t-accuracy", f.t_accuracy,
-                 "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
-                 "(0: the default, docs/intersection.md)")
-      ->capture_default_str()
-      ->check(finite_range(0.0, 0.5));
-  app.add_option("--origins", f.origins,
-                 "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "
-                 "general formulation for the rest) | group | general")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "group", "general"}));
-  app.add_option("--merge-below", f.merge_below,
-                 "with --origins auto: the rays of an origin shared by fewer rays than this take the arbitrary-origin "
-                 "kernel (1: none; 0: max(16, blocks / 8))")
-      ->capture_default_str()
-      ->check(int_range(0, 1 << 24));
-  app.add_flag("--watertight", f.watertight, "certified edge functions for rays sharing an origin (no cracks, no vertex moved)");
-  app.add_option("--qbits", f.qbits, "general formulation: bits of the distance quotient")
-      ->capture_default_str()
-      ->check(int_range(4, 28));
-}
-
-void add_cull_options(CLI::App& app, KernelFlags& f) {
-  add_no_gates_flag(app, f.no_gates);
-  app.add_flag("--no-cull", f.no_cull, "broadcast every triangle in every pass");
-  app.add_flag("--no-probe", f.no_probe, "culling without the front-to-back probe");
-  app.add_flag("--no-fmpp-boxes", f.no_fmpp_boxes,
-               "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
-  app.add_option("--cull-packet", f.cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  app.add_option("--pass-order", f.pass_order, "coherent (image tiles, octant and origin) | batch (the rays' own order)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"coherent", "batch"}));
-  app.add_flag("--occlusion", f.occlusion,
-               "occlusion queries: a ray with a finite tmax may get any certified hit certainly before its tmax "
-               "instead of the nearest");
-  app.add_flag("--oracle", f.oracle, "also count, per pass, what the any-hit, nearest-hit and box oracles would send");
-}
-
-KernelOptions kernel_options(const KernelFlags& f) {
-  KernelOptions opt;
-  opt.mapping = parse_mapping(f.mapping);
-  opt.mul = parse_mul_mode(f.mul);
-  opt.n = f.bits;
-  opt.vbits = f.vbits;
-  opt.mbits = f.mbits;
-  opt.qbits = f.qbits;
-  opt.cond_bits = f.cond_bits;
-  opt.t_accuracy = f.t_accuracy;
-  opt.origins = parse_origins(f.origins);
-  opt.merge_below = f.merge_below;
-  opt.watertight = f.watertight;
-  opt.gates = !f.no_gates;
-  opt.cull = !f.no_cull;
-  opt.cull_probe = !f.no_probe;
-  opt.fmpp_boxes = !f.no_fmpp_boxes;
-  opt.cull_packet = f.cull_packet;
-  opt.coherent = f.pass_order == "coherent";
-  opt.occlusion = f.occlusion;
-  opt.oracle = f.oracle;
-  return opt;
-}
 
 // The machine for `opt`: --config, or --blocks with --words (default: what the forms
 // need). The RTL exists in its built sizes only: there the default words are the fewest
@@ -159,9 +74,8 @@ Config machine(const std::vector<Ray>& rays, const KernelOptions& opt, const Mac
 }
 
 // The FMPP's answers, with its counters in *rep.
-std::vector<Hit> run_fmpp(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const KernelFlags& flags,
+std::vector<Hit> run_fmpp(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, const KernelOptions& opt,
                           const MachineFlags& m, const BackendOptions& bo, nlohmann::json* rep) {
-  const KernelOptions opt = kernel_options(flags);
   const Config cfg = machine(rays, opt, m);
   auto be = make_backend(m.backend, cfg, bo);
   Device dev(be->bus());
@@ -169,52 +83,62 @@ std::vector<Hit> run_fmpp(const std::vector<Ray>& rays, const std::vector<Triang
   std::vector<Hit> hits = intersect_fmpp(dev, rays, tris, opt, &st);
   be->finish();
   (*rep)["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}};
-  (*rep)["mapping"] = flags.mapping;
-  (*rep)["multiply"] = flags.mul;
-  (*rep)["bits"] = flags.bits;
-  (*rep)["watertight"] = flags.watertight;
+  rep->update(options_json(opt, kReported));
   rep->update(stats_json(st));
-  if (flags.oracle) (*rep)["oracle"] = oracle_json(st);
+  if (opt.oracle) (*rep)["oracle"] = oracle_json(st);
   return hits;
+}
+
+// The command line, as given.
+struct Args {
+  std::string tri_file, ray_file, out_file = "-", report_file, backend = "cmodel", config;
+  unsigned blocks = 64, words = 0;
+  bool hex_t = false;
+  tools::KernelFlags flags;  // the kernel options' flags (sw/tools/kernel_flags.h)
+  BackendOptions bo;
+};
+
+// Parses the command line into *a: -1 to go on, else the exit status (help, a usage error).
+int parse(int argc, char** argv, Args* a) {
+  CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
+  app.add_option("--triangles", a->tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
+      ->required();
+  app.add_option("--rays", a->ray_file,
+                 "ray file: ox oy oz dx dy dz [tmin tmax [exclude [hint]]] per line, |o| <= 1e100, largest |d| in "
+                 "[1e-100, 1e100], tmin >= 0, tmax a number or inf, exclude and hint a triangle index or -1")
+      ->required();
+  app.add_option("--backend", a->backend,
+                 "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
+      ->capture_default_str()
+      ->check(CLI::IsMember(tool_backends()));
+  CLI::Option* blocks =
+      app.add_option("--blocks", a->blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
+  CLI::Option* words = app.add_option("--words", a->words,
+                                      "words per block, even (default: what the mapping and multiply need, 26 when "
+                                      "rays take the arbitrary-origin kernel: --origins general, or rays of origins "
+                                      "too few to share one with auto)")
+                           ->check(even_words());
+  exclude_config_sizes(app.add_option("--config", a->config, "a named FMPP configuration instead of --blocks/--words"),
+                       blocks, words);
+  a->flags.add(app, tools::FlagTool::kIntersect);
+  app.add_option("--out", a->out_file, "hits file ('-' for stdout)")->capture_default_str();
+  app.add_flag("--hex-t", a->hex_t, "write each t exactly, as a hexadecimal float (default: 9 significant digits)");
+  app.add_option("--report", a->report_file, "JSON summary file ('-' for stdout, if --out is a file)");
+  add_trace_options(app, a->bo);
+  app.footer(exit_status_footer(
+      "an error (a triangle, ray or output file the tool cannot use, options this machine does not take; the "
+      "message says which)"));
+  return parse_command_line(app, argc, argv);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Nearest ray-triangle intersections on the FMPP"};
-  std::string tri_file, ray_file, out_file = "-", report_file, backend = "cmodel", config;
-  unsigned blocks = 64, words = 0;
-  bool hex_t = false;
-  KernelFlags flags;
-  app.add_option("--triangles", tri_file, "triangle file: x1 y1 z1 x2 y2 z2 x3 y3 z3 per line, |x| <= 1e100")
-      ->required();
-  app.add_option("--rays", ray_file,
-                 "ray file: ox oy oz dx dy dz [tmin tmax [exclude [hint]]] per line, |o| <= 1e100, largest |d| in "
-                 "[1e-100, 1e100], tmin >= 0, tmax a number or inf, exclude and hint a triangle index or -1")
-      ->required();
-  app.add_option("--backend", backend, "reference (double precision on the host) or the machine: " +
-                                           join(backend_names(), " | "))
-      ->capture_default_str()
-      ->check(CLI::IsMember(tool_backends()));
-  CLI::Option* blocks_opt =
-      app.add_option("--blocks", blocks, "FMPP blocks")->capture_default_str()->check(int_range(1, map::kMaxBlocks));
-  CLI::Option* words_opt = app.add_option("--words", words,
-                 "words per block, even (default: what the mapping and multiply need, 26 when rays take the "
-                 "arbitrary-origin kernel: --origins general, or rays of origins too few to share one with auto)")
-      ->check(even_words());
-  exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
-                       blocks_opt, words_opt);
-  add_form_options(app, flags);
-  add_cull_options(app, flags);
-  app.add_option("--out", out_file, "hits file ('-' for stdout)")->capture_default_str();
-  app.add_flag("--hex-t", hex_t, "write each t exactly, as a hexadecimal float (default: 9 significant digits)");
-  app.add_option("--report", report_file, "JSON summary file ('-' for stdout, if --out is a file)");
-  BackendOptions bo;
-  add_trace_options(app, bo);
-  app.footer(exit_status_footer(
-      "an error (a triangle, ray or output file the tool cannot use, options this machine does not take; the "
-      "message says which)"));
-  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
+  Args a;
+  if (const int status = parse(argc, argv, &a); status >= 0) return status;
+  const std::string &tri_file = a.tri_file, &ray_file = a.ray_file, &out_file = a.out_file,
+                    &report_file = a.report_file, &backend = a.backend, &config = a.config;
+  const BackendOptions& bo = a.bo;
 
   std::string stage = "checking the options";  // for an out-of-memory message
   try {
@@ -244,12 +168,12 @@ int main(int argc, char** argv) {
     stage = "intersecting " + std::to_string(rays.size()) + " rays with " + std::to_string(tris.size()) + " triangles";
     const std::vector<Hit> hits = backend == "reference"
                                       ? nearest_reference(rays, tris)
-                                      : run_fmpp(rays, tris, flags, MachineFlags{backend, config, blocks, words}, bo, &rep);
+                                      : run_fmpp(rays, tris, a.flags.options(), MachineFlags{backend, config, a.blocks, a.words}, bo, &rep);
     rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     size_t nhit = 0;
     for (const Hit& h : hits) nhit += h.hit();
     rep["hits"] = nhit;
-    write_hits(out_file, hits, hex_t);
+    write_hits(out_file, hits, a.hex_t);
     if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
     return 0;
   } catch (const std::bad_alloc&) {

@@ -24,6 +24,7 @@
 #include "sw/isect/stats_json.h"
 #include "common/util/cli_usage.h"
 #include "sw/tools/cli_options.h"
+#include "sw/tools/kernel_flags.h"
 #include "sw/tools/render_plan.h"
 #include "sw/tools/render_progress.h"
 #include "sw/rt/plan.h"
@@ -36,6 +37,217 @@ using namespace fmpp;
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The command line, as given.
+struct Args {
+  // The default scene is the repository's Cornell box wherever the tool is started; the
+  // picture goes to the path given, by default render.png in the current directory.
+  std::string scene_file = repo_file("scenes/cornell.json"), backend = "rtl", config, out = "render.png", report_file;
+  int width = 128, height = 128, depth = -1;
+  unsigned blocks = 4096, words = 32;  // the plan decides unless given
+  double clock_mhz = 50, target = 0.002;
+  bool compare = false, quiet = false, replan = false, accept_miss = false, verify = false, no_shadow_stop = false;
+  std::string plan_cache = rt::default_plan_cache_dir(), shadow_calls, rank0 = "work";
+  int sample_pixels = 3000, spp = 0;
+  uint64_t seed = 0;
+  BackendOptions bo;
+  tools::KernelFlags kernel_flags;  // the kernel options' flags (sw/tools/kernel_flags.h)
+  // Once parsed: the kernel options given, which of the plan's choices the user made, and
+  // the command line itself (for --verify-exact's message).
+  isect::KernelOptions given;
+  bool spp_given = false, seed_given = false, bits_given = false, mapping_given = false, order_given = false,
+       merge_given = false, blocks_given = false, words_given = false;
+  std::string command = "The command:";
+};
+
+// Wall time by phase: the report's "phase_seconds" and the summary. From its creation,
+// the "total".
+class Phases {
+ public:
+  // Runs f, its wall time kept as phase `name`; returns what f returns.
+  template <class F>
+  auto time(const char* name, F&& f) {
+    struct Stopwatch {
+      Phases* p;
+      const char* name;
+      Clock::time_point t = Clock::now();
+      ~Stopwatch() { p->set(name, seconds_since(t)); }
+    } watch{this, name};
+    return f();
+  }
+  void set(const char* name, double seconds) { j_[name] = seconds; }
+  nlohmann::json with_total() {
+    j_["total"] = seconds_since(start_);
+    return j_;
+  }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  nlohmann::json j_;
+};
+
+// The flags of the scene, the frame and the machine (the kernel options' among them).
+void declare_frame(CLI::App& app, Args& a) {
+  app.add_option("--scene", a.scene_file, "scene JSON file (default: the repository's Cornell box)")
+      ->capture_default_str();
+  app.add_option("--backend", a.backend,
+                 "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
+      ->capture_default_str()
+      ->check(CLI::IsMember(tool_backends()));
+  app.add_option("--width", a.width, "image width")->capture_default_str()->check(int_range(1, 16384));
+  app.add_option("--height", a.height, "image height")->capture_default_str()->check(int_range(1, 16384));
+  // The plan chooses --bits, --mapping, --merge-below and --pass-order unless given.
+  a.kernel_flags.add(app, tools::FlagTool::kRender);
+  CLI::Option* blocks = app.add_option("--blocks", a.blocks, "FMPP blocks (default: chosen by the precision plan)")
+                            ->check(int_range(1, map::kMaxBlocks));
+  CLI::Option* words =
+      app.add_option("--words", a.words, "FMPP words per block, even (default: chosen by the precision plan)")
+          ->check(even_words());
+  exclude_config_sizes(app.add_option("--config", a.config, "a named FMPP configuration instead of --blocks/--words"),
+                       blocks, words);
+}
+
+// The flags of the precision plan and of the frame's sampling.
+void declare_plan(CLI::App& app, Args& a) {
+  app.add_option("--error-target", a.target,
+                 "precision plan: wrong-triangle rate allowed per primary ray, and share of the frame's "
+                 "pixels allowed off the reference (a 95 % upper bound from sampled pixels)")
+      ->capture_default_str()
+      ->check(finite_range(0.0, 1.0));
+  app.add_flag("--replan", a.replan, "plan again even if this scene and these options have a cached plan");
+  app.add_option("--plan-cache", a.plan_cache,
+                 "directory of cached precision plans (a second render of the same scene files with the same options "
+                 "reuses its plan; empty: no cache)")
+      ->capture_default_str();
+  app.add_flag("--accept-plan-miss", a.accept_miss,
+               "render even when the precision plan finds no n that keeps --error-target (without it, such a "
+               "render stops with an error before any work on the frame)");
+  app.add_option("--plan-pixels", a.sample_pixels,
+                 "precision plan: pixels of the frame drawn at random and rendered per candidate n")
+      ->capture_default_str()
+      ->check(int_range(1, 1 << 24));
+  app.add_option("--max-depth", a.depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
+  app.add_option("--spp", a.spp,
+                 "samples per pixel: stratified, jittered, averaged with a box filter over the pixel (default: the "
+                 "scene's samples_per_pixel, else 1, the pixel's centre)")
+      ->check(int_range(1, rt::kMaxSpp));
+  app.add_option("--seed", a.seed,
+                 "seed of the pixel samples and the area lights' samples (default: the scene's seed, else " +
+                     std::to_string(rt::kDefaultSeed) + ")")
+      ->check(non_negative());
+}
+
+// The flags of the outputs, the checks, the shadow rays and the run.
+void declare_outputs(CLI::App& app, Args& a) {
+  app.add_option("--out", a.out,
+                 "output image: .png (8-bit), .pfm or .exr (linear radiance, 32-bit float, unclamped); by default in the "
+                 "current directory")
+      ->capture_default_str();
+  app.add_option("--report", a.report_file, "JSON report file ('-' for stdout)");
+  app.add_option("--clock-mhz", a.clock_mhz, "clock for the simulated time")
+      ->capture_default_str()
+      ->check(finite_range(1.0, 1e5));
+  app.add_flag("--compare-reference", a.compare, "also render with the reference and count differing pixels");
+  app.add_flag("--verify-exact", a.verify,
+               "check every answer of the frame against the exact reference's answer for the same ray; the first "
+               "answer the intersection contract does not allow stops the render with the ray, its pass, n, the "
+               "machine and the options (docs/certification.md)");
+  app.add_option("--shadow-calls", a.shadow_calls,
+                 "together | apart: each depth's last shadow batch in one kernel call with the next depth's rays, or "
+                 "in its own (default: the precision plan's choice, from its cost model)")
+      ->check(CLI::IsMember({"together", "apart"}));
+  app.add_flag("--no-shadow-stop", a.no_shadow_stop,
+               "shadow rays as nearest-hit queries, not stopped at their first certified occluder (the same image, "
+               "more clocks)");
+  add_trace_options(app, a.bo);
+  app.add_flag("--quiet", a.quiet,
+               "no progress display and no closing summary on the console (the report keeps the figures); without "
+               "it, stderr gets one progress line for the frame (rays of the rays expected, rate, ETA), redrawn on a "
+               "terminal and printed every 3 s otherwise (FMPP_PROGRESS_INTERVAL=seconds sets another interval), "
+               "and a summary at the end");
+  app.add_option("--rank0", a.rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"work", "schedule"}));
+}
+
+// Parses the command line into *a: -1 to go on, else the exit status (help, a usage error).
+int parse(int argc, char** argv, Args* a) {
+  CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
+  declare_frame(app, *a);
+  declare_plan(app, *a);
+  declare_outputs(app, *a);
+  app.footer(exit_status_footer("an error of the work (a scene or output it cannot use, a plan that misses its target)"));
+  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
+  a->given = a->kernel_flags.options();
+  a->spp_given = app.count("--spp") > 0;
+  a->seed_given = app.count("--seed") > 0;
+  a->bits_given = app.count("--bits") > 0;
+  a->mapping_given = app.count("--mapping") > 0 || a->kernel_flags.form_given();
+  a->order_given = app.count("--pass-order") > 0;
+  a->merge_given = app.count("--merge-below") > 0;
+  a->blocks_given = app.count("--blocks") > 0;
+  a->words_given = app.count("--words") > 0;
+  for (int i = 0; i < argc; ++i) a->command += std::string(" ") + argv[i];
+  return -1;
+}
+
+// Every option and output checked before any work.
+void check(const Args& a, const mpi::Session& session) {
+  if (session.size() > 1 && a.given.mapping == isect::Mapping::kObject) {
+    throw std::invalid_argument("--mapping object cannot run on several FMPPs (its passes keep each ray's best "
+                                "across passes); use --mapping ray or one rank");
+  }
+  if (session.size() > 1 && !a.bo.trace_file.empty()) {
+    throw std::invalid_argument("--trace " + a.bo.trace_file + " on several ranks: every FMPP would write that file");
+  }
+  check_trace_options(a.backend, a.bo);
+  check_config_name(a.backend, a.config);
+  if (a.given.mapping == isect::Mapping::kObject && a.given.watertight) {
+    throw std::invalid_argument("--watertight with --mapping object: the watertight form exists in the ray-parallel "
+                                "mapping only; use --mapping ray");
+  }
+  rt::check_resolution(a.width, a.height);
+  if (a.out == "-") throw std::invalid_argument("--out -: the image needs a file name (stdout is only for --report -)");
+  rt::image_format(a.out);  // .png, .pfm or .exr, refused before any work otherwise
+  if (session.leader()) check_writable("--out", a.out, false);
+  if (session.leader() && !a.report_file.empty()) check_writable("--report", a.report_file);
+}
+
+// The scene with --spp and --seed in place of its own (for the plan's sample as for the
+// frame); no output may be one of its files.
+rt::Scene load(const Args& a) {
+  rt::Scene scene = rt::load_scene(a.scene_file);
+  if (a.spp_given) scene.spp = a.spp;
+  if (a.seed_given) scene.seed = a.seed;
+  std::vector<NamedPath> inputs;
+  for (const auto& f : scene.files) inputs.push_back({f == a.scene_file ? "--scene" : "mesh of --scene", f});
+  check_no_alias({{"--out", a.out}, {"--report", a.report_file}, {"--trace", a.bo.trace_file}}, inputs);
+  return scene;
+}
+
+// The report's head: the scene, the frame and the lights.
+nlohmann::json scene_report(const Args& a, const rt::Scene& scene) {
+  nlohmann::json rep;
+  rep["scene"] = a.scene_file;
+  rep["triangles"] = scene.triangles.size();
+  rep["resolution"] = {a.width, a.height};
+  rep["backend"] = a.backend;
+  rep["spp"] = scene.spp;
+  rep["seed"] = scene.seed;
+  for (const rt::Light& l : scene.lights) {
+    nlohmann::json jl = {{"type", rt::to_string(l.type)}};
+    if (l.area()) {
+      jl["samples"] = l.samples;
+      jl["pool"] = l.pool;
+    }
+    rep["lights"].push_back(jl);
+  }
+  return rep;
+}
+
 // The frame rendered through `isect`, every answer checked against the exact reference
 // where `verify`: the report's "verify_exact" (with the plan's checked renders, `plan`).
 rt::Image render_frame(const rt::Scene& scene, rt::Intersector& isect, const rt::RenderOptions& ro, rt::RenderStats* rs,
@@ -44,6 +256,164 @@ rt::Image render_frame(const rt::Scene& scene, rt::Intersector& isect, const rt:
   rt::Image img = rt::render_checked(scene, isect, ro, rs, verify, command, &st);
   if (verify) (*rep)["verify_exact"] = rt::exact_check_json(st, plan);
   return img;
+}
+
+// The frame on the host, every ray through the double-precision reference.
+rt::Image render_on_host(const Args& a, const rt::Scene& scene, const rt::RenderOptions& ro, Phases* phases,
+                         rt::RenderStats* rs, nlohmann::json* rep) {
+  rt::ReferenceIntersector ref(scene.triangles);
+  return phases->time("frame", [&] { return render_frame(scene, ref, ro, rs, a.verify, a.command, {}, rep); });
+}
+
+// What the precision plan is asked: it chooses what the options leave open. It starts from
+// the defaults of what it chooses (n, the pass order, merge_below: the user's, where
+// given, go in the request) and never counts for the oracle.
+rt::PlanRequest plan_request(const Args& a, const mpi::Session& session) {
+  const isect::KernelOptions defaults;
+  rt::PlanRequest pr;
+  pr.base = a.given;
+  pr.base.n = defaults.n;
+  pr.base.coherent = defaults.coherent;
+  pr.base.merge_below = defaults.merge_below;
+  pr.base.oracle = false;
+  pr.width = a.width;
+  pr.height = a.height;
+  pr.max_depth = a.depth;
+  pr.target_wrong_rate = a.target;
+  pr.sample_pixels = a.sample_pixels;
+  if (a.backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
+  pr.choose_mapping = !a.mapping_given && session.size() == 1;
+  if (a.bits_given) pr.bits = a.given.n;
+  if (!a.quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+  if (!a.config.empty()) {
+    const Config c = named_config(a.config);
+    pr.blocks = c.blocks;
+    pr.words = c.words;
+  }
+  if (a.blocks_given) pr.blocks = a.blocks;
+  if (a.words_given) pr.words = a.words;
+  // The frame's settings the plan's check renders with (plan.h).
+  pr.shadow_stop = !a.no_shadow_stop;
+  if (a.order_given) pr.coherent = a.given.coherent;
+  if (a.merge_given) pr.merge_below = a.given.merge_below;
+  if (!a.shadow_calls.empty()) pr.kinds_together = a.shadow_calls == "together";
+  pr.verify_exact = a.verify;
+  return pr;
+}
+
+// The machine's part of the report: its size and options, its counters in all and by kind
+// of batch, and each chip's on several.
+void report_machine(const Args& a, const Config& cfg, const isect::KernelOptions& ko, const rt::FmppIntersector& fi,
+                    const mpi::RenderChips& chips, bool together, nlohmann::json* rep) {
+  nlohmann::json& r = *rep;
+  r["fmpp"] = isect::options_json(ko, isect::kReported);
+  r["fmpp"].update({{"blocks", cfg.blocks}, {"words", cfg.words}, {"shadow_stop", !a.no_shadow_stop},
+                    {"object_parallel", r["plan"]["object_parallel"]},
+                    {"shadow_calls", together ? "together" : "apart"}});
+  const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
+  r.update(isect::stats_json(st, a.clock_mhz));
+  if (ko.oracle) r["oracle"] = isect::oracle_json(st);
+  for (int k = 0; k < rt::kNumBatchKinds; ++k) {
+    const auto kind = static_cast<rt::BatchKind>(k);
+    const isect::KernelStats kst = chips.total(fi.stats(kind));
+    nlohmann::json j = isect::stats_json(kst, a.clock_mhz);
+    if (ko.oracle) j["oracle"] = isect::oracle_json(kst);
+    r["by_kind"][rt::to_string(kind)] = j;
+  }
+  // The calls of shadow and secondary rays together (--shadow-calls together): not
+  // in either kind's counters above, in the totals.
+  if (fi.stats_together().cycles > 0) {
+    nlohmann::json j = isect::stats_json(chips.total(fi.stats_together()), a.clock_mhz);
+    if (ko.oracle) j["oracle"] = isect::oracle_json(fi.stats_together());
+    r["by_kind"]["shadow_and_secondary"] = j;
+  }
+  if (nlohmann::json c = chips.report(fi.stats(), a.clock_mhz); !c.is_null()) r["chips"] = c;
+}
+
+// The frame on the FMPP: the precision plan, then the frame with the plan's machine and
+// choices (the frame's kernel options are the plan's), and the machine's report.
+rt::Image render_on_fmpp(const Args& a, const rt::Scene& scene, mpi::Session& session, const rt::RenderOptions& ro,
+                         tools::RenderProgress& progress, Phases* phases, rt::RenderStats* rs, nlohmann::json* rep) {
+  rt::PlanRequest pr = plan_request(a, session);
+  // The forms the plan's golden-model runs prepare are kept for the frame: those of the
+  // chosen n it finds (the same answers and clocks) come off the plan's seconds.
+  isect::FormCache forms(scene.triangles, rt::kPlanFormBytes);
+  pr.forms = &forms;
+  rt::ExactCheckStats plan_checked;
+  pr.verified = &plan_checked;
+  const tools::RenderPlan rp = phases->time("plan", [&] {
+    return tools::plan_render(scene, pr, {a.plan_cache, a.replan, a.accept_miss, a.quiet}, rep);
+  });
+  const rt::Plan& plan = rp.plan;
+  forms.next_phase();
+  const Config cfg = plan.config;
+  mpi::RenderChips chips(session);
+  auto be = make_backend(a.backend, cfg, a.bo);
+  Device dev(be->bus());
+  isect::KernelOptions ko = pr.base;
+  ko.n = plan.options.n;
+  ko.coherent = plan.options.coherent;  // the user's where given (PlanRequest), else the plan's
+  ko.merge_below = plan.options.merge_below;
+  ko.t_accuracy = plan.options.t_accuracy;  // the user's, or the plan's escalation
+  ko.oracle = a.given.oracle;
+  ko.progress = [&](uint64_t done, uint64_t planned) { progress.pass(done, planned); };
+  ko.forms = &forms;
+  chips.agree(scene.triangles, cfg, ko);
+  ko.share = chips.attach(dev, a.rank0 == "work");
+  rt::FmppIntersector fi(dev, scene.triangles, ko);
+  fi.set_shadow_stop(!a.no_shadow_stop);
+  for (int k = 0; k < rt::kNumBatchKinds; ++k) {
+    if (plan.object[k]) fi.set_mapping(static_cast<rt::BatchKind>(k), isect::Mapping::kObject);
+  }
+  fi.set_kinds_together(plan.kinds_together);
+  rt::Image img = phases->time("frame", [&] {
+    rt::Image frame = render_frame(scene, chips.wrap(fi), ro, rs, a.verify, a.command, plan_checked, rep);
+    be->finish();
+    return frame;
+  });
+  // The plan's own seconds: its wall time less the preparation the frame reused.
+  (*rep)["plan"]["wall_seconds"] = rp.seconds;
+  (*rep)["plan"]["reused_by_frame_seconds"] = forms.carried_seconds();
+  (*rep)["plan"]["seconds"] = rp.seconds - forms.carried_seconds();
+  report_machine(a, cfg, ko, fi, chips, plan.kinds_together, rep);
+  return img;
+}
+
+// The rays by kind in the report, and those the host redid.
+void report_rays(const Args& a, const rt::RenderStats& rs, nlohmann::json* rep) {
+  (*rep)["intersect_seconds"] = rs.intersect_seconds;
+  for (int k = 0; k < rt::kNumRayKinds; ++k) {
+    const char* kind = rt::to_string(static_cast<rt::RayKind>(k));
+    (*rep)["rays"][kind] = rs.rays[k];
+    if (a.backend != "reference") {
+      (*rep)["rays_redone"][kind] = {
+          {"flagged", rs.flagged[k]}, {"t_from_host", rs.t_from_host[k]}, {"overflow", rs.overflow[k]}};
+    }
+  }
+}
+
+// The picture, the comparison with the reference (--compare-reference), the report and
+// the console's summary.
+void write_outputs(const Args& a, const rt::Scene& scene, const rt::Image& img, const rt::RenderOptions& ro,
+                   Phases* phases, nlohmann::json* rep) {
+  phases->time("write", [&] { img.write(a.out); });
+  if (a.compare) {
+    phases->time("compare", [&] {
+      rt::ReferenceIntersector ref(scene.triangles);
+      rt::RenderOptions quiet_ro = ro;
+      quiet_ro.progress = nullptr;
+      const rt::Image want = rt::render(scene, ref, quiet_ro, nullptr);
+      const rt::ImageDiff d = rt::compare(img, want);
+      (*rep)["reference_diff"] = {
+          {"pixels", d.pixels}, {"pixels_over_8_levels", d.pixels_over}, {"max_delta", d.max_delta}};
+    });
+  }
+  (*rep)["phase_seconds"] = phases->with_total();
+  if (!a.report_file.empty()) write_text(a.report_file, rep->dump(2) + "\n");
+  if (!a.quiet) {
+    std::fprintf(stderr, "wrote %s (%dx%d, %s)\n", a.out.c_str(), a.width, a.height, a.backend.c_str());
+    tools::print_summary(stderr, *rep);
+  }
 }
 
 }  // namespace
@@ -56,341 +426,35 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fmpp-render: %s\n", e.what());
     return 1;
   }
-  const bool leader = session->leader();
-  CLI::App app{"Whitted ray tracing with the intersections on the FMPP"};
-  // The default scene is the repository's Cornell box wherever the tool is started; the
-  // picture goes to the path given, by default render.png in the current directory.
-  std::string scene_file = repo_file("scenes/cornell.json"), backend = "rtl", mapping = "ray", mul = "const", config,
-              out = "render.png", report_file;
-  int width = 128, height = 128, depth = -1;
-  unsigned blocks = 4096, words = 32, bits = 24;  // the plan decides unless given
-  double clock_mhz = 50;
-  bool compare = false, no_cull = false, quiet = false, watertight = false;
-  app.add_option("--scene", scene_file, "scene JSON file (default: the repository's Cornell box)")->capture_default_str();
-  app.add_option("--backend", backend,
-                 "reference (double precision on the host) or the machine: " + join(backend_names(), " | "))
-      ->capture_default_str()
-      ->check(CLI::IsMember(tool_backends()));
-  app.add_option("--width", width, "image width")->capture_default_str()->check(int_range(1, 16384));
-  app.add_option("--height", height, "image height")->capture_default_str()->check(int_range(1, 16384));
-  app.add_option("--mapping", mapping,
-                 "ray | object: every batch of rays sharing an origin in that mapping (default: ray-parallel, and "
-                 "object-parallel for a kind of batch, primary or shadow, where the precision plan's cost model finds "
-                 "it cheaper; secondary rays always ray-parallel)")
-      ->check(CLI::IsMember({"ray", "object"}));
-  app.add_option("--mul", mul, "const | generic")->capture_default_str()->check(CLI::IsMember({"const", "generic"}));
-  CLI::Option* blocks_opt = app.add_option("--blocks", blocks, "FMPP blocks (default: chosen by the precision plan)")
-                               ->check(int_range(1, map::kMaxBlocks));
-  CLI::Option* words_opt = app.add_option("--words", words, "FMPP words per block, even (default: chosen by the precision plan)")
-                              ->check(even_words());
-  exclude_config_sizes(app.add_option("--config", config, "a named FMPP configuration instead of --blocks/--words"),
-                       blocks_opt, words_opt);
-  app.add_option("--bits", bits, "multiplier bits n (default: chosen by the precision plan)")->check(bits_range());
-  double target = 0.002;
-  app.add_option("--error-target", target,
-                 "precision plan: wrong-triangle rate allowed per primary ray, and share of the frame's "
-                 "pixels allowed off the reference (a 95 % upper bound from sampled pixels)")
-      ->capture_default_str()
-      ->check(finite_range(0.0, 1.0));
-  bool replan = false;
-  app.add_flag("--replan", replan, "plan again even if this scene and these options have a cached plan");
-  std::string plan_cache = rt::default_plan_cache_dir();
-  app.add_option("--plan-cache", plan_cache,
-                 "directory of cached precision plans (a second render of the same scene files with the same options "
-                 "reuses its plan; empty: no cache)")
-      ->capture_default_str();
-  bool accept_miss = false;
-  app.add_flag("--accept-plan-miss", accept_miss,
-               "render even when the precision plan finds no n that keeps --error-target (without it, such a "
-               "render stops with an error before any work on the frame)");
-  int sample_pixels = 3000;
-  app.add_option("--plan-pixels", sample_pixels,
-                 "precision plan: pixels of the frame drawn at random and rendered per candidate n")
-      ->capture_default_str()
-      ->check(int_range(1, 1 << 24));
-  app.add_option("--max-depth", depth, "recursion depth (default: the scene's)")->check(int_range(1, 16));
-  int spp = 0;
-  app.add_option("--spp", spp,
-                 "samples per pixel: stratified, jittered, averaged with a box filter over the pixel (default: the "
-                 "scene's samples_per_pixel, else 1, the pixel's centre)")
-      ->check(int_range(1, rt::kMaxSpp));
-  uint64_t seed = 0;
-  app.add_option("--seed", seed,
-                 "seed of the pixel samples and the area lights' samples (default: the scene's seed, else " +
-                     std::to_string(rt::kDefaultSeed) + ")")
-      ->check(non_negative());
-  app.add_option("--out", out,
-                 "output image: .png (8-bit), .pfm or .exr (linear radiance, 32-bit float, unclamped); by default in the "
-                 "current directory")
-      ->capture_default_str();
-  app.add_option("--report", report_file, "JSON report file ('-' for stdout)");
-  app.add_option("--clock-mhz", clock_mhz, "clock for the simulated time")
-      ->capture_default_str()
-      ->check(finite_range(1.0, 1e5));
-  app.add_flag("--compare-reference", compare, "also render with the reference and count differing pixels");
-  bool verify = false;
-  app.add_flag("--verify-exact", verify,
-               "check every answer of the frame against the exact reference's answer for the same ray; the first "
-               "answer the intersection contract does not allow stops the render with the ray, its pass, n, the "
-               "machine and the options (docs/certification.md)");
-  app.add_flag("--no-cull", no_cull, "broadcast every triangle in every pass");
-  bool oracle = false;
-  std::string pass_order = "coherent";
-  unsigned cull_packet = 1;
-  app.add_flag("--oracle", oracle,
-               "also count, per pass, the triangles some ray hits and the nearest hits (the bound of culling; slow)");
-  app.add_option("--pass-order", pass_order, "coherent (image tiles, octant and origin) | batch (the rays' own order)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"coherent", "batch"}));
-  app.add_option("--cull-packet", cull_packet, "rays per culling packet")->capture_default_str()->check(int_range(1, 65536));
-  unsigned merge_below = 0;
-  app.add_option("--merge-below", merge_below,
-                 "rays of an origin shared by fewer rays than this join the arbitrary-origin batch (1: none; 0: "
-                 "max(16, blocks / 8)); default: the plan's choice, from its cost model")
-      ->check(int_range(0, 1 << 24));
-  bool no_probe = false, no_fmpp_boxes = false, no_gates = false, no_shadow_stop = false;
-  std::string shadow_calls;
-  app.add_option("--shadow-calls", shadow_calls,
-                 "together | apart: each depth's last shadow batch in one kernel call with the next depth's rays, or "
-                 "in its own (default: the precision plan's choice, from its cost model)")
-      ->check(CLI::IsMember({"together", "apart"}));
-  app.add_flag("--no-probe", no_probe, "culling without the front-to-back probe of rays with their own origins");
-  app.add_flag("--no-fmpp-boxes", no_fmpp_boxes,
-               "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests");
-  add_no_gates_flag(app, no_gates);
-  app.add_flag("--no-shadow-stop", no_shadow_stop,
-               "shadow rays as nearest-hit queries, not stopped at their first certified occluder (the same image, "
-               "more clocks)");
-  double t_accuracy = 0;
-  app.add_option("--t-accuracy", t_accuracy,
-                 "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "
-                 "(0: the default, docs/intersection.md)")
-      ->capture_default_str()
-      ->check(finite_range(0.0, 0.5));
-  app.add_flag("--watertight", watertight, "certified edge functions for primary and shadow rays (no cracks, no vertex moved)");
-  BackendOptions bo;
-  add_trace_options(app, bo);
-  app.add_flag("--quiet", quiet,
-               "no progress display and no closing summary on the console (the report keeps the figures); without "
-               "it, stderr gets one progress line for the frame (rays of the rays expected, rate, ETA), redrawn on a "
-               "terminal and printed every 3 s otherwise (FMPP_PROGRESS_INTERVAL=seconds sets another interval), "
-               "and a summary at the end");
-  std::string rank0 = "work";
-  app.add_option("--rank0", rank0, "under mpirun: rank 0 drives an FMPP too (work) or only hands out passes (schedule)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"work", "schedule"}));
-  app.footer(exit_status_footer("an error of the work (a scene or output it cannot use, a plan that misses its target)"));
-  if (const int status = parse_command_line(app, argc, argv); status >= 0) return status;
-  std::string command = "The command:";
-  for (int i = 0; i < argc; ++i) command += std::string(" ") + argv[i];
-
+  Args a;
+  if (const int status = parse(argc, argv, &a); status >= 0) return status;
+  a.quiet = a.quiet || !session->leader();
   std::string stage = "checking the options";  // for an out-of-memory message
-  quiet = quiet || !leader;
   try {
-    if (session->size() > 1 && mapping == "object") {
-      throw std::invalid_argument("--mapping object cannot run on several FMPPs (its passes keep each ray's best "
-                                  "across passes); use --mapping ray or one rank");
-    }
-    if (session->size() > 1 && !bo.trace_file.empty()) {
-      throw std::invalid_argument("--trace " + bo.trace_file + " on several ranks: every FMPP would write that file");
-    }
-    check_trace_options(backend, bo);
-    check_config_name(backend, config);
-    if (mapping == "object" && watertight) {
-      throw std::invalid_argument("--watertight with --mapping object: the watertight form exists in the ray-parallel "
-                                  "mapping only; use --mapping ray");
-    }
-    rt::check_resolution(width, height);
-    // Every output is checked before the render, not after it.
-    if (out == "-") throw std::invalid_argument("--out -: the image needs a file name (stdout is only for --report -)");
-    rt::image_format(out);  // .png, .pfm or .exr, refused before any work otherwise
-    if (leader) check_writable("--out", out, false);
-    if (leader && !report_file.empty()) check_writable("--report", report_file);
-    stage = "loading " + scene_file;
-    const auto t_load = std::chrono::steady_clock::now();
-    const auto since = [](std::chrono::steady_clock::time_point t) {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
-    nlohmann::json phases;  // wall time by phase: the report's "phase_seconds" and the summary
-    rt::Scene loaded = rt::load_scene(scene_file);
-    // --spp and --seed replace the scene's, for the plan's sample as for the frame.
-    if (app.count("--spp")) loaded.spp = spp;
-    if (app.count("--seed")) loaded.seed = seed;
-    const rt::Scene& scene = loaded;
-    {
-      std::vector<NamedPath> inputs;
-      for (const auto& f : scene.files) inputs.push_back({f == scene_file ? "--scene" : "mesh of --scene", f});
-      check_no_alias({{"--out", out}, {"--report", report_file}, {"--trace", bo.trace_file}}, inputs);
-    }
-    phases["load"] = since(t_load);
-    nlohmann::json rep;
-    rep["scene"] = scene_file;
-    rep["triangles"] = scene.triangles.size();
-    rep["resolution"] = {width, height};
-    rep["backend"] = backend;
-    rep["spp"] = scene.spp;
-    rep["seed"] = scene.seed;
-    for (const rt::Light& l : scene.lights) {
-      nlohmann::json jl = {{"type", rt::to_string(l.type)}};
-      if (l.area()) {
-        jl["samples"] = l.samples;
-        jl["pool"] = l.pool;
-      }
-      rep["lights"].push_back(jl);
-    }
-    tools::RenderProgress progress(quiet, tools::shadow_prior(scene));
+    check(a, *session);
+    stage = "loading " + a.scene_file;
+    Phases phases;
+    const rt::Scene scene = phases.time("load", [&] { return load(a); });
+    nlohmann::json rep = scene_report(a, scene);
+    tools::RenderProgress progress(a.quiet, tools::shadow_prior(scene));
     rt::RenderOptions ro;
-    ro.width = width;
-    ro.height = height;
-    ro.max_depth = depth;
+    ro.width = a.width;
+    ro.height = a.height;
+    ro.max_depth = a.depth;
     ro.progress = [&](const rt::BatchProgress& b) { progress.batch(b); };
     rt::RenderStats rs;
-    stage = "rendering " + std::to_string(width) + "x" + std::to_string(height);
-    const auto t0 = std::chrono::steady_clock::now();
-    std::unique_ptr<rt::Image> img;
-    if (backend == "reference") {
-      rt::ReferenceIntersector ref(scene.triangles);
-      const auto t_frame = std::chrono::steady_clock::now();
-      img = std::make_unique<rt::Image>(render_frame(scene, ref, ro, &rs, verify, command, {}, &rep));
-      phases["frame"] = since(t_frame);
-    } else {
-      // The precision plan chooses what the options leave open; the frame's kernel options
-      // are the same as the plan's, with its choices.
-      isect::KernelOptions base;
-      base.mapping = isect::parse_mapping(mapping);
-      base.mul = isect::parse_mul_mode(mul);
-      base.cull = !no_cull;
-      base.cull_packet = cull_packet;
-      base.cull_probe = !no_probe;
-      base.fmpp_boxes = !no_fmpp_boxes;
-      base.gates = !no_gates;
-      base.watertight = watertight;
-      base.t_accuracy = t_accuracy;
-      rt::PlanRequest pr;
-      pr.width = width;
-      pr.height = height;
-      pr.max_depth = depth;
-      pr.target_wrong_rate = target;
-      pr.sample_pixels = sample_pixels;
-      if (backend != "cmodel") pr.rtl_configs = backends::rtl_configs();
-      pr.base = base;
-      pr.choose_mapping = !app.count("--mapping") && session->size() == 1;
-      if (app.count("--bits")) pr.bits = bits;
-      if (!quiet) pr.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-      if (!config.empty()) {
-        const Config c = named_config(config);
-        pr.blocks = c.blocks;
-        pr.words = c.words;
-      }
-      if (app.count("--blocks")) pr.blocks = blocks;
-      if (app.count("--words")) pr.words = words;
-      // The frame's settings the plan's check renders with (plan.h).
-      pr.shadow_stop = !no_shadow_stop;
-      if (app.count("--pass-order")) pr.coherent = pass_order == "coherent";
-      if (app.count("--merge-below")) pr.merge_below = merge_below;
-      if (!shadow_calls.empty()) pr.kinds_together = shadow_calls == "together";
-      // The forms the plan's golden-model runs prepare are kept for the frame: those of the
-      // chosen n it finds (the same answers and clocks) come off the plan's seconds.
-      isect::FormCache forms(scene.triangles, rt::kPlanFormBytes);
-      pr.forms = &forms;
-      rt::ExactCheckStats plan_checked;
-      pr.verify_exact = verify;
-      pr.verified = &plan_checked;
-      const auto t_plan = std::chrono::steady_clock::now();
-      const tools::RenderPlan rp = tools::plan_render(scene, pr, {plan_cache, replan, accept_miss, quiet}, &rep);
-      phases["plan"] = since(t_plan);
-      const rt::Plan& plan = rp.plan;
-      forms.next_phase();
-      const Config cfg = plan.config;
-      bits = plan.options.n;
-      mpi::RenderChips chips(*session);
-      auto be = make_backend(backend, cfg, bo);
-      Device dev(be->bus());
-      isect::KernelOptions ko = base;
-      ko.n = bits;
-      ko.coherent = plan.options.coherent;  // the user's where given (PlanRequest), else the plan's
-      ko.merge_below = plan.options.merge_below;
-      ko.t_accuracy = plan.options.t_accuracy;  // the user's, or the plan's escalation
-      ko.oracle = oracle;
-      ko.progress = [&](uint64_t done, uint64_t planned) { progress.pass(done, planned); };
-      ko.forms = &forms;
-      chips.agree(scene.triangles, cfg, ko);
-      ko.share = chips.attach(dev, rank0 == "work");
-      rt::FmppIntersector fi(dev, scene.triangles, ko);
-      fi.set_shadow_stop(!no_shadow_stop);
-      for (int k = 0; k < rt::kNumBatchKinds; ++k) {
-        if (plan.object[k]) fi.set_mapping(static_cast<rt::BatchKind>(k), isect::Mapping::kObject);
-      }
-      const bool together = plan.kinds_together;
-      fi.set_kinds_together(together);
-      const auto t_frame = std::chrono::steady_clock::now();
-      img = std::make_unique<rt::Image>(
-          render_frame(scene, chips.wrap(fi), ro, &rs, verify, command, plan_checked, &rep));
-      be->finish();
-      phases["frame"] = since(t_frame);
-      // The plan's own seconds: its wall time less the preparation the frame reused.
-      rep["plan"]["wall_seconds"] = rp.seconds;
-      rep["plan"]["reused_by_frame_seconds"] = forms.carried_seconds();
-      rep["plan"]["seconds"] = rp.seconds - forms.carried_seconds();
-      const isect::KernelStats st = chips.total(fi.stats());  // one chip's: its own
-      rep["fmpp"] = {{"blocks", cfg.blocks}, {"words", cfg.words}, {"mapping", mapping}, {"multiply", mul},
-                     {"bits", bits}, {"cull", !no_cull}, {"cull_packet", cull_packet}, {"cull_probe", !no_probe}, {"fmpp_boxes", !no_fmpp_boxes},
-                     {"gates", !no_gates}, {"shadow_stop", !no_shadow_stop}, {"pass_order", pass_order}, {"watertight", watertight},
-                     {"merge_below", ko.merge_below}, {"object_parallel", rep["plan"]["object_parallel"]},
-                     {"shadow_calls", together ? "together" : "apart"}, {"t_accuracy", ko.t_accuracy}};
-      rep.update(isect::stats_json(st, clock_mhz));
-      if (oracle) rep["oracle"] = isect::oracle_json(st);
-      for (int k = 0; k < rt::kNumBatchKinds; ++k) {
-        const auto kind = static_cast<rt::BatchKind>(k);
-        const isect::KernelStats kst = chips.total(fi.stats(kind));
-        nlohmann::json j = isect::stats_json(kst, clock_mhz);
-        if (oracle) j["oracle"] = isect::oracle_json(kst);
-        rep["by_kind"][rt::to_string(kind)] = j;
-      }
-      // The calls of shadow and secondary rays together (--shadow-calls together): not
-      // in either kind's counters above, in the totals.
-      if (fi.stats_together().cycles > 0) {
-        nlohmann::json j = isect::stats_json(chips.total(fi.stats_together()), clock_mhz);
-        if (oracle) j["oracle"] = isect::oracle_json(fi.stats_together());
-        rep["by_kind"]["shadow_and_secondary"] = j;
-      }
-      if (nlohmann::json c = chips.report(fi.stats(), clock_mhz); !c.is_null()) rep["chips"] = c;
-    }
+    stage = "rendering " + std::to_string(a.width) + "x" + std::to_string(a.height);
+    const auto t0 = Clock::now();
+    const rt::Image img = a.backend == "reference" ? render_on_host(a, scene, ro, &phases, &rs, &rep)
+                                                   : render_on_fmpp(a, scene, *session, ro, progress, &phases, &rs, &rep);
     progress.finish();
-    rep["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    phases["intersect"] = rs.intersect_seconds;
-    phases["shade"] = rs.shade_seconds;
-    rep["intersect_seconds"] = rs.intersect_seconds;
-    for (int k = 0; k < rt::kNumRayKinds; ++k) {
-      const char* kind = rt::to_string(static_cast<rt::RayKind>(k));
-      rep["rays"][kind] = rs.rays[k];
-      if (backend != "reference") {
-        rep["rays_redone"][kind] = {
-            {"flagged", rs.flagged[k]}, {"t_from_host", rs.t_from_host[k]}, {"overflow", rs.overflow[k]}};
-      }
-    }
-    if (!leader) return 0;  // rank 0 writes
-    stage = "writing " + out;
-    const auto t_write = std::chrono::steady_clock::now();
-    img->write(out);
-    phases["write"] = since(t_write);
-    if (compare) {
-      const auto t_compare = std::chrono::steady_clock::now();
-      rt::ReferenceIntersector ref(scene.triangles);
-      rt::RenderOptions quiet_ro = ro;
-      quiet_ro.progress = nullptr;
-      const rt::Image want = rt::render(scene, ref, quiet_ro, nullptr);
-      const rt::ImageDiff d = rt::compare(*img, want);
-      rep["reference_diff"] = {{"pixels", d.pixels}, {"pixels_over_8_levels", d.pixels_over}, {"max_delta", d.max_delta}};
-      phases["compare"] = since(t_compare);
-    }
-    phases["total"] = since(t_load);
-    rep["phase_seconds"] = phases;
-    if (!report_file.empty()) write_text(report_file, rep.dump(2) + "\n");
-    if (!quiet) {
-      std::fprintf(stderr, "wrote %s (%dx%d, %s)\n", out.c_str(), width, height, backend.c_str());
-      tools::print_summary(stderr, rep);
-    }
+    rep["wall_seconds"] = seconds_since(t0);
+    phases.set("intersect", rs.intersect_seconds);
+    phases.set("shade", rs.shade_seconds);
+    report_rays(a, rs, &rep);
+    if (!session->leader()) return 0;  // rank 0 writes
+    stage = "writing " + a.out;
+    write_outputs(a, scene, img, ro, &phases, &rep);
     return 0;
   } catch (const std::bad_alloc&) {
     if (session->size() > 1) session->abort("fmpp-render", "out of memory while " + stage, 1);

@@ -96,9 +96,23 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
   }
 }
 
+struct SharedBoxTest::Classes {
+  std::vector<std::vector<Compare>> compares;  // per class that may meet the box
+  std::vector<unsigned> id;                    // its class
+};
+
 SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
                                              double pad, bool* makes_reach) const {
   if (makes_reach != nullptr) *makes_reach = false;
+  Classes cl;
+  const Verdict v = classes_meeting(box, hint, leaf, pad, &cl);
+  if (v != Verdict::kTest) return v;
+  emit_test(cl, p, hint, makes_reach);
+  return Verdict::kTest;
+}
+
+SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad,
+                                                      Classes* out) const {
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
@@ -114,8 +128,8 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
   lo -= widen;
   hi += widen;
 
-  std::vector<std::vector<Compare>> classes;
-  std::vector<unsigned> class_id;
+  std::vector<std::vector<Compare>>& classes = out->compares;
+  std::vector<unsigned>& class_id = out->id;
   for (unsigned c = 0; c < 6; ++c) {
     if (!(classes_ >> c & 1)) continue;
     const int i = static_cast<int>(c / 2);
@@ -160,7 +174,12 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
     classes.push_back(std::move(cmps));
     class_id.push_back(c);
   }
-  if (classes.empty()) return Verdict::kNone;
+  return classes.empty() ? Verdict::kNone : Verdict::kTest;
+}
+
+void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach) const {
+  const std::vector<std::vector<Compare>>& classes = cl.compares;
+  const std::vector<unsigned>& class_id = cl.id;
 
   p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
   bool dist = false;
@@ -215,7 +234,6 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
     p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
   }
   p.mask(layout::kDataMask);
-  return Verdict::kTest;
 }
 
 void SharedBoxTest::append_stop(Program& p) const {

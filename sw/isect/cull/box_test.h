@@ -100,6 +100,12 @@ class SharedBoxTest {
  private:
   // The occlusion stop (set_stop), in the test that makes the blocks' reach word kD.
   void append_stop(Program& p) const;
+  // append()'s two stages: the classes of the pass's rays that may meet the box, each with
+  // its compares (decided on the host: kNone, kSome, or kTest with *out filled), and the
+  // instructions of their test (box_test.cpp).
+  struct Classes;
+  Verdict classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad, Classes* out) const;
+  void emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach) const;
 
   glm::dvec3 origin_;
   double unit_;     // 2^vbits

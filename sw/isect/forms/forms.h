@@ -5,11 +5,13 @@
 //   watertight/  exact integer edge functions for rays sharing an origin
 //   general/     Pluecker edge tests and a division, for rays with their own origins
 // The rest of the kernels know a form only through this table and the RayForm
-// interface (pass/ray_form.h). Adding a form: one folder with its factory, one line in
-// the table (sw/isect/form_table.cpp), and the rule in form_for() that picks it.
+// interface (pass/ray_form.h). Adding a form: one folder with its factory, and one line in
+// the table (sw/isect/form_table.cpp) with the options that pick it (FormInfo::choose).
 #pragma once
 
 #include <glm/glm.hpp>
+
+#include <string>
 
 #include <algorithm>
 #include <functional>
@@ -62,6 +64,9 @@ struct FormInfo {
   unsigned (*words)(const KernelOptions& opt);  // words per block it needs
   std::unique_ptr<RayForm> (*make)(const FormInputs&);  // ray-parallel: prepares a batch
   ObjectRunner run_object;                               // object-parallel: runs a group
+  // Sets the options that make form_for() pick this form (--form NAME): a form is picked
+  // for options this leaves as they are.
+  void (*choose)(KernelOptions& opt);
 };
 
 // The table, in FormId order (sw/isect/form_table.cpp, with the three below).
@@ -69,8 +74,12 @@ const std::vector<FormInfo>& all_forms();
 // A form's name ("?" for an id outside the table).
 const char* form_name(int id);
 // The form that takes a group of rays sharing an origin (shared = true) or rays with
-// their own origins, under `opt` (mapping, watertight).
+// their own origins, under `opt`: the first of the table's forms of that kind whose
+// choose() leaves `opt` as it is, else (options that validate() refuses) the first of the
+// options' mapping.
 const FormInfo& form_for(const KernelOptions& opt, bool shared);
+// The form of that name (FormInfo::name); throws std::invalid_argument naming the others.
+const FormInfo& form_named(const std::string& name);
 
 // The forms' entries (each in its folder).
 std::unique_ptr<RayForm> make_paper_form(const FormInputs& in);

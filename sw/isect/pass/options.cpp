@@ -22,6 +22,14 @@ Origins parse_origins(const std::string& s) {
   if (s == "general") return Origins::kGeneral;
   throw std::invalid_argument("origins '" + s + "' is not one of auto, group, general");
 }
+bool same_form_options(const KernelOptions& a, const KernelOptions& b) {
+  bool same = true;
+  for_each_kernel_option([&](const OptionInfo& o, auto member, auto) {
+    if (o.has(kFormIdentity)) same = same && a.*member == b.*member;
+  });
+  return same;
+}
+
 const char* to_string(Origins o) { return o == Origins::kAuto ? "auto" : o == Origins::kGroup ? "group" : "general"; }
 const char* to_string(Mapping m) { return m == Mapping::kRay ? "ray" : "object"; }
 const char* to_string(MulMode m) { return m == MulMode::kGeneric ? "generic" : "const"; }

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sw/fmpp/device.h"
@@ -34,70 +35,188 @@ const char* to_string(Mapping m);
 const char* to_string(MulMode m);
 const char* to_string(Origins o);
 
+// The kernel options, declared once: every field of KernelOptions is a row of this list,
+// from which the struct, the forms' equality (form_cache.cpp), the plan's cache key
+// (rt/plan_cache.cpp), the agreement between MPI ranks (mpi/render_chips.cpp), the
+// reports' JSON (stats_json.h: options_json) and the command-line flags of fmpp-intersect
+// (all of them) and fmpp-render (those with a render role; sw/tools/kernel_flags.h) are
+// derived. tests/kernel_options_test.cpp checks every row in every derived use.
+//
+// X(type, field, default, kind, lo, hi, roles, flag, report name, help, fmpp-render's help,
+//   why a role is missing)
+//   kind:  OptValue (--flag V, V in [lo, hi]), OptSet (a bool, true with --flag), OptClear
+//          (a bool, false with --flag), OptNamed<Names> (one of Names::kAll, by name)
+//   roles: OptionRole below; fmpp-intersect declares every flag
+//   fmpp-render's help: "" for the same as fmpp-intersect's
+//   why: required when a role of kFormIdentity, kPlanKey, kAgreed, kReported is missing
+#define FMPP_KERNEL_OPTIONS(X)                                                                                        \
+  X(Mapping, mapping, Mapping::kRay, OptNamed<MappingNames>, 0, 0,                                                      \
+    kFormIdentity | kPlanKey | kAgreed | kReported | kRenderPlanned, "--mapping", "mapping", "ray | object",         \
+    "ray | object: every batch of rays sharing an origin in that mapping (default: ray-parallel, and "             \
+    "object-parallel for a kind of batch, primary or shadow, where the precision plan's cost model finds "          \
+    "it cheaper; secondary rays always ray-parallel)",                                                              \
+    "")                                                                                                             \
+  X(MulMode, mul, MulMode::kConst, OptNamed<MulModeNames>, 0, 0,                                                        \
+    kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag, "--mul", "multiply",                             \
+    "multiply: const (CSD, specialised to the broadcast constant) | generic", "const | generic", "")               \
+  /* multiplier bits: matrix mantissas (ray-parallel), ray components (object-parallel) */                         \
+  X(unsigned, n, 24, OptValue, 2, 32, kFormIdentity | kAgreed | kReported | kRenderPlanned, "--bits", "bits",         \
+    "multiplier bits n", "multiplier bits n (default: chosen by the precision plan)",                             \
+    "plan key: the plan chooses n; the user's --bits is in the key as PlanRequest::bits")                           \
+  /* ray-parallel: |V| components quantized to at most 2^vbits */                                                   \
+  X(unsigned, vbits, 28, OptValue, 2, 28, kFormIdentity | kPlanKey | kAgreed, "--vbits", "vbits",                      \
+    "ray-parallel: bits of the ray components (the multiplicand)", "",                                             \
+    "reported: fmpp-render has no flag for it (always the default), and its report keeps the fields its readers " \
+    "know")                                                                                                         \
+  /* object-parallel: matrix mantissas below 2^mbits */                                                             \
+  X(unsigned, mbits, 28, OptValue, 2, 28, kFormIdentity | kPlanKey | kAgreed, "--mbits", "mbits",                      \
+    "object-parallel: bits of the matrix mantissas (the multiplicand)", "",                                        \
+    "reported: as vbits")                                                                                           \
+  /* Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are                               \
+     intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),                                   \
+     min(n, mbits) - 3 (object-parallel). The arbitrary-origin kernel compares its own                              \
+     edge-test condition (docs/intersection.md) with 2^cond_bits, by default 2^(n - 4). */                          \
+  X(int, cond_bits, -1, OptValue, -1, 60, kPlanKey | kAgreed, "--cond-bits", "cond_bits",                              \
+    "triangles with condition number above 2^this go to the host (-1: chosen from the bits)", "",                  \
+    "form identity: a prepared form compares it itself (RayForm::serves); reported: as vbits")                     \
+  /* Certified forms: the relative accuracy a returned t must have (its certified bound); a                         \
+     hit whose bound is looser gets its t computed exactly on the host. 0: the default                              \
+     policy::t_accuracy = 2^-12. */                                                                                 \
+  X(double, t_accuracy, 0, OptValue, 0.0, 0.5, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,          \
+    "--t-accuracy", "t_accuracy",                                                                                   \
+    "relative accuracy of a certified t; a hit whose bound is looser gets its t on the host "                      \
+    "(0: the default, docs/intersection.md)",                                                                       \
+    "", "")                                                                                                         \
+  /* How rays with different origins are handled in the ray-parallel mapping (Origins). */                         \
+  X(Origins, origins, Origins::kAuto, OptNamed<OriginsNames>, 0, 0, kFormIdentity | kPlanKey | kAgreed, "--origins",   \
+    "origins",                                                                                                      \
+    "ray mapping, rays with different origins: auto (paper's method for large shared-origin groups, "              \
+    "general formulation for the rest) | group | general",                                                         \
+    "", "reported: as vbits")                                                                                       \
+  /* With origins auto and several origins in a call: an origin shared by fewer rays than                           \
+     this goes, with its rays, into the call's arbitrary-origin batch, whose passes it then                         \
+     shares with the other such rays (merged batches: fuller passes, each broadcast dearer).                        \
+     0: max(16, blocks / 8); 1: no origin's rays are merged. The precision plan chooses it                          \
+     from its cost model (docs/raytracer.md). The same answers for any value. */                                    \
+  X(unsigned, merge_below, 0, OptValue, 0, 1 << 24, kAgreed | kReported | kRenderPlanned, "--merge-below",             \
+    "merge_below",                                                                                                  \
+    "with --origins auto: the rays of an origin shared by fewer rays than this take the arbitrary-origin "         \
+    "kernel (1: none; 0: max(16, blocks / 8))",                                                                     \
+    "rays of an origin shared by fewer rays than this join the arbitrary-origin batch (1: none; 0: "              \
+    "max(16, blocks / 8)); default: the plan's choice, from its cost model",                                       \
+    "form identity: it steers a call, not a form; plan key: the plan chooses it, the user's --merge-below is in "  \
+    "the key as PlanRequest::merge_below")                                                                          \
+  /* Watertight test for rays sharing an origin (ray-parallel): edge functions                                      \
+     ((P_j - O) x (P_k - O)) . V on the scene's own vertices, certified: a ray whose                                \
+     decision is not certain (a ray through a shared edge included) is redone exactly,                              \
+     so no ray slips between two triangles and no vertex moves. */                                                  \
+  X(bool, watertight, false, OptSet, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,              \
+    "--watertight", "watertight",                                                                                   \
+    "certified edge functions for rays sharing an origin (no cracks, no vertex moved)",                            \
+    "certified edge functions for primary and shadow rays (no cracks, no vertex moved)", "")                       \
+  /* general formulation: bits of the depth quotient t / u */                                                       \
+  X(unsigned, qbits, 20, OptValue, 4, 28, kFormIdentity | kPlanKey | kAgreed, "--qbits", "qbits",                      \
+    "general formulation: bits of the distance quotient", "", "reported: as vbits")                                \
+  /* Gates (pass.h, ProgramMarks): a broadcast whose program has one sends its tail (the                            \
+     distance, the comparison with the best) only when the ANY responder says some block                            \
+     may be inside the triangle. Results are the same either way; off: every tail is sent. */                       \
+  X(bool, gates, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-gates", "gates",           \
+    "send every broadcast whole, without asking the ANY responder whether some block may be inside its "           \
+    "triangle before its distance part (the same answers, more clocks)",                                           \
+    "", "form identity: it steers a call, not a form")                                                             \
+  /* Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach                           \
+     (cull.h: a hierarchy over the triangles against packets of cull_packet consecutive                             \
+     rays, padded by the fixed point's error). Culling can only drop triangles for which                            \
+     the FMPP would report no hit, so results are the same with and without it. */                                  \
+  X(bool, cull, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag, "--no-cull",       \
+    "cull", "broadcast every triangle in every pass", "", "")                                                      \
+  /* Culling, front to back: each pass first broadcasts the nearest leaves of every ray                             \
+     (a probe), reads the distances found, and then broadcasts, from a fresh start, only                            \
+     the triangles that may lie as near as those (ray_parallel.cpp). */                                             \
+  X(bool, cull_probe, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,             \
+    "--no-probe", "cull_probe", "culling without the front-to-back probe",                                         \
+    "culling without the front-to-back probe of rays with their own origins", "")                                  \
+  /* Culling on the FMPP (box_test.h): for rays sharing an origin (the paper's form), the                           \
+     host walks its hierarchy front to back per pass, tests each node against the pass's                            \
+     packets itself and then on the FMPP (every block its own ray, against its current                              \
+     best; the ANY responder answers), and broadcasts the leaves reached as it goes. In                             \
+     place of the per-ray walk and the probe for those rays. */                                                     \
+  X(bool, fmpp_boxes, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,             \
+    "--no-fmpp-boxes", "fmpp_boxes",                                                                                \
+    "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests", "", "") \
+  X(unsigned, cull_packet, 1, OptValue, 1, 65536, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,       \
+    "--cull-packet", "cull_packet", "rays per culling packet", "", "")                                             \
+  /* Ray-parallel: load each batch's rays into passes in a coherent order (order.h:                                 \
+     square image tiles for primary rays, octant and origin for the others) rather than                             \
+     in the caller's order. Results come back in the caller's order either way. */                                  \
+  X(bool, coherent, true, OptNamed<PassOrderNames>, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--pass-order", \
+    "pass_order", "coherent (image tiles, octant and origin) | batch (the rays' own order)", "",                   \
+    "form identity: it steers a call, not a form")                                                                  \
+  /* Occlusion queries (shadow rays): for a ray with a finite tmax whose hint is -1 or                              \
+     proven beyond its reach (Ray::hint, plane_beyond_reach), any certified hit certainly                           \
+     before tmax may come back instead of the nearest, so that the FMPP's box tests stop                            \
+     sending a ray further boxes once it has one (box_test.h). Every other ray, and one                             \
+     without such a hit, gets the nearest as always. So whether the nearest hit before                              \
+     tmax is a triangle other than the hint reads the same from either answer. */                                   \
+  X(bool, occlusion, false, OptSet, 0, 0, kAgreed, "--occlusion", "occlusion",                                         \
+    "occlusion queries: a ray with a finite tmax may get any certified hit certainly before its tmax "             \
+    "instead of the nearest",                                                                                       \
+    "",                                                                                                             \
+    "form identity: it steers a call; plan key and report: fmpp-render sets it per call from "                     \
+    "--no-shadow-stop, which its key and report hold as shadow_stop")                                               \
+  /* Count, per pass, the broadcasts the any-hit and nearest-hit oracles would make                                 \
+     (oracle.h; KernelStats::oracle_*): host work with the exact reference, for reports. */                         \
+  X(bool, oracle, false, OptSet, 0, 0, kAgreed | kRenderFlag, "--oracle", "oracle",                                    \
+    "also count, per pass, what the any-hit, nearest-hit and box oracles would send",                              \
+    "also count, per pass, the triangles some ray hits and the nearest hits (the bound of culling; slow)",         \
+    "form identity, plan key: it only counts (fmpp-render's plan never counts); reported: its counts are the "     \
+    "report's \"oracle\" object")
+
+// What a row of FMPP_KERNEL_OPTIONS takes part in.
+enum OptionRole : unsigned {
+  kFormIdentity = 1u << 0,   // a prepared form is reused only under the same value (form_cache.cpp)
+  kPlanKey = 1u << 1,        // part of the precision plan's cache key (rt/plan_cache.cpp)
+  kAgreed = 1u << 2,         // the same on every MPI rank, checked before the frame (mpi/render_chips.cpp)
+  kReported = 1u << 3,       // in the reports: fmpp-render's "fmpp" object, fmpp-intersect's top level
+  kRenderFlag = 1u << 4,     // a flag of fmpp-render too, its default shown
+  kRenderPlanned = 1u << 5,  // a flag of fmpp-render too, no default shown: the plan chooses it unless given
+};
+
+// The kinds of a row (how its flag reads a value and how a report writes it).
+struct OptValue {};
+struct OptSet {};
+struct OptClear {};
+template <class N>
+struct OptNamed {
+  using Names = N;
+  using Type = typename N::Type;
+};
+struct MappingNames {
+  using Type = Mapping;
+  static constexpr std::pair<const char*, Mapping> kAll[] = {{"ray", Mapping::kRay}, {"object", Mapping::kObject}};
+};
+struct MulModeNames {
+  using Type = MulMode;
+  static constexpr std::pair<const char*, MulMode> kAll[] = {{"const", MulMode::kConst},
+                                                             {"generic", MulMode::kGeneric}};
+};
+struct OriginsNames {
+  using Type = Origins;
+  static constexpr std::pair<const char*, Origins> kAll[] = {
+      {"auto", Origins::kAuto}, {"group", Origins::kGroup}, {"general", Origins::kGeneral}};
+};
+struct PassOrderNames {  // KernelOptions::coherent
+  using Type = bool;
+  static constexpr std::pair<const char*, bool> kAll[] = {{"coherent", true}, {"batch", false}};
+};
+
 struct KernelOptions {
-  Mapping mapping = Mapping::kRay;
-  MulMode mul = MulMode::kConst;
-  unsigned n = 24;      // multiplier bits: matrix mantissas (ray-parallel), ray components (object-parallel)
-  unsigned vbits = 28;  // ray-parallel: |V| components quantized to at most 2^vbits
-  unsigned mbits = 28;  // object-parallel: matrix mantissas below 2^mbits
-  unsigned qbits = 20;  // general formulation: bits of the depth quotient t / u
-  Origins origins = Origins::kAuto;
-  // With origins auto and several origins in a call: an origin shared by fewer rays than
-  // this goes, with its rays, into the call's arbitrary-origin batch, whose passes it then
-  // shares with the other such rays (merged batches: fuller passes, each broadcast dearer).
-  // 0: max(16, blocks / 8); 1: no origin's rays are merged. The precision plan chooses it
-  // from its cost model (docs/raytracer.md). The same answers for any value.
-  unsigned merge_below = 0;
-  // Ray-parallel: per pass, skip the broadcast of triangles no ray of the pass can reach
-  // (cull.h: a hierarchy over the triangles against packets of cull_packet consecutive
-  // rays, padded by the fixed point's error). Culling can only drop triangles for which
-  // the FMPP would report no hit, so results are the same with and without it.
-  bool cull = true;
-  unsigned cull_packet = 1;
-  // Culling, front to back: each pass first broadcasts the nearest leaves of every ray
-  // (a probe), reads the distances found, and then broadcasts, from a fresh start, only
-  // the triangles that may lie as near as those (ray_parallel.cpp).
-  bool cull_probe = true;
-  // Culling on the FMPP (box_test.h): for rays sharing an origin (the paper's form), the
-  // host walks its hierarchy front to back per pass, tests each node against the pass's
-  // packets itself and then on the FMPP (every block its own ray, against its current
-  // best; the ANY responder answers), and broadcasts the leaves reached as it goes. In
-  // place of the per-ray walk and the probe for those rays.
-  bool fmpp_boxes = true;
-  // Occlusion queries (shadow rays): for a ray with a finite tmax whose hint is -1 or
-  // proven beyond its reach (Ray::hint, plane_beyond_reach), any certified hit certainly
-  // before tmax may come back instead of the nearest, so that the FMPP's box tests stop
-  // sending a ray further boxes once it has one (box_test.h). Every other ray, and one
-  // without such a hit, gets the nearest as always. So whether the nearest hit before
-  // tmax is a triangle other than the hint reads the same from either answer.
-  bool occlusion = false;
-  // Gates (pass.h, ProgramMarks): a broadcast whose program has one sends its tail (the
-  // distance, the comparison with the best) only when the ANY responder says some block
-  // may be inside the triangle. Results are the same either way; off: every tail is sent.
-  bool gates = true;
-  // Ray-parallel: load each batch's rays into passes in a coherent order (order.h:
-  // square image tiles for primary rays, octant and origin for the others) rather than
-  // in the caller's order. Results come back in the caller's order either way.
-  bool coherent = true;
-  // Count, per pass, the broadcasts the any-hit and nearest-hit oracles would make
-  // (oracle.h; KernelStats::oracle_*): host work with the exact reference, for reports.
-  bool oracle = false;
-  // Watertight test for rays sharing an origin (ray-parallel): edge functions
-  // ((P_j - O) x (P_k - O)) . V on the scene's own vertices, certified: a ray whose
-  // decision is not certain (a ray through a shared edge included) is redone exactly,
-  // so no ray slips between two triangles and no vertex moves.
-  bool watertight = false;
+#define FMPP_KERNEL_OPTION_FIELD(type, field, init, ...) type field = init;
+  FMPP_KERNEL_OPTIONS(FMPP_KERNEL_OPTION_FIELD)
+#undef FMPP_KERNEL_OPTION_FIELD
+  // The hooks of a call, not options: never compared, keyed, agreed or reported.
   // Called after each pass with (passes done, passes planned in this call).
   std::function<void(uint64_t, uint64_t)> progress;
-  // Triangles whose condition number (|P| |P^-1|, max norms) exceeds 2^cond_bits are
-  // intersected on the host instead. Negative: min(n, vbits) - 3 (ray-parallel),
-  // min(n, mbits) - 3 (object-parallel). The arbitrary-origin kernel compares its own
-  // edge-test condition (docs/intersection.md) with 2^cond_bits, by default 2^(n - 4).
-  int cond_bits = -1;
-  // Certified forms: the relative accuracy a returned t must have (its certified bound);
-  // a hit whose bound is looser gets its t computed exactly on the host. 0: the default
-  // policy::t_accuracy = 2^-12.
-  double t_accuracy = 0;
   // Several FMPPs: the passes of each call handed out among them (pass.h; nullptr: all here).
   PassShare* share = nullptr;
   // Shared-origin forms prepared by earlier calls, kept for later ones (form_cache.h;
@@ -107,6 +226,33 @@ struct KernelOptions {
   // defined: the registry knows them), the device; throws std::invalid_argument naming it.
   void validate(const Config& cfg) const;
 };
+
+// A row of FMPP_KERNEL_OPTIONS without its type.
+struct OptionInfo {
+  const char* field;
+  double lo, hi;
+  unsigned roles;
+  const char* flag;
+  const char* report;
+  const char* help;
+  const char* render_help;
+  const char* why;
+  bool has(unsigned role) const { return (roles & role) != 0; }
+};
+
+// Calls fn(info, member pointer, kind) for every row, in the list's order.
+template <class Fn>
+void for_each_kernel_option(Fn&& fn) {
+#define FMPP_KERNEL_OPTION_VISIT(type, field, init, kind, lo, hi, roles, flag, report, help, render_help, why) \
+  fn(OptionInfo{#field, static_cast<double>(lo), static_cast<double>(hi), roles, flag, report, help, render_help, \
+                why},                                                                                          \
+     &KernelOptions::field, kind{});
+  FMPP_KERNEL_OPTIONS(FMPP_KERNEL_OPTION_VISIT)
+#undef FMPP_KERNEL_OPTION_VISIT
+}
+
+// Whether forms prepared under a and b are the same: every kFormIdentity option equal.
+bool same_form_options(const KernelOptions& a, const KernelOptions& b);
 
 struct KernelStats {
   uint64_t cycles = 0;           // FMPP bus clocks for the whole call

@@ -260,7 +260,7 @@ class GeneralForm : public RayForm {
   // it); marks->gate: see below.
   Program program(const int64_t xa[18], const int64_t xd[4], int dshift, const Thresholds& th,
                   ProgramMarks* marks) const {
-    constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
+    constexpr unsigned kT = layout::kTmp;
     Program p;
     p.assume_mask(layout::kDataMask);
     p << add(kCnt, kCnt, kOne, kSel);
@@ -270,6 +270,17 @@ class GeneralForm : public RayForm {
     marks->mark = p.size();
     p << cmp(CmpFn::kThrough, CmpLt::kLt, kExcl, 0, kT, kSel) << cmp(CmpFn::kOr, CmpLt::kGe, kExcl, 1, kT, kT);
     p << flagop(kHit, kSel, kT, lut::kAnd);
+    edge_rows(p, xa, xd);
+    inside_tests(p, th, marks);
+    distance(p, dshift, th);
+    nearest(p);
+    return p;
+  }
+
+  // The rows: the edge functions A_i (C_i = c_i . V plus the E rows of L), nv and det,
+  // negated where det < 0, so that a hit is A_i >= 0, det > 0.
+  void edge_rows(Program& p, const int64_t xa[18], const int64_t xd[4]) const {
+    constexpr unsigned kX = layout::kNeg;
     // The edge rows as C_i = c_i . V into A_i, E_0 = e_0 . L into nv's word and E_1 = e_1 .
     // L into det's; then A_0 += E_0, A_1 += E_1, A_2 -= E_0 + E_1 (e_2 = -e_0 - e_1: its
     // row is two adds, prepare_late's bounds); then the det row.
@@ -296,6 +307,12 @@ class GeneralForm : public RayForm {
     // Where det < 0, negate det, the A_i and nv: then a hit is A_i >= 0, det > 0.
     p << cmp(CmpFn::kAnd, CmpLt::kLt, kDet, 0, kX, kSel);
     for (unsigned w : {kDet, kA + 0, kA + 1, kA + 2, kNv}) p << sub(w, kZero, w, kX);
+  }
+
+  // The inside tests against the rows' bounds: kWin certainly inside (det aside), kX may
+  // be inside, kU uncertain; then the gate (marks->gate) and marks->test_steps.
+  void inside_tests(Program& p, const Thresholds& th, ProgramMarks* marks) const {
+    constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc;
     // K = 2^ka > every row's bound. A_i >= K: A_i certainly >= 0 (CMP, signed, exact).
     const int32_t K = int32_t{1} << th.ka;
     p << cmp(CmpFn::kAnd, CmpLt::kGe, kA + 0, K, kWin, kHit);
@@ -314,6 +331,12 @@ class GeneralForm : public RayForm {
     // The gate: everything below acts only in blocks that may be inside (kX), or on this
     // broadcast's scratch. Where no block may be, the host skips it (pass.h).
     marks->gate = emit_gate(p, kX, kT);
+  }
+
+  // The distance: det to the quotient's scale, the strong blocks, the quotient's range
+  // (V beyond it), and Q = floor(det 2^(q-1) / nv) where the ray may hit.
+  void distance(Program& p, int dshift, const Thresholds& th) const {
+    constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin;
     // det to the quotient's scale (where the ray may be inside), then "strong": det >=
     // 2^jd and nv >= 2^jn, so that Q is within 2^-s of t / u. kT <- not strong.
     for (int k = 0; k < dshift; ++k) p << lshift(kDet, kDet, kX);
@@ -332,7 +355,6 @@ class GeneralForm : public RayForm {
     p << cmp(CmpFn::kAnd, CmpLt::kGe, kTmp, 0, kT, kHit);
     p << flagop(kX, kT, kPs, lut::kAndNotB) << flagop(map::kFlagV, map::kFlagV, kX, lut::kOr);
     p << flagop(kHit, kHit, kT, lut::kAndNotB) << flagop(kPs, kPs, kT, lut::kAndNotB);
-    constexpr unsigned kC = map::kFlagC;  // scratch after the arithmetic
     // Q = floor(det 2^(q-1) / nv) where the ray may hit (0 <= det < 2 nv here): one
     // DIVSTEP and one BITCOPY a bit (fmpp::quotient; Q's bits from q up are 0 since init),
     // the remainder in word kA + 1 (free now); det is kept for the best. 2^q - 1 is the unit word
@@ -345,6 +367,12 @@ class GeneralForm : public RayForm {
       p.mask(layout::kDataMask);
     }
     quotient(p, kQ, kA + 1, kDet, kNv, opt_.qbits, kHit, kTmp);
+  }
+
+  // Beyond the ray's tmin and nearer than the best so far (uncertain orders flagged;
+  // flag C is scratch after the arithmetic), and the best and its number, det and nv kept.
+  void nearest(Program& p) const {
+    constexpr unsigned kT = layout::kTmp, kX = layout::kNeg, kU = layout::kUnc, kPs = kWin, kC = map::kFlagC;
     // Beyond the ray's tmin (only batches with one need the test).
     if (sc_.has_tmin) {
       p << sub(kTmp, kQ, kQmin, kHit);
@@ -368,7 +396,6 @@ class GeneralForm : public RayForm {
     p << cmp(CmpFn::kAnd, CmpLt::kLt, kTmp, 0, kWin, kHit);
     p << func(FuncFn::kOr, kBest, kQ, kQ, kWin) << func(FuncFn::kOr, kIdx, kCnt, kCnt, kWin);
     p << func(FuncFn::kOr, kBestDet, kDet, kDet, kWin) << func(FuncFn::kOr, kBestNv, kNv, kNv, kWin);
-    return p;
   }
 
   const KernelOptions& opt_;
