@@ -37,8 +37,8 @@ import rtl_files  # noqa: E402  (tools/rtl_files.py: the one RTL file list)
 PIPE_DEPTH = 6
 PIPE_DEPTH_QUICK = 6
 # The array against the ISA: (blocks, words, depth) per job.
-ISA_SIZES = [(3, 4, 6), (65, 2, 6)]
-ISA_SIZES_QUICK = [(3, 4, 6)]
+ISA_SIZES = [(3, 4, 6), (65, 2, 4)]
+ISA_SIZES_QUICK = [(2, 2, 6)]
 
 
 def jobs(root, out, quick):
