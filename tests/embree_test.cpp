@@ -6,7 +6,7 @@
 #include "sw/embree/embree_intersector.h"
 #include "sw/embree/hit_check.h"
 #include "sw/isect/exact/reference.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

@@ -8,7 +8,7 @@
 #include "backends/backend.h"
 #include "sw/isect/exact/answer_check.h"
 #include "sw/isect/exact/reference.h"
-#include "sw/rt/exact_check.h"
+#include "sw/render/exact_check.h"
 #include "tests/shipped_scene.h"
 
 namespace fmpp::isect {

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 #include "backends/backend.h"
 #include "tests/render_backend.h"
 

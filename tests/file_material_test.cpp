@@ -13,9 +13,9 @@
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
 #include "sw/isect/kernels.h"
-#include "sw/rt/mesh.h"
-#include "sw/rt/render.h"
-#include "sw/rt/scene.h"
+#include "sw/scene/mesh.h"
+#include "sw/render/render.h"
+#include "sw/scene/scene.h"
 #include "tests/test_files.h"
 
 namespace rt {

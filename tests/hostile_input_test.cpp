@@ -11,9 +11,9 @@
 #include <thread>
 
 #include "sw/isect/geometry/io.h"
-#include "sw/rt/isolate.h"
-#include "sw/rt/mesh.h"
-#include "sw/rt/scene.h"
+#include "sw/scene/isolate.h"
+#include "sw/scene/mesh.h"
+#include "sw/scene/scene.h"
 
 namespace rt {
 namespace {

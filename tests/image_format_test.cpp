@@ -17,9 +17,9 @@
 #include <sstream>
 #include <vector>
 
-#include "sw/rt/image.h"
-#include "sw/rt/render.h"
-#include "sw/rt/scene.h"
+#include "sw/render/image.h"
+#include "sw/render/render.h"
+#include "sw/scene/scene.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

@@ -13,7 +13,7 @@
 #include "sw/isect/forms/forms.h"
 #include "sw/isect/pass/options.h"
 #include "sw/isect/stats_json.h"
-#include "sw/rt/plan_cache.h"
+#include "sw/plan/plan_cache.h"
 #include "sw/tools/kernel_flags.h"
 
 namespace {

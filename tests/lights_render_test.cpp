@@ -11,7 +11,7 @@
 #include <fstream>
 
 #include "backends/backend.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 #include "tests/render_backend.h"
 #include "tests/test_files.h"
 

@@ -13,10 +13,10 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/rt/plan.h"
-#include "sw/rt/render.h"
+#include "sw/plan/plan.h"
+#include "sw/render/render.h"
 #include "tests/test_files.h"
-#include "sw/rt/shade.h"
+#include "sw/render/shade.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

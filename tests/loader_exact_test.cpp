@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "sw/rt/mesh.h"
-#include "sw/rt/scene.h"
+#include "sw/scene/mesh.h"
+#include "sw/scene/scene.h"
 #include "tests/test_files.h"
 
 namespace rt {

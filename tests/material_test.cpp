@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "sw/rt/material.h"
-#include "sw/rt/shade.h"
+#include "sw/scene/material.h"
+#include "sw/render/shade.h"
 
 namespace rt {
 namespace {

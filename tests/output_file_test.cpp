@@ -10,7 +10,7 @@
 
 #include "common/util/output_file.h"
 #include "common/util/process.h"
-#include "sw/rt/image.h"
+#include "sw/render/image.h"
 
 namespace fmpp {
 namespace {

@@ -5,8 +5,8 @@
 #include <algorithm>
 
 #include "fmpp/model_bus.h"
-#include "sw/rt/plan.h"
-#include "sw/rt/render.h"
+#include "sw/plan/plan.h"
+#include "sw/render/render.h"
 #include "tests/shipped_scene.h"
 
 namespace rt {

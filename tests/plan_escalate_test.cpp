@@ -13,10 +13,10 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/rt/plan.h"
-#include "sw/rt/plan_cache.h"
-#include "sw/rt/plan_parts.h"
-#include "sw/rt/render.h"
+#include "sw/plan/plan.h"
+#include "sw/plan/plan_cache.h"
+#include "sw/plan/decide.h"
+#include "sw/render/render.h"
 #include "tests/shipped_scene.h"
 #include "tests/test_files.h"
 
@@ -198,7 +198,7 @@ TEST(PlanEscalate, CoplanarDecalsAndDuplicateTrianglesAreRendered) {
     r.width = r.height = 96;
     const Plan p = make_plan(s, r);
     ASSERT_FALSE(p.candidates.empty());
-    EXPECT_EQ(p.candidates.back().pixels_sampled, 2 * plan_parts::kPlanChunk) << "cut by the cost rule";
+    EXPECT_EQ(p.candidates.back().pixels_sampled, 2 * decide::kPlanChunk) << "cut by the cost rule";
     EXPECT_GT(p.candidates.back().pixel_bound, r.target_wrong_rate);
     expect_kept(p, r);
     EXPECT_EQ(p.escalation, Rung::kFrameMachine) << "the sample as asked decides once it is not cut";
@@ -235,18 +235,18 @@ TEST(PlanEscalate, CheckRendersOnTheFramesMachine) {
   ASSERT_EQ(p.checks.size(), 1u);
   const PlanCheck& c = p.checks.front();
   EXPECT_TRUE(c.kept);
-  ASSERT_EQ(c.pixels, plan_parts::fewest_to_show(r, 4096)) << "decided by one render of the first prefix";
+  ASSERT_EQ(c.pixels, decide::fewest_to_show(r, 4096)) << "decided by one render of the first prefix";
   EXPECT_NE(p.config.blocks, 64u);
   RenderOptions o;
   o.width = o.height = 64;
-  o.pixels = plan_parts::check_pixels(r, c.pixels);
+  o.pixels = decide::check_pixels(r, c.pixels);
   ReferenceIntersector ref(s.triangles);
   const Image want = render(s, ref, o, nullptr);
   fmpp::isect::KernelStats frame_machine, sample_machine;
   const Image got = render_with(s, p, o, p.config, &frame_machine);
   render_with(s, p, o, fmpp::Config{64, 32}, &sample_machine);
   uint64_t rays, redone;
-  plan_parts::ray_counts(frame_machine, &rays, &redone);
+  decide::ray_counts(frame_machine, &rays, &redone);
   EXPECT_EQ(c.clocks, frame_machine.cycles);
   EXPECT_EQ(c.rays, rays);
   EXPECT_EQ(c.redone, redone);
@@ -256,8 +256,8 @@ TEST(PlanEscalate, CheckRendersOnTheFramesMachine) {
 
 // The rungs in their order, cheapest first, and none a limit the user set forbids.
 TEST(PlanEscalate, LadderOrderAndTheUsersLimits) {
-  using plan_parts::ladder;
-  const auto rungs = [](const std::vector<plan_parts::LadderStep>& steps) {
+  using decide::ladder;
+  const auto rungs = [](const std::vector<decide::LadderStep>& steps) {
     std::string out;
     for (const auto& s : steps) {
       std::ostringstream o;
@@ -293,7 +293,7 @@ TEST(PlanEscalate, LargerSampleDecidesFirst) {
   ASSERT_EQ(p.checks.size(), 2u);
   EXPECT_FALSE(p.checks.front().kept);
   EXPECT_EQ(p.checks.front().pixels, 100u);
-  EXPECT_EQ(p.checks.back().pixels, plan_parts::fewest_to_show(r, 1600));
+  EXPECT_EQ(p.checks.back().pixels, decide::fewest_to_show(r, 1600));
   EXPECT_EQ(p.options.t_accuracy, 0) << "no t from the host for it";
 }
 

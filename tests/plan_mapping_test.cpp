@@ -8,10 +8,10 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/isect/forms/forms.h"
-#include "sw/rt/object_cost.h"
-#include "sw/rt/plan.h"
-#include "sw/rt/plan_cache.h"
-#include "sw/rt/render.h"
+#include "sw/plan/object_cost.h"
+#include "sw/plan/plan.h"
+#include "sw/plan/plan_cache.h"
+#include "sw/render/render.h"
 #include "tests/shipped_scene.h"
 
 namespace rt {

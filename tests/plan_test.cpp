@@ -2,16 +2,16 @@
 // the RTL only built configurations are chosen.
 #include <gtest/gtest.h>
 
-#include "sw/rt/plan.h"
-#include "sw/rt/plan_cache.h"
-#include "sw/rt/plan_parts.h"
+#include "sw/plan/plan.h"
+#include "sw/plan/plan_cache.h"
+#include "sw/plan/decide.h"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 
 #include "fmpp/model_bus.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 #include "tests/shipped_scene.h"
 
 namespace rt {
@@ -268,8 +268,8 @@ TEST(Plan, SampledPixelsAreTracedAsInTheWholeFrame) {
 }
 
 TEST(Plan, SampledPixelsSortedAndDistinct) {
-  using plan_parts::plan_pixels;
-  using plan_parts::sorted_subset;
+  using decide::plan_pixels;
+  using decide::sorted_subset;
   EXPECT_EQ(sorted_subset({9, 2, 5, 2}, 10), (std::vector<uint32_t>{2, 5, 9}));
   EXPECT_THROW(sorted_subset({10}, 10), std::out_of_range);
   const std::vector<uint32_t> p = plan_pixels(1000, 300);

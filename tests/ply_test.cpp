@@ -11,8 +11,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "sw/rt/mesh.h"
-#include "sw/rt/scene.h"
+#include "sw/scene/mesh.h"
+#include "sw/scene/scene.h"
 #include "tests/test_files.h"
 
 namespace rt {

@@ -7,8 +7,8 @@
 
 #include "backends/backend.h"
 #include "sw/fmpp/device.h"
-#include "sw/rt/exact_check.h"
-#include "sw/rt/render.h"
+#include "sw/render/exact_check.h"
+#include "sw/render/render.h"
 
 namespace test_render {
 

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "backends/backend.h"
-#include "sw/rt/exact_check.h"
-#include "sw/rt/render.h"
+#include "sw/render/exact_check.h"
+#include "sw/render/render.h"
 #include "tests/shipped_scene.h"
 #include "sw/isect/forms/forms.h"
 

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <string>
 
-#include "sw/rt/render.h"
-#include "sw/rt/scene.h"
+#include "sw/render/render.h"
+#include "sw/scene/scene.h"
 #include "tests/test_files.h"
 
 namespace rt {

@@ -6,7 +6,7 @@
 #include <cctype>
 #include <fstream>
 
-#include "sw/rt/scene.h"
+#include "sw/scene/scene.h"
 #include "tests/test_files.h"
 
 #ifndef FMPP_SOURCE_DIR

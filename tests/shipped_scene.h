@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "sw/rt/scene.h"
+#include "sw/scene/scene.h"
 
 #ifndef FMPP_SOURCE_DIR
 #define FMPP_SOURCE_DIR "."

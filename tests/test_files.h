@@ -15,8 +15,8 @@
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/rt/render.h"
-#include "sw/rt/scene.h"
+#include "sw/render/render.h"
+#include "sw/scene/scene.h"
 
 namespace test_files {
 

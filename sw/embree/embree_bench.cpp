@@ -24,8 +24,8 @@
 
 #include "sw/embree/embree_intersector.h"
 #include "sw/embree/hit_check.h"
-#include "sw/rt/render.h"
-#include "sw/rt/scene.h"
+#include "sw/render/render.h"
+#include "sw/scene/scene.h"
 #include "common/util/cli_checks.h"
 #include "common/util/cli_usage.h"
 #include "common/util/files.h"

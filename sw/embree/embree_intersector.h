@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "sw/isect/geometry/geometry.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 
 // Embree's handles, declared here so that its headers stay out of the callers'.
 struct RTCDeviceTy;

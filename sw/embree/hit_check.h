@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sw/isect/geometry/geometry.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 
 namespace rt {
 

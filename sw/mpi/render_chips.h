@@ -15,7 +15,7 @@
 
 #include "sw/isect/geometry/geometry.h"
 #include "sw/isect/kernels.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 #include "sw/mpi/pass_share.h"
 #include "common/mpi/session.h"
 #include "common/mpi/work_queue.h"

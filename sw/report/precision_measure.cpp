@@ -13,7 +13,7 @@
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/report/precision.h"
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 #include "backends/backend.h"
 
 namespace fmpp::report::precision {

@@ -28,10 +28,10 @@
 #include "sw/tools/render_args.h"
 #include "sw/tools/render_plan.h"
 #include "sw/tools/render_progress.h"
-#include "sw/rt/plan.h"
-#include "sw/rt/plan_cache.h"
-#include "sw/rt/exact_check.h"
-#include "sw/rt/render.h"
+#include "sw/plan/plan.h"
+#include "sw/plan/plan_cache.h"
+#include "sw/render/exact_check.h"
+#include "sw/render/render.h"
 #include "sw/mpi/render_chips.h"
 
 using namespace fmpp;

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "common/util/cli_usage.h"
-#include "sw/rt/image.h"
-#include "sw/rt/render.h"
+#include "sw/render/image.h"
+#include "sw/render/render.h"
 
 using namespace fmpp;
 

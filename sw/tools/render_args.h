@@ -8,7 +8,7 @@
 #include "backends/backend.h"
 #include "sw/isect/pass/options.h"
 #include "sw/mpi/render_chips.h"
-#include "sw/rt/plan_cache.h"
+#include "sw/plan/plan_cache.h"
 #include "sw/tools/cli_options.h"
 #include "sw/tools/kernel_flags.h"
 

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sw/rt/plan_cache.h"
+#include "sw/plan/plan_cache.h"
 
 namespace fmpp::tools {
 

@@ -1,4 +1,4 @@
-// fmpp-render's precision plan (sw/rt/plan.h): taken from the plan cache or made and
+// fmpp-render's precision plan (sw/plan/plan.h): taken from the plan cache or made and
 // stored, refused before any work on the frame when it misses its error target (unless
 // the user accepts that), one summary line on the console, and the report's "plan".
 #pragma once
@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "sw/rt/plan.h"
-#include "sw/rt/scene.h"
+#include "sw/plan/plan.h"
+#include "sw/scene/scene.h"
 
 namespace fmpp::tools {
 

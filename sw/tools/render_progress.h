@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "sw/rt/render.h"
+#include "sw/render/render.h"
 
 namespace fmpp::tools {
 

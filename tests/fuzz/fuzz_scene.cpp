@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "sw/rt/scene.h"
+#include "sw/scene/scene.h"
 #include "tests/fuzz/fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -293,7 +293,7 @@ struct KernelStats {
   uint64_t certify_tests[kForms] = {};   // host ray-triangle tests of those redos (also in host_tests)
   // Ray-parallel, per form: its broadcasts, their clocks (box tests included) and the
   // clocks of loading and reading back its rays (also in the totals above): what the
-  // precision plan prices a pass with (sw/rt/pass_cost.h).
+  // precision plan prices a pass with (sw/plan/pass_cost.h).
   uint64_t form_broadcasts[kForms] = {};
   uint64_t form_broadcast_cycles[kForms] = {};
   uint64_t form_io_cycles[kForms] = {};
