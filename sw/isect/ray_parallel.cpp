@@ -44,6 +44,7 @@ class RayParallelPlan : public PassPlan {
           boxes_->set_cull_words(cw);
           boxes_->set_stop(opt_.occlusion);
         }
+        boxes_->set_pair_words(opt_.mul == MulMode::kConst);
         origin_ = *origin;
       }
     }
@@ -77,16 +78,25 @@ class RayParallelPlan : public PassPlan {
       return glm::length(glm::max(glm::max(n.box.lo - origin_, glm::dvec3(0)), origin_ - n.box.hi));
     };
     const std::vector<Bvh::Node>& nodes = bvh_.nodes();
+    // An inner node is tested too where that may pay (tuning.h, kNodeTestLeaves): it holds
+    // several leaves the host's walk reached, and most leaf tests lately found no ray.
+    double no_share = 0;  // a running share of the leaf tests that found no ray
     const auto enter = [&](uint32_t id) {
       const Bvh::Node& n = nodes[id];
       if (!node_reach_[id]) return false;
-      if (n.count == 0) return true;
+      if (n.count == 0) {
+        if (node_leaves_[id] < kNodeTestLeaves || no_share < kNodeTestNoShare) return true;
+        ++st_->fmpp_node_tests;
+        return boxes_->any(dev, n.box, st_);
+      }
       // A one-triangle leaf is tested against the triangle's own slopes, and left out for
       // the blocks whose proven hint it is.
       if (n.count != 1) return boxes_->any(dev, n.box, st_);
       const size_t k = bvh_.item(n.first);
       const int tri = form_.broadcasts[k].tri;
-      return boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
+      const bool yes = boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
+      no_share = (1 - kNodeTestMemory) * no_share + (yes ? 0 : kNodeTestMemory);
+      return yes;
     };
     std::vector<uint32_t> leaf;
     bvh_.walk_near_first(gap, enter, [&](const uint32_t* items, uint32_t n, double) {
@@ -220,11 +230,15 @@ class RayParallelPlan : public PassPlan {
       // A node is worth walking into if the host's walk reached some leaf below it.
       const std::vector<Bvh::Node>& nodes = bvh_.nodes();
       node_reach_.assign(nodes.size(), 0);
+      node_leaves_.assign(nodes.size(), 0);
       for (size_t id = nodes.size(); id-- > 0;) {  // children come after their parent
         const Bvh::Node& n = nodes[id];
         char r = n.count > 0 ? 0 : node_reach_[n.first] | node_reach_[n.first + 1];
+        uint32_t l = n.count > 0 ? 0 : node_leaves_[n.first] + node_leaves_[n.first + 1];
         for (uint32_t i = n.first; i < n.first + n.count; ++i) r |= reach_[bvh_.item(i)];
+        if (n.count > 0 && r) l = 1;
         node_reach_[id] = r;
+        node_leaves_[id] = l;
       }
       return {};
     }
@@ -366,6 +380,7 @@ class RayParallelPlan : public PassPlan {
   std::optional<layout::ray::CullWords> cull_words_;  // where the blocks have room for reach and hint
   glm::dvec3 origin_{0};
   std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it
+  std::vector<uint32_t> node_leaves_;  // of each node: the leaves below it the host's walk reaches
   Phase phase_ = Phase::kAll;
   // Between probe rounds: their count in the pass, each ray's best distance so far (an upper
   // bound on its nearest; +infinity: none), the broadcast that gave it, whether it probed.

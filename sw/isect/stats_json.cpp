@@ -64,6 +64,8 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"culled_broadcasts", st.culled},
           {"box_tests", st.box_tests},
           {"fmpp_box_tests", st.fmpp_box_tests},
+          {"fmpp_node_tests", st.fmpp_node_tests},
+          {"diagonal_tests", st.diagonal_tests},
           {"box_cycles", st.box_cycles},
           {"gated_broadcasts", st.gated},
           {"object_searches", st.object_searches},

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sw/isect/cull/tuning.h"
 #include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/pass/pass.h"
@@ -60,6 +61,130 @@ void narrow_to_triangle(const Triangle& tri, double e, int i, double s, int j, d
   *smax = std::min(*smax, b);
 }
 
+// The same for the diagonals of the slope plane: the range of (x_j + sign x_k) / u over
+// the grown triangle's 24 points (linear-fractional again). False where the set reaches
+// u <= 0 (no range).
+bool diagonal_range(const Triangle& tri, double e, int i, double s, int j, int k, double sign, double* lo,
+                    double* hi) {
+  double a = kInf, b = -kInf;
+  for (const glm::dvec3& v : tri.p) {
+    for (int m = 0; m < 8; ++m) {
+      const glm::dvec3 q = v + e * glm::dvec3(m & 1 ? 1 : -1, m & 2 ? 1 : -1, m & 4 ? 1 : -1);
+      const double u = s * q[i];
+      if (!(u > 0)) return false;
+      const double x = (q[j] + sign * q[k]) / u;
+      a = std::min(a, x);
+      b = std::max(b, x);
+    }
+  }
+  *lo = a;
+  *hi = b;
+  return std::isfinite(a) && std::isfinite(b);
+}
+
+// The area of the rectangle [x0, x1] x [y0, y1] within the half-planes
+// sum_m (x + sign_m y) >= lo_m (or <= hi_m): Sutherland-Hodgman on its four corners.
+struct HalfPlane {
+  double a, b, c;  // a x + b y >= c
+};
+double clipped_area(double x0, double x1, double y0, double y1, const std::vector<HalfPlane>& hp) {
+  std::vector<std::pair<double, double>> poly{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, next;
+  for (const HalfPlane& h : hp) {
+    next.clear();
+    for (size_t m = 0; m < poly.size(); ++m) {
+      const auto& p = poly[m];
+      const auto& q = poly[(m + 1) % poly.size()];
+      const double fp = h.a * p.first + h.b * p.second - h.c, fq = h.a * q.first + h.b * q.second - h.c;
+      if (fp >= 0) next.push_back(p);
+      if ((fp >= 0) != (fq >= 0)) {
+        const double t = fp / (fp - fq);
+        next.emplace_back(p.first + t * (q.first - p.first), p.second + t * (q.second - p.second));
+      }
+    }
+    poly.swap(next);
+    if (poly.empty()) return 0;
+  }
+  double area = 0;
+  for (size_t m = 0; m < poly.size(); ++m) {
+    const auto& p = poly[m];
+    const auto& q = poly[(m + 1) % poly.size()];
+    area += p.first * q.second - q.first * p.second;
+  }
+  return 0.5 * std::abs(area);
+}
+
+// Whether the diagonal compares of class c are worth their CMPs: the expected rays of
+// the pass in the rectangle `cmps` leaves of its range against those in the octagon the
+// half-planes cut from it (a guess; tuning.h, kDiagonalSaves: the results do not
+// depend on it).
+bool diagonals_pay(int i, const int64_t vmin[3], const int64_t vmax[3], unsigned count, const std::vector<Compare>& cmps,
+                   const std::vector<HalfPlane>& planes, size_t compares) {
+  // The rectangle the compares leave of the pass's range of (V_j, V_k), in units of V.
+  const int j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
+  double x0 = static_cast<double>(vmin[j]), x1 = static_cast<double>(vmax[j]);
+  double y0 = static_cast<double>(vmin[k]), y1 = static_cast<double>(vmax[k]);
+  for (const Compare& m : cmps) {
+    if (m.kind == Compare::kDist) continue;
+    const double v = static_cast<double>(m.c);
+    double& lo = m.word == kV + static_cast<unsigned>(j) ? x0 : y0;
+    double& hi = m.word == kV + static_cast<unsigned>(j) ? x1 : y1;
+    if (m.kind == Compare::kLo) lo = std::max(lo, v);
+    else hi = std::min(hi, v);
+  }
+  const double span = (static_cast<double>(vmax[j] - vmin[j]) + 1) * (static_cast<double>(vmax[k] - vmin[k]) + 1);
+  const double density = count / span;
+  // A box test that finds no ray saves a broadcast's head; the expected rays in each
+  // region are its area times the class's density, as in rays_through.
+  const double in_rect = density * (x1 - x0 + 1) * (y1 - y0 + 1);
+  const double in_oct = density * clipped_area(x0 - 0.5, x1 + 0.5, y0 - 0.5, y1 + 0.5, planes);
+  return kDiagonalSaves * (std::exp(-in_oct) - std::exp(-in_rect)) > static_cast<double>(compares);
+}
+
+// The pair word (layout::ray::kPair) holding V_j + V_k (diff: V_j - V_k), j < k.
+unsigned pair_word(int j, int k, bool diff) {
+  const unsigned p = j == 0 ? (k == 1 ? 0u : 1u) : 2u;
+  return kPair + 2 * p + (diff ? 1u : 0u);
+}
+
+// The diagonal compares of a leaf in class (i, s), appended to *cmps where they cut
+// into the pass's range and pay (diagonals_pay; *diagonal set then). (V_j +- V_k) is
+// within 2 of 2^vbits (d_j +- d_k) / |d_i|, so the constants are rounded outward by 4
+// units (2 for a single component). False: no ray of the pass lies within them
+// (decided on the host).
+struct Range {
+  const int64_t *vmin, *vmax, *dmin, *dmax;  // the pass's components and diagonals in the class
+  unsigned count;                            // its rays of the class
+};
+bool add_diagonals(const Triangle& tri, double e, int i, double s, const Range& pass, double unit,
+                   std::vector<Compare>* cmps, bool* diagonal) {
+  const int j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
+  std::vector<Compare> diag;
+  std::vector<HalfPlane> planes;
+  for (int d = 0; d < 2; ++d) {
+    double smin, smax;
+    if (!diagonal_range(tri, e, i, s, j, k, d == 0 ? 1.0 : -1.0, &smin, &smax)) return true;
+    const double cmin = std::floor(smin * unit) - 4, cmax = std::ceil(smax * unit) + 4;
+    const double lo_v = static_cast<double>(pass.dmin[d]), hi_v = static_cast<double>(pass.dmax[d]);
+    if (cmin > hi_v || cmax < lo_v) return false;
+    // Both now lie within the pass's diagonals (|c| <= 2^29): exact as integers.
+    const unsigned w = pair_word(j, k, d == 1);
+    const double sg = d == 0 ? 1.0 : -1.0;
+    if (cmin > lo_v) {
+      diag.push_back({Compare::kLo, w, static_cast<int64_t>(cmin)});
+      planes.push_back({1.0, sg, cmin});
+    }
+    if (cmax < hi_v) {
+      diag.push_back({Compare::kHi, w, static_cast<int64_t>(cmax)});
+      planes.push_back({-1.0, -sg, -cmax});
+    }
+  }
+  if (!diag.empty() && diagonals_pay(i, pass.vmin, pass.vmax, pass.count, *cmps, planes, diag.size())) {
+    cmps->insert(cmps->end(), diag.begin(), diag.end());
+    *diagonal = true;
+  }
+  return true;
+}
+
 }  // namespace
 
 SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_scale, double angle)
@@ -74,6 +199,10 @@ void SharedBoxTest::clear() {
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::numeric_limits<int64_t>::max();
       vmax_[c][j] = std::numeric_limits<int64_t>::min();
+    }
+    for (int d = 0; d < 2; ++d) {
+      dmin_[c][d] = std::numeric_limits<int64_t>::max();
+      dmax_[c][d] = std::numeric_limits<int64_t>::min();
     }
   }
 }
@@ -93,19 +222,27 @@ void SharedBoxTest::add_ray(const glm::dvec3& d) {
       vmin_[c][j] = std::min(vmin_[c][j], v[j]);
       vmax_[c][j] = std::max(vmax_[c][j], v[j]);
     }
+    const int j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
+    const int64_t diag[2] = {v[j] + v[k], v[j] - v[k]};
+    for (int d = 0; d < 2; ++d) {
+      dmin_[c][d] = std::min(dmin_[c][d], diag[d]);
+      dmax_[c][d] = std::max(dmax_[c][d], diag[d]);
+    }
   }
 }
 
 struct SharedBoxTest::Classes {
   std::vector<std::vector<Compare>> compares;  // per class that may meet the box
   std::vector<unsigned> id;                    // its class
+  bool diagonal = false;                       // some class compares a diagonal
 };
 
 SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
-                                             double pad, bool* makes_reach) const {
+                                             double pad, bool* makes_reach, bool* diagonal) const {
   if (makes_reach != nullptr) *makes_reach = false;
   Classes cl;
   const Verdict v = classes_meeting(box, hint, leaf, pad, &cl);
+  if (diagonal != nullptr) *diagonal = v == Verdict::kTest && cl.diagonal;
   if (v != Verdict::kTest) return v;
   emit_test(cl, p, hint, makes_reach);
   return Verdict::kTest;
@@ -156,6 +293,10 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
       // Both now lie within the pass's components (|c| < 2^29): exact as integers.
       if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
       if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
+    }
+    if (possible && tri && pairs_) {
+      const Range pass{vmin_[c], vmax_[c], dmin_[c], dmax_[c], count_[c]};
+      possible = add_diagonals(*tri, pad + widen, i, s, pass, unit_, &cmps, &out->diagonal);
     }
     if (!possible) continue;
     if (u0 > 0) {
@@ -293,8 +434,8 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
                         double pad) {
   Program p;
   p.assume_mask(layout::kDataMask);
-  bool makes_reach = false;
-  const Verdict v = append(b, p, hint, leaf, pad, &makes_reach);
+  bool makes_reach = false, diagonal = false;
+  const Verdict v = append(b, p, hint, leaf, pad, &makes_reach, &diagonal);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
@@ -303,6 +444,7 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
   dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
   st->instructions += p.size() + 1;
   ++st->fmpp_box_tests;
+  st->diagonal_tests += diagonal ? 1 : 0;
   st->box_cycles += dev.cycles() - c0;
   return hit;
 }

@@ -52,6 +52,12 @@ class SharedBoxTest {
   // finite tmax: a box beyond it is cut too).
   void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
   void set_reach(bool on) { reach_ = on && has_cull_; }
+  // Where the blocks hold the sums and differences of their direction's components
+  // (layout::ray::kPair: the constant multiply's pair words, made once per pass), a
+  // leaf's test also compares them with the triangle's range of (x_j +- x_k) / u, the
+  // two diagonals of the slope plane: the triangle's slopes within an octagon rather
+  // than a rectangle (one CMP each, only where it cuts into the pass's own range).
+  void set_pair_words(bool on) { pairs_ = on; }
   // After a pass: per block b < count, 0 where its best is certainly no hit before its
   // ray's tmax (reach - best - BB >= 4, the occlusion stop's margin turned round; a
   // block without a best has best = BB = 0) and not flagged uncertain, else 1. Such a
@@ -79,9 +85,10 @@ class SharedBoxTest {
   // may report a hit of it lies within pad of it): the directions are tested against the
   // triangle's own slopes, narrower than the box's.
   enum class Verdict { kNone, kSome, kTest };
-  // *makes_reach (if given): the appended test writes the blocks' reach word (below).
+  // *makes_reach (if given): the appended test writes the blocks' reach word (below);
+  // *diagonal (if given): it compares a diagonal of the slopes (set_pair_words).
   Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0,
-                 bool* makes_reach = nullptr) const;
+                 bool* makes_reach = nullptr, bool* diagonal = nullptr) const;
   // About how many of the pass's rays pass through triangle t: its area in the slopes of
   // each class times the class's rays over the range of slopes they span. A guess for
   // deciding whether a gate may pay (0 where t reaches behind a class's rays), never a
@@ -113,10 +120,12 @@ class SharedBoxTest {
   double angle_;
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
-  bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false;
+  bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false, pairs_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
   unsigned count_[6];                // per class: the pass's rays of it
+  // per class: the pass's smallest and largest V_j + V_k and V_j - V_k (j < k the other axes)
+  int64_t dmin_[6][2], dmax_[6][2];
 };
 
 }  // namespace fmpp::isect

@@ -30,6 +30,18 @@ inline constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
 // Reading back every ray each round rather than the probing ones: 3 rounds of 1 leaf
 // 1,496,485, 2,672,781, 3,534,104.
 inline constexpr int kProbeLeavesOwn = 1, kProbeRoundsOwn = 8;
+// The FMPP's walk (ray_parallel.cpp) tests an inner node of the hierarchy, not only its
+// leaves, where the node holds kNodeTestLeaves or more leaves the host's walk reached and
+// the running share of the pass's leaf tests that found no ray (each test weighing
+// kNodeTestMemory) is kNodeTestNoShare or more: late in a pass, where most rays hold
+// their hit, one test can leave out a whole subtree. Measured at 128 x 128, 4096
+// blocks, n = 24, with the diagonal compares (2026-11-29): armadillo 2,085,876 clocks
+// without node tests; (leaves, share) (2, 0) 2,204,844, (2, 0.6) 2,095,082, (2, 0.8)
+// 2,015,414, (3, 0.75) 2,004,946, (4, 0.6) 2,018,179, (4, 0.8) 1,997,744, (4, 0.85)
+// 2,000,875, (4, 0.95) 2,039,053, (6, 0.8) 2,000,589, (8, 0.9) 2,028,575; spheres_10k
+// 1,263,917 without, (4, 0.8) 1,259,699, (2, 0.5) 1,291,735, (8, 0.5) 1,264,852.
+inline constexpr unsigned kNodeTestLeaves = 4;
+inline constexpr double kNodeTestNoShare = 0.8, kNodeTestMemory = 0.1;
 // Culling: one triangle per leaf of the hierarchy, so that a ray keeps only the triangles
 // whose own (padded) boxes it crosses, and the FMPP tests each one before it is broadcast.
 // Measured at 128 x 128, 4096 blocks, spheres_10k (docs/perf.md): with the FMPP's box
@@ -48,5 +60,10 @@ inline constexpr unsigned kCullLeafItems = 1;
 // the unread rays and the arbitrary-origin form's pair words) kGateRays 2 and 8:
 // 22,280,175 and 22,298,583.
 inline constexpr double kGateRays = 2;
+// The FMPP's leaf test compares the diagonals of the slope plane (V_j +- V_k, the pair
+// words) where that pays (SharedBoxTest::diagonals_pay): where the chance that the
+// octagon holds no ray of the pass, less the rectangle's, times kDiagonalSaves clocks
+// (about a broadcast's head up to its gate) exceeds the compares' clocks (one each).
+inline constexpr double kDiagonalSaves = 1e9;
 
 }  // namespace fmpp::isect

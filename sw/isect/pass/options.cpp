@@ -54,6 +54,8 @@ void KernelStats::add(const KernelStats& o) {
   culled += o.culled;
   box_tests += o.box_tests;
   fmpp_box_tests += o.fmpp_box_tests;
+  fmpp_node_tests += o.fmpp_node_tests;
+  diagonal_tests += o.diagonal_tests;
   box_cycles += o.box_cycles;
   gated += o.gated;
   object_searches += o.object_searches;

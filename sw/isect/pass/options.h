@@ -274,6 +274,8 @@ struct KernelStats {
   uint64_t culled = 0;           // broadcasts skipped by culling
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
+  uint64_t fmpp_node_tests = 0;  // of which of inner nodes (ray_parallel.cpp, tuning.h)
+  uint64_t diagonal_tests = 0;   // of which with diagonal compares (box_test.h, set_pair_words)
   uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
   uint64_t gated = 0;            // broadcasts whose tail a gate skipped (no block could use it)
   uint64_t object_searches = 0;  // object-parallel: rays whose broadcast needed the maximum search (two or more possible hits)
