@@ -44,7 +44,7 @@ class RayParallelPlan : public PassPlan {
           boxes_->set_cull_words(cw);
           boxes_->set_stop(opt_.occlusion);
         }
-        boxes_->set_pair_words(opt_.mul == MulMode::kConst);
+        boxes_->set_pair_words(opt_.box_diagonals && opt_.mul == MulMode::kConst);
         origin_ = *origin;
       }
     }

@@ -144,6 +144,15 @@ const char* to_string(Origins o);
   X(bool, fmpp_boxes, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,             \
     "--no-fmpp-boxes", "fmpp_boxes",                                                                                \
     "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests", "", "") \
+  /* Diagonals in the FMPP's leaf tests (box_test.h, set_pair_words): where the blocks hold                         \
+     the constant multiply's pair words, a leaf's test also compares V_j + V_k and                                  \
+     V_j - V_k with the triangle's range of slopes, where the host's guess says it pays.                            \
+     Results are the same either way; off: the rectangle of the slopes alone. */                                    \
+  X(bool, box_diagonals, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-box-diagonals",    \
+    "box_diagonals",                                                                                                \
+    "FMPP box tests of leaves against the rectangle of the triangle's slopes only, without its diagonals (the "    \
+    "same answers, more clocks)",                                                                                   \
+    "", "form identity: it steers a call, not a form")                                                             \
   X(unsigned, cull_packet, 1, OptValue, 1, 65536, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,       \
     "--cull-packet", "cull_packet", "rays per culling packet", "", "")                                             \
   /* Ray-parallel: load each batch's rays into passes in a coherent order (order.h:                                 \
