@@ -222,7 +222,14 @@ class RayParallelPlan : public PassPlan {
     phase_ = Phase::kAll;
     if (opt_.cull) {
       std::fill(reach_.begin(), reach_.end(), 0);
-      bvh_.reached(packets(base, count, opt_.cull_packet), reach_, &st_->box_tests);
+      if (planes_.empty()) {  // each broadcast's plane (the host's walk crosses it: may_cross)
+        planes_.resize(nb);
+        for (size_t k = 0; k < nb; ++k) {
+          const int tri = form_.broadcasts[k].tri;
+          if (tri >= 0) planes_[k] = plane_slab(tris_[static_cast<size_t>(tri)]);
+        }
+      }
+      bvh_.reached(packets(base, count, opt_.cull_packet), reach_, &st_->box_tests, &planes_);
     }
     if (oracle_) oracle_->count(rays_, idx_, base, base + count, form_.broadcasts, st_);
     if (boxes_) {  // walk() decides the rest on the FMPP, as it goes
@@ -322,7 +329,8 @@ class RayParallelPlan : public PassPlan {
     const std::vector<RayPacket> one = packets(base, count, 1);
     for (unsigned b = 0; b < count; ++b) {
       if (winner_[b] != SIZE_MAX) keep[winner_[b]] = 1;
-      keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], best[b], &keep, &st_->box_tests);
+      keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], best[b], &keep, &st_->box_tests,
+                    &planes_);
     }
     // Kept blocks already hold the probe's triangles: only the others are sent.
     if (*appended) {
@@ -389,6 +397,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<size_t> winner_;
   std::vector<char> probed_;
   std::vector<char> reach_;  // of each broadcast: some packet of the pass may reach it
+  std::vector<PlaneSlab> planes_;  // of each broadcast: its triangle's plane (the host's walk)
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
   std::vector<bool> ovf_, unc_, t_loose_;

@@ -48,14 +48,17 @@ class Recorder : public Intersector {
 
 }  // namespace
 
-BatchReach reach_of(const std::vector<Ray>& rays, const Bvh& bvh) {
+BatchReach reach_of(const std::vector<Ray>& rays, const Bvh& bvh, const std::vector<Box>& boxes,
+                    const std::vector<fmpp::isect::PlaneSlab>& planes) {
   BatchReach r;
   r.start.reserve(rays.size() + 1);
   r.start.push_back(0);
   std::vector<size_t> all(rays.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   for (const fmpp::isect::RayPacket& p : fmpp::isect::make_packets(rays, all, 0, all.size(), 1, 0)) {
-    bvh.visit(p, [&](uint32_t k) { r.tris.push_back(k); });
+    bvh.visit(p, [&](uint32_t k) {
+      if (fmpp::isect::may_cross(p, boxes[k], planes[k])) r.tris.push_back(k);
+    });
     r.start.push_back(static_cast<uint32_t>(r.tris.size()));
   }
   return r;
@@ -76,10 +79,14 @@ FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int wi
 
 void add_reach(const Scene& scene, FrameRecord* frame) {
   std::vector<Box> boxes;
-  for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
+  std::vector<fmpp::isect::PlaneSlab> planes;
+  for (const auto& t : scene.triangles) {
+    boxes.push_back(fmpp::isect::padded_box(t, 0));
+    planes.push_back(fmpp::isect::plane_slab(t));
+  }
   const Bvh bvh(boxes, {}, 1);
   frame->reach.clear();
-  for (const auto& batch : frame->batches) frame->reach.push_back(reach_of(batch.second, bvh));
+  for (const auto& batch : frame->batches) frame->reach.push_back(reach_of(batch.second, bvh, boxes, planes));
 }
 
 }  // namespace rt

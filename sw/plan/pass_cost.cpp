@@ -160,10 +160,14 @@ std::vector<Reach> reach_lists(const Scene& scene, const FrameRecord& frame, con
     reach = frame.reach;
   } else {
     std::vector<Box> boxes;
-    for (const auto& t : scene.triangles) boxes.push_back(fmpp::isect::padded_box(t, 0));
+    std::vector<fmpp::isect::PlaneSlab> planes;
+    for (const auto& t : scene.triangles) {
+      boxes.push_back(fmpp::isect::padded_box(t, 0));
+      planes.push_back(fmpp::isect::plane_slab(t));
+    }
     fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
     const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
-    for (const auto& batch : frame.batches) reach.push_back(reach_of(batch.second, bvh));
+    for (const auto& batch : frame.batches) reach.push_back(reach_of(batch.second, bvh, boxes, planes));
   }
   return reach;
 }

@@ -99,8 +99,9 @@ struct PassCostModel {
   std::string why_blocks, why_order, why_merge, why_mapping, why_kinds;
 };
 
-// Per ray of a batch, the triangles whose boxes it crosses before its first hit: what the
-// walk of the culling reaches for it alone, the same whatever group and pass it is in
+// Per ray of a batch, the triangles whose boxes it crosses before its first hit, and whose
+// planes it may cross inside them (fmpp::isect::may_cross): what the walk of the culling
+// reaches for it alone, the same whatever group and pass it is in
 // (and whatever the hierarchy's shape, with one triangle a leaf). A pass's broadcasts are
 // the triangles some of its rays reach, so these lists price every pass size and order
 // without walking the hierarchy again.
@@ -125,8 +126,10 @@ FrameRecord record_frame(const Scene& scene, ReferenceIntersector& exact, int wi
 // Lists the frame's reach (with a hierarchy of its own: the plan does it on the thread
 // that traced the frame, beside the frame sample).
 void add_reach(const Scene& scene, FrameRecord* frame);
-// One batch's reach lists, on `bvh` (the triangles' own boxes, one a leaf).
-BatchReach reach_of(const std::vector<fmpp::isect::Ray>& rays, const fmpp::isect::Bvh& bvh);
+// One batch's reach lists, on `bvh` (the triangles' own boxes, one a leaf), with the
+// triangles' boxes and planes (fmpp::isect::plane_slab) by index.
+BatchReach reach_of(const std::vector<fmpp::isect::Ray>& rays, const fmpp::isect::Bvh& bvh,
+                    const std::vector<fmpp::isect::Box>& boxes, const std::vector<fmpp::isect::PlaneSlab>& planes);
 
 // Clocks of a broadcast (its box tests included) and of loading and reading back a ray,
 // for rays sharing an origin and for rays of their own; a kind with no ray is unknown.

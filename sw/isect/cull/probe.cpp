@@ -1,6 +1,7 @@
 // The probe's host side (see probe.h).
 #include "sw/isect/cull/probe.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sw/isect/cull/tuning.h"
@@ -8,7 +9,8 @@
 namespace fmpp::isect {
 
 void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form, const std::vector<char>& reach,
-                   const Ray& r, const RayPacket& one, double best, std::vector<char>* keep, uint64_t* tests) {
+                   const Ray& r, const RayPacket& one, double best, std::vector<char>* keep, uint64_t* tests,
+                   const std::vector<PlaneSlab>* planes) {
   // One step of the arbitrary-origin form's quotient (the P^-1 form's rounding of its sums
   // is in its relative bound).
   const double len = glm::length(r.d);
@@ -21,7 +23,13 @@ void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form
     RayPacket q = one;
     q.t1 *= 1 + bounds.rel[k];  // the tmax cut allows for the distance's error
     const double entry = entry_distance(q, bounds.boxes[k]);
-    (*keep)[k] = entry <= bounds.reach_for(k, u, best, quantum);
+    const double until = bounds.reach_for(k, u, best, quantum);
+    if (!(entry <= until)) return;
+    if (planes != nullptr) {
+      q.t1 = std::min(q.t1, until);
+      if (!may_cross(q, bounds.boxes[k], (*planes)[k])) return;
+    }
+    (*keep)[k] = 1;
   });
 }
 

@@ -52,7 +52,24 @@ RayPacket ray_packet(const Ray& r, double margin) {
 
 bool may_enter(const RayPacket& p, const Box& b) { return entry_distance(p, b) < std::numeric_limits<double>::infinity(); }
 
+namespace {
+
+// The packet's interval of t within box b, as entry_distance finds it (before its slack).
+void box_interval(const RayPacket& p, const Box& b, double* lo_out, double* hi_out);
+
+}  // namespace
+
 double entry_distance(const RayPacket& p, const Box& b) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double lo, hi;
+  box_interval(p, b, &lo, &hi);
+  // The quotients are rounded: a relative slack of 1e-9 keeps a grazing packet in.
+  return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
+}
+
+namespace {
+
+void box_interval(const RayPacket& p, const Box& b, double* lo_out, double* hi_out) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   double lo = p.t0, hi = p.t1;
   for (int a = 0; a < 3; ++a) {
@@ -63,7 +80,8 @@ double entry_distance(const RayPacket& p, const Box& b) {
     } else if (p.d.lo[a] < 0) {
       lo = std::max(lo, below / p.d.lo[a]);
     } else if (below < 0) {
-      return kInf;
+      *lo_out = kInf, *hi_out = hi;  // this axis alone rules the box out
+      return;
     }
     const double above = b.lo[a] - p.o.hi[a];  // need t d.hi >= above
     if (p.d.hi[a] > 0) {
@@ -71,11 +89,73 @@ double entry_distance(const RayPacket& p, const Box& b) {
     } else if (p.d.hi[a] < 0) {
       hi = std::min(hi, above / p.d.hi[a]);
     } else if (above > 0) {
-      return kInf;
+      *lo_out = kInf, *hi_out = hi;
+      return;
     }
   }
-  // The quotients are rounded: a relative slack of 1e-9 keeps a grazing packet in.
-  return lo <= hi + 1e-9 * std::abs(hi) ? lo : kInf;
+  *lo_out = lo;
+  *hi_out = hi;
+}
+
+}  // namespace
+
+PlaneSlab plane_slab(const Triangle& t) {
+  PlaneSlab s;
+  s.n = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, mag = 0;
+  for (const glm::dvec3& v : t.p) {
+    const double h = glm::dot(s.n, v);
+    lo = std::min(lo, h);
+    hi = std::max(hi, h);
+    mag = std::max(mag, glm::dot(glm::abs(s.n), glm::abs(v)));
+  }
+  // Each dot product within 3 units of 2^-53 of its terms' magnitudes (taken as 1e-12);
+  // a triangle point is a convex combination of the vertices: its n . x lies in [lo, hi].
+  s.lo = lo - 1e-12 * mag;
+  s.hi = hi + 1e-12 * mag;
+  if (!(std::isfinite(s.lo) && std::isfinite(s.hi) && std::isfinite(mag))) return PlaneSlab{};
+  return s;
+}
+
+bool may_cross(const RayPacket& p, const Box& b, const PlaneSlab& s) {
+  if (!(s.lo <= s.hi)) return true;
+  double lo, hi;
+  box_interval(p, b, &lo, &hi);
+  if (!(lo < std::numeric_limits<double>::infinity() && lo <= hi + 1e-9 * std::abs(hi))) {
+    return false;  // entry_distance's own verdict: the packet misses the box
+  }
+  const bool open = !(hi < std::numeric_limits<double>::infinity());  // no end: the sign of n . d decides
+  if (open) hi = lo;
+  // The quotients' rounding: t anywhere in the widened interval.
+  const double w = 1e-9 * (std::abs(lo) + std::abs(hi));
+  lo -= w;
+  hi += w;
+  // n . o and n . d over the packet's boxes (interval arithmetic), and their magnitude.
+  double a_lo = 0, a_hi = 0, d_lo = 0, d_hi = 0, mag = std::abs(s.lo) + std::abs(s.hi), dmag = 0;
+  const double tmax = std::max(std::abs(lo), std::abs(hi));
+  for (int k = 0; k < 3; ++k) {
+    const double n = s.n[k];
+    a_lo += n * (n >= 0 ? p.o.lo[k] : p.o.hi[k]);
+    a_hi += n * (n >= 0 ? p.o.hi[k] : p.o.lo[k]);
+    d_lo += n * (n >= 0 ? p.d.lo[k] : p.d.hi[k]);
+    d_hi += n * (n >= 0 ? p.d.hi[k] : p.d.lo[k]);
+    mag += std::abs(n) * (std::max(std::abs(p.o.lo[k]), std::abs(p.o.hi[k])) +
+                          tmax * std::max(std::abs(p.d.lo[k]), std::abs(p.d.hi[k])));
+    dmag += std::abs(n) * std::max(std::abs(p.d.lo[k]), std::abs(p.d.hi[k]));
+  }
+  const double slack = 1e-9 * mag;
+  // Over the packet, n . (o + t d) at t lies in [a_lo + t d_lo, a_hi + t d_hi] (t >= 0;
+  // the bounds of d swap for t < 0).
+  const auto low = [&](double t) { return a_lo + t * (t >= 0 ? d_lo : d_hi); };
+  const auto high = [&](double t) { return a_hi + t * (t >= 0 ? d_hi : d_lo); };
+  if (open) {  // from lo on, n . (o + t d) only moves away from the slab where n . d does
+    if (low(lo) > s.hi + slack && d_lo >= 1e-9 * dmag) return false;
+    if (high(lo) < s.lo - slack && d_hi <= -1e-9 * dmag) return false;
+    return true;
+  }
+  if (low(lo) > s.hi + slack && low(hi) > s.hi + slack) return false;    // above the slab throughout
+  if (high(lo) < s.lo - slack && high(hi) < s.lo - slack) return false;  // below it throughout
+  return true;
 }
 
 namespace {
@@ -274,7 +354,8 @@ Bvh Bvh::refit(const std::vector<Box>& boxes, const std::vector<double>& slack) 
   return out;
 }
 
-void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const {
+void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests,
+                  const std::vector<PlaneSlab>* planes) const {
   if (nodes_.empty() || packets.empty()) return;
   // Depth-first; each entry carries the packets that entered its parent.
   struct Entry {
@@ -296,7 +377,21 @@ void Bvh::reached(const std::vector<RayPacket>& packets, std::vector<char>& reac
       if (enters(packets[p], n)) live.push_back(p);
     }
     if (live.empty()) continue;
-    if (n.count > 0) {
+    if (n.count > 0 && planes != nullptr) {
+      // Each item only for a packet that may cross its plane within the leaf's box (the
+      // packet's reach stretched by the leaf's slack, as enters() stretches it).
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        for (uint32_t p : live) {
+          ++n_tests;
+          RayPacket q = packets[p];
+          q.t1 *= 1 + n.slack;
+          if (may_cross(q, n.box, (*planes)[items_[i]])) {
+            reach[items_[i]] = 1;
+            break;
+          }
+        }
+      }
+    } else if (n.count > 0) {
       for (uint32_t i = n.first; i < n.first + n.count; ++i) reach[items_[i]] = 1;
     } else {
       stack.push_back({n.first + 1, live});

@@ -67,6 +67,21 @@ bool may_enter(const RayPacket& p, const Box& b);
 // interval arithmetic), or +infinity where may_enter is false.
 double entry_distance(const RayPacket& p, const Box& b);
 
+// A triangle's plane as culling bounds it: n (as computed, taken as exact) and [lo, hi],
+// within which n . x lies for every point x of the triangle (the products' rounding
+// allowed for). lo > hi: no slab (nothing is cut by it).
+struct PlaneSlab {
+  glm::dvec3 n{0};
+  double lo = 1, hi = 0;
+};
+PlaneSlab plane_slab(const Triangle& t);
+// False only if no ray of the packet crosses the slab (n . x in [lo, hi]) while inside
+// box b at some t in [t0, t1]: each ray's n . (o + t d) is linear in t, so one that is
+// above the slab (or below) where it enters the box and where it leaves has no point of
+// the triangle there. Interval arithmetic over the packet, with a relative slack of
+// 1e-9 for the roundings: conservative.
+bool may_cross(const RayPacket& p, const Box& b, const PlaneSlab& s);
+
 // A bounding volume hierarchy over items (each an index with a box), median split on
 // the longest axis of the centroids, up to leaf_items items per leaf (kLeafItems unless
 // told).
@@ -99,7 +114,10 @@ class Bvh {
 
   // Sets reach[i] for every item of every leaf that some packet may enter (reach must
   // have one entry per item); adds the node-packet tests made to *tests.
-  void reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests) const;
+  // planes (if given, one per item): an item of a leaf is reached only by a packet that
+  // may cross its plane inside the leaf's box (may_cross), each such test counted too.
+  void reached(const std::vector<RayPacket>& packets, std::vector<char>& reach, uint64_t* tests,
+               const std::vector<PlaneSlab>* planes = nullptr) const;
   // Calls f(item) for every item of every leaf the packet may enter.
   template <class F>
   void visit(const RayPacket& p, F&& f) const;
