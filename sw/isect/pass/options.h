@@ -40,7 +40,7 @@ const char* to_string(Origins o);
 // (rt/plan_cache.cpp), the agreement between MPI ranks (mpi/render_chips.cpp), the
 // reports' JSON (stats_json.h: options_json) and the command-line flags of fmpp-intersect
 // (all of them) and fmpp-render (those with a render role; sw/tools/kernel_flags.h) are
-// derived. tests/kernel_options_test.cpp checks every row in every derived use.
+// derived. tests/isect/kernel_options_test.cpp checks every row in every derived use.
 //
 // X(type, field, default, kind, lo, hi, roles, flag, report name, help, fmpp-render's help,
 //   why a role is missing)
