@@ -86,11 +86,11 @@ std::vector<Ray> shadow_rays(int tiles, double tile, double height, double depth
   return rays;
 }
 
-// Finding 1 of issue 42. The occlusion stop answers a shadow ray with any certified hit
-// before its tmax; a ray whose end point lies behind its own triangle meets that
-// triangle before tmax, and the floor, nearest to the light, is sent first: the stop
-// answered with the ray's own triangle, which the renderer reads as lit, though the box
-// lies nearer. Such a ray (its hint not proven beyond its reach) must get its nearest.
+// The occlusion stop answers a shadow ray with any certified hit before its tmax; a ray
+// whose end point lies behind its own triangle meets that triangle before tmax, and the
+// floor, nearest to the light, is sent first: a stop there would answer with the ray's
+// own triangle, which the renderer reads as lit, though the box lies nearer. Such a ray
+// (its hint not proven beyond its reach) must get its nearest.
 TEST(CullCertified, ShadowStopAnswersRaysEndingBehindTheirPlaneWithTheNearest) {
   constexpr int kTiles = 8;
   constexpr double kTile = 2.5;

@@ -111,8 +111,8 @@ TEST_P(SharedOriginPlacement, GatesAndSkippedReadsChangeNoAnswer) {
 // Occlusion queries stop a ray at any certified hit certainly before its tmax; a ray
 // without a tmax in the same call asks for its nearest hit (KernelOptions::occlusion: the
 // renderer's shadow and secondary rays in one call). Its reach word cannot say so to the
-// box test, so a pass holding such a ray does not stop: those rays used to come back with
-// the first certified hit of the front-to-back walk. Here that is a large slanted triangle
+// box test, so a pass holding such a ray does not stop: a stop would answer those rays
+// with the first certified hit of the front-to-back walk. Here that is a large slanted triangle
 // whose box starts near the origin, behind the small triangles the rays are aimed at.
 TEST_P(SharedOriginPlacement, OcclusionStopsOnlyRaysWithATmax) {
   std::mt19937_64 rng(53);

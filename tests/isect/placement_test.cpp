@@ -97,9 +97,9 @@ class Placement : public ::testing::TestWithParam<const char*> {
 };
 
 // Two triangles: a 3-unit one at z = 4 and a sliver 2^29 from the origin whose normal,
-// computed in double relative to the scene's centre, rounds to zero. The arbitrary-origin
-// form used to drop the triangle it could not represent, though it is not degenerate:
-// both rays hit triangle 0 at t = 1 and came back as misses, every counter at 0.
+// computed in double relative to the scene's centre, rounds to zero. The triangle is not
+// degenerate: a form that cannot represent it must still answer both rays (triangle 0 at
+// t = 1), not drop the batch.
 TEST_P(Placement, FarSliverDoesNotLoseTheNearTriangle) {
   const std::vector<Triangle> tris = {
       {{{0, 0, 4}, {3, 0, 4}, {0, 3, 4}}},
@@ -115,7 +115,7 @@ TEST_P(Placement, FarSliverDoesNotLoseTheNearTriangle) {
 // Ordinary magnitudes: eight 64-unit triangles at the corners of a box of half-size
 // 8192, and one triangle about 6e-5 across near (-4382, -7943, -7970), seen by two rays
 // with their own origins: its normal relative to the box's centre rounds to zero, and
-// the arbitrary-origin form used to drop it (both rays missed).
+// every form must still find it (both rays hit it).
 TEST_P(Placement, SmallTriangleFarFromTheCentre) {
   std::vector<Triangle> tris;
   for (int k = 0; k < 8; ++k) {
@@ -137,8 +137,8 @@ TEST_P(Placement, SmallTriangleFarFromTheCentre) {
 }
 
 // A small scene at every scale: 2^-1060 (subnormal coordinates) to 2^300, and far from
-// the origin. The kernels used to refuse the small ones ("no finite scale for the
-// compared sums", "ray origin out of range after scaling").
+// the origin: the kernels take every scale (no "no finite scale for the compared sums",
+// no "ray origin out of range after scaling").
 TEST_P(Placement, AnyScaleAndPlace) {
   const std::vector<Triangle> base = {
       {{{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}}},

@@ -133,11 +133,11 @@ std::string first_scene(const std::string& dir) {
     {"file": "tetras.gltf", "material": "green", "transform": {"translate": [0, 0, 1.2]}}]})");
 }
 
-// Finding 5: the first scene at default options (64 x 64 here, a sample of 3,000 of its
-// 4,096 pixels). The rug ties with the floor at every n, so no n keeps the allowance of
-// rays redone, and n = 32's frame sample was cut after 1,000 pixels by the cost rule and
-// judged on those alone (0 off, the 95 % bound 0.299 % > 0.2 %): refused, no picture.
-// Now n = 32 is taken and the target decided on the frame's machine without the cut.
+// The first scene at default options (64 x 64 here, a sample of 3,000 of its 4,096
+// pixels). The rug ties with the floor at every n, so no n keeps the allowance of rays
+// redone, and n = 32's frame sample is cut after 1,000 pixels by the cost rule; judged on
+// those alone (0 off, the 95 % bound 0.299 % > 0.2 %) the scene would be refused. n = 32
+// must be taken and the target decided on the frame's machine without the cut.
 TEST(PlanEscalate, FirstHandWrittenSceneIsRendered) {
   const Scene s = load_scene(first_scene(own_dir("plan_first_")));
   PlanRequest r;
@@ -184,11 +184,11 @@ Scene tie_scene(const std::string& dir, const std::string& name, bool duplicates
                                           "}}]}"));
 }
 
-// Finding 6: coplanar decals and duplicate triangles at 96 x 96. Their exact ties are
-// redone on the host at every n, so n = 32's primary sample already redoes a quarter of
-// what the cost rule refuses, its frame sample stops after 1,000 pixels, and the plan
-// refused the scene on those 1,000 (0 off; the 95 % bound 0.299 % > 0.2 %) although n = 32's
-// picture has no pixel off.
+// Coplanar decals and duplicate triangles at 96 x 96. Their exact ties are redone on the
+// host at every n, so n = 32's primary sample already redoes a quarter of what the cost
+// rule refuses and its frame sample stops after 1,000 pixels; the plan must not refuse
+// the scene on those 1,000 (0 off; the 95 % bound 0.299 % > 0.2 %): n = 32's picture has
+// no pixel off.
 TEST(PlanEscalate, CoplanarDecalsAndDuplicateTrianglesAreRendered) {
   const std::string dir = own_dir("plan_ties_");
   for (bool duplicates : {false, true}) {
@@ -208,7 +208,7 @@ TEST(PlanEscalate, CoplanarDecalsAndDuplicateTrianglesAreRendered) {
 
 // A pixel sample smaller than the cost rule's first 1,000 pixels (--plan-pixels 50): the
 // candidates' frame samples stay within the sample, also where the cost rule asks for an
-// early stop at 1,000 pixels (it used to read past the sample: "vector::_M_range_check").
+// early stop at 1,000 pixels (no read past the sample).
 TEST(PlanEscalate, SmallPixelSampleOfACostlyScene) {
   const std::string dir = own_dir("plan_small_sample_");
   const Scene s = tie_scene(dir, "decal", false);
@@ -223,10 +223,10 @@ TEST(PlanEscalate, SmallPixelSampleOfACostlyScene) {
   }
 }
 
-// Finding 7: the check renders on the frame's own machine (blocks x words, kernel
+// The check renders on the frame's own machine (blocks x words, kernel
 // options, mappings, shadow calls): its counters are those of a render of its pixels
 // there, clock for clock, and not those of the 64 x 32 machine the frame sample of the
-// candidates runs on (where the plan used to decide the target).
+// candidates runs on.
 TEST(PlanEscalate, CheckRendersOnTheFramesMachine) {
   const Scene s = shipped_scene("cornell");
   PlanRequest r;

@@ -80,7 +80,7 @@ TEST(RobustRender, SpawnOffsetFollowsTheHitPoint) {
   EXPECT_GT(spawn_offset(far, 5, n, 0), 1e5 * spawn_offset(near, 5, n, 0));  // rounding of o + t d
   EXPECT_NEAR(spawn_offset(near, 5, n, 1e-4), 2 * 5e-4, 1e-12);                // the error of t
   EXPECT_GT(spawn_offset(near, 5, n, 0), 0);
-  EXPECT_LT(spawn_offset(near, 5, n, 0x1p-40), 1e-10);  // the old offset here was 1e-5 of the scene
+  EXPECT_LT(spawn_offset(near, 5, n, 0x1p-40), 1e-10);  // far below 1e-5 of the scene
 }
 
 // A tiled floor and a small box on it, lit by a point light 0.05 above the floor, seen
