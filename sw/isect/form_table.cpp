@@ -1,6 +1,6 @@
 // The one table of forms (forms/forms.h), and what needs it: a form's name, the form
 // for a group of rays, the words per block, the option checks against a device. The
-// only file outside the forms' folders that names them (tests/deps_test.py checks it).
+// only file outside the forms' folders that names them (tests/repo/deps_test.py checks it).
 #include <stdexcept>
 #include <string>
 

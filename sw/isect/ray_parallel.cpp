@@ -32,8 +32,8 @@ class RayParallelPlan : public PassPlan {
       : rays_(rays), idx_(idx), tris_(tris), form_(form), opt_(opt), out_(out), st_(st),
         cull_(prepared ? *prepared : own_), bounds_(cull_.bounds), bvh_(cull_.bvh), probe_bvh_(cull_.probe_bvh) {
     if (opt_.cull) {
-      const auto* shared = dynamic_cast<const SharedOriginForm*>(&form_);
-      const bool fmpp_boxes = opt_.fmpp_boxes && origin && shared && form_.fmpp_box_test();
+      const BoxTestWords* shared = form_.box_test();
+      const bool fmpp_boxes = opt_.fmpp_boxes && origin && shared;
       if (!cull_.ready) prepare_cull(&cull_, tris, form, opt, kCullLeafItems, !fmpp_boxes, shapes);
       if (fmpp_boxes) {
         boxes_ = std::make_unique<SharedBoxTest>(*origin, opt_.vbits, shared->t_scale(), bounds_.angle);
@@ -384,7 +384,7 @@ class RayParallelPlan : public PassPlan {
   const CullBounds& bounds_;
   const Bvh &bvh_, &probe_bvh_;
   std::unique_ptr<SharedBoxTest> boxes_;  // culling on the FMPP (shared-origin paper form)
-  const SharedOriginForm* shared_ = nullptr;  // the form, with boxes_
+  const BoxTestWords* shared_ = nullptr;  // the form's, with boxes_
   std::optional<layout::ray::CullWords> cull_words_;  // where the blocks have room for reach and hint
   glm::dvec3 origin_{0};
   std::vector<char> node_reach_;  // of each node: the host's walk of the pass's rays reaches it

@@ -46,12 +46,10 @@ inline constexpr double kMergeFractions[] = {1.0 / 32, 1.0 / 8, 1.0 / 2, 1.0, 2.
 inline constexpr double kMergeSlack = 0.01;
 // The model counts a pass's broadcasts as the triangles whose boxes its rays cross before
 // their exact hits (the box oracle); the arbitrary-origin form's passes send more (its
-// probe and refinement stop short of the oracle), 1.03 to 1.54 times on the shipped
-// scenes' secondary passes, where the shared-origin passes, culled on the FMPP, send
-// 0.76 to 1.05 times (the gallery's --oracle reports, 128 x 128 and 256 x 256,
-// 2026-11-27). The merge thresholds are priced with the arbitrary-origin form's
-// broadcasts scaled by this, near the middle of its range: merging moves rays from the
-// one kind of pass to the other.
+// probe and refinement stop short of the oracle) than the shared-origin passes, culled
+// on the FMPP. The merge thresholds are priced with the arbitrary-origin form's
+// broadcasts scaled by kGeneralOverBox, near the middle of its measured range: merging
+// moves rays from the one kind of pass to the other.
 inline constexpr double kGeneralOverBox = 1.3;
 
 struct PassSizeEstimate {

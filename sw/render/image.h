@@ -43,7 +43,7 @@ class Image {
 
 // The 8-bit level of one linear value, as to_rgb8 gives it (a search of the levels'
 // starts), and the same from the formula itself (clamp, pow, round): equal for every
-// double (tests/image_format_test.cpp).
+// double (tests/render/image_format_test.cpp).
 uint8_t to_level(double v);
 uint8_t to_level_by_formula(double v);
 

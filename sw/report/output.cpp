@@ -13,13 +13,10 @@
 #include "common/util/files.h"
 #include "common/util/output_file.h"
 #include "common/util/process.h"
+#include "common/util/source_tree.h"
 
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
 #ifndef FMPP_BINARY_DIR
-#define FMPP_BINARY_DIR FMPP_SOURCE_DIR "/build"
+#error "FMPP_BINARY_DIR: the build folder, defined for fmpp_reports (sw/CMakeLists.txt)"
 #endif
 
 namespace fmpp::report {
@@ -102,7 +99,7 @@ void write_report(const ReportOutput& o, const std::string& markdown, const nloh
   write_output(o.out, markdown);
   if (o.no_plots) return;
   // An argument vector, no shell: the paths are passed as they are, whatever they hold.
-  run_program({"/usr/bin/python3", FMPP_SOURCE_DIR "/tools/" + o.plot_script, data_file, o.img_dir});
+  run_program({"/usr/bin/python3", source_file("tools/" + o.plot_script), data_file, o.img_dir});
 }
 
 }  // namespace fmpp::report

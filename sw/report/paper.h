@@ -18,14 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "common/util/source_tree.h"
 #include "fmpp/config.h"
 #include "sw/isect/kernels.h"
 #include "sw/report/fpga.h"
 #include "sw/report/output.h"
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
 
 namespace fmpp::report::paper {
 
@@ -39,7 +36,7 @@ struct Options : ReportOutput {
   // label says whether measured or projected: make docs passes make asic's measured clock
   // and its projection to the CPU's node, tools/node_scale.py).
   std::vector<std::string> clocks;
-  std::string fpga_csv = FMPP_SOURCE_DIR "/docs/data/fpga/summary.csv";  // make fpga's figures (fpga.cpp)
+  std::string fpga_csv = source_file("docs/data/fpga/summary.csv");  // make fpga's figures (fpga.cpp)
 };
 
 // ------------------------------------------------------------------ measured

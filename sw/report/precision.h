@@ -16,19 +16,16 @@
 #include <string>
 #include <vector>
 
+#include "common/util/source_tree.h"
 #include "fmpp/config.h"
 #include "sw/isect/kernels.h"
 #include "sw/report/output.h"
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
 
 namespace fmpp::report::precision {
 
 struct Options : ReportOutput {
   Options() : ReportOutput("precision.md", "precision-quick", "precision_data.json", "plot_precision.py") {}
-  std::string scenes_dir = FMPP_SOURCE_DIR "/scenes";
+  std::string scenes_dir = source_file("scenes");
   int size = 32;
   std::string only_scene;  // measure this scene only, no leak rates (tools/docs.py check)
 };

@@ -9,7 +9,7 @@
 #include <limits>
 
 #include "sw/fmpp/device.h"
-#include "sw/report/meshes.h"
+#include "sw/isect/geometry/meshes.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
 #include "sw/report/precision.h"

@@ -14,12 +14,9 @@
 
 #include "common/util/cli_checks.h"
 #include "common/util/files.h"
+#include "common/util/source_tree.h"
 #include "backends/backend.h"
 #include "backends/rtl/rtl_bus.h"
-
-#ifndef FMPP_SOURCE_DIR
-#define FMPP_SOURCE_DIR "."
-#endif
 
 namespace fmpp {
 
@@ -27,27 +24,6 @@ namespace fmpp {
 // fmpp-report paper): what the kernels accept (sw/isect/kernels.cpp, sw/fmpp/program.cpp).
 inline constexpr unsigned kMinBits = 2, kMaxBits = 32;
 inline CLI::Validator bits_range() { return int_range(kMinBits, kMaxBits); }
-
-// A file of the repository (rel, e.g. "scenes/cornell.json") for a default path, so that
-// a default does not depend on the current directory: the source tree the tool was built
-// from, else the tree around the executable (BIN/.. or BIN), else the source tree's path
-// (whose absence the tool then names).
-inline std::string repo_file(const std::string& rel) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  std::vector<fs::path> roots = {fs::path(FMPP_SOURCE_DIR)};
-  char exe[4096];
-  const ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  if (len > 0) {
-    const fs::path bin = fs::path(std::string(exe, static_cast<size_t>(len))).parent_path();
-    roots.push_back(bin.parent_path());
-    roots.push_back(bin);
-  }
-  for (const fs::path& root : roots) {
-    if (fs::is_regular_file(root / rel, ec)) return (root / rel).lexically_normal().string();
-  }
-  return (fs::path(FMPP_SOURCE_DIR) / rel).lexically_normal().string();
-}
 
 // --config NAME beside --blocks and --words: one or the other, never both (a named
 // configuration fixes both sizes). Declared on the options, so CLI11 refuses the

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "sw/report/meshes.h"
+#include "sw/isect/geometry/meshes.h"
 #include "sw/isect/exact/reference.h"
 
 namespace {

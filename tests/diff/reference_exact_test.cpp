@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "sw/isect/exact/exact.h"
-#include "sw/report/meshes.h"
+#include "sw/isect/geometry/meshes.h"
 #include "sw/isect/exact/reference.h"
+#include "tests/support/geometry_fixtures.h"
 
 namespace fmpp::isect {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-Triangle tri(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return Triangle{{a, b, c}}; }
+using fixtures::kInf;
+using fixtures::tri;
 
 TEST(ExactReference, RayInTheTrianglesPlaneMisses) {
   // det = 0: in the plane z = 0, through the interior, along an edge, through a vertex.

@@ -194,7 +194,7 @@ def _how_generated():
         "instead of taken from the map, makes that run fail (in lint, in the directed checks or as a "
         "lockstep mismatch). The window layouts and the 4 KiB register region are described in the "
         "map's prose only and are not moved by the test. "
-        "The unit tests that pin today's encoding (`tests/isa_test.cpp`) must then be updated by hand: "
+        "The unit tests that pin today's encoding (`tests/model/isa_test.cpp`) must then be updated by hand: "
         "they are the record of the published encoding.",
         "",
     ]

@@ -19,7 +19,7 @@ bool PassHints::may_stop(const Ray& r, size_t triangles, int proven) {
 }
 
 void PassHints::write(PassWords& out, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
-                      unsigned count, const std::vector<Triangle>& tris, const SharedOriginForm& form,
+                      unsigned count, const std::vector<Triangle>& tris, const BoxTestWords& form,
                       const layout::ray::CullWords& words, SharedBoxTest& boxes) {
   clear();
   std::vector<uint32_t> hint(count, layout::ray::kNoHint), reach(count, 0);

@@ -11,7 +11,7 @@
 
 #include "sw/isect/pass/pass_words.h"
 #include "sw/isect/cull/box_test.h"
-#include "sw/isect/forms/forms.h"
+#include "sw/isect/pass/ray_form.h"
 #include "sw/isect/geometry/geometry.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/forms/shared_origin_layout.h"
@@ -30,7 +30,7 @@ class PassHints {
   // with a ray it must not stop (may_stop): that ray's hint word is then kNoStop
   // (SharedBoxTest::set_stop_guard).
   void write(PassWords& out, const std::vector<Ray>& rays, const std::vector<size_t>& idx, size_t base,
-             unsigned count, const std::vector<Triangle>& tris, const SharedOriginForm& form,
+             unsigned count, const std::vector<Triangle>& tris, const BoxTestWords& form,
              const layout::ray::CullWords& words, SharedBoxTest& boxes);
   // Forgets the pass's hints (a pass without the words).
   void clear();
@@ -48,19 +48,9 @@ class PassHints {
 
   // The hint word costs up to a bus write a ray (a value most blocks share goes out as
   // one WRITES: pass_words.h); it is written only where the proven hints are many
-  // different triangles (one in kHintShare rays or more): a triangle that is the
-  // hint of many rays (a large wall) is broadcast for the rays that do not end on it
-  // anyway. Measured at 128 x 128 (4096 blocks, n = 24; clocks of the frame; the reach
-  // written with the hints or not at all, as it then was): without the words, in every pass, and with kHintShare 8, 16, 32, 64: the
-  // Cornell box 1,571,313, 1,606,334, 1,554,779, 1,568,069, 1,568,069, 1,578,101;
-  // armadillo 5,985,452, 5,768,022, 5,806,729, 5,755,695, 5,750,122, 5,759,830; scans
-  // 8,174,883, 7,662,250, 7,790,352, then 7,662,250 from 16 on. With the shared values
-  // as one WRITES (2026-11-27), kHintShare 0 (hints in every pass), 8 and 32 gave: the
-  // Cornell box 1,026,745, 1,029,946, 1,039,108; spheres_1k 380,666, 378,919, 392,837;
-  // spheres_10k 1,456,395, 1,449,903, 1,449,989; armadillo 2,757,411, 2,606,397,
-  // 2,554,463; scans 3,763,809, 3,530,358, 3,412,343 (32 the fewest over the five).
-  // Writing the reach in every pass with a tmax then saved 2,788 (Cornell) to 5,017
-  // (armadillo) more, spheres_1k 35 clocks more.
+  // different triangles (one in kHintShare rays or more): a triangle that is the hint of
+  // many rays (a large wall) is broadcast for the rays that do not end on it anyway. The
+  // reach is written in every pass where some ray has a finite tmax.
   static constexpr unsigned kHintShare = 32;
 
  private:

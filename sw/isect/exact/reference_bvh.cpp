@@ -10,7 +10,7 @@
 // an upper bound on the best hit's distance (the upper end of the filtered test's
 // enclosure of its t, exact.h: Candidate::hi), times 1 + 2^-30, plus 2^-30 of the
 // origin's largest coordinate: the rounding of the entry distance is far below that
-// margin. tests/reference_bvh_test.cpp compares it with nearest_reference on hard
+// margin. tests/isect/reference_bvh_test.cpp compares it with nearest_reference on hard
 // placements.
 #include "sw/isect/exact/reference_bvh.h"
 

@@ -97,7 +97,7 @@ unsigned paper_object_words(const KernelOptions& opt);
 // block's best is the largest compared sum S_c (0: no hit), and 1/t = S_c t_scale sv.
 // Both forms certify their results: each broadcast's sum_bound bounds its S_c, and the
 // pass's init clears the best's bound kBB and the flag kUnc.
-class SharedOriginForm : public RayForm {
+class SharedOriginForm : public RayForm, public BoxTestWords {
  public:
   SharedOriginForm(const KernelOptions& opt, const glm::dvec3& origin) : opt_(opt), origin_(origin) {}
   BestWords best_words() const override { return {layout::ray::kBest, layout::ray::kIdx, 0}; }
@@ -106,10 +106,9 @@ class SharedOriginForm : public RayForm {
   double t_of(uint32_t best, const Ray& r) const override;
   bool certified() const override { return true; }
   double t_rel_bound(uint32_t best, size_t k) const override;
-  double t_scale() const { return t_scale_; }
-  // The ray's reach as a compared sum: at most the S_c of any hit with t < tmax (0: no
-  // cut), for the FMPP's box test (word kReach).
-  uint32_t reach_word(const Ray& r) const;
+  double t_scale() const override { return t_scale_; }
+  // The ray's reach as a compared sum, for the FMPP's box test (word kReach).
+  uint32_t reach_word(const Ray& r) const override;
 
  protected:
   // The scale of a direction's components: its largest becomes 2^vbits.

@@ -37,10 +37,10 @@ const char* to_string(Origins o);
 
 // The kernel options, declared once: every field of KernelOptions is a row of this list,
 // from which the struct, the forms' equality (form_cache.cpp), the plan's cache key
-// (rt/plan_cache.cpp), the agreement between MPI ranks (mpi/render_chips.cpp), the
+// (plan/plan_cache.cpp), the agreement between MPI ranks (mpi/render_chips.cpp), the
 // reports' JSON (stats_json.h: options_json) and the command-line flags of fmpp-intersect
 // (all of them) and fmpp-render (those with a render role; sw/tools/kernel_flags.h) are
-// derived. tests/kernel_options_test.cpp checks every row in every derived use.
+// derived. tests/isect/kernel_options_test.cpp checks every row in every derived use.
 //
 // X(type, field, default, kind, lo, hi, roles, flag, report name, help, fmpp-render's help,
 //   why a role is missing)
@@ -184,7 +184,7 @@ const char* to_string(Origins o);
 // What a row of FMPP_KERNEL_OPTIONS takes part in.
 enum OptionRole : unsigned {
   kFormIdentity = 1u << 0,   // a prepared form is reused only under the same value (form_cache.cpp)
-  kPlanKey = 1u << 1,        // part of the precision plan's cache key (rt/plan_cache.cpp)
+  kPlanKey = 1u << 1,        // part of the precision plan's cache key (plan/plan_cache.cpp)
   kAgreed = 1u << 2,         // the same on every MPI rank, checked before the frame (mpi/render_chips.cpp)
   kReported = 1u << 3,       // in the reports: fmpp-render's "fmpp" object, fmpp-intersect's top level
   kRenderFlag = 1u << 4,     // a flag of fmpp-render too, its default shown

@@ -69,6 +69,16 @@ struct CullPad {
 
 struct FormInputs;  // forms/forms.h
 
+// What the FMPP's box test reads of a form whose passes it culls: the scale of the
+// compared sums (t = S_c * t_scale) and each ray's reach as a compared sum (at most the
+// S_c of any hit with t < tmax; 0: no cut).
+class BoxTestWords {
+ public:
+  virtual ~BoxTestWords() = default;
+  virtual double t_scale() const = 0;
+  virtual uint32_t reach_word(const Ray& r) const = 0;
+};
+
 // An intersection form of the ray-parallel mapping, prepared for one batch of rays.
 class RayForm {
  public:
@@ -103,9 +113,10 @@ class RayForm {
   // Which form this is: its FormId in the registry (forms/forms.h), the index of
   // KernelStats' per-form counters.
   virtual int id() const = 0;
-  // Whether the FMPP's box test (cull/box_test.h) can cull this form's passes: it needs
-  // the shared-origin words and a reach that is a compared sum.
-  virtual bool fmpp_box_test() const { return false; }
+  // What the FMPP's box test (cull/box_test.h) needs of this form, or nullptr where it
+  // cannot cull the form's passes (it needs the shared-origin words and a reach that is
+  // a compared sum).
+  virtual const BoxTestWords* box_test() const { return nullptr; }
   // Certified forms set flag layout::kUnc in a block whose decisions were not certain
   // (the host then redoes the ray exactly), and bound the relative error of every t.
   virtual bool certified() const { return false; }

@@ -110,7 +110,7 @@ class PaperForm : public SharedOriginForm {
   }
 
   int id() const override { return kFormPaper; }
-  bool fmpp_box_test() const override { return true; }
+  const BoxTestWords* box_test() const override { return this; }
 
   // Culling: the relative error of T is below 3 cond 2^-operand_bits (the mantissas' and
   // the direction's rounding, magnified by the condition), which moves the edges by that
