@@ -140,7 +140,9 @@ TEST(Culling, ChangesNoResult) {
 // Rays along a row of five spheres, of their own origins and sharing one: the
 // front-to-back probe runs for both (its final broadcasts differ from the box culling's)
 // and changes no result.
-TEST(Culling, ProbeChangesNoResult) {
+// Five closed spheres in a row along x, and rays of their own origins from beyond the
+// last (tmin > 0: the arbitrary-origin form), each crossing most of them.
+std::vector<Triangle> five_spheres() {
   std::vector<Triangle> tris;
   for (int s = 0; s < 5; ++s) {
     SphereMeshOptions so;
@@ -149,7 +151,10 @@ TEST(Culling, ProbeChangesNoResult) {
     const std::vector<Triangle> one = closed_sphere(so);
     tris.insert(tris.end(), one.begin(), one.end());
   }
-  std::mt19937_64 rng(9);
+  return tris;
+}
+
+std::vector<Ray> own_origin_rays(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<Ray> rays;
   for (int k = 0; k < 256; ++k) {
@@ -157,6 +162,14 @@ TEST(Culling, ProbeChangesNoResult) {
     r.tmin = 1e-4;  // the arbitrary-origin form
     rays.push_back(r);
   }
+  return rays;
+}
+
+TEST(Culling, ProbeChangesNoResult) {
+  const std::vector<Triangle> tris = five_spheres();
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Ray> rays = own_origin_rays(rng);
   // And rays sharing an origin (the P^-1 form), some cut short like shadow rays.
   std::vector<Ray> shared;
   for (int k = 0; k < 256; ++k) {
@@ -189,6 +202,33 @@ TEST(Culling, ProbeChangesNoResult) {
       EXPECT_LT(walk.broadcasts, off.broadcasts / 2);
     }
   }
+}
+
+// --probe-rounds (KernelOptions::max_probe_rounds) bounds the probe's rounds for rays of
+// their own origins, the first included, and changes no answer: no round after the first
+// at 1, at most one a pass at 2, more at the default (8).
+TEST(Culling, ProbeRoundsBoundTheRoundsNotTheAnswers) {
+  const std::vector<Triangle> tris = five_spheres();
+  std::mt19937_64 rng(9);
+  const std::vector<Ray> rays = own_origin_rays(rng);
+  KernelStats off;
+  const std::vector<Hit> exact = run(rays, tris, false, true, &off);
+  uint64_t at_two = 0;
+  for (unsigned rounds : {1u, 2u, 8u}) {
+    SCOPED_TRACE(rounds);
+    auto be = make_backend("cmodel", Config{64, 32});
+    Device dev(be->bus());
+    KernelOptions o;
+    o.max_probe_rounds = rounds;
+    KernelStats st;
+    expect_same(exact, intersect_fmpp(dev, rays, tris, o, &st), rays);
+    EXPECT_LE(st.probe_rounds, (rounds - 1) * st.passes);  // probe_rounds: the rounds after a pass's first
+    if (rounds == 2) at_two = st.probe_rounds;
+    if (rounds == 8) {
+      EXPECT_GT(st.probe_rounds, at_two) << "the default refines further";
+    }
+  }
+  EXPECT_GT(at_two, 0u);
 }
 
 TEST(CullHint, PlaneBeyondReachOnlyWithAMargin) {

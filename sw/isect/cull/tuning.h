@@ -16,9 +16,10 @@ inline constexpr int kProbeLeavesShared = 1;
 inline constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
 // Rays of their own origins probe in rounds (ray_parallel.cpp, refine): each round sends
 // the next kProbeLeavesOwn leaves of each ray's front among the triangles left, reads
-// back the bests of the rays that probed, and cuts their reach; up to kProbeRoundsOwn
-// rounds, each while it sends less than what is left.
-inline constexpr int kProbeLeavesOwn = 1, kProbeRoundsOwn = 8;
+// back the bests of the rays that probed, and cuts their reach; up to
+// KernelOptions::max_probe_rounds rounds in all (--probe-rounds, 8 by default), each
+// after the first only while it sends less than what is left.
+inline constexpr int kProbeLeavesOwn = 1;
 // Culling: one triangle per leaf of the hierarchy, so that a ray keeps only the triangles
 // whose own (padded) boxes it crosses, and the FMPP tests each one before it is
 // broadcast; inner nodes are not tested on the FMPP.
