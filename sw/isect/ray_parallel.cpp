@@ -343,7 +343,7 @@ class RayParallelPlan : public PassPlan {
     std::vector<size_t> order = marked(keep);
     // Rays of their own origins: another probe round (probe.h), if it sends less than what
     // is left (all of which would be sent anyway: it adds only a read-back).
-    if (general && *appended && rounds_ < kProbeRoundsOwn) {
+    if (general && *appended && static_cast<unsigned>(rounds_) < opt_.max_probe_rounds) {
       const std::vector<size_t> next = next_probe_round(probe_bvh_, one, keep, order, &probed_);
       if (!next.empty() && next.size() < order.size()) {
         ++rounds_;

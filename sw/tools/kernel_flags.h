@@ -6,7 +6,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
+#include <iostream>
 #include <map>
 #include <string>
 #include <type_traits>
@@ -55,6 +57,45 @@ class KernelFlags {
       if (flag && !(render && o.has(isect::kRenderPlanned))) flag->capture_default_str();
     });
     add_form(app, tool);
+    app.add_flag_callback(
+        "--list-kernel-options",
+        [tool] {
+          std::cout << table(tool).dump(1) << "\n";
+          throw CLI::Success();
+        },
+        "print the kernel options' flags of this tool as JSON (flag, kind, range, default, names) and exit: "
+        "the random tests draw every one of them from it");
+  }
+
+  // The rows of the tool's kernel-option flags: {"flag", "kind": "value" | "set" | "clear"
+  // | "named", and for a value "lo", "hi", "integer", "default"; for a name "names",
+  // "default"}; "planned" where fmpp-render's plan chooses the value unless given.
+  static nlohmann::json table(FlagTool tool) {
+    nlohmann::json rows = nlohmann::json::array();
+    const isect::KernelOptions defaults;
+    isect::for_each_kernel_option([&](const isect::OptionInfo& o, auto member, auto kind) {
+      using Kind = decltype(kind);
+      if (tool == FlagTool::kRender && !o.has(isect::kRenderFlag | isect::kRenderPlanned)) return;
+      nlohmann::json r = {{"flag", o.flag}, {"planned", tool == FlagTool::kRender && o.has(isect::kRenderPlanned)}};
+      if constexpr (std::is_same_v<Kind, isect::OptSet>) {
+        r["kind"] = "set";
+      } else if constexpr (std::is_same_v<Kind, isect::OptClear>) {
+        r["kind"] = "clear";
+      } else if constexpr (std::is_same_v<Kind, isect::OptValue>) {
+        using T = std::remove_reference_t<decltype(defaults.*member)>;
+        r.update({{"kind", "value"}, {"lo", o.lo}, {"hi", o.hi}, {"integer", !std::is_floating_point_v<T>},
+                  {"default", defaults.*member}});
+      } else {
+        r["kind"] = "named";
+        r["names"] = nlohmann::json::array();
+        for (const auto& [name, value] : Kind::Names::kAll) {
+          r["names"].push_back(name);
+          if (value == defaults.*member) r["default"] = name;
+        }
+      }
+      rows.push_back(r);
+    });
+    return rows;
   }
 
   // Whether --form was given.

@@ -5,13 +5,20 @@ placed 2^-30 to 2^30 from the world origin (or at it) at a size of 2^-30 to 2^30
 rays, some of them given a tmin, a tmax, an excluded triangle or a hint, and a set of
 fmpp-intersect options drawn from everything the tool accepts:
 
-    case(seed, index, rays) -> Case (scene, rays, options; deterministic in seed and index)
+    case(seed, index, rays, table) -> Case (scene, rays, options; deterministic in seed
+                                       and index)
 
-Every option set drawn is valid: the words given hold what the forms need (the tool
+The options come from the tool's own list (`fmpp-intersect --list-kernel-options`,
+kernel_table()): those below with a distribution of their own (the forms', the culling
+switches'), every other row of the list by its kind and range (_generic), so that an
+option added to the tool is drawn without a change here. Every option set drawn is valid: the words given hold what the forms need (the tool
 refuses fewer with an error, which optrun.py counts as a failure).
 """
+import json
 import math
+import os
 import random
+import subprocess
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -146,6 +153,33 @@ def _cull_options(rng):
             "pass-order": _pick(rng, [(7, "coherent"), (3, "batch")])}
 
 
+def kernel_table(build):
+    """The rows of fmpp-intersect's kernel options (its --list-kernel-options)."""
+    out = subprocess.run([os.path.join(build, "fmpp-intersect"), "--list-kernel-options"], check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def _generic(rng, d, table):
+    """Every row of the tool's list that d does not hold yet, drawn by its kind: a switch
+    one time in four, a name of its list, a value at its default, its ends or anywhere
+    between."""
+    for row in table:
+        name = row["flag"][2:]
+        if name in d:
+            continue
+        if row["kind"] in ("set", "clear"):
+            d[name] = rng.random() < 0.25
+        elif row["kind"] == "named":
+            d[name] = _pick(rng, [(2, None), (1, lambda: rng.choice(row["names"]))])
+        else:
+            lo, hi = row["lo"], row["hi"]
+            between = (lambda: rng.randint(int(lo), int(hi))) if row["integer"] else (lambda: rng.uniform(lo, hi))
+            d[name] = _pick(rng, [(3, None), (1, row["default"]), (1, lo), (1, hi), (3, between)])
+            if row["integer"] and d[name] is not None:
+                d[name] = int(d[name])
+
+
 def _machine(rng, d, rays, built_only):
     """blocks and words (or a named configuration) that hold what the drawn forms need;
     built_only: the names of the built configurations, one of which is always drawn
@@ -191,8 +225,8 @@ def _pinned(d, pins):
         d["watertight"] = False
 
 
-def case(seed, index, rays, built_only=None, pins=None, scene=None):
-    """Case `index` of `seed`, with `rays` rays; built_only: the machine one of these
+def case(seed, index, rays, table, built_only=None, pins=None, scene=None):
+    """Case `index` of `seed`, with `rays` rays; table: kernel_table(build); built_only: the machine one of these
     named configurations with 32 words (for the RTL backends: those built); pins: options given, not drawn
     (name: value, as fmpp-intersect spells them; flags True or False); scene: the
     family, size_exp or dist_exp given, not drawn."""
@@ -201,6 +235,7 @@ def case(seed, index, rays, built_only=None, pins=None, scene=None):
     rs = _with_extras(rng, tris, rs)
     d = _form_options(rng)
     d.update(_cull_options(rng))
+    _generic(rng, d, table)
     _pinned(d, pins or {})
     _machine(rng, d, rs, built_only)
     return Case(str(seed), index, name, e, dist, tris, rs, _arguments(d), d)

@@ -161,7 +161,7 @@ def run_seed(a, seed, deadline, work, tally):
             break
         if a.case is None and (time.time() > deadline or (a.cases and index >= a.cases)):
             break
-        c = optgen.case(seed, index, a.rays, built_only=a.built, pins=a.pins, scene=a.scene)
+        c = optgen.case(seed, index, a.rays, a.table, built_only=a.built, pins=a.pins, scene=a.scene)
         res = run_case(a, c, work)
         tally["cases"] += 1
         for k in ("rays", "hits", "flagged", "t_redone"):
@@ -198,6 +198,7 @@ def main():
     if a.place:
         a.scene["size_exp"], a.scene["dist_exp"] = (int(x) for x in a.place.split(","))
     a.built = built_configs(a.build) if any(b in RTL_BACKENDS for b in a.backends.split(",")) else None
+    a.table = optgen.kernel_table(a.build)
     a.pins = {}
     for p in a.pin:
         name, _, v = p.partition("=")

@@ -2,7 +2,7 @@
 // the order change no result of intersect_fmpp (golden model) on shared-origin, shadow
 // and arbitrary-origin rays, including edge and vertex rays of a closed mesh; the hints,
 // the shared passes' order and the oracles. (The packet-box test and the order itself:
-// cull_order_test.cpp.)
+// cull_order_test.cpp; the probe: probe_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,9 +18,13 @@
 #include "sw/isect/pass/pass.h"
 #include "sw/isect/pass/policy.h"
 #include "sw/isect/exact/reference.h"
+#include "tests/support/cull_fixtures.h"
 
 namespace fmpp::isect {
 namespace {
+
+using cull_fixtures::expect_same;
+using cull_fixtures::run;
 
 // A cloud of random triangles around a closed sphere mesh.
 std::vector<Triangle> test_scene() {
@@ -35,48 +39,6 @@ std::vector<Triangle> test_scene() {
     tris.push_back(Triangle{{c, c + 0.4 * glm::dvec3(u(rng), u(rng), u(rng)), c + 0.4 * glm::dvec3(u(rng), u(rng), u(rng))}});
   }
   return tris;
-}
-
-std::vector<Hit> run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, bool cull, bool coherent,
-                     KernelStats* st, bool oracle = false, unsigned n = 24, bool probe = true, bool fmpp_boxes = true) {
-  auto be = make_backend("cmodel", Config{64, 32});
-  Device dev(be->bus());
-  KernelOptions o;
-  o.cull = cull;
-  o.coherent = coherent;
-  o.oracle = oracle;
-  o.n = n;
-  o.cull_probe = probe;
-  o.fmpp_boxes = fmpp_boxes;
-  return intersect_fmpp(dev, rays, tris, o, st);
-}
-
-// The same triangle for every ray, and the same t unless one run redid the ray on the
-// host: culling can spare a ray the broadcast of a triangle whose uncertain inside test
-// (far behind its hit) would have flagged it, so one run may give the host's exact t and
-// the other the FMPP's certified one. Both are then within the certified accuracy.
-void expect_same(const std::vector<Hit>& a, const std::vector<Hit>& b, const std::vector<Ray>& rays,
-                 size_t* t_redone = nullptr) {
-  ASSERT_EQ(a.size(), b.size());
-  size_t hits = 0, redone = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    // Hits at t >= tmax may be reported or not (geometry.h).
-    if (!(a[i].t < rays[i].tmax) && !(b[i].t < rays[i].tmax)) continue;
-    hits += a[i].hit();
-    EXPECT_EQ(a[i].tri, b[i].tri) << "ray " << i;
-    if (a[i].redo == b[i].redo || !a[i].hit()) {
-      EXPECT_EQ(a[i].t, b[i].t) << "ray " << i;
-    } else {
-      ++redone;
-      EXPECT_NEAR(a[i].t, b[i].t, 2 * std::ldexp(1.0, -policy::kTAccuracyBits) * a[i].t) << "ray " << i;
-    }
-  }
-  EXPECT_GT(hits, a.size() / 10) << "the rays must hit something";
-  // Rays of their own origins through closed meshes: near a silhouette a ray's entry and
-  // exit hits are within the certified form's tolerance, and the host redoes the ray in
-  // the run that broadcast both (about 5 % of such rays in the sphere rows below).
-  EXPECT_LT(redone, a.size() / 10) << "rays whose t came from the host in one run only";
-  if (t_redone) *t_redone += redone;
 }
 
 TEST(Culling, ChangesNoResult) {
@@ -137,59 +99,6 @@ TEST(Culling, ChangesNoResult) {
   }
 }
 
-// Rays along a row of five spheres, of their own origins and sharing one: the
-// front-to-back probe runs for both (its final broadcasts differ from the box culling's)
-// and changes no result.
-TEST(Culling, ProbeChangesNoResult) {
-  std::vector<Triangle> tris;
-  for (int s = 0; s < 5; ++s) {
-    SphereMeshOptions so;
-    so.centre = glm::dvec3(3.0 * s, 0, 0);
-    so.seed = 40 + static_cast<uint64_t>(s);
-    const std::vector<Triangle> one = closed_sphere(so);
-    tris.insert(tris.end(), one.begin(), one.end());
-  }
-  std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Ray> rays;
-  for (int k = 0; k < 256; ++k) {
-    Ray r{{16 + u(rng), 0.8 * u(rng), 0.8 * u(rng)}, {-1, 0.05 * u(rng), 0.05 * u(rng)}};
-    r.tmin = 1e-4;  // the arbitrary-origin form
-    rays.push_back(r);
-  }
-  // And rays sharing an origin (the P^-1 form), some cut short like shadow rays.
-  std::vector<Ray> shared;
-  for (int k = 0; k < 256; ++k) {
-    Ray r{{16, 0, 0}, {-1, 0.05 * u(rng), 0.05 * u(rng)}};
-    if (k % 2) r.tmax = 13 + 4 * u(rng);
-    shared.push_back(r);
-  }
-  for (const std::vector<Ray>* set : {&rays, &shared}) {
-    KernelStats off, probe, boxes;
-    const std::vector<Hit> a = run(*set, tris, false, true, &off);
-    // The shared-origin rays take the FMPP's box tests unless told not to; the probe is
-    // then the host walk's.
-    const bool shared_set = set == &shared;
-    const std::vector<Hit> b = run(*set, tris, true, true, &probe, false, 24, true, !shared_set);
-    const std::vector<Hit> c = run(*set, tris, true, true, &boxes, false, 24, false, !shared_set);
-    expect_same(a, b, *set);
-    expect_same(a, c, *set);
-    EXPECT_NE(probe.broadcasts, boxes.broadcasts) << "the probe ran";
-    EXPECT_LT(probe.broadcasts, off.broadcasts / 2);
-    // The certified forms keep the probe's results: after it a pass sends only what the
-    // probe did not, so every triangle is sent or culled exactly once per pass.
-    for (const KernelStats* st : {&off, &probe, &boxes}) {
-      EXPECT_EQ(st->broadcasts + st->culled, st->passes * (tris.size() - st->host_triangles));
-    }
-    if (shared_set) {
-      KernelStats walk;
-      const std::vector<Hit> d = run(*set, tris, true, true, &walk);
-      expect_same(a, d, *set);
-      EXPECT_GT(walk.fmpp_box_tests, 0u);
-      EXPECT_LT(walk.broadcasts, off.broadcasts / 2);
-    }
-  }
-}
 
 TEST(CullHint, PlaneBeyondReachOnlyWithAMargin) {
   const Triangle t{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};

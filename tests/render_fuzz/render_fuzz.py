@@ -37,7 +37,38 @@ ALLOWED_REFUSALS = {
 RTL_CONFIGS = ("small", "odd", "medium")  # built in every tree (make asan's too)
 
 
-def draw_options(rng, backend):
+# The kernel options drawn below with a distribution of their own; every other one of
+# fmpp-render's list (--list-kernel-options) is drawn by its kind (draw_generic).
+DRAWN_HERE = {"--bits", "--mapping", "--mul", "--no-cull", "--no-probe", "--no-fmpp-boxes", "--no-gates", "--watertight",
+              "--oracle", "--merge-below", "--pass-order", "--cull-packet", "--t-accuracy"}
+
+
+def kernel_table(build):
+    """The rows of fmpp-render's kernel options (its --list-kernel-options)."""
+    out = subprocess.run([os.path.join(build, "fmpp-render"), "--list-kernel-options"], check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def draw_generic(rng, table):
+    """Each kernel option of fmpp-render not in DRAWN_HERE, given three times in ten: a
+    switch, a name of its list, or a value at its ends or between."""
+    o = []
+    for row in table:
+        if row["flag"] in DRAWN_HERE or rng.random() >= 0.3:
+            continue
+        if row["kind"] in ("set", "clear"):
+            o.append(row["flag"])
+        elif row["kind"] == "named":
+            o += [row["flag"], rng.choice(row["names"])]
+        else:
+            lo, hi = row["lo"], row["hi"]
+            v = rng.choice((lo, hi, rng.randint(int(lo), int(hi)) if row["integer"] else rng.uniform(lo, hi)))
+            o += [row["flag"], str(int(v)) if row["integer"] else repr(float(v))]
+    return o
+
+
+def draw_options(rng, backend, table):
     """Random fmpp-render options: every option that changes how the FMPP answers."""
     o = ["--backend", backend]
     if backend in ("cmodel", "mpi"):
@@ -83,7 +114,7 @@ def draw_options(rng, backend):
         o += ["--max-depth", str(rng.randint(1, 6))]
     if rng.random() < 0.3:
         o += ["--seed", str(rng.randint(0, 2 ** 40))]
-    return o
+    return o + draw_generic(rng, table)
 
 
 def draw_backend(rng, rtl_share, mpi):
@@ -116,7 +147,7 @@ def one_render(args, index, case_seed):
     w, h = rng.randint(3, args.max_side), rng.randint(3, args.max_side)
     cmd = [os.path.join(args.build, "fmpp-render"), "--scene", scene, "--width", str(w), "--height", str(h),
            "--verify-exact", "--quiet", "--plan-cache", "", "--out", os.path.join(folder, "out.png"),
-           "--report", os.path.join(folder, "report.json")] + draw_options(rng, backend)
+           "--report", os.path.join(folder, "report.json")] + draw_options(rng, backend, args.table)
     if backend == "mpi":
         cmd = ["mpirun", "--oversubscribe", "-np", "2"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + cmd
     t0 = time.time()
@@ -163,6 +194,7 @@ def main():
         ap.error("give --seconds or --renders")
     args.out = args.out or os.path.join(args.build, "render_fuzz")
     args.mpi = _has_mpi(args.build)
+    args.table = kernel_table(args.build)
     seed = _seed(args.seed)
     print("render_fuzz: seed %d (rerun with --seed %d)" % (seed, seed), flush=True)
     master = random.Random(seed)

@@ -150,4 +150,23 @@ if command -v identify > /dev/null; then
   identify "$dir/ok.PFM" > "$dir/identify.txt"
   grep -q "PFM 8x8" "$dir/identify.txt"
 fi
+# --list-kernel-options: the kernel options' flags as JSON (what the random tests draw
+# from), each of them a flag of the tool's --help, with exit 0 and nothing else done.
+"$render" --list-kernel-options > "$dir/render_options.json"
+"$render" --help > "$dir/render_help.txt"
+/usr/bin/python3 - "$dir/render_options.json" "$dir/render_help.txt" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))
+help_text = open(sys.argv[2]).read()
+flags = [r["flag"] for r in rows]
+assert "--bits" in flags and "--cull-packet" in flags and "--no-cull" in flags, flags
+for r in rows:
+    assert r["flag"] in help_text, r["flag"] + " is listed but not in --help"
+    assert r["kind"] in ("value", "set", "clear", "named"), r
+    if r["kind"] == "value":
+        assert r["lo"] <= r["default"] <= r["hi"], r
+    if r["kind"] == "named":
+        assert r["default"] in r["names"], r
+PY
+test ! -e "$dir/render.png"
 echo "tools CLI: OK"

@@ -16,9 +16,10 @@ inline constexpr int kProbeLeavesShared = 1;
 inline constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
 // Rays of their own origins probe in rounds (ray_parallel.cpp, refine): each round sends
 // the next kProbeLeavesOwn leaves of each ray's front among the triangles left, reads
-// back the bests of the rays that probed, and cuts their reach; up to kProbeRoundsOwn
-// rounds, each while it sends less than what is left.
-inline constexpr int kProbeLeavesOwn = 1, kProbeRoundsOwn = 8;
+// back the bests of the rays that probed, and cuts their reach; up to
+// KernelOptions::max_probe_rounds rounds in all (--probe-rounds, 8 by default), each
+// after the first only while it sends less than what is left.
+inline constexpr int kProbeLeavesOwn = 1;
 // The FMPP's walk (ray_parallel.cpp) tests an inner node of the hierarchy, not only its
 // leaves, where the node holds kNodeTestLeaves or more leaves the host's walk reached and
 // the running share of the pass's leaf tests that found no ray (each test weighing

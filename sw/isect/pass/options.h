@@ -155,6 +155,13 @@ const char* to_string(Origins o);
     "", "form identity: it steers a call, not a form")                                                             \
   X(unsigned, cull_packet, 1, OptValue, 1, 65536, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,       \
     "--cull-packet", "cull_packet", "rays per culling packet", "", "")                                             \
+  /* Rays of their own origins: the rounds the front-to-back probe may take in a pass,                              \
+     its first included (cull/tuning.h, ray_parallel.cpp: each round sends the next leaves                           \
+     of each ray's front, reads back the probing rays' bests and cuts their reach). */                               \
+  X(unsigned, max_probe_rounds, 8, OptValue, 1, 64, kPlanKey | kAgreed | kReported | kRenderFlag, "--probe-rounds", \
+    "max_probe_rounds", "probe rounds in a pass for rays of their own origins, the first included (1: no more)",   \
+    "",                                                                                                             \
+    "form identity: it steers the passes, not a form")                                                               \
   /* Ray-parallel: load each batch's rays into passes in a coherent order (order.h:                                 \
      square image tiles for primary rays, octant and origin for the others) rather than                             \
      in the caller's order. Results come back in the caller's order either way. */                                  \
