@@ -12,6 +12,7 @@
 #include "sw/isect/cull/cull_bounds.h"
 #include "sw/isect/cull/tuning.h"
 #include "sw/isect/forms/forms.h"
+#include "sw/isect/pass/best_cache.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/cull/oracle.h"
 #include "sw/isect/cull/probe.h"
@@ -127,6 +128,7 @@ class RayParallelPlan : public PassPlan {
     else hints_.clear();
     words_.flush(dev, std::move(pre), st_);
     push_init(dev, Program());
+    bests_.reset(count, changed_reads());
   }
 
   const std::vector<uint64_t>& code(size_t k, uint32_t number, ProgramMarks* marks) override {
@@ -143,13 +145,13 @@ class RayParallelPlan : public PassPlan {
     t_loose_.assign(count, false);
     // A ray whose best is certainly beyond its tmax is not read: a miss to the caller.
     const std::vector<char> read = boxes_ ? boxes_->to_read(dev, count, st_) : std::vector<char>(count, 1);
-    ovf_ = read_best(dev, count, form_.best_words(), order.size(), [&](unsigned b, uint32_t best, size_t pos) {
+    ovf_ = read_bests(dev, count, order, [&](unsigned b, uint32_t best, size_t pos, double bound) {
       const Ray& r = rays_[idx_[base + b]];
       Hit& h = out_[idx_[base + b]];
       h.tri = form_.broadcasts[order[pos]].tri;
       h.t = form_.t_of(best, r);
       // Every form certifies (an uncertified one would have no bound to give).
-      h.t_err = form_.t_rel_bound_at(dev, b, best, order[pos]);
+      h.t_err = bound;
       t_loose_[b] = form_.certified() && !(h.t_err <= t_acc_);
     }, &read);
     unc_.assign(count, false);
@@ -302,15 +304,15 @@ class RayParallelPlan : public PassPlan {
       best_.assign(count, kInf);
       winner_.assign(count, SIZE_MAX);
     }
-    const std::vector<bool> ovf = read_best(
-        dev, count, form_.best_words(), done.size(),
-        [&](unsigned b, uint32_t v, size_t pos) {
+    const std::vector<bool> ovf = read_bests(
+        dev, count, done,
+        [&](unsigned b, uint32_t v, size_t pos, double bound) {
           const Ray& r = rays_[idx_[base + b]];
           // The reach is taken from the farthest the best's exact distance can be: its
           // certified relative bound (infinite where a form has none) on top of the
           // distance reported. The exact nearest hit lies no farther, whatever the
           // bound of its own triangle (CullBounds::reach_for adds that as well).
-          best_[b] = form_.t_of(v, r) * glm::length(r.d) * (1 + form_.t_rel_bound_at(dev, b, v, done[pos]));
+          best_[b] = form_.t_of(v, r) * glm::length(r.d) * (1 + bound);
           winner_[b] = done[pos];
         },
         every_ray ? nullptr : &probed_);
@@ -323,7 +325,10 @@ class RayParallelPlan : public PassPlan {
       if (ovf[b] || unc[b]) best[b] = kInf;
     }
     *appended = form_.certified();
-    if (!*appended) push_init(dev, Program());
+    if (!*appended) {
+      push_init(dev, Program());
+      bests_.reset(count, changed_reads());
+    }
     const size_t nb = form_.broadcasts.size();
     std::vector<char> keep(nb, 0);
     const std::vector<RayPacket> one = packets(base, count, 1);
@@ -370,6 +375,17 @@ class RayParallelPlan : public PassPlan {
     p.mask(layout::kDataMask);
     push_counted(dev, p.code(), st_);
   }
+  // Read only the changed bests (best_cache.h); where the FMPP's box tests choose the rays
+  // to read (to_read), those have a best already and every one is read.
+  bool changed_reads() const { return opt_.changed_reads && !boxes_; }
+  // The bests of blocks 0 .. count - 1 after the broadcasts `sent` (only those `only`
+  // names; every block without it): on_hit(block, best, position in sent, t bound).
+  template <class OnHit>
+  std::vector<bool> read_bests(Device& dev, unsigned count, const std::vector<size_t>& sent, OnHit&& on_hit,
+                               const std::vector<char>* only) {
+    const auto bound = [&](unsigned b, uint32_t best, size_t pos) { return form_.t_rel_bound_at(dev, b, best, sent[pos]); };
+    return bests_.read(dev, count, form_.best_words(), sent.size(), bound, on_hit, only, st_);
+  }
   std::vector<RayPacket> packets(size_t base, unsigned count, size_t size) const {
     std::vector<RayPacket> p = make_packets(rays_, idx_, base, base + count, size, bounds_.angle);
     if (!bounds_.use_tmax) {
@@ -403,6 +419,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<bool> ovf_, unc_, t_loose_;
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
   PassWords words_;                // the pass's ray words, gathered before they are written
+  BestCache bests_;                // what the host knows of the blocks' bests (best_cache.h)
   std::vector<int> all_, candidates_, refused_;  // refused_: this pass's, see select
   const double t_acc_ = policy::t_accuracy(opt_);
 };

@@ -153,6 +153,12 @@ const char* to_string(Origins o);
     "FMPP box tests of leaves against the rectangle of the triangle's slopes only, without its diagonals (the "    \
     "same answers, more clocks)",                                                                                   \
     "", "form identity: it steers a call, not a form")                                                             \
+  /* Read-back (best_cache.h): a pass reads only the bests that changed since the host                              \
+     last knew them (one flag plane per 64 blocks tells which); off: every block's. The                              \
+     same answers either way. */                                                                                     \
+  X(bool, changed_reads, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-changed-reads",   \
+    "changed_reads", "read back every block's best, not only the changed ones (the same answers, more clocks)", "", \
+    "form identity: it steers the read-back, not a form")                                                           \
   X(unsigned, cull_packet, 1, OptValue, 1, 65536, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,       \
     "--cull-packet", "cull_packet", "rays per culling packet", "", "")                                             \
   /* Rays of their own origins: the rounds the front-to-back probe may take in a pass,                              \
