@@ -107,11 +107,13 @@ class RayParallelPlan : public PassPlan {
         if (!reach_[k] || !form_.usable(k, &refused_)) continue;
         sent->push_back(k);
         number_of_[k] = static_cast<uint32_t>(sent->size());
+        boxes_->settle(dev, st_);
         send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
         boxes_->broadcast_sent();
       }
       return false;
     });
+    boxes_->settle(dev, st_);
     st_->culled += form_.broadcasts.size() - sent->size();
     return true;
   }

@@ -193,7 +193,7 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 
 void SharedBoxTest::clear() {
   classes_ = 0;
-  reach_fresh_ = false;
+  reach_fresh_ = sel_saved_ = sel_out_ = false;
   for (unsigned c = 0; c < 6; ++c) {
     count_[c] = 0;
     for (int j = 0; j < 3; ++j) {
@@ -322,7 +322,9 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
   const std::vector<std::vector<Compare>>& classes = cl.compares;
   const std::vector<unsigned>& class_id = cl.id;
 
-  p << flagop(kTmp, kSel, kSel, lut::kA);  // the selection, restored after the ANY read
+  // The selection, restored after the ANY read (settle); until then the tests act in
+  // the blocks of kTmp, which already holds it after a test (any).
+  if (!sel_saved_) p << flagop(kTmp, kSel, kSel, lut::kA);
   bool dist = false;
   for (const std::vector<Compare>& cmps : classes) {
     for (const Compare& k : cmps) dist = dist || (k.kind == Compare::kDist && k.word == kD);
@@ -330,7 +332,7 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
   const bool make_reach = dist && !reach_fresh_;
   if (makes_reach != nullptr) *makes_reach = make_reach;
   if (make_reach) {
-    p << sub(kD, kBest, kBB, kSel);  // the best's reach: best - BB
+    p << sub(kD, kBest, kBB, kTmp);  // the best's reach: best - BB
     if (stops()) append_stop(p);
     // A flagged block's best may not be a hit at all (an uncertain inside test): its
     // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
@@ -384,8 +386,8 @@ void SharedBoxTest::append_stop(Program& p) const {
   // certainly before tmax. Such a block wants no further box (kD above any constant; a
   // flagged one's reach is made unbounded after this all the same), unless its hint word
   // is kNoStop (set_stop_guard). Both words lie within +-2^30: no overflow.
-  p << sub(kT + 0, kD, cull_.reach, kSel);
-  p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
+  p << sub(kT + 0, kD, cull_.reach, kTmp);
+  p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kTmp);
   if (guard_) p << cmp(CmpFn::kAnd, CmpLt::kGe, cull_.hint, 0, kWin, kWin);
   p.mask(0);
   p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
@@ -441,12 +443,23 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
   dev.push(p.code());
   reach_fresh_ = reach_fresh_ || makes_reach;
   const bool hit = dev.responders().any;
-  dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
-  st->instructions += p.size() + 1;
+  // SEL stays the test's answer: the next test acts in kTmp's blocks, and whatever
+  // else comes first restores SEL (settle).
+  sel_saved_ = sel_out_ = true;
+  st->instructions += p.size();
   ++st->fmpp_box_tests;
   st->diagonal_tests += diagonal ? 1 : 0;
   st->box_cycles += dev.cycles() - c0;
   return hit;
+}
+
+void SharedBoxTest::settle(Device& dev, KernelStats* st) {
+  if (!sel_out_) return;
+  const uint64_t c0 = dev.cycles();
+  dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
+  ++st->instructions;
+  st->box_cycles += dev.cycles() - c0;
+  sel_out_ = false;
 }
 
 }  // namespace fmpp::isect

@@ -94,15 +94,21 @@ class SharedBoxTest {
   // deciding whether a gate may pay (0 where t reaches behind a class's rays), never a
   // bound: the results do not depend on it.
   double rays_through(const Triangle& t) const;
-  // Runs the test on the device and reads the ANY responder; SEL is restored after it.
-  // Counts the test and its clocks in st (fmpp_box_tests, box_cycles).
+  // Runs the test on the device and reads the ANY responder. Counts the test and its
+  // clocks in st (fmpp_box_tests, box_cycles). SEL is left as the test's answer, the
+  // pass's selection in kTmp: the next test needs neither to save nor to restore it, and
+  // settle() restores it before anything else runs on the device.
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
            double pad = 0);
+  // SEL <- the pass's selection again if a test left it (one instruction, counted with
+  // the box tests' clocks); nothing otherwise. Before a broadcast, and after the walk.
+  void settle(Device& dev, KernelStats* st);
   // The blocks' reach word (best - BB, unbounded where flagged, unreachable where the
   // stop above holds: word kD) is made by the
   // first test after clear() or after a broadcast, and the tests after it reuse it. Every
   // broadcast uses kD as scratch: call this after sending one.
-  void broadcast_sent() { reach_fresh_ = false; }
+  // A broadcast uses kTmp as scratch too (call settle before it).
+  void broadcast_sent() { reach_fresh_ = sel_saved_ = false; }
 
  private:
   // The occlusion stop (set_stop), in the test that makes the blocks' reach word kD.
@@ -122,6 +128,8 @@ class SharedBoxTest {
   layout::ray::CullWords cull_{0, 0, 0};
   bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false, pairs_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
+  bool sel_saved_ = false;    // kTmp holds the pass's selection (after a test, before a broadcast)
+  bool sel_out_ = false;      // SEL is a test's answer, not the selection (settle)
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
   unsigned count_[6];                // per class: the pass's rays of it
   // per class: the pass's smallest and largest V_j + V_k and V_j - V_k (j < k the other axes)
