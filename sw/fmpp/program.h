@@ -30,6 +30,8 @@ class Program {
   void mask(uint32_t m);
   // The program will run after code that left the mask at `m` (emits nothing).
   void assume_mask(uint32_t m) { mask_ = m; }
+  // What the mask holds after the program, where known (mask or assume_mask).
+  std::optional<uint32_t> known_mask() const { return mask_; }
   const std::vector<uint64_t>& code() const { return code_; }
   size_t size() const { return code_.size(); }
 

@@ -194,6 +194,7 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 void SharedBoxTest::clear() {
   classes_ = 0;
   reach_fresh_ = sel_saved_ = sel_out_ = false;
+  mask_now_ = layout::kDataMask;
   for (unsigned c = 0; c < 6; ++c) {
     count_[c] = 0;
     for (int j = 0; j < 3; ++j) {
@@ -318,7 +319,7 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
   return classes.empty() ? Verdict::kNone : Verdict::kTest;
 }
 
-void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach) const {
+void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach, bool restore_mask) const {
   const std::vector<std::vector<Compare>>& classes = cl.compares;
   const std::vector<unsigned>& class_id = cl.id;
 
@@ -376,7 +377,7 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
   } else {
     p << flagop(kSel, one ? kWin : kHit, kTmp, lut::kAnd);
   }
-  p.mask(layout::kDataMask);
+  if (restore_mask) p.mask(layout::kDataMask);
 }
 
 void SharedBoxTest::append_stop(Program& p) const {
@@ -434,11 +435,17 @@ std::vector<char> SharedBoxTest::to_read(Device& dev, unsigned count, KernelStat
 
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,
                         double pad) {
-  Program p;
-  p.assume_mask(layout::kDataMask);
-  bool makes_reach = false, diagonal = false;
-  const Verdict v = append(b, p, hint, leaf, pad, &makes_reach, &diagonal);
+  Classes cl;
+  const Verdict v = classes_meeting(b, hint, leaf, pad, &cl);
   if (v != Verdict::kTest) return v == Verdict::kSome;
+  // The mask, like SEL, stays as the test leaves it (every REF and WRITES of a test sets
+  // its own): settle restores the broadcasts' kDataMask.
+  Program p;
+  p.assume_mask(mask_now_);
+  bool makes_reach = false;
+  const bool diagonal = cl.diagonal;
+  emit_test(cl, p, hint, &makes_reach, false);
+  mask_now_ = p.known_mask().value_or(layout::kDataMask);
   const uint64_t c0 = dev.cycles();
   dev.push(p.code());
   reach_fresh_ = reach_fresh_ || makes_reach;
@@ -454,12 +461,16 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
 }
 
 void SharedBoxTest::settle(Device& dev, KernelStats* st) {
-  if (!sel_out_) return;
+  if (!sel_out_ && mask_now_ == layout::kDataMask) return;
+  Program p;
+  p.assume_mask(mask_now_);
+  if (sel_out_) p << flagop(kSel, kTmp, kTmp, lut::kA);
+  p.mask(layout::kDataMask);
   const uint64_t c0 = dev.cycles();
-  dev.push(flagop(kSel, kTmp, kTmp, lut::kA));
-  ++st->instructions;
+  push_counted(dev, p.code(), st);
   st->box_cycles += dev.cycles() - c0;
   sel_out_ = false;
+  mask_now_ = layout::kDataMask;
 }
 
 }  // namespace fmpp::isect

@@ -96,12 +96,13 @@ class SharedBoxTest {
   double rays_through(const Triangle& t) const;
   // Runs the test on the device and reads the ANY responder. Counts the test and its
   // clocks in st (fmpp_box_tests, box_cycles). SEL is left as the test's answer, the
-  // pass's selection in kTmp: the next test needs neither to save nor to restore it, and
-  // settle() restores it before anything else runs on the device.
+  // pass's selection in kTmp, and the mask as the test left it: the next test needs
+  // neither to save nor to restore them, and settle() restores them before anything
+  // else runs on the device.
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
            double pad = 0);
-  // SEL <- the pass's selection again if a test left it (one instruction, counted with
-  // the box tests' clocks); nothing otherwise. Before a broadcast, and after the walk.
+  // SEL <- the pass's selection and the mask <- kDataMask again where a test left them
+  // otherwise (counted with the box tests' clocks). Before a broadcast, and after the walk.
   void settle(Device& dev, KernelStats* st);
   // The blocks' reach word (best - BB, unbounded where flagged, unreachable where the
   // stop above holds: word kD) is made by the
@@ -118,7 +119,7 @@ class SharedBoxTest {
   // instructions of their test (box_test.cpp).
   struct Classes;
   Verdict classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad, Classes* out) const;
-  void emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach) const;
+  void emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach, bool restore_mask = true) const;
 
   glm::dvec3 origin_;
   double unit_;     // 2^vbits
@@ -130,6 +131,7 @@ class SharedBoxTest {
   bool reach_fresh_ = false;  // kD holds the reach
   bool sel_saved_ = false;    // kTmp holds the pass's selection (after a test, before a broadcast)
   bool sel_out_ = false;      // SEL is a test's answer, not the selection (settle)
+  uint32_t mask_now_ = layout::kDataMask;  // the mask as the last test left it (settle)
   int64_t vmin_[6][3], vmax_[6][3];  // per class and axis: the pass's smallest and largest component
   unsigned count_[6];                // per class: the pass's rays of it
   // per class: the pass's smallest and largest V_j + V_k and V_j - V_k (j < k the other axes)
