@@ -108,11 +108,14 @@ uint64_t Device::read_plane(unsigned flag, unsigned tile) {
   return read_reg(map::kWinPlanesBase + (flag << map::kWinPlanesFlagShift) + 8 * tile);
 }
 
-std::vector<bool> Device::read_flag_all(unsigned flag) {
-  std::vector<bool> out(cfg_.blocks);
-  for (unsigned t = 0; t < cfg_.tiles(); ++t) {
+std::vector<bool> Device::read_flag_all(unsigned flag) { return read_flag_blocks(flag, cfg_.blocks); }
+
+std::vector<bool> Device::read_flag_blocks(unsigned flag, unsigned count) {
+  check_index("block count", count, cfg_.blocks + 1);
+  std::vector<bool> out(count);
+  for (unsigned t = 0; t * map::kLaneW < count; ++t) {
     const uint64_t p = read_plane(flag, t);
-    for (unsigned l = 0; l < map::kLaneW && t * map::kLaneW + l < cfg_.blocks; ++l) out[t * map::kLaneW + l] = (p >> l) & 1;
+    for (unsigned l = 0; l < map::kLaneW && t * map::kLaneW + l < count; ++l) out[t * map::kLaneW + l] = (p >> l) & 1;
   }
   return out;
 }

@@ -39,6 +39,9 @@ class Device {
   uint64_t read_plane(unsigned flag, unsigned tile);
   // Flag f of every block, one bool per block (NumBlocks / 64 reads).
   std::vector<bool> read_flag_all(unsigned flag);
+  // Flag f of blocks 0 .. count - 1 (count <= NumBlocks), one bool per block: the
+  // ceil(count / 64) reads of the tiles that hold them.
+  std::vector<bool> read_flag_blocks(unsigned flag, unsigned count);
 
   Responders responders();
   bool overflow();  // STATUS.OVF: some block has V set

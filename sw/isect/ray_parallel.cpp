@@ -158,7 +158,7 @@ class RayParallelPlan : public PassPlan {
     }, &read);
     unc_.assign(count, false);
     if (form_.certified()) {
-      const std::vector<bool> u = dev.read_flag_all(layout::kUnc);
+      const std::vector<bool> u = dev.read_flag_blocks(layout::kUnc, count);
       for (unsigned b = 0; b < count; ++b) unc_[b] = u[b];
       // A flagged ray is redone against what the pass tested: its broadcasts and the host's.
       candidates_ = form_.host;
@@ -322,7 +322,7 @@ class RayParallelPlan : public PassPlan {
     // hit at all: each keeps its whole reach, so that the host's redo sees every triangle
     // it may hit.
     std::vector<double> best = best_;
-    const std::vector<bool> unc = form_.certified() ? dev.read_flag_all(layout::kUnc) : std::vector<bool>(count);
+    const std::vector<bool> unc = form_.certified() ? dev.read_flag_blocks(layout::kUnc, count) : std::vector<bool>(count);
     for (unsigned b = 0; b < count; ++b) {
       if (ovf[b] || unc[b]) best[b] = kInf;
     }

@@ -425,7 +425,7 @@ std::vector<char> SharedBoxTest::to_read(Device& dev, unsigned count, KernelStat
   p << cmp(CmpFn::kAnd, CmpLt::kGe, kT + 0, 4, kWin, kSel);
   p << flagop(kWin, kWin, layout::kUnc, lut::kAndNotB);
   push_counted(dev, p.code(), st);
-  const std::vector<bool> beyond = dev.read_flag_all(kWin);
+  const std::vector<bool> beyond = dev.read_flag_blocks(kWin, count);
   for (unsigned b = 0; b < count; ++b) {
     read[b] = !beyond[b];
     st->unread_rays += beyond[b] ? 1 : 0;

@@ -144,7 +144,7 @@ std::vector<int> all_triangles(const std::vector<Triangle>& tris) {
 std::vector<bool> read_overflow(Device& dev, unsigned count) {
   std::vector<bool> ovf(count, false);
   if (dev.overflow()) {
-    const std::vector<bool> v = dev.read_flag_all(map::kFlagV);
+    const std::vector<bool> v = dev.read_flag_blocks(map::kFlagV, count);
     for (unsigned b = 0; b < count; ++b) ovf[b] = v[b];
   }
   return ovf;
