@@ -3,7 +3,8 @@
 // own ray against a box the host broadcasts as a few constants, and the ANY responder
 // tells the host whether some ray of the pass may meet the box before its current
 // nearest hit. The host walks its hierarchy front to back with it, so the triangles a
-// pass broadcasts early shorten what later boxes have to reach.
+// pass broadcasts early shorten what later boxes have to reach. (box_test.cpp: the
+// tests; box_run.cpp: what they leave on the device, settle and to_read.)
 //
 // The test needs no multiply. A block's direction V has its largest component exactly
 // +-2^vbits (forms.h), so along that axis ("the ray's class": axis and sign) the ray's
