@@ -10,21 +10,12 @@
 #include "sw/isect/exact/reference.h"
 #include "sw/isect/geometry/meshes.h"
 #include "sw/isect/kernels.h"
+#include "tests/support/cull_fixtures.h"
 
 namespace fmpp::isect {
 namespace {
 
-std::vector<Triangle> three_spheres() {
-  std::vector<Triangle> tris;
-  for (int s = 0; s < 3; ++s) {
-    SphereMeshOptions so;
-    so.centre = glm::dvec3(3.0 * s, 0, 0);
-    so.seed = 70 + static_cast<uint64_t>(s);
-    const std::vector<Triangle> one = closed_sphere(so);
-    tris.insert(tris.end(), one.begin(), one.end());
-  }
-  return tris;
-}
+std::vector<Triangle> three_spheres() { return cull_fixtures::spheres_in_a_row(3, 70); }
 
 // Rays of their own origins (tmin > 0: the arbitrary-origin form, its probe rounds) or
 // sharing one (the FMPP's box tests), about a third of them missing every sphere.

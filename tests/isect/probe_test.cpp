@@ -19,17 +19,7 @@ using cull_fixtures::run;
 
 // Five closed spheres in a row along x, and rays of their own origins from beyond the
 // last (tmin > 0: the arbitrary-origin form), each crossing most of them.
-std::vector<Triangle> five_spheres() {
-  std::vector<Triangle> tris;
-  for (int s = 0; s < 5; ++s) {
-    SphereMeshOptions so;
-    so.centre = glm::dvec3(3.0 * s, 0, 0);
-    so.seed = 40 + static_cast<uint64_t>(s);
-    const std::vector<Triangle> one = closed_sphere(so);
-    tris.insert(tris.end(), one.begin(), one.end());
-  }
-  return tris;
-}
+std::vector<Triangle> five_spheres() { return cull_fixtures::spheres_in_a_row(5, 40); }
 
 std::vector<Ray> own_origin_rays(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1, 1);

@@ -8,10 +8,24 @@
 
 #include "backends/backend.h"
 #include "sw/fmpp/device.h"
+#include "sw/isect/geometry/meshes.h"
 #include "sw/isect/kernels.h"
 #include "sw/isect/pass/policy.h"
 
 namespace fmpp::isect::cull_fixtures {
+
+// `count` closed spheres in a row along x, 3 apart, each tessellated from seed + its index.
+inline std::vector<Triangle> spheres_in_a_row(int count, uint64_t seed) {
+  std::vector<Triangle> tris;
+  for (int s = 0; s < count; ++s) {
+    SphereMeshOptions so;
+    so.centre = glm::dvec3(3.0 * s, 0, 0);
+    so.seed = seed + static_cast<uint64_t>(s);
+    const std::vector<Triangle> one = closed_sphere(so);
+    tris.insert(tris.end(), one.begin(), one.end());
+  }
+  return tris;
+}
 
 inline std::vector<Hit> run(const std::vector<Ray>& rays, const std::vector<Triangle>& tris, bool cull, bool coherent,
                      KernelStats* st, bool oracle = false, unsigned n = 24, bool probe = true, bool fmpp_boxes = true) {
