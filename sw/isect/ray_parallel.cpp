@@ -45,7 +45,7 @@ class RayParallelPlan : public PassPlan {
           boxes_->set_cull_words(cw);
           boxes_->set_stop(opt_.occlusion);
         }
-        boxes_->set_pair_words(opt_.box_diagonals && opt_.mul == MulMode::kConst);
+        boxes_->set_slope_compares(opt_.mul == MulMode::kConst, opt_.box_diagonals, opt_.box_edges);
         origin_ = *origin;
       }
     }

@@ -66,6 +66,8 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"fmpp_box_tests", st.fmpp_box_tests},
           {"fmpp_node_tests", st.fmpp_node_tests},
           {"diagonal_tests", st.diagonal_tests},
+          {"edge_tests", st.edge_tests},
+          {"edge_compares", st.edge_compares},
           {"box_cycles", st.box_cycles},
           {"gated_broadcasts", st.gated},
           {"object_searches", st.object_searches},

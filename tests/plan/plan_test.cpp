@@ -188,12 +188,13 @@ TEST(Plan, TheFrameSampleCatchesWhatPrimaryRaysMiss) {
   PlanRequest r;
   r.width = r.height = 48;
   r.max_flagged_share = 0.3;
-  // Without the diagonal compares in the FMPP's leaf tests (box_test.h): they leave out,
-  // for many rays, a triangle whose rectangle of slopes they cross but not the triangle,
-  // and with it the flag its uncertain inside test would raise: at n = 20 the frame's
-  // flagged share is 35 % without them and 14 % with them, under the allowance this
-  // scene is built to exceed.
+  // Without the diagonal and edge compares in the FMPP's leaf tests (box_slopes.h): they
+  // leave out, for many rays, a triangle whose rectangle of slopes they cross but not the
+  // triangle, and with it the flag its uncertain inside test would raise: at n = 20 the
+  // frame's flagged share is 35 % without the diagonals and 14 % with them, under the
+  // allowance this scene is built to exceed.
   r.base.box_diagonals = false;
+  r.base.box_edges = false;
   const Plan p = make_plan(s, r);
   ASSERT_GE(p.candidates.size(), 2u);
   // The first n whose primary rays pass (n = 8 and 10 leave most triangles too

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sw/isect/cull/box_slopes.h"
 #include "sw/isect/cull/tuning.h"
 #include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/pass/layout.h"
@@ -32,158 +33,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // broadcasts), stays within +-2^30 (S_c below 2^30, a flagged block's reach -2^30).
 constexpr double kWordLimit = 0x1p29;
 
-// One compare of a class: V_word >= c (lo), V_word <= c (hi), or a reach <= c (dist:
-// the best's, word kD holding best - BB, or the ray's own, its cull word). |c| < 2^29.
-struct Compare {
-  enum Kind { kLo, kHi, kDist } kind;
-  unsigned word;
-  int64_t c;
-};
-
-// A box's slopes seen from the origin overstate those of a triangle inside it that lies
-// across the view (a box has 8 corners; the triangle covers 3 of its points). x / u is
-// linear-fractional, so over a convex set with u > 0 its extremes are at the set's
-// vertices: for the triangle grown by a cube of half-side e (the error pad and the
-// directions' widening; every point the FMPP may report a hit at), the 24 points
-// vertex +- e per axis. tri is relative to the origin; s u is the class axis i.
-void narrow_to_triangle(const Triangle& tri, double e, int i, double s, int j, double* smin, double* smax) {
-  double a = kInf, b = -kInf;
-  for (const glm::dvec3& v : tri.p) {
-    for (int k = 0; k < 8; ++k) {
-      const glm::dvec3 q = v + e * glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
-      const double u = s * q[i];
-      if (!(u > 0)) return;  // the set reaches u <= 0: the box's range stands
-      a = std::min(a, q[j] / u);
-      b = std::max(b, q[j] / u);
-    }
-  }
-  *smin = std::max(*smin, a);
-  *smax = std::min(*smax, b);
-}
-
-// The same for the diagonals of the slope plane: the range of (x_j + sign x_k) / u over
-// the grown triangle's 24 points (linear-fractional again). False where the set reaches
-// u <= 0 (no range).
-bool diagonal_range(const Triangle& tri, double e, int i, double s, int j, int k, double sign, double* lo,
-                    double* hi) {
-  double a = kInf, b = -kInf;
-  for (const glm::dvec3& v : tri.p) {
-    for (int m = 0; m < 8; ++m) {
-      const glm::dvec3 q = v + e * glm::dvec3(m & 1 ? 1 : -1, m & 2 ? 1 : -1, m & 4 ? 1 : -1);
-      const double u = s * q[i];
-      if (!(u > 0)) return false;
-      const double x = (q[j] + sign * q[k]) / u;
-      a = std::min(a, x);
-      b = std::max(b, x);
-    }
-  }
-  *lo = a;
-  *hi = b;
-  return std::isfinite(a) && std::isfinite(b);
-}
-
-// The area of the rectangle [x0, x1] x [y0, y1] within the half-planes
-// sum_m (x + sign_m y) >= lo_m (or <= hi_m): Sutherland-Hodgman on its four corners.
-struct HalfPlane {
-  double a, b, c;  // a x + b y >= c
-};
-double clipped_area(double x0, double x1, double y0, double y1, const std::vector<HalfPlane>& hp) {
-  std::vector<std::pair<double, double>> poly{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, next;
-  for (const HalfPlane& h : hp) {
-    next.clear();
-    for (size_t m = 0; m < poly.size(); ++m) {
-      const auto& p = poly[m];
-      const auto& q = poly[(m + 1) % poly.size()];
-      const double fp = h.a * p.first + h.b * p.second - h.c, fq = h.a * q.first + h.b * q.second - h.c;
-      if (fp >= 0) next.push_back(p);
-      if ((fp >= 0) != (fq >= 0)) {
-        const double t = fp / (fp - fq);
-        next.emplace_back(p.first + t * (q.first - p.first), p.second + t * (q.second - p.second));
-      }
-    }
-    poly.swap(next);
-    if (poly.empty()) return 0;
-  }
-  double area = 0;
-  for (size_t m = 0; m < poly.size(); ++m) {
-    const auto& p = poly[m];
-    const auto& q = poly[(m + 1) % poly.size()];
-    area += p.first * q.second - q.first * p.second;
-  }
-  return 0.5 * std::abs(area);
-}
-
-// Whether the diagonal compares of class c are worth their CMPs: the expected rays of
-// the pass in the rectangle `cmps` leaves of its range against those in the octagon the
-// half-planes cut from it (a guess; tuning.h, kDiagonalSaves: the results do not
-// depend on it).
-bool diagonals_pay(int i, const int64_t vmin[3], const int64_t vmax[3], unsigned count, const std::vector<Compare>& cmps,
-                   const std::vector<HalfPlane>& planes, size_t compares) {
-  // The rectangle the compares leave of the pass's range of (V_j, V_k), in units of V.
-  const int j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
-  double x0 = static_cast<double>(vmin[j]), x1 = static_cast<double>(vmax[j]);
-  double y0 = static_cast<double>(vmin[k]), y1 = static_cast<double>(vmax[k]);
-  for (const Compare& m : cmps) {
-    if (m.kind == Compare::kDist) continue;
-    const double v = static_cast<double>(m.c);
-    double& lo = m.word == kV + static_cast<unsigned>(j) ? x0 : y0;
-    double& hi = m.word == kV + static_cast<unsigned>(j) ? x1 : y1;
-    if (m.kind == Compare::kLo) lo = std::max(lo, v);
-    else hi = std::min(hi, v);
-  }
-  const double span = (static_cast<double>(vmax[j] - vmin[j]) + 1) * (static_cast<double>(vmax[k] - vmin[k]) + 1);
-  const double density = count / span;
-  // A box test that finds no ray saves a broadcast's head; the expected rays in each
-  // region are its area times the class's density, as in rays_through.
-  const double in_rect = density * (x1 - x0 + 1) * (y1 - y0 + 1);
-  const double in_oct = density * clipped_area(x0 - 0.5, x1 + 0.5, y0 - 0.5, y1 + 0.5, planes);
-  return kDiagonalSaves * (std::exp(-in_oct) - std::exp(-in_rect)) > static_cast<double>(compares);
-}
-
-// The pair word (layout::ray::kPair) holding V_j + V_k (diff: V_j - V_k), j < k.
-unsigned pair_word(int j, int k, bool diff) {
-  const unsigned p = j == 0 ? (k == 1 ? 0u : 1u) : 2u;
-  return kPair + 2 * p + (diff ? 1u : 0u);
-}
-
-// The diagonal compares of a leaf in class (i, s), appended to *cmps where they cut
-// into the pass's range and pay (diagonals_pay; *diagonal set then). (V_j +- V_k) is
-// within 2 of 2^vbits (d_j +- d_k) / |d_i|, so the constants are rounded outward by 4
-// units (2 for a single component). False: no ray of the pass lies within them
-// (decided on the host).
-struct Range {
-  const int64_t *vmin, *vmax, *dmin, *dmax;  // the pass's components and diagonals in the class
-  unsigned count;                            // its rays of the class
-};
-bool add_diagonals(const Triangle& tri, double e, int i, double s, const Range& pass, double unit,
-                   std::vector<Compare>* cmps, bool* diagonal) {
-  const int j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
-  std::vector<Compare> diag;
-  std::vector<HalfPlane> planes;
-  for (int d = 0; d < 2; ++d) {
-    double smin, smax;
-    if (!diagonal_range(tri, e, i, s, j, k, d == 0 ? 1.0 : -1.0, &smin, &smax)) return true;
-    const double cmin = std::floor(smin * unit) - 4, cmax = std::ceil(smax * unit) + 4;
-    const double lo_v = static_cast<double>(pass.dmin[d]), hi_v = static_cast<double>(pass.dmax[d]);
-    if (cmin > hi_v || cmax < lo_v) return false;
-    // Both now lie within the pass's diagonals (|c| <= 2^29): exact as integers.
-    const unsigned w = pair_word(j, k, d == 1);
-    const double sg = d == 0 ? 1.0 : -1.0;
-    if (cmin > lo_v) {
-      diag.push_back({Compare::kLo, w, static_cast<int64_t>(cmin)});
-      planes.push_back({1.0, sg, cmin});
-    }
-    if (cmax < hi_v) {
-      diag.push_back({Compare::kHi, w, static_cast<int64_t>(cmax)});
-      planes.push_back({-1.0, -sg, -cmax});
-    }
-  }
-  if (!diag.empty() && diagonals_pay(i, pass.vmin, pass.vmax, pass.count, *cmps, planes, diag.size())) {
-    cmps->insert(cmps->end(), diag.begin(), diag.end());
-    *diagonal = true;
-  }
-  return true;
-}
+using slopes::Compare;
 
 }  // namespace
 
@@ -236,6 +86,7 @@ struct SharedBoxTest::Classes {
   std::vector<std::vector<Compare>> compares;  // per class that may meet the box
   std::vector<unsigned> id;                    // its class
   bool diagonal = false;                       // some class compares a diagonal
+  unsigned edges = 0;                          // edge compares over the classes
 };
 
 SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
@@ -272,6 +123,7 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
     if (!(classes_ >> c & 1)) continue;
     const int i = static_cast<int>(c / 2);
     const double s = (c & 1) ? -1.0 : 1.0;
+    const slopes::ClassAxes ax{i, s, unit_, pair_words_};
     // The box's range along the class axis, u = s (p - O)_i; a ray of the class has u > 0.
     const double u0 = s > 0 ? lo[i] : -hi[i], u1 = s > 0 ? hi[i] : -lo[i];
     if (!(u1 > 0)) continue;  // behind every ray of the class
@@ -283,7 +135,7 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
       const double x0 = lo[j], x1 = hi[j];
       double smin = x0 >= 0 ? x0 / u1 : (u0 > 0 ? x0 / u0 : -kInf);
       double smax = x1 <= 0 ? x1 / u1 : (u0 > 0 ? x1 / u0 : kInf);
-      if (tri) narrow_to_triangle(*tri, pad + widen, i, s, j, &smin, &smax);
+      if (tri) slopes::narrow_to_triangle(*tri, pad + widen, ax, j, &smin, &smax);
       const double cmin = std::floor(smin * unit_) - 2, cmax = std::ceil(smax * unit_) + 2;
       // Decided on the host: no ray of the pass inside, or every one.
       const double lo_v = static_cast<double>(vmin_[c][j]), hi_v = static_cast<double>(vmax_[c][j]);
@@ -295,9 +147,10 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
       if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
       if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
     }
-    if (possible && tri && pairs_) {
-      const Range pass{vmin_[c], vmax_[c], dmin_[c], dmax_[c], count_[c]};
-      possible = add_diagonals(*tri, pad + widen, i, s, pass, unit_, &cmps, &out->diagonal);
+    if (possible && tri) {
+      const slopes::Range pass{vmin_[c], vmax_[c], dmin_[c], dmax_[c], count_[c]};
+      possible = slopes::add_leaf_compares(*tri, pad + widen, ax, pass, diagonals_, edges_, &cmps, &out->diagonal,
+                                           &out->edges);
     }
     if (!possible) continue;
     if (u0 > 0) {
@@ -355,6 +208,8 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
     // One CMP per compare, folded into kWin (it acts in every block; the mask plays no part).
     for (const Compare& k : classes[n]) {
       const CmpFn fn = first ? CmpFn::kThrough : CmpFn::kAnd;
+      // An edge compare's word, formed in the pass's blocks (kS is free between broadcasts).
+      if (k.made) p << (k.sub ? sub(k.word, k.x, k.y, kTmp, k.shr) : add(k.word, k.x, k.y, kTmp, k.shr));
       if (k.kind == Compare::kLo) {
         p << cmp(fn, CmpLt::kGe, k.word, static_cast<int32_t>(k.c), kWin, kWin);  // V >= c
       } else {
@@ -426,6 +281,7 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
   p.assume_mask(mask_now_);
   bool makes_reach = false;
   const bool diagonal = cl.diagonal;
+  const unsigned edges = cl.edges;
   emit_test(cl, p, hint, &makes_reach, false);
   mask_now_ = p.known_mask().value_or(layout::kDataMask);
   const uint64_t c0 = dev.cycles();
@@ -438,6 +294,8 @@ bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, co
   st->instructions += p.size();
   ++st->fmpp_box_tests;
   st->diagonal_tests += diagonal ? 1 : 0;
+  st->edge_tests += edges > 0 ? 1 : 0;
+  st->edge_compares += edges;
   st->box_cycles += dev.cycles() - c0;
   return hit;
 }

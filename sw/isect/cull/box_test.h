@@ -53,12 +53,17 @@ class SharedBoxTest {
   // finite tmax: a box beyond it is cut too).
   void set_cull_words(const layout::ray::CullWords& w) { cull_ = w, has_cull_ = true; }
   void set_reach(bool on) { reach_ = on && has_cull_; }
-  // Where the blocks hold the sums and differences of their direction's components
-  // (layout::ray::kPair: the constant multiply's pair words, made once per pass), a
-  // leaf's test also compares them with the triangle's range of (x_j +- x_k) / u, the
-  // two diagonals of the slope plane: the triangle's slopes within an octagon rather
-  // than a rectangle (one CMP each, only where it cuts into the pass's own range).
-  void set_pair_words(bool on) { pairs_ = on; }
+  // A leaf's test also compares what lies beyond the triangle's rectangle of slopes
+  // (box_slopes.h), where it cuts into the pass's range: with `diagonals`, where the
+  // blocks hold the sums and differences of their direction's components (pair_words:
+  // layout::ray::kPair, the constant multiply's pair words, made once per pass), those
+  // against the triangle's range of (x_j +- x_k) / u, the two diagonals of the slope
+  // plane (an octagon rather than a rectangle; one CMP each); with `edges`, for each of
+  // the triangle's edges a word the blocks form with one ADD or SUB whose direction in
+  // the slope plane lies within a few degrees of the edge's normal (two clocks each).
+  void set_slope_compares(bool pair_words, bool diagonals, bool edges) {
+    pair_words_ = pair_words, diagonals_ = diagonals && pair_words, edges_ = edges;
+  }
   // After a pass: per block b < count, 0 where its best is certainly no hit before its
   // ray's tmax (reach - best - BB >= 4, the occlusion stop's margin turned round; a
   // block without a best has best = BB = 0) and not flagged uncertain, else 1. Such a
@@ -87,7 +92,7 @@ class SharedBoxTest {
   // triangle's own slopes, narrower than the box's.
   enum class Verdict { kNone, kSome, kTest };
   // *makes_reach (if given): the appended test writes the blocks' reach word (below);
-  // *diagonal (if given): it compares a diagonal of the slopes (set_pair_words).
+  // *diagonal (if given): it compares a diagonal of the slopes (set_slope_compares).
   Verdict append(const Box& b, Program& p, int hint = -1, const Triangle* leaf = nullptr, double pad = 0,
                  bool* makes_reach = nullptr, bool* diagonal = nullptr) const;
   // About how many of the pass's rays pass through triangle t: its area in the slopes of
@@ -128,7 +133,8 @@ class SharedBoxTest {
   double angle_;
   unsigned classes_ = 0;
   layout::ray::CullWords cull_{0, 0, 0};
-  bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false, pairs_ = false;
+  bool has_cull_ = false, reach_ = false, stop_ = false, guard_ = false;
+  bool pair_words_ = false, diagonals_ = false, edges_ = false;
   bool reach_fresh_ = false;  // kD holds the reach
   bool sel_saved_ = false;    // kTmp holds the pass's selection (after a test, before a broadcast)
   bool sel_out_ = false;      // SEL is a test's answer, not the selection (settle)

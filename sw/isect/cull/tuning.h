@@ -46,4 +46,14 @@ inline constexpr double kGateRays = 2;
 // more, and with them some ray almost surely.
 inline constexpr double kDiagonalSaves = 1e9;
 
+// The leaf test's edge compares (box_slopes.h): each costs an ADD or SUB and a CMP and is
+// kept where the same Poisson guess, times kEdgeSaves, exceeds those 2 clocks. The words
+// the blocks form are (x >>> shr) +- y of V_j, V_k and the pair words, shr = 1 ..
+// kEdgeShifts: directions in the slope plane every few degrees.
+inline constexpr double kEdgeSaves = 1e9;
+inline constexpr unsigned kEdgeShifts = 4;
+// With edge compares, a compare of the rectangle or the diagonals (or an edge) is left out
+// where without it the guess lets in fewer than kPruneRays rays more.
+inline constexpr double kPruneRays = 0.003;
+
 }  // namespace fmpp::isect

@@ -56,6 +56,8 @@ void KernelStats::add(const KernelStats& o) {
   fmpp_box_tests += o.fmpp_box_tests;
   fmpp_node_tests += o.fmpp_node_tests;
   diagonal_tests += o.diagonal_tests;
+  edge_tests += o.edge_tests;
+  edge_compares += o.edge_compares;
   box_cycles += o.box_cycles;
   gated += o.gated;
   object_searches += o.object_searches;

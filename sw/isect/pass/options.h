@@ -144,7 +144,7 @@ const char* to_string(Origins o);
   X(bool, fmpp_boxes, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,             \
     "--no-fmpp-boxes", "fmpp_boxes",                                                                                \
     "culling of rays sharing an origin by the host's per-ray walk and probe, not by the FMPP's box tests", "", "") \
-  /* Diagonals in the FMPP's leaf tests (box_test.h, set_pair_words): where the blocks hold                         \
+  /* Diagonals in the FMPP's leaf tests (box_test.h, set_slope_compares): where the blocks hold                        \
      the constant multiply's pair words, a leaf's test also compares V_j + V_k and                                  \
      V_j - V_k with the triangle's range of slopes, where the host's guess says it pays.                            \
      Results are the same either way; off: the rectangle of the slopes alone. */                                    \
@@ -152,6 +152,14 @@ const char* to_string(Origins o);
     "box_diagonals",                                                                                                \
     "FMPP box tests of leaves against the rectangle of the triangle's slopes only, without its diagonals (the "    \
     "same answers, more clocks)",                                                                                   \
+    "", "form identity: it steers a call, not a form")                                                             \
+  /* Edges in the FMPP's leaf tests (box_slopes.h): for each edge of the triangle in the                            \
+     slope plane, a word the blocks form with one ADD or SUB, compared with the                                     \
+     triangle's extreme along it, where the host's guess says it pays. Results are the                              \
+     same either way. */                                                                                             \
+  X(bool, box_edges, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-box-edges",            \
+    "box_edges",                                                                                                    \
+    "FMPP box tests of leaves without the compares along the triangle's edges (the same answers, more clocks)",    \
     "", "form identity: it steers a call, not a form")                                                             \
   /* Read-back (best_cache.h): a pass reads only the bests that changed since the host                              \
      last knew them (one flag plane per 64 blocks tells which); off: every block's. The                              \
@@ -297,7 +305,9 @@ struct KernelStats {
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
   uint64_t fmpp_node_tests = 0;  // of which of inner nodes (ray_parallel.cpp, tuning.h)
-  uint64_t diagonal_tests = 0;   // of which with diagonal compares (box_test.h, set_pair_words)
+  uint64_t diagonal_tests = 0;   // of which with diagonal compares (box_test.h, set_slope_compares)
+  uint64_t edge_tests = 0;       // of which with edge compares (box_slopes.h)
+  uint64_t edge_compares = 0;    // the edge compares of those
   uint64_t box_cycles = 0;       // their clocks (program, ANY read, SEL restored)
   uint64_t gated = 0;            // broadcasts whose tail a gate skipped (no block could use it)
   uint64_t object_searches = 0;  // object-parallel: rays whose broadcast needed the maximum search (two or more possible hits)

@@ -1,11 +1,12 @@
-// The diagonal compares of the FMPP's leaf test (SharedBoxTest::set_pair_words,
-// docs/certification.md, "The FMPP's box tests"): on the golden model, with the pair
-// words V_a + V_b and V_a - V_b in the blocks as the constant multiply keeps them, every
-// block whose ray (the double direction its words were quantized from) hits a random
-// small triangle, by the exact reference, keeps SEL after the triangle's leaf test; and
-// the diagonals leave out blocks the rectangle of slopes alone would keep. (A block of a
-// class the host ruled out may pass either test: with one class left there is no class
-// test, and such a ray cannot meet the triangle whatever its compares say.)
+// The slope compares of the FMPP's leaf test beyond the rectangle (the diagonals and the
+// edges: SharedBoxTest::set_slope_compares, box_slopes.h, docs/certification.md, "The
+// FMPP's box tests"): on the golden model, with the pair words V_a + V_b and V_a - V_b in
+// the blocks as the constant multiply keeps them (or without them), every block whose ray
+// (the double direction its words were quantized from) hits a random small triangle, by
+// the exact reference, keeps SEL after the triangle's leaf test; and each step leaves out
+// blocks the test before it would keep. (A block of a class the host ruled out may pass
+// either test: with one class left there is no class test, and such a ray cannot meet the
+// triangle whatever its compares say.)
 #include <gtest/gtest.h>
 
 #include <array>
@@ -44,18 +45,25 @@ std::vector<bool> leaf_test(Device& dev, const SharedBoxTest& test, const Triang
   return s;
 }
 
-TEST(FmppBoxDiagonals, NeverRejectARayThatHitsTheTriangle) {
+// The leaf tests of two settings of set_slope_compares compared on the same rays and
+// triangles: every hit kept by `with`, and the blocks `without` keeps and `with` leaves out.
+struct Setting {
+  bool pair_words, diagonals, edges;
+};
+void compare_settings(const Setting& ws, const Setting& os, unsigned seed, size_t min_cut) {
   const unsigned blocks = 256, count = 250;
   auto be = make_backend("cmodel", Config{blocks, 32});
   Device dev(be->bus());
-  std::mt19937_64 rng(29);
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   size_t hits = 0, tests = 0, cut = 0;
   for (int trial = 0; trial < 24; ++trial) {
-    const glm::dvec3 origin(std::ldexp(u(rng), trial % 5 * 8), 5 * u(rng), 5 * u(rng));
+    // Origins tiny beside huge: up to 2^32 from the scene's origin on some axis.
+    const glm::dvec3 origin(std::ldexp(u(rng), trial % 5 * 8), 5 * u(rng), std::ldexp(u(rng), trial % 7 * 5));
     SharedBoxTest with(origin, kVbits, 1.0, std::ldexp(1.0, -20));
     SharedBoxTest without(origin, kVbits, 1.0, std::ldexp(1.0, -20));
-    with.set_pair_words(true);
+    with.set_slope_compares(ws.pair_words, ws.diagonals, ws.edges);
+    without.set_slope_compares(os.pair_words, os.diagonals, os.edges);
     with.clear();
     without.clear();
     // A coherent pass around one direction; some rays along an axis or a diagonal, where
@@ -117,8 +125,20 @@ TEST(FmppBoxDiagonals, NeverRejectARayThatHitsTheTriangle) {
     }
   }
   EXPECT_GT(hits, 500u) << "the triangles must be hit";
-  EXPECT_GT(cut, 100u) << "the diagonals must leave out rays the rectangle keeps";
+  EXPECT_GT(cut, min_cut) << "the compares must leave out rays the other setting keeps";
   (void)tests;
+}
+
+TEST(FmppBoxDiagonals, NeverRejectARayThatHitsTheTriangle) {
+  compare_settings({true, true, false}, {true, false, false}, 29, 100);
+}
+
+TEST(FmppBoxEdges, NeverRejectARayThatHitsTheTriangleWithThePairWords) {
+  for (unsigned seed : {31u, 37u}) compare_settings({true, true, true}, {true, true, false}, seed, 100);
+}
+
+TEST(FmppBoxEdges, NeverRejectARayThatHitsTheTriangleWithoutThePairWords) {
+  compare_settings({false, false, true}, {false, false, false}, 41, 100);
 }
 
 }  // namespace
