@@ -69,7 +69,6 @@ double clipped_area(double x0, double x1, double y0, double y1, const std::vecto
   return 0.5 * std::abs(area);
 }
 
-
 // The expected rays of the pass left by the compares on V_j and V_k (a rectangle) and
 // the half-planes `planes`, in units of V: the area times the class's density (rays
 // spread evenly over the pass's range of V_j and V_k), as in rays_through.

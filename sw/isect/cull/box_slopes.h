@@ -50,6 +50,9 @@ struct ClassAxes {
 
 // Narrows [*smin, *smax], the slope x_j / u of a box, to that of the triangle `tri`
 // (relative to the origin) grown by a cube of half-side e, where all of it lies at u > 0.
+// A box's slopes overstate those of a triangle that lies across the view (the box has 8
+// corners, the triangle covers 3 of its points); x / u is linear-fractional, so over the
+// grown triangle its extremes lie at the 24 points vertex +- e per axis.
 void narrow_to_triangle(const Triangle& tri, double e, const ClassAxes& ax, int j, double* smin, double* smax);
 
 // Appends to *cmps the compares of a leaf (the triangle, relative to the origin, grown
