@@ -154,21 +154,36 @@ struct EdgeWord {
   double lo, hi;
 };
 
-// The words of the blocks one such step can combine: V_j, V_k and, where the blocks
-// hold them, the pair words; each with its coefficients and the pass's range of it.
-struct Source {
-  unsigned word;
+// The coefficients (a, b) of a block's word on (V_j, V_k): V_j, V_k or a pair word; and
+// those of the word an edge compare forms from two of them, (x >>> shr) +- y.
+struct Coef {
   double a, b;
-  double lo, hi;
 };
+Coef coef_of(const ClassAxes& ax, unsigned word) {
+  const int j = ax.j(), k = ax.k();
+  if (word == kV + static_cast<unsigned>(j)) return {1, 0};
+  if (word == kV + static_cast<unsigned>(k)) return {0, 1};
+  return word == pair_word(j, k, false) ? Coef{1, 1} : Coef{1, -1};
+}
+Coef made_coef(Coef x, Coef y, unsigned shr, bool sub) {
+  const double f = std::ldexp(1.0, -static_cast<int>(shr)), sg = sub ? -1.0 : 1.0;
+  return {x.a * f + sg * y.a, x.b * f + sg * y.b};
+}
+
+// The words one such step can combine: V_j, V_k and, where the blocks hold them, the
+// pair words; each with the pass's range of it. Then every word the step can form.
 std::vector<EdgeWord> edge_words(const ClassAxes& ax, const Range& pass) {
   const int j = ax.j(), k = ax.k();
+  struct Source {
+    unsigned word;
+    double lo, hi;
+  };
   std::vector<Source> src{
-      {kV + static_cast<unsigned>(j), 1, 0, static_cast<double>(pass.vmin[j]), static_cast<double>(pass.vmax[j])},
-      {kV + static_cast<unsigned>(k), 0, 1, static_cast<double>(pass.vmin[k]), static_cast<double>(pass.vmax[k])}};
+      {kV + static_cast<unsigned>(j), static_cast<double>(pass.vmin[j]), static_cast<double>(pass.vmax[j])},
+      {kV + static_cast<unsigned>(k), static_cast<double>(pass.vmin[k]), static_cast<double>(pass.vmax[k])}};
   if (ax.pairs) {
-    src.push_back({pair_word(j, k, false), 1, 1, static_cast<double>(pass.dmin[0]), static_cast<double>(pass.dmax[0])});
-    src.push_back({pair_word(j, k, true), 1, -1, static_cast<double>(pass.dmin[1]), static_cast<double>(pass.dmax[1])});
+    src.push_back({pair_word(j, k, false), static_cast<double>(pass.dmin[0]), static_cast<double>(pass.dmax[0])});
+    src.push_back({pair_word(j, k, true), static_cast<double>(pass.dmin[1]), static_cast<double>(pass.dmax[1])});
   }
   std::vector<EdgeWord> out;
   for (const Source& x : src) {
@@ -177,8 +192,10 @@ std::vector<EdgeWord> edge_words(const ClassAxes& ax, const Range& pass) {
       for (unsigned shr = 1; shr <= kEdgeShifts; ++shr) {
         const double f = std::ldexp(1.0, -static_cast<int>(shr));
         const double xl = std::floor(x.lo * f), xh = std::floor(x.hi * f);
-        out.push_back({x.word, y.word, shr, false, x.a * f + y.a, x.b * f + y.b, xl + y.lo, xh + y.hi});
-        out.push_back({x.word, y.word, shr, true, x.a * f - y.a, x.b * f - y.b, xl - y.hi, xh - y.lo});
+        for (bool sub : {false, true}) {
+          const Coef c = made_coef(coef_of(ax, x.word), coef_of(ax, y.word), shr, sub);
+          out.push_back({x.word, y.word, shr, sub, c.a, c.b, sub ? xl - y.hi : xl + y.lo, sub ? xh - y.lo : xh + y.hi});
+        }
       }
     }
   }
@@ -248,26 +265,9 @@ bool add_edges(const Triangle& tri, double e, const ClassAxes& ax, const Range& 
 
 // The half-plane a x + b y >= c of a slope compare, in units of V (x = V_j, y = V_k).
 HalfPlane half_plane(const Compare& m, const ClassAxes& ax) {
-  const auto coef = [&](unsigned w, double* a, double* b) {
-    const int j = ax.j(), k = ax.k();
-    if (w == kV + static_cast<unsigned>(j)) *a = 1, *b = 0;
-    else if (w == kV + static_cast<unsigned>(k)) *a = 0, *b = 1;
-    else if (w == pair_word(j, k, false)) *a = 1, *b = 1;
-    else *a = 1, *b = -1;
-  };
-  double a, b;
-  if (m.made) {
-    double xa, xb, ya, yb;
-    coef(m.x, &xa, &xb);
-    coef(m.y, &ya, &yb);
-    const double f = std::ldexp(1.0, -static_cast<int>(m.shr)), sg = m.sub ? -1.0 : 1.0;
-    a = xa * f + sg * ya;
-    b = xb * f + sg * yb;
-  } else {
-    coef(m.word, &a, &b);
-  }
+  const Coef w = m.made ? made_coef(coef_of(ax, m.x), coef_of(ax, m.y), m.shr, m.sub) : coef_of(ax, m.word);
   const double c = static_cast<double>(m.c);
-  return m.kind == Compare::kLo ? HalfPlane{a, b, c} : HalfPlane{-a, -b, -c};
+  return m.kind == Compare::kLo ? HalfPlane{w.a, w.b, c} : HalfPlane{-w.a, -w.b, -c};
 }
 
 // The expected rays of the pass within the half-planes (its range of V_j and V_k clipped).
