@@ -73,7 +73,10 @@ class RayParallelPlan : public PassPlan {
     if (!boxes_) return false;
     sent->clear();
     boxes_->clear();
-    for (unsigned b = 0; b < count; ++b) boxes_->add_ray(rays_[idx_[base + b]].d);
+    for (unsigned b = 0; b < count; ++b) {
+      const Ray& r = rays_[idx_[base + b]];
+      boxes_->add_ray(r.d, cull_words_ ? shared_->reach_word(r) : 0);
+    }
     // Front to back from the shared origin: a node's key is its box's distance from it.
     const auto gap = [&](const Bvh::Node& n) {
       return glm::length(glm::max(glm::max(n.box.lo - origin_, glm::dvec3(0)), origin_ - n.box.hi));
@@ -95,7 +98,11 @@ class RayParallelPlan : public PassPlan {
       if (n.count != 1) return boxes_->any(dev, n.box, st_);
       const size_t k = bvh_.item(n.first);
       const int tri = form_.broadcasts[k].tri;
-      const bool yes = boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k]);
+      const std::optional<GateRows>& gate = form_.broadcasts[k].marks().gate_rows;
+      const bool yes = boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k],
+                                   gate ? &*gate : nullptr);
+      // Some ray of the pass passes the broadcast's gate (the host ran it): no need to ask.
+      gate_known_[k] = yes && gate;
       no_share = (1 - kNodeTestMemory) * no_share + (yes ? 0 : kNodeTestMemory);
       return yes;
     };
@@ -138,7 +145,9 @@ class RayParallelPlan : public PassPlan {
     const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
     *marks = form_.broadcasts[k].marks();
     const int tri = form_.broadcasts[k].tri;
-    if (boxes_ && marks->gate) marks->skip_gate = boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
+    if (boxes_ && marks->gate) {
+      marks->skip_gate = gate_known_[k] || boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
+    }
     return code;
   }
 
@@ -238,6 +247,7 @@ class RayParallelPlan : public PassPlan {
     if (oracle_) oracle_->count(rays_, idx_, base, base + count, form_.broadcasts, st_);
     if (boxes_) {  // walk() decides the rest on the FMPP, as it goes
       number_of_.assign(nb, 0);
+      gate_known_.assign(nb, 0);
       // A node is worth walking into if the host's walk reached some leaf below it.
       const std::vector<Bvh::Node>& nodes = bvh_.nodes();
       node_reach_.assign(nodes.size(), 0);
@@ -418,6 +428,7 @@ class RayParallelPlan : public PassPlan {
   std::vector<PlaneSlab> planes_;  // of each broadcast: its triangle's plane (the host's walk)
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
+  std::vector<char> gate_known_;     // per broadcast: the walk found a ray its gate lets through
   std::vector<bool> ovf_, unc_, t_loose_;
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
   PassWords words_;                // the pass's ray words, gathered before they are written

@@ -43,6 +43,9 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 
 void SharedBoxTest::clear() {
   classes_ = 0;
+  rays_.clear();
+  for (std::vector<uint32_t>& v : by_j_) v.clear();
+  sorted_ = false;
   reach_fresh_ = sel_saved_ = sel_out_ = false;
   mask_now_ = layout::kDataMask;
   for (unsigned c = 0; c < 6; ++c) {
@@ -58,17 +61,21 @@ void SharedBoxTest::clear() {
   }
 }
 
-void SharedBoxTest::add_ray(const glm::dvec3& d) {
+void SharedBoxTest::add_ray(const glm::dvec3& d, uint32_t reach) {
   const double sv = max_component(d) / unit_;
-  int64_t v[3];
+  RayWords& w = rays_.emplace_back();
+  int64_t* v = w.v;
   for (int j = 0; j < 3; ++j) {  // as load_ray quantizes it
     v[j] = quantize(d[j], sv, static_cast<int64_t>(unit_), "ray component");
   }
+  w.reach = static_cast<int32_t>(reach);
+  sorted_ = false;
   for (int i = 0; i < 3; ++i) {
     if (std::abs(static_cast<double>(v[i])) < unit_) continue;
     const unsigned c = static_cast<unsigned>(2 * i + (v[i] < 0 ? 1 : 0));
     classes_ |= 1u << c;
     ++count_[c];
+    by_j_[c].push_back(static_cast<uint32_t>(rays_.size() - 1));
     for (int j = 0; j < 3; ++j) {
       vmin_[c][j] = std::min(vmin_[c][j], v[j]);
       vmax_[c][j] = std::max(vmax_[c][j], v[j]);
@@ -93,7 +100,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
                                              double pad, bool* makes_reach, bool* diagonal) const {
   if (makes_reach != nullptr) *makes_reach = false;
   Classes cl;
-  const Verdict v = classes_meeting(box, hint, leaf, pad, &cl);
+  const Verdict v = classes_meeting(box, hint, leaf, pad, nullptr, &cl);
   if (diagonal != nullptr) *diagonal = v == Verdict::kTest && cl.diagonal;
   if (v != Verdict::kTest) return v;
   emit_test(cl, p, hint, makes_reach);
@@ -101,7 +108,7 @@ SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hin
 }
 
 SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad,
-                                                      Classes* out) const {
+                                                      const GateRows* gate, Classes* out) const {
   // The box relative to the origin, widened by the directions' rounding (a point at
   // distance D moves by at most angle D) and by the rounding of this arithmetic.
   glm::dvec3 lo = box.lo - origin_, hi = box.hi - origin_;
@@ -129,6 +136,7 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
     if (!(u1 > 0)) continue;  // behind every ray of the class
     std::vector<Compare> cmps;
     bool possible = true;
+    int64_t rect_lo[3], rect_hi[3];  // the rectangle of slopes, before any compare is pruned
     for (int j = 0; j < 3; ++j) {
       if (j == i) continue;
       // Slopes x / u over the part of the box with u > 0, in units of 2^-vbits.
@@ -144,6 +152,8 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
         break;
       }
       // Both now lie within the pass's components (|c| < 2^29): exact as integers.
+      rect_lo[j] = std::max(vmin_[c][j], static_cast<int64_t>(cmin));
+      rect_hi[j] = std::min(vmax_[c][j], static_cast<int64_t>(cmax));
       if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
       if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
     }
@@ -163,6 +173,8 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
         if (reach_) cmps.push_back({Compare::kDist, cull_.reach, static_cast<int64_t>(thr)});
       }
     }
+    // No block of the class can pass: left out, without a clock on the FMPP.
+    if (!host_passes(c, cmps, rect_lo, rect_hi, gate)) continue;
     // A ray of the pass is of this class and passes (unless it is a hinted one: then the
     // blocks decide, with the class test alone).
     if (cmps.empty() && hint < 0) return Verdict::kSome;
@@ -249,6 +261,62 @@ void SharedBoxTest::append_stop(Program& p) const {
   p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
 }
 
+int64_t SharedBoxTest::word_value(size_t ray, unsigned word, bool* known) const {
+  const int64_t* v = rays_[ray].v;
+  *known = true;
+  if (word < kV + 3) return v[word - kV];
+  if (pair_words_ && word >= kPair && word < kPair + 6) {
+    static constexpr int kA[3] = {0, 0, 1}, kB[3] = {1, 2, 2};
+    const unsigned p = (word - kPair) / 2;
+    return (word - kPair) % 2 ? v[kA[p]] - v[kB[p]] : v[kA[p]] + v[kB[p]];
+  }
+  if (reach_ && word == cull_.reach) return rays_[ray].reach;
+  *known = false;  // the best's reach (kD): only the blocks know it
+  return 0;
+}
+
+bool SharedBoxTest::host_passes(unsigned c, const std::vector<Compare>& cmps, const int64_t* lo, const int64_t* hi,
+                                const GateRows* gate) const {
+  const int i = static_cast<int>(c / 2), j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
+  if (!sorted_) {
+    for (unsigned n = 0; n < 6; ++n) {
+      const int jn = n / 2 == 0 ? 1 : 0;
+      std::sort(by_j_[n].begin(), by_j_[n].end(),
+                [&](uint32_t a, uint32_t b) { return rays_[a].v[jn] < rays_[b].v[jn]; });
+    }
+    sorted_ = true;
+  }
+  const std::vector<uint32_t>& rays = by_j_[c];
+  auto it = std::lower_bound(rays.begin(), rays.end(), lo[j],
+                             [&](uint32_t a, int64_t x) { return rays_[a].v[j] < x; });
+  for (; it != rays.end() && rays_[*it].v[j] <= hi[j]; ++it) {
+    const RayWords& r = rays_[*it];
+    if (r.v[k] < lo[k] || r.v[k] > hi[k]) continue;
+    bool pass = true;
+    for (const Compare& m : cmps) {
+      bool known = true;
+      int64_t w;
+      if (m.made) {
+        bool kx = true, ky = true;
+        const int64_t x = word_value(*it, m.x, &kx), y = word_value(*it, m.y, &ky);
+        known = kx && ky;
+        // ADD / SUB: (x >>> shr) +- y, the shift arithmetic (a floor).
+        const int64_t xs = x >= 0 ? x >> m.shr : -((-x - 1) >> m.shr) - 1;
+        w = m.sub ? xs - y : xs + y;
+      } else {
+        w = word_value(*it, m.word, &known);
+      }
+      if (!known) continue;
+      if (m.kind == Compare::kLo ? w < m.c : w > m.c) {
+        pass = false;
+        break;
+      }
+    }
+    if (pass && (gate == nullptr || gate->passes(r.v))) return true;
+  }
+  return false;
+}
+
 double SharedBoxTest::rays_through(const Triangle& t) const {
   double rays = 0;
   for (unsigned c = 0; c < 6; ++c) {
@@ -270,10 +338,10 @@ double SharedBoxTest::rays_through(const Triangle& t) const {
   return std::isfinite(rays) ? rays : 0;
 }
 
-bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf,
-                        double pad) {
+bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf, double pad,
+                        const GateRows* gate) {
   Classes cl;
-  const Verdict v = classes_meeting(b, hint, leaf, pad, &cl);
+  const Verdict v = classes_meeting(b, hint, leaf, pad, gate, &cl);
   if (v != Verdict::kTest) return v == Verdict::kSome;
   // The mask, like SEL, stays as the test leaves it (every REF and WRITES of a test sets
   // its own): settle restores the broadcasts' kDataMask.

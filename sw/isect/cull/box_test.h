@@ -25,13 +25,16 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <vector>
 
 #include "sw/fmpp/device.h"
 #include "sw/fmpp/program.h"
 #include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/pass/options.h"
 #include "sw/isect/pass/layout.h"
+#include "sw/isect/pass/pass.h"
 #include "sw/isect/forms/shared_origin_layout.h"
+#include "sw/isect/cull/box_slopes.h"
 
 namespace fmpp::isect {
 
@@ -46,8 +49,10 @@ class SharedBoxTest {
   // holds it: its classes (bit 2 axis + 1 for a negative component: every axis whose
   // quantized component is +-2^vbits) and the range of its other components per class.
   // A compare every ray of the pass passes, or a class no ray has, is left out.
+  // reach: the ray's reach word as its block holds it (BoxTestWords::reach_word; 0 where
+  // the pass's blocks hold none), for the host's own run of the compares (host_passes).
   void clear();
-  void add_ray(const glm::dvec3& d);
+  void add_ray(const glm::dvec3& d, uint32_t reach = 0);
   // The words that hold each block's reach and hint (layout::ray::cull_words), where the
   // FMPP has them; set_reach: whether the blocks of this pass hold their ray's reach (a
   // finite tmax: a box beyond it is cut too).
@@ -105,8 +110,10 @@ class SharedBoxTest {
   // pass's selection in kTmp, and the mask as the test left it: the next test needs
   // neither to save nor to restore them, and settle() restores them before anything
   // else runs on the device.
+  // gate (a leaf's, where its broadcast's form gives it: ProgramMarks::gate_rows): the
+  // blocks whose rays its gate would stop are no reason to test or broadcast it.
   bool any(Device& dev, const Box& b, KernelStats* st, int hint = -1, const Triangle* leaf = nullptr,
-           double pad = 0);
+           double pad = 0, const GateRows* gate = nullptr);
   // SEL <- the pass's selection and the mask <- kDataMask again where a test left them
   // otherwise (counted with the box tests' clocks). Before a broadcast, and after the walk.
   void settle(Device& dev, KernelStats* st);
@@ -124,8 +131,18 @@ class SharedBoxTest {
   // its compares (decided on the host: kNone, kSome, or kTest with *out filled), and the
   // instructions of their test (box_test.cpp).
   struct Classes;
-  Verdict classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad, Classes* out) const;
+  Verdict classes_meeting(const Box& box, int hint, const Triangle* leaf, double pad, const GateRows* gate,
+                          Classes* out) const;
   void emit_test(const Classes& cl, Program& p, int hint, bool* makes_reach, bool restore_mask = true) const;
+  // The host runs a class's compares itself on the words it loaded into the pass's blocks
+  // (direction, pair words, reach: all but the best's reach kD, which only the blocks
+  // know, taken as passing), over the rays of the class within the rectangle of slopes
+  // [lo, hi] per axis, and the leaf broadcast's gate (where given): whether one of them
+  // passes all. None: no block of the class both passes the test and could pass the
+  // gate, so the class is left out without a clock on the FMPP.
+  bool host_passes(unsigned c, const std::vector<slopes::Compare>& cmps, const int64_t* lo, const int64_t* hi,
+                   const GateRows* gate) const;
+  int64_t word_value(size_t ray, unsigned word, bool* known) const;
 
   glm::dvec3 origin_;
   double unit_;     // 2^vbits
@@ -143,6 +160,15 @@ class SharedBoxTest {
   unsigned count_[6];                // per class: the pass's rays of it
   // per class: the pass's smallest and largest V_j + V_k and V_j - V_k (j < k the other axes)
   int64_t dmin_[6][2], dmax_[6][2];
+  // per ray of the pass (add_ray): its direction words and reach word; per class, its rays
+  // in order of V_j (j the first axis other than the class's), sorted on first use.
+  struct RayWords {
+    int64_t v[3];
+    int64_t reach;
+  };
+  std::vector<RayWords> rays_;
+  mutable std::vector<uint32_t> by_j_[6];
+  mutable bool sorted_ = false;
 };
 
 }  // namespace fmpp::isect

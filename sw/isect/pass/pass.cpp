@@ -76,6 +76,16 @@ void run_passes(Device& dev, PassPlan& plan, const KernelOptions& opt, KernelSta
   if (opt.share) opt.share->finish(plan, blocks);
 }
 
+bool GateRows::passes(const int64_t v[3]) const {
+  const __int128 floor = -(static_cast<__int128>(1) << floor_bits);
+  for (int i = 0; i < 3; ++i) {
+    __int128 s = 0;
+    for (int j = 0; j < 3; ++j) s += static_cast<__int128>(x[3 * i + j]) * v[j];
+    if (s < floor) return false;
+  }
+  return true;
+}
+
 size_t emit_gate(Program& p, unsigned flag, unsigned save) {
   p << ins::flagop(save, map::kFlagSEL, map::kFlagSEL, lut::kA) << ins::flagop(map::kFlagSEL, flag, flag, lut::kA);
   const size_t gate = p.size();

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -27,10 +28,22 @@ namespace fmpp::isect {
 //   would change no word and no flag that outlives the broadcast;
 //   skip_gate: set by the plan where some block will almost surely pass the gate (a
 //   guess: it changes clocks, never a result): the loop then leaves the gate's three
-//   instructions code[gate - 2, gate] out and reads nothing.
+//   instructions code[gate - 2, gate] out and reads nothing;
+//   gate_rows: where the form can say it, which blocks pass the gate, as a function of
+//   their direction words alone (GateRows): the host then knows, ray by ray, whether the
+//   broadcast's gate would let it through, without sending it (box_test.h).
+// GateRows: a block passes the gate exactly where, for every row i, the exact sum
+// x[3i] V_0 + x[3i + 1] V_1 + x[3i + 2] V_2 of its direction words (layout::ray::kV) is
+// at least -2^floor_bits.
+struct GateRows {
+  int64_t x[9];
+  int floor_bits;
+  bool passes(const int64_t v[3]) const;
+};
 struct ProgramMarks {
   size_t test_steps = 0, mark = 0, gate = 0;
   bool skip_gate = false;
+  std::optional<GateRows> gate_rows;
 };
 
 // Ends a program's head with a gate (ProgramMarks::gate): `save` <- SEL, SEL <- `flag`,

@@ -162,6 +162,14 @@ class PaperForm : public SharedOriginForm {
       dot_rows_const(p, rows, opt_.n, kSel, pairs());
     }
     certify::inside_certain(p, kT, pb.k, marks);
+    // The gate lets a block through where every T'_i = floor(sum_j x_ij V_j / 2^n) >= -2^k
+    // (dot_rows: one floor of the exact sum), that is where sum_j x_ij V_j >= -2^(k + n).
+    if (pb.k < 31) {
+      GateRows g;
+      std::copy(x, x + 9, g.x);
+      g.floor_bits = pb.k + static_cast<int>(opt_.n);
+      marks->gate_rows = g;
+    }
     p << add(kS, kT + 0, kT + 1, kHit) << add(kS, kS, kT + 2, kHit);
     for (int s = 0; s < shift; ++s) p << lshift(kS, kS, kHit);  // overflow sets V
     if (shift < 0) p << rshift(kS, kS, kHit, static_cast<unsigned>(std::min(-shift, 32)));  // >>> 32: the sign
