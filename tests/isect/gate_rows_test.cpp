@@ -1,0 +1,133 @@
+// The host's run of a broadcast's gate (ProgramMarks::gate_rows, pass.h), by which
+// culling leaves out the leaves whose gate no ray of the pass would pass (box_test.h,
+// docs/certification.md, "The host's run of the leaf tests"): on the golden model, the
+// paper form's broadcasts at random n, vbits and multiply, origins tiny beside huge, and
+// rays aimed at and around small triangles (many within a hair of an edge). After the
+// broadcast's head, SEL is the gate's flag: in every block of the pass it is set exactly
+// where GateRows::passes says so.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "backends/backend.h"
+#include "sw/fmpp/device.h"
+#include "sw/isect/forms/forms.h"
+#include "sw/isect/forms/shared_origin_layout.h"
+#include "sw/isect/pass/fixed_point.h"
+#include "sw/isect/pass/layout.h"
+#include "sw/isect/pass/pass.h"
+#include "sw/isect/pass/pass_words.h"
+
+namespace fmpp::isect {
+namespace {
+
+struct Counts {
+  size_t blocks = 0, pass = 0, stop = 0, broadcasts = 0;
+};
+
+// One pass of `count` rays from `origin` against `tris` under `opt`; every broadcast's
+// gate compared block by block with its GateRows.
+void check_pass(const KernelOptions& opt, const glm::dvec3& origin, const std::vector<Triangle>& tris,
+                const std::vector<Ray>& rays, Counts* n) {
+  const unsigned blocks = 128, words = 32;
+  auto be = make_backend("cmodel", Config{blocks, words});
+  Device dev(be->bus());
+  std::vector<size_t> idx(rays.size());
+  for (size_t k = 0; k < idx.size(); ++k) idx[k] = k;
+  KernelStats st;
+  const FormInputs in{opt, tris, rays, idx, origin, &st, nullptr, words};
+  std::unique_ptr<RayForm> form = make_paper_form(in);
+  const auto count = static_cast<unsigned>(rays.size());
+  std::vector<uint32_t> number_of(form->broadcasts.size(), 0);
+  for (size_t k = 0; k < number_of.size(); ++k) number_of[k] = static_cast<uint32_t>(k + 1);
+  Program pre;
+  select_below(pre, count, blocks);
+  PassWords w;
+  w.begin(count);
+  for (unsigned b = 0; b < count; ++b) form->load_ray(w, b, rays[b], number_of);
+  w.flush(dev, std::move(pre), &st);
+  Program init;
+  init.mask(0);
+  form->init(init);
+  init.mask(layout::kDataMask);
+  dev.push(init.code());
+  // Each block's direction words, as load_ray quantizes them.
+  std::vector<std::array<int64_t, 3>> v(count);
+  const int64_t lim = int64_t{1} << opt.vbits;
+  for (unsigned b = 0; b < count; ++b) {
+    const double sv = max_component(rays[b].d) / static_cast<double>(lim);
+    for (int j = 0; j < 3; ++j) v[b][j] = quantize(rays[b].d[j], sv, lim, "ray component");
+  }
+  for (size_t k = 0; k < form->broadcasts.size(); ++k) {
+    if (form->broadcasts[k].refused()) continue;
+    const std::vector<uint64_t> code = form->code(k, number_of[k]);
+    const ProgramMarks marks = form->broadcasts[k].marks();
+    ASSERT_NE(marks.gate, 0u);
+    ASSERT_TRUE(marks.gate_rows.has_value()) << "n " << opt.n;
+    dev.push(std::vector<uint64_t>(code.begin(), code.begin() + static_cast<std::ptrdiff_t>(marks.gate)));
+    const std::vector<bool> sel = dev.read_flag_all(layout::kSel);
+    for (unsigned b = 0; b < count; ++b) {
+      const bool host = marks.gate_rows->passes(v[b].data());
+      ASSERT_EQ(sel[b], host) << "block " << b << " broadcast " << k << " n " << opt.n << " vbits " << opt.vbits;
+      ++(host ? n->pass : n->stop);
+      ++n->blocks;
+    }
+    dev.push(std::vector<uint64_t>(code.begin() + static_cast<std::ptrdiff_t>(marks.gate), code.end()));
+    ++n->broadcasts;
+  }
+}
+
+TEST(FmppGateRows, TheHostKnowsWhichBlocksPassThePaperFormsGate) {
+  std::mt19937_64 rng(20261130);
+  std::uniform_real_distribution<double> u(-1, 1), w(-0.3, 1.3);
+  Counts n;
+  for (int trial = 0; trial < 80; ++trial) {
+    KernelOptions opt;
+    for (;;) {  // options the kernels accept
+      opt.n = 8 + static_cast<unsigned>(rng() % 25);      // 8 .. 32
+      opt.vbits = 2 + static_cast<unsigned>(rng() % 27);  // 2 .. 28
+      opt.mul = rng() % 2 ? MulMode::kConst : MulMode::kGeneric;
+      try {
+        opt.validate(Config{128, 32});
+        break;
+      } catch (const std::exception&) {
+      }
+    }
+    // Origins up to 2^40 from the scene's origin; triangles 2^-10 to 1 of their distance.
+    const glm::dvec3 origin(std::ldexp(u(rng), trial % 6 * 8), std::ldexp(u(rng), trial % 5 * 4), u(rng));
+    std::vector<Triangle> tris;
+    std::vector<Ray> rays;
+    for (int t = 0; t < 4; ++t) {
+      const glm::dvec3 dir = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+      const double dist = std::ldexp(1.0 + u(rng) * 0.5, static_cast<int>(rng() % 20) - 6);
+      const double size = dist * std::ldexp(1.0, -static_cast<int>(rng() % 11));
+      Triangle tri;
+      for (glm::dvec3& p : tri.p) p = origin + dir * dist + size * glm::dvec3(u(rng), u(rng), u(rng));
+      tris.push_back(tri);
+      // Rays at barycentric points from -0.3 to 1.3: inside, outside and on the edges.
+      for (int r = 0; r < 30; ++r) {
+        double a = w(rng), b = w(rng);
+        if (r % 3 == 0) b = 1 - a;  // on the edge opposite vertex 0's line
+        const glm::dvec3 at = tri.p[0] + a * (tri.p[1] - tri.p[0]) + b * (tri.p[2] - tri.p[0]);
+        Ray ray;
+        ray.o = origin;
+        ray.d = at - origin;
+        rays.push_back(ray);
+      }
+    }
+    check_pass(opt, origin, tris, rays, &n);
+  }
+  // Not a degenerate sample: many broadcasts, and blocks on both sides of the gate.
+  EXPECT_GT(n.broadcasts, 100u);
+  EXPECT_GT(n.pass, n.blocks / 20);
+  EXPECT_GT(n.stop, n.blocks / 4);
+  std::printf("%zu broadcasts, %zu blocks: %zu pass the gate, %zu stop\n", n.broadcasts, n.blocks, n.pass, n.stop);
+}
+
+}  // namespace
+}  // namespace fmpp::isect
