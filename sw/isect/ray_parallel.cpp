@@ -145,7 +145,9 @@ class RayParallelPlan : public PassPlan {
     const std::vector<uint64_t>& code = form_.code(k, number_of_[k]);
     *marks = form_.broadcasts[k].marks();
     const int tri = form_.broadcasts[k].tri;
-    if (boxes_ && marks->gate) {
+    if (gates_known_ && marks->gate) {
+      marks->skip_gate = true;
+    } else if (boxes_ && marks->gate) {
       marks->skip_gate = gate_known_[k] || boxes_->rays_through(tris_[static_cast<size_t>(tri)]) >= kGateRays;
     }
     return code;
@@ -233,6 +235,7 @@ class RayParallelPlan : public PassPlan {
     const size_t nb = form_.broadcasts.size();
     reach_.assign(nb, 1);
     phase_ = Phase::kAll;
+    gates_known_ = false;
     if (opt_.cull) {
       std::fill(reach_.begin(), reach_.end(), 0);
       if (planes_.empty()) {  // each broadcast's plane (the host's walk crosses it: may_cross)
@@ -279,23 +282,40 @@ class RayParallelPlan : public PassPlan {
       return all;
     }
     const bool general = bounds_.distance == CullDistance::kGeneral;
+    // The arbitrary-origin form's gates are the host's (may_pass_gate): from here on every
+    // broadcast of the pass has a ray its gate lets through, and none needs asking.
+    gates_known_ = general;
     std::vector<char> probe(nb, 0);
-    for (const RayPacket& p : packets(base, count, 1)) {
+    const std::vector<RayPacket> one = packets(base, count, 1);
+    for (unsigned b = 0; b < count; ++b) {
+      const Ray& r = rays_[idx_[base + b]];
       int leaves = 0;
-      probe_bvh_.visit_near_first(p, [&](const uint32_t* items, uint32_t n, double entry) {
+      probe_bvh_.visit_near_first(one[b], [&](const uint32_t* items, uint32_t n, double entry) {
         if (!(entry > 0)) return false;  // a leaf around the origin (the surface left)
-        for (uint32_t i = 0; i < n; ++i) probe[items[i]] = reach_[items[i]];
+        for (uint32_t i = 0; i < n; ++i) probe[items[i]] |= reach_[items[i]] && form_.may_pass_gate(items[i], r);
         return ++leaves == (general ? kProbeLeavesOwn : kProbeLeavesShared);
       });
     }
     std::vector<size_t> order = marked(probe);
     if (order.empty() || order.size() * (general ? kProbeShareOwn : kProbeShareShared) >= all.size()) {
+      // Rays of their own origins: each ray's own walk (its gates included) keeps fewer.
+      if (general) all = kept_by_rays(one, base, count);
       st_->culled += nb - all.size();
       return all;
     }
     phase_ = Phase::kProbe;
     rounds_ = 1;
     return order;
+  }
+
+  // The broadcasts some ray of the pass may meet, ray by ray (keep_in_reach, no best yet).
+  std::vector<size_t> kept_by_rays(const std::vector<RayPacket>& one, size_t base, unsigned count) {
+    std::vector<char> keep(form_.broadcasts.size(), 0);
+    for (unsigned b = 0; b < count; ++b) {
+      keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], std::numeric_limits<double>::infinity(),
+                    &keep, &st_->box_tests, &planes_);
+    }
+    return marked(keep);
   }
 
   // After the probe: each ray's nearest distance so far; the blocks get the triangles that
@@ -429,6 +449,7 @@ class RayParallelPlan : public PassPlan {
   std::unique_ptr<Oracle> oracle_;
   std::vector<uint32_t> number_of_;  // of each broadcast in the current pass, 0 if culled
   std::vector<char> gate_known_;     // per broadcast: the walk found a ray its gate lets through
+  bool gates_known_ = false;         // so did the pass's own selection, for every broadcast
   std::vector<bool> ovf_, unc_, t_loose_;
   PassHints hints_{tris_.size()};  // the pass's reach and hint words
   PassWords words_;                // the pass's ray words, gathered before they are written

@@ -26,22 +26,38 @@
 namespace fmpp::isect {
 namespace {
 
+// Options the arbitrary-origin form accepts, n from 8 to 32, either multiply.
+KernelOptions general_options(std::mt19937_64& rng) {
+  for (;;) {
+    KernelOptions opt;
+    opt.n = 8 + static_cast<unsigned>(rng() % 25);
+    opt.mul = rng() % 2 ? MulMode::kConst : MulMode::kGeneric;
+    try {
+      opt.validate(Config{128, 32});
+      return opt;
+    } catch (const std::exception&) {
+    }
+  }
+}
+
 struct Counts {
   size_t blocks = 0, pass = 0, stop = 0, broadcasts = 0;
 };
 
-// One pass of `count` rays from `origin` against `tris` under `opt`; every broadcast's
-// gate compared block by block with its GateRows.
+// One pass of `count` rays from `origin` against `tris` under `opt` (the paper form; the
+// arbitrary-origin form with `general`, whose rays have their own origins); every
+// broadcast's gate compared block by block with the host's: GateRows, or the form's
+// may_pass_gate.
 void check_pass(const KernelOptions& opt, const glm::dvec3& origin, const std::vector<Triangle>& tris,
-                const std::vector<Ray>& rays, Counts* n) {
-  const unsigned blocks = 128, words = 32;
+                const std::vector<Ray>& rays, Counts* n, bool general = false, unsigned words = 32) {
+  const unsigned blocks = 128;
   auto be = make_backend("cmodel", Config{blocks, words});
   Device dev(be->bus());
   std::vector<size_t> idx(rays.size());
   for (size_t k = 0; k < idx.size(); ++k) idx[k] = k;
   KernelStats st;
   const FormInputs in{opt, tris, rays, idx, origin, &st, nullptr, words};
-  std::unique_ptr<RayForm> form = make_paper_form(in);
+  std::unique_ptr<RayForm> form = general ? make_general_form(in) : make_paper_form(in);
   const auto count = static_cast<unsigned>(rays.size());
   std::vector<uint32_t> number_of(form->broadcasts.size(), 0);
   for (size_t k = 0; k < number_of.size(); ++k) number_of[k] = static_cast<uint32_t>(k + 1);
@@ -68,11 +84,11 @@ void check_pass(const KernelOptions& opt, const glm::dvec3& origin, const std::v
     const std::vector<uint64_t> code = form->code(k, number_of[k]);
     const ProgramMarks marks = form->broadcasts[k].marks();
     ASSERT_NE(marks.gate, 0u);
-    ASSERT_TRUE(marks.gate_rows.has_value()) << "n " << opt.n;
+    ASSERT_TRUE(general || marks.gate_rows.has_value()) << "n " << opt.n;
     dev.push(std::vector<uint64_t>(code.begin(), code.begin() + static_cast<std::ptrdiff_t>(marks.gate)));
     const std::vector<bool> sel = dev.read_flag_all(layout::kSel);
     for (unsigned b = 0; b < count; ++b) {
-      const bool host = marks.gate_rows->passes(v[b].data());
+      const bool host = general ? form->may_pass_gate(k, rays[b]) : marks.gate_rows->passes(v[b].data());
       ASSERT_EQ(sel[b], host) << "block " << b << " broadcast " << k << " n " << opt.n << " vbits " << opt.vbits;
       ++(host ? n->pass : n->stop);
       ++n->blocks;
@@ -126,6 +142,55 @@ TEST(FmppGateRows, TheHostKnowsWhichBlocksPassThePaperFormsGate) {
   EXPECT_GT(n.broadcasts, 100u);
   EXPECT_GT(n.pass, n.blocks / 20);
   EXPECT_GT(n.stop, n.blocks / 4);
+  std::printf("%zu broadcasts, %zu blocks: %zu pass the gate, %zu stop\n", n.broadcasts, n.blocks, n.pass, n.stop);
+}
+
+TEST(FmppGateRows, TheHostKnowsWhichBlocksPassTheArbitraryOriginFormsGate) {
+  std::mt19937_64 rng(20261201);
+  std::uniform_real_distribution<double> u(-1, 1), w(-0.3, 1.3);
+  Counts n;
+  size_t excluded = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    KernelOptions opt = general_options(rng);
+    // A scene up to 2^30 from the origin, its size 2^-8 to 2^8.
+    const glm::dvec3 centre(std::ldexp(u(rng), trial % 4 * 10), std::ldexp(u(rng), trial % 3 * 8), u(rng));
+    const double scene = std::ldexp(1.0, static_cast<int>(rng() % 17) - 8);
+    std::vector<Triangle> tris;
+    std::vector<Ray> rays;
+    for (int t = 0; t < 4; ++t) {
+      Triangle tri;
+      const glm::dvec3 c = centre + scene * glm::dvec3(u(rng), u(rng), u(rng));
+      const double size = scene * std::ldexp(1.0, -static_cast<int>(rng() % 8));
+      for (glm::dvec3& p : tri.p) p = c + size * glm::dvec3(u(rng), u(rng), u(rng));
+      tris.push_back(tri);
+    }
+    for (int t = 0; t < 4; ++t) {
+      const Triangle& tri = tris[static_cast<size_t>(t)];
+      // Rays from their own origins in the scene at points in and around triangle t; every
+      // fifth leaves a point of another triangle, which it excludes.
+      for (int r = 0; r < 30; ++r) {
+        double a = w(rng), b = w(rng);
+        if (r % 3 == 0) b = 1 - a;
+        const glm::dvec3 at = tri.p[0] + a * (tri.p[1] - tri.p[0]) + b * (tri.p[2] - tri.p[0]);
+        Ray ray;
+        ray.o = centre + scene * glm::dvec3(u(rng), u(rng), u(rng));
+        if (r % 5 == 0) {
+          const int own = (t + 1) % 4;
+          const Triangle& o = tris[static_cast<size_t>(own)];
+          ray.o = (o.p[0] + o.p[1] + o.p[2]) / 3.0;
+          ray.exclude = own;
+          ++excluded;
+        }
+        ray.d = at - ray.o;
+        rays.push_back(ray);
+      }
+    }
+    check_pass(opt, centre, tris, rays, &n, true, rng() % 2 ? 32 : 26);
+  }
+  EXPECT_GT(n.broadcasts, 150u);
+  EXPECT_GT(n.pass, n.blocks / 20);
+  EXPECT_GT(n.stop, n.blocks / 4);
+  EXPECT_GT(excluded, 100u);
   std::printf("%zu broadcasts, %zu blocks: %zu pass the gate, %zu stop\n", n.broadcasts, n.blocks, n.pass, n.stop);
 }
 

@@ -29,6 +29,7 @@ void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form
       q.t1 = std::min(q.t1, until);
       if (!may_cross(q, bounds.boxes[k], (*planes)[k])) return;
     }
+    if (!form.may_pass_gate(k, r)) return;  // its gate would stop this ray
     (*keep)[k] = 1;
   });
 }

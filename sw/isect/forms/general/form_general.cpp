@@ -9,11 +9,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "sw/isect/forms/certify_rounding.h"
 #include "sw/isect/forms/general/certify_general.h"
 #include "sw/isect/forms/general/general_frame.h"
+#include "sw/isect/forms/general/general_gate.h"
 #include "sw/isect/geometry/hierarchy.h"
 #include "sw/isect/exact/exact.h"
 #include "sw/isect/pass/fixed_point.h"
@@ -77,13 +79,24 @@ class GeneralForm : public RayForm {
 
   BestWords best_words() const override { return {kBest, kIdx, 0x7FFFFFFFu}; }
 
-  void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override {
+  // A ray's direction, moment and origin words.
+  void ray_words(const Ray& r, int64_t v[3], int64_t l[3], int64_t o[3]) const {
     const int64_t lim = int64_t{1} << policy::kGeneralRayBits;
-    const glm::dvec3 o = r.o - sc_.c, l = glm::cross(o, r.d);
+    const glm::dvec3 oc = r.o - sc_.c, lc = glm::cross(oc, r.d);
     for (int j = 0; j < 3; ++j) {
-      w.set(b, kV + j, static_cast<uint32_t>(quantize(r.d[j], sc_.sv, lim, "ray direction")));
-      w.set(b, kL + j, static_cast<uint32_t>(quantize(l[j], sc_.sl, lim, "ray moment")));
-      w.set(b, kO + j, static_cast<uint32_t>(quantize(o[j], sc_.so, lim, "ray origin")));
+      v[j] = quantize(r.d[j], sc_.sv, lim, "ray direction");
+      l[j] = quantize(lc[j], sc_.sl, lim, "ray moment");
+      o[j] = quantize(oc[j], sc_.so, lim, "ray origin");
+    }
+  }
+
+  void load_ray(PassWords& w, unsigned b, const Ray& r, const std::vector<uint32_t>& number_of) const override {
+    int64_t v[3], l[3], o[3];
+    ray_words(r, v, l, o);
+    for (unsigned j = 0; j < 3; ++j) {
+      w.set(b, kV + j, static_cast<uint32_t>(v[j]));
+      w.set(b, kL + j, static_cast<uint32_t>(l[j]));
+      w.set(b, kO + j, static_cast<uint32_t>(o[j]));
     }
     // Only a batch with a tmin tests it (program). No tmin: a quotient far below every Q.
     if (sc_.has_tmin) {
@@ -113,6 +126,16 @@ class GeneralForm : public RayForm {
     code_[b.mark()] = ins::with_imm(code_[b.mark()], number);
     code_[b.mark() + 1] = ins::with_imm(code_[b.mark() + 1], number + 1);
     return code_;
+  }
+
+  // The gate as the block would decide it, from the words load_ray writes (general_gate.h).
+  bool may_pass_gate(size_t k, const Ray& r) const override {
+    const Broadcast& b = broadcasts[k];
+    if (b.refused() || !gates_[k]) return true;
+    if (r.exclude == b.tri) return false;  // the ray's own triangle: the exclusion test
+    int64_t v[3], l[3], o[3];
+    ray_words(r, v, l, o);
+    return gates_[k]->passes(v, l, o);
   }
 
   double t_of(uint32_t best, const Ray&) const override { return (best + 0.5) * sc_.u; }
@@ -165,6 +188,7 @@ class GeneralForm : public RayForm {
     broadcast_of_[static_cast<size_t>(k)] = static_cast<uint32_t>(broadcasts.size() + 1);
     broadcasts.push_back(std::move(b));
     bounds_.emplace_back();
+    gates_.emplace_back();
     own_.push_back(t);
   }
 
@@ -221,6 +245,10 @@ class GeneralForm : public RayForm {
       return Program();
     }
     bounds_[at] = bd;
+    GeneralGate gate{{}, {}, opt_.n, th.ka};
+    std::copy(xa, xa + 18, gate.xa);
+    std::copy(xd, xd + 4, gate.xd);
+    gates_[at] = gate;
     return program(xa, xd, dshift, th, marks);
   }
 
@@ -402,6 +430,7 @@ class GeneralForm : public RayForm {
   KernelStats* st_;
   GeneralScales sc_;  // the batch's scales and word bounds (general_frame.h)
   std::vector<Bounds> bounds_;       // of each broadcast, once prepared
+  std::vector<std::optional<GeneralGate>> gates_;  // of each broadcast, once prepared
   std::vector<Triangle> own_;        // each broadcast's triangle, for prepare_late
   std::vector<uint32_t> broadcast_of_;  // triangle -> its broadcast + 1, 0 for none (load_ray's exclusion)
   std::vector<uint64_t> code_;

@@ -1,0 +1,32 @@
+// The arbitrary-origin form's gate on the host (see general_gate.h).
+#include "sw/isect/forms/general/general_gate.h"
+
+#include "sw/isect/pass/policy.h"
+
+namespace fmpp::isect {
+namespace {
+
+// floor(sum_j c_j y_j / 2^n), exactly (|c| < 2^31, |y| < 2^31: the sum within 2^64).
+int64_t row(const int64_t* c, const int64_t* y, unsigned count, unsigned n) {
+  __int128 s = 0;
+  for (unsigned j = 0; j < count; ++j) s += static_cast<__int128>(c[j]) * y[j];
+  const __int128 q = s >= 0 ? s >> n : -((-s - 1) >> n) - 1;
+  return static_cast<int64_t>(q);
+}
+
+}  // namespace
+
+bool GeneralGate::passes(const int64_t v[3], const int64_t l[3], const int64_t o[3]) const {
+  const int64_t e0 = row(xa + 3, l, 3, n), e1 = row(xa + 9, l, 3, n);
+  int64_t a[3] = {row(xa + 0, v, 3, n) + e0, row(xa + 6, v, 3, n) + e1, row(xa + 12, v, 3, n) - e0 - e1};
+  const int64_t od[4] = {o[0], o[1], o[2], int64_t{1} << policy::kGeneralRayBits};
+  const int64_t det = row(xd, od, 4, n);
+  const int64_t k = int64_t{1} << ka;
+  for (int64_t& ai : a) {
+    if (det < 0) ai = -ai;
+    if (ai < -k) return false;
+  }
+  return true;
+}
+
+}  // namespace fmpp::isect
