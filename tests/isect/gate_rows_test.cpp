@@ -1,10 +1,10 @@
-// The host's run of a broadcast's gate (ProgramMarks::gate_rows, pass.h), by which
-// culling leaves out the leaves whose gate no ray of the pass would pass (box_test.h,
-// docs/certification.md, "The host's run of the leaf tests"): on the golden model, the
-// paper form's broadcasts at random n, vbits and multiply, origins tiny beside huge, and
-// rays aimed at and around small triangles (many within a hair of an edge). After the
-// broadcast's head, SEL is the gate's flag: in every block of the pass it is set exactly
-// where GateRows::passes says so.
+// The host's run of a broadcast's gate (ProgramMarks::gate_rows, pass.h; the
+// arbitrary-origin form's RayForm::may_pass_gate), by which culling leaves out the
+// broadcasts whose gate no ray of the pass, or no given ray, would pass
+// (docs/certification.md, "The host's run of the leaf tests and the gates"): on the golden
+// model, at random n, vbits and multiply, origins tiny beside huge, and rays aimed at and
+// around small triangles (many within a hair of an edge). After the broadcast's head, SEL
+// is the gate's flag: in every block of the pass it is set exactly where the host says.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -111,7 +111,7 @@ class RayForm {
   // Whether ray r's block could pass broadcast k's gate (pass.h: ProgramMarks::gate), as
   // the host tells exactly from the words it loads for r; true where the form cannot tell.
   // Culling leaves k out for a ray that cannot (docs/certification.md, "The host's run of
-  // the gates").
+  // the leaf tests and the gates").
   virtual bool may_pass_gate(size_t /*k*/, const Ray& /*r*/) const { return true; }
   // The distance of a block's best.
   virtual double t_of(uint32_t best, const Ray& r) const = 0;

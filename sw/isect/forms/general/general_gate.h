@@ -1,7 +1,7 @@
 // The arbitrary-origin form's gate as the host evaluates it (RayForm::may_pass_gate):
 // from the words it loads into a ray's block and a broadcast's mantissas, in exact
 // integers, the same decision as the blocks' (docs/certification.md, "The host's run of
-// the gates").
+// the leaf tests and the gates").
 #pragma once
 
 #include <cstdint>
