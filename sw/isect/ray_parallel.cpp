@@ -46,6 +46,7 @@ class RayParallelPlan : public PassPlan {
           boxes_->set_stop(opt_.occlusion);
         }
         boxes_->set_slope_compares(opt_.mul == MulMode::kConst, opt_.box_diagonals, opt_.box_edges);
+        boxes_->set_reads(opt_.box_reads);
         origin_ = *origin;
       }
     }
@@ -116,7 +117,8 @@ class RayParallelPlan : public PassPlan {
         number_of_[k] = static_cast<uint32_t>(sent->size());
         boxes_->settle(dev, st_);
         send_broadcast(dev, *this, k, number_of_[k], opt_, st_);
-        boxes_->broadcast_sent();
+        const std::optional<GateRows>& gate = form_.broadcasts[k].marks().gate_rows;
+        boxes_->broadcast_sent(gate ? &*gate : nullptr);
       }
       return false;
     });

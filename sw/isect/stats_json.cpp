@@ -64,6 +64,8 @@ nlohmann::json stats_json(const KernelStats& st, double clock_mhz) {
           {"culled_broadcasts", st.culled},
           {"box_tests", st.box_tests},
           {"fmpp_box_tests", st.fmpp_box_tests},
+          {"read_box_tests", st.read_box_tests},
+          {"box_reads", st.box_reads},
           {"fmpp_node_tests", st.fmpp_node_tests},
           {"diagonal_tests", st.diagonal_tests},
           {"edge_tests", st.edge_tests},

@@ -1,6 +1,10 @@
 // What the FMPP's ray-box tests leave on the device (see box_test.h): the selection and
 // the mask restored after them, the rays not to read back after a pass.
+#include <optional>
+#include <utility>
 #include <vector>
+
+#include "sw/isect/cull/tuning.h"
 
 #include "sw/isect/cull/box_test.h"
 #include "sw/isect/pass/layout.h"
@@ -31,6 +35,51 @@ std::vector<char> SharedBoxTest::to_read(Device& dev, unsigned count, KernelStat
     st->unread_rays += beyond[b] ? 1 : 0;
   }
   return read;
+}
+
+void SharedBoxTest::broadcast_sent(const GateRows* gate) {
+  reach_fresh_ = sel_saved_ = false;
+  for (size_t b = 0; b < rays_.size(); ++b) {
+    if (gate == nullptr || gate->passes(rays_[b].v)) kd_known_[b] = 0;
+  }
+}
+
+std::optional<bool> SharedBoxTest::decide_by_reads(Device& dev, const std::vector<std::pair<uint32_t, int64_t>>& cands,
+                                                   int hint, KernelStats* st) {
+  // A block the leaf is the hint of leaves it out, as the FMPP's test does.
+  const auto hinted = [&](uint32_t b) {
+    return hint >= 0 && b < hint_words_.size() && hint_words_[b] == static_cast<uint32_t>(hint);
+  };
+  size_t unknown = 0;
+  for (const auto& [b, thr] : cands) unknown += !kd_known_[b] && !hinted(b) ? 1 : 0;
+  if (unknown > kReadLimit) return std::nullopt;
+  const uint64_t c0 = dev.cycles();
+  if (unknown > 0 && !reach_fresh_) {
+    Program p;
+    p.assume_mask(mask_now_);
+    append_reach(p, !sel_saved_);
+    mask_now_ = p.known_mask().value_or(layout::kDataMask);
+    dev.push(p.code());
+    st->instructions += p.size();
+    reach_fresh_ = sel_saved_ = true;
+  }
+  bool yes = false;
+  for (const auto& [b, thr] : cands) {
+    if (hinted(b)) continue;
+    if (!kd_known_[b]) {
+      kd_[b] = static_cast<int32_t>(dev.read_word(b, kD));
+      kd_known_[b] = 1;
+      ++st->box_reads;
+    }
+    // The FMPP's compare: kD <= thr (CMP LT thr + 1), none where the class has no cut.
+    if (kd_[b] <= thr) {
+      yes = true;
+      break;
+    }
+  }
+  ++st->read_box_tests;
+  st->box_cycles += dev.cycles() - c0;
+  return yes;
 }
 
 void SharedBoxTest::settle(Device& dev, KernelStats* st) {

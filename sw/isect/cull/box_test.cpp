@@ -44,6 +44,8 @@ SharedBoxTest::SharedBoxTest(const glm::dvec3& origin, unsigned vbits, double t_
 void SharedBoxTest::clear() {
   classes_ = 0;
   rays_.clear();
+  kd_.clear();
+  kd_known_.clear();
   for (std::vector<uint32_t>& v : by_j_) v.clear();
   sorted_ = false;
   reach_fresh_ = sel_saved_ = sel_out_ = false;
@@ -69,6 +71,8 @@ void SharedBoxTest::add_ray(const glm::dvec3& d, uint32_t reach) {
     v[j] = quantize(d[j], sv, static_cast<int64_t>(unit_), "ray component");
   }
   w.reach = static_cast<int32_t>(reach);
+  kd_.push_back(0);
+  kd_known_.push_back(0);
   sorted_ = false;
   for (int i = 0; i < 3; ++i) {
     if (std::abs(static_cast<double>(v[i])) < unit_) continue;
@@ -94,6 +98,9 @@ struct SharedBoxTest::Classes {
   std::vector<unsigned> id;                    // its class
   bool diagonal = false;                       // some class compares a diagonal
   unsigned edges = 0;                          // edge compares over the classes
+  // With collect: each class's candidate blocks and its distance constant (reads).
+  bool collect = false;
+  std::vector<std::pair<uint32_t, int64_t>> cands;
 };
 
 SharedBoxTest::Verdict SharedBoxTest::append(const Box& box, Program& p, int hint, const Triangle* leaf,
@@ -174,7 +181,15 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
       }
     }
     // No block of the class can pass: left out, without a clock on the FMPP.
-    if (!host_passes(c, cmps, rect_lo, rect_hi, gate)) continue;
+    std::vector<uint32_t> found;
+    if (!host_passes(c, cmps, rect_lo, rect_hi, gate, out->collect ? &found : nullptr)) continue;
+    if (out->collect) {
+      int64_t thr = std::numeric_limits<int64_t>::max();
+      for (const Compare& m : cmps) {
+        if (m.kind == Compare::kDist && m.word == kD) thr = m.c;
+      }
+      for (uint32_t b : found) out->cands.emplace_back(b, thr);
+    }
     // A ray of the pass is of this class and passes (unless it is a hinted one: then the
     // blocks decide, with the class test alone).
     if (cmps.empty() && hint < 0) return Verdict::kSome;
@@ -197,14 +212,7 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
   }
   const bool make_reach = dist && !reach_fresh_;
   if (makes_reach != nullptr) *makes_reach = make_reach;
-  if (make_reach) {
-    p << sub(kD, kBest, kBB, kTmp);  // the best's reach: best - BB
-    if (stops()) append_stop(p);
-    // A flagged block's best may not be a hit at all (an uncertain inside test): its
-    // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
-    p.mask(0);
-    p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
-  }
+  if (make_reach) append_reach(p, false);
   // With one class left, a ray of another class cannot meet the box at all (its class
   // was ruled out above), so whatever the compares say for it is safe: no class test.
   const bool one = classes.size() == 1;
@@ -247,6 +255,16 @@ void SharedBoxTest::emit_test(const Classes& cl, Program& p, int hint, bool* mak
   if (restore_mask) p.mask(layout::kDataMask);
 }
 
+void SharedBoxTest::append_reach(Program& p, bool save_sel) const {
+  if (save_sel) p << flagop(kTmp, kSel, kSel, lut::kA);
+  p << sub(kD, kBest, kBB, kTmp);  // the best's reach: best - BB
+  if (stops()) append_stop(p);
+  // A flagged block's best may not be a hit at all (an uncertain inside test): its
+  // reach is unbounded, so that the host's exact redo sees every triangle it may hit.
+  p.mask(0);
+  p << writes(kD, static_cast<uint32_t>(-(int64_t{1} << 30)), layout::kUnc);
+}
+
 void SharedBoxTest::append_stop(Program& p) const {
   // An occlusion query is answered once best - BB exceeds S_c at tmax: the word
   // cull_.reach is at least that less 3 (SharedOriginForm::reach_word), so
@@ -276,7 +294,7 @@ int64_t SharedBoxTest::word_value(size_t ray, unsigned word, bool* known) const 
 }
 
 bool SharedBoxTest::host_passes(unsigned c, const std::vector<Compare>& cmps, const int64_t* lo, const int64_t* hi,
-                                const GateRows* gate) const {
+                                const GateRows* gate, std::vector<uint32_t>* all) const {
   const int i = static_cast<int>(c / 2), j = i == 0 ? 1 : 0, k = i == 2 ? 1 : 2;
   if (!sorted_) {
     for (unsigned n = 0; n < 6; ++n) {
@@ -312,9 +330,11 @@ bool SharedBoxTest::host_passes(unsigned c, const std::vector<Compare>& cmps, co
         break;
       }
     }
-    if (pass && (gate == nullptr || gate->passes(r.v))) return true;
+    if (!pass || (gate != nullptr && !gate->passes(r.v))) continue;
+    if (all == nullptr) return true;
+    all->push_back(*it);
   }
-  return false;
+  return all != nullptr && !all->empty();
 }
 
 double SharedBoxTest::rays_through(const Triangle& t) const {
@@ -341,8 +361,13 @@ double SharedBoxTest::rays_through(const Triangle& t) const {
 bool SharedBoxTest::any(Device& dev, const Box& b, KernelStats* st, int hint, const Triangle* leaf, double pad,
                         const GateRows* gate) {
   Classes cl;
+  cl.collect = reads_ && leaf != nullptr;
   const Verdict v = classes_meeting(b, hint, leaf, pad, gate, &cl);
   if (v != Verdict::kTest) return v == Verdict::kSome;
+  if (cl.collect) {
+    const std::optional<bool> read = decide_by_reads(dev, cl.cands, hint, st);
+    if (read) return *read;
+  }
   // The mask, like SEL, stays as the test leaves it (every REF and WRITES of a test sets
   // its own): settle restores the broadcasts' kDataMask.
   Program p;

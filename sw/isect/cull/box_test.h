@@ -25,6 +25,8 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "sw/fmpp/device.h"
@@ -122,11 +124,29 @@ class SharedBoxTest {
   // first test after clear() or after a broadcast, and the tests after it reuse it. Every
   // broadcast uses kD as scratch: call this after sending one.
   // A broadcast uses kTmp as scratch too (call settle before it).
-  void broadcast_sent() { reach_fresh_ = sel_saved_ = false; }
+  // gate: the sent broadcast's (ProgramMarks::gate_rows): only the blocks it lets through
+  // may have a new best, so the reach words read before (set_reads) stay known in the
+  // others; none: every one is read again.
+  void broadcast_sent(const GateRows* gate = nullptr);
+  // Reads (KernelOptions::box_reads): a leaf whose candidates, the rays the host's run
+  // of its test and gate lets through, have kReadLimit reach words or fewer not known
+  // since they last changed is decided by reading those words (the same rule as the
+  // FMPP's compare, and the hint words of set_hint_words) instead of a test on the FMPP.
+  void set_reads(bool on) { reads_ = on; }
+  // The hint word of each block of the pass as the host wrote it (pass_hints.h); empty:
+  // the pass has none.
+  void set_hint_words(std::vector<uint32_t> words) { hint_words_ = std::move(words); }
 
  private:
   // The occlusion stop (set_stop), in the test that makes the blocks' reach word kD.
   void append_stop(Program& p) const;
+  // The blocks' reach word kD (best - BB, the stop and the flagged blocks' unbounded
+  // reach), in the pass's blocks (flag kTmp, saved first where it is not yet).
+  void append_reach(Program& p, bool save_sel) const;
+  // The read decision of a leaf: cands holds each candidate block and its class's
+  // distance constant (INT64_MAX: none). Nothing: more than kReadLimit words to read.
+  std::optional<bool> decide_by_reads(Device& dev, const std::vector<std::pair<uint32_t, int64_t>>& cands, int hint,
+                                      KernelStats* st);
   // append()'s two stages: the classes of the pass's rays that may meet the box, each with
   // its compares (decided on the host: kNone, kSome, or kTest with *out filled), and the
   // instructions of their test (box_test.cpp).
@@ -140,8 +160,9 @@ class SharedBoxTest {
   // [lo, hi] per axis, and the leaf broadcast's gate (where given): whether one of them
   // passes all. None: no block of the class both passes the test and could pass the
   // gate, so the class is left out without a clock on the FMPP.
+  // all: where given, every such ray is appended (else the first ends the search).
   bool host_passes(unsigned c, const std::vector<slopes::Compare>& cmps, const int64_t* lo, const int64_t* hi,
-                   const GateRows* gate) const;
+                   const GateRows* gate, std::vector<uint32_t>* all = nullptr) const;
   int64_t word_value(size_t ray, unsigned word, bool* known) const;
 
   glm::dvec3 origin_;
@@ -167,6 +188,10 @@ class SharedBoxTest {
     int64_t reach;
   };
   std::vector<RayWords> rays_;
+  std::vector<int32_t> kd_;        // per block of the pass: its reach word kD as read
+  std::vector<char> kd_known_;     // and whether that is still its value
+  std::vector<uint32_t> hint_words_;
+  bool reads_ = false;
   mutable std::vector<uint32_t> by_j_[6];
   mutable bool sorted_ = false;
 };

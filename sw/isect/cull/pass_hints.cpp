@@ -44,15 +44,20 @@ void PassHints::write(PassWords& out, const std::vector<Ray>& rays, const std::v
   guard = guard && boxes.stops();
   boxes.set_stop_guard(guard);
   for (unsigned b = 0; cut && b < count; ++b) out.set(b, words.reach, reach[b]);
-  if (!list_.empty() || guard) write_hints(out, words.hint, hint, guard ? &nearest : nullptr);
+  std::vector<uint32_t> written;
+  if (!list_.empty() || guard) written = write_hints(out, words.hint, hint, guard ? &nearest : nullptr);
+  boxes.set_hint_words(std::move(written));
 }
 
-void PassHints::write_hints(PassWords& out, unsigned word, const std::vector<uint32_t>& hint,
-                            const std::vector<char>* nearest) const {
+std::vector<uint32_t> PassHints::write_hints(PassWords& out, unsigned word, const std::vector<uint32_t>& hint,
+                                             const std::vector<char>* nearest) const {
+  std::vector<uint32_t> written(hint.size());
   for (unsigned b = 0; b < hint.size(); ++b) {
     const uint32_t h = list_.empty() ? layout::ray::kNoHint : hint[b];
-    out.set(b, word, nearest && (*nearest)[b] ? layout::ray::kNoStop : h);
+    written[b] = nearest && (*nearest)[b] ? layout::ray::kNoStop : h;
+    out.set(b, word, written[b]);
   }
+  return written;
 }
 
 }  // namespace fmpp::isect

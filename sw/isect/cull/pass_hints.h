@@ -55,9 +55,9 @@ class PassHints {
 
  private:
   // The hint word of each block b < hint.size(): hint[b] where the pass uses hints
-  // (list_), else kNoHint; kNoStop where (*nearest)[b] is set.
-  void write_hints(PassWords& out, unsigned word, const std::vector<uint32_t>& hint,
-                   const std::vector<char>* nearest) const;
+  // (list_), else kNoHint; kNoStop where (*nearest)[b] is set. Returns the words written.
+  std::vector<uint32_t> write_hints(PassWords& out, unsigned word, const std::vector<uint32_t>& hint,
+                                    const std::vector<char>* nearest) const;
 
   std::vector<char> hinted_;  // per triangle: some block of the pass holds it as its hint
   std::vector<int> list_;     // those triangles

@@ -56,4 +56,9 @@ inline constexpr unsigned kEdgeShifts = 4;
 // where without it the guess lets in fewer than kPruneRays rays more.
 inline constexpr double kPruneRays = 0.003;
 
+// A leaf test is decided by reads (SharedBoxTest::set_reads) where the reach words to read
+// are kReadLimit or fewer: each read is one clock (the first also waits for the queue to
+// drain), a test on the FMPP about 15.
+inline constexpr size_t kReadLimit = 8;
+
 }  // namespace fmpp::isect

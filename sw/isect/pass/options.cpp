@@ -54,6 +54,8 @@ void KernelStats::add(const KernelStats& o) {
   culled += o.culled;
   box_tests += o.box_tests;
   fmpp_box_tests += o.fmpp_box_tests;
+  read_box_tests += o.read_box_tests;
+  box_reads += o.box_reads;
   fmpp_node_tests += o.fmpp_node_tests;
   diagonal_tests += o.diagonal_tests;
   edge_tests += o.edge_tests;

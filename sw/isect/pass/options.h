@@ -161,6 +161,15 @@ const char* to_string(Origins o);
     "box_edges",                                                                                                    \
     "FMPP box tests of leaves without the compares along the triangle's edges (the same answers, more clocks)",    \
     "", "form identity: it steers a call, not a form")                                                             \
+  /* Reads in the FMPP's leaf tests (box_test.h): where the few rays that could need a                                \
+     leaf are known to the host and their reach words are not, it reads those words                                 \
+     (kReadLimit) instead of testing the leaf on the FMPP. Results are the same either                               \
+     way. */                                                                                                          \
+  X(bool, box_reads, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-box-reads",            \
+    "box_reads",                                                                                                    \
+    "FMPP box tests of leaves always on the FMPP, never decided by reading the reach words of the few rays that "  \
+    "could need the leaf (the same answers, more clocks)",                                                          \
+    "", "form identity: it steers a call, not a form")                                                             \
   /* Read-back (best_cache.h): a pass reads only the bests that changed since the host                              \
      last knew them (one flag plane per 64 blocks tells which); off: every block's. The                              \
      same answers either way. */                                                                                     \
@@ -304,6 +313,8 @@ struct KernelStats {
   uint64_t culled = 0;           // broadcasts skipped by culling
   uint64_t box_tests = 0;        // culling: node-packet box tests on the host
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
+  uint64_t read_box_tests = 0;   // culling: box tests decided by reading reach words instead
+  uint64_t box_reads = 0;        // the reach words those read
   uint64_t fmpp_node_tests = 0;  // of which of inner nodes (ray_parallel.cpp, tuning.h)
   uint64_t diagonal_tests = 0;   // of which with diagonal compares (box_test.h, set_slope_compares)
   uint64_t edge_tests = 0;       // of which with edge compares (box_slopes.h)
