@@ -99,11 +99,12 @@ class RayParallelPlan : public PassPlan {
       if (n.count != 1) return boxes_->any(dev, n.box, st_);
       const size_t k = bvh_.item(n.first);
       const int tri = form_.broadcasts[k].tri;
-      const std::optional<GateRows>& gate = form_.broadcasts[k].marks().gate_rows;
+      const std::optional<GateRows>& rows = form_.broadcasts[k].marks().gate_rows;
+      const GateRows* gate = opt_.host_gates && rows ? &*rows : nullptr;
       const bool yes = boxes_->any(dev, n.box, st_, hints_.hint_for(tri), &tris_[static_cast<size_t>(tri)], bounds_.pad[k],
-                                   gate ? &*gate : nullptr);
+                                   gate);
       // Some ray of the pass passes the broadcast's gate (the host ran it): no need to ask.
-      gate_known_[k] = yes && gate;
+      gate_known_[k] = yes && gate != nullptr;
       no_share = (1 - kNodeTestMemory) * no_share + (yes ? 0 : kNodeTestMemory);
       return yes;
     };
@@ -284,9 +285,10 @@ class RayParallelPlan : public PassPlan {
       return all;
     }
     const bool general = bounds_.distance == CullDistance::kGeneral;
-    // The arbitrary-origin form's gates are the host's (may_pass_gate): from here on every
-    // broadcast of the pass has a ray its gate lets through, and none needs asking.
-    gates_known_ = general;
+    // The arbitrary-origin form's heads are the host's (may_affect): from here on every
+    // broadcast of the pass has a ray it affects, and no gate is asked (one kept only for a
+    // ray its head flags runs its tail for nothing: clocks only).
+    gates_known_ = general && opt_.host_gates;
     std::vector<char> probe(nb, 0);
     const std::vector<RayPacket> one = packets(base, count, 1);
     for (unsigned b = 0; b < count; ++b) {
@@ -294,14 +296,14 @@ class RayParallelPlan : public PassPlan {
       int leaves = 0;
       probe_bvh_.visit_near_first(one[b], [&](const uint32_t* items, uint32_t n, double entry) {
         if (!(entry > 0)) return false;  // a leaf around the origin (the surface left)
-        for (uint32_t i = 0; i < n; ++i) probe[items[i]] |= reach_[items[i]] && form_.may_pass_gate(items[i], r);
+        for (uint32_t i = 0; i < n; ++i) probe[items[i]] |= reach_[items[i]] && affects(items[i], r);
         return ++leaves == (general ? kProbeLeavesOwn : kProbeLeavesShared);
       });
     }
     std::vector<size_t> order = marked(probe);
     if (order.empty() || order.size() * (general ? kProbeShareOwn : kProbeShareShared) >= all.size()) {
       // Rays of their own origins: each ray's own walk (its gates included) keeps fewer.
-      if (general) all = kept_by_rays(one, base, count);
+      if (gates_known_) all = kept_by_rays(one, base, count);
       st_->culled += nb - all.size();
       return all;
     }
@@ -310,12 +312,14 @@ class RayParallelPlan : public PassPlan {
     return order;
   }
 
+  // Whether broadcast k may affect ray r, as the host tells with KernelOptions::host_gates.
+  bool affects(size_t k, const Ray& r) const { return !opt_.host_gates || form_.may_affect(k, r); }
   // The broadcasts some ray of the pass may meet, ray by ray (keep_in_reach, no best yet).
   std::vector<size_t> kept_by_rays(const std::vector<RayPacket>& one, size_t base, unsigned count) {
     std::vector<char> keep(form_.broadcasts.size(), 0);
     for (unsigned b = 0; b < count; ++b) {
       keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], std::numeric_limits<double>::infinity(),
-                    &keep, &st_->box_tests, &planes_);
+                    &keep, &st_->box_tests, &planes_, opt_.host_gates);
     }
     return marked(keep);
   }
@@ -369,7 +373,7 @@ class RayParallelPlan : public PassPlan {
     for (unsigned b = 0; b < count; ++b) {
       if (winner_[b] != SIZE_MAX) keep[winner_[b]] = 1;
       keep_in_reach(bvh_, bounds_, form_, reach_, rays_[idx_[base + b]], one[b], best[b], &keep, &st_->box_tests,
-                    &planes_);
+                    &planes_, opt_.host_gates);
     }
     // Kept blocks already hold the probe's triangles: only the others are sent.
     if (*appended) {

@@ -288,7 +288,8 @@ TEST(Oracle, CountsWhatTheRaysHit) {
   EXPECT_LE(st.oracle_box, box + box / 50);
   EXPECT_LE(st.oracle_nearest, st.oracle_any);
   EXPECT_LE(st.oracle_nearest, st.oracle_box);
-  EXPECT_LE(st.oracle_any, st.broadcasts);
+  // Every nearest hit is broadcast (culling to the nearest may send fewer than any hit).
+  EXPECT_LE(st.oracle_nearest, st.broadcasts);
   // (The FMPP's test of a leaf uses its triangle's own slopes, so culling may send fewer
   // than the box oracle.)
   EXPECT_LT(st.oracle_cycles(st.oracle_any_steps), static_cast<double>(st.cycles));

@@ -153,7 +153,7 @@ TEST(KernelOptions, FormByNameOrAlias) {
 TEST(KernelOptions, ReportNames) {
   EXPECT_EQ(options_json(KernelOptions{}, kReported).dump(),
             R"({"bits":24,"box_diagonals":true,"box_edges":true,"box_reads":true,"changed_reads":true,"cull":true,"cull_packet":1,"cull_probe":true,)"
-            R"("fmpp_boxes":true,"gates":true,)"
+            R"("fmpp_boxes":true,"gates":true,"host_gates":true,)"
             R"("mapping":"ray","max_probe_rounds":8,"merge_below":0,"multiply":"const","pass_order":"coherent","t_accuracy":0.0,)"
             R"("watertight":false})");
 }

@@ -159,8 +159,8 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
         break;
       }
       // Both now lie within the pass's components (|c| < 2^29): exact as integers.
-      rect_lo[j] = std::max(vmin_[c][j], static_cast<int64_t>(cmin));
-      rect_hi[j] = std::min(vmax_[c][j], static_cast<int64_t>(cmax));
+      rect_lo[j] = cmin > lo_v ? static_cast<int64_t>(cmin) : vmin_[c][j];  // (an infinite one: the pass's)
+      rect_hi[j] = cmax < hi_v ? static_cast<int64_t>(cmax) : vmax_[c][j];
       if (cmin > lo_v) cmps.push_back({Compare::kLo, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmin)});
       if (cmax < hi_v) cmps.push_back({Compare::kHi, kV + static_cast<unsigned>(j), static_cast<int64_t>(cmax)});
     }

@@ -10,7 +10,7 @@ namespace fmpp::isect {
 
 void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form, const std::vector<char>& reach,
                    const Ray& r, const RayPacket& one, double best, std::vector<char>* keep, uint64_t* tests,
-                   const std::vector<PlaneSlab>* planes) {
+                   const std::vector<PlaneSlab>* planes, bool heads) {
   // One step of the arbitrary-origin form's quotient (the P^-1 form's rounding of its sums
   // is in its relative bound).
   const double len = glm::length(r.d);
@@ -29,7 +29,7 @@ void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form
       q.t1 = std::min(q.t1, until);
       if (!may_cross(q, bounds.boxes[k], (*planes)[k])) return;
     }
-    if (!form.may_pass_gate(k, r)) return;  // its gate would stop this ray
+    if (heads && !form.may_affect(k, r)) return;  // its gate would stop this ray, and nothing flag it
     (*keep)[k] = 1;
   });
 }

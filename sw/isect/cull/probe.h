@@ -18,11 +18,12 @@ namespace fmpp::isect {
 // the ray r (its packet `one`) may meet at most as far as `best`, its nearest distance so
 // far (an upper bound; +infinity for none): its padded box entered by then, the form's
 // distance error allowed for (CullBounds::reach_for), and, with planes (one per
-// broadcast), its triangle's plane crossed inside that box by then (may_cross).
+// broadcast), its triangle's plane crossed inside that box by then (may_cross), and, with
+// heads, a broadcast that may affect it (RayForm::may_affect).
 // Broadcasts kept already are not tested again; *tests counts the box tests.
 void keep_in_reach(const Bvh& bvh, const CullBounds& bounds, const RayForm& form, const std::vector<char>& reach,
                    const Ray& r, const RayPacket& one, double best, std::vector<char>* keep, uint64_t* tests,
-                   const std::vector<PlaneSlab>* planes = nullptr);
+                   const std::vector<PlaneSlab>* planes = nullptr, bool heads = false);
 
 // The next probe round of rays of their own origins (cull/tuning.h): of each ray's front
 // in probe_bvh (packet one[b]), the next kProbeLeavesOwn leaves that hold triangles of

@@ -169,6 +169,15 @@ const char* to_string(Origins o);
     "box_reads",                                                                                                    \
     "FMPP box tests of leaves always on the FMPP, never decided by reading the reach words of the few rays that "  \
     "could need the leaf (the same answers, more clocks)",                                                          \
+  /* The host's run of the broadcasts' heads (docs/certification.md, "The host's run of                            \
+     the leaf tests and the gates"): where the form gives its gate as a function of the                              \
+     words the host loads (GateRows, RayForm::may_affect), a broadcast that would affect                             \
+     no ray of the pass is left out, and the gate's read where the host knows some ray                               \
+     passes. Results are the same either way. */                                                                     \
+  X(bool, host_gates, true, OptClear, 0, 0, kPlanKey | kAgreed | kReported | kRenderFlag, "--no-host-gates",          \
+    "host_gates",                                                                                                   \
+    "never run the broadcasts' gates on the host: leave out only what culling's boxes leave out, and ask each "    \
+    "gate on the FMPP (the same answers, more clocks)",                                                             \
     "", "form identity: it steers a call, not a form")                                                             \
   /* Read-back (best_cache.h): a pass reads only the bests that changed since the host                              \
      last knew them (one flag plane per 64 blocks tells which); off: every block's. The                              \

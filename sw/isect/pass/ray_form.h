@@ -108,11 +108,12 @@ class RayForm {
   virtual void init(Program& p) const = 0;
   // Broadcast k's code, sent as number `number` (a form may patch it in).
   virtual const std::vector<uint64_t>& code(size_t k, uint32_t /*number*/) { return broadcasts[k].program().code(); }
-  // Whether ray r's block could pass broadcast k's gate (pass.h: ProgramMarks::gate), as
-  // the host tells exactly from the words it loads for r; true where the form cannot tell.
-  // Culling leaves k out for a ray that cannot (docs/certification.md, "The host's run of
-  // the leaf tests and the gates").
-  virtual bool may_pass_gate(size_t /*k*/, const Ray& /*r*/) const { return true; }
+  // Whether broadcast k can change anything of ray r's block that outlives it: whether
+  // the block passes k's gate (pass.h: ProgramMarks::gate), or k's head, before the gate,
+  // flags it uncertain; as the host tells exactly from the words it loads for r; true
+  // where the form cannot tell. Culling leaves k out for a ray it cannot affect
+  // (docs/certification.md, "The host's run of the leaf tests and the gates").
+  virtual bool may_affect(size_t /*k*/, const Ray& /*r*/) const { return true; }
   // The distance of a block's best.
   virtual double t_of(uint32_t best, const Ray& r) const = 0;
   // Which form this is: its FormId in the registry (forms/forms.h), the index of

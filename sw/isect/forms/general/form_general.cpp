@@ -128,14 +128,14 @@ class GeneralForm : public RayForm {
     return code_;
   }
 
-  // The gate as the block would decide it, from the words load_ray writes (general_gate.h).
-  bool may_pass_gate(size_t k, const Ray& r) const override {
+  // The head as the block would decide it, from the words load_ray writes (general_gate.h).
+  bool may_affect(size_t k, const Ray& r) const override {
     const Broadcast& b = broadcasts[k];
     if (b.refused() || !gates_[k]) return true;
-    if (r.exclude == b.tri) return false;  // the ray's own triangle: the exclusion test
+    if (r.exclude == b.tri) return false;  // the ray's own triangle: the exclusion test (kHit)
     int64_t v[3], l[3], o[3];
     ray_words(r, v, l, o);
-    return gates_[k]->passes(v, l, o);
+    return gates_[k]->affects(v, l, o);
   }
 
   double t_of(uint32_t best, const Ray&) const override { return (best + 0.5) * sc_.u; }
@@ -245,7 +245,7 @@ class GeneralForm : public RayForm {
       return Program();
     }
     bounds_[at] = bd;
-    GeneralGate gate{{}, {}, opt_.n, th.ka};
+    GeneralGate gate{{}, {}, opt_.n, th.ka, th.kd};
     std::copy(xa, xa + 18, gate.xa);
     std::copy(xd, xd + 4, gate.xd);
     gates_[at] = gate;

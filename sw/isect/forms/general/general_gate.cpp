@@ -16,17 +16,24 @@ int64_t row(const int64_t* c, const int64_t* y, unsigned count, unsigned n) {
 
 }  // namespace
 
-bool GeneralGate::passes(const int64_t v[3], const int64_t l[3], const int64_t o[3]) const {
+bool GeneralGate::affects(const int64_t v[3], const int64_t l[3], const int64_t o[3]) const {
   const int64_t e0 = row(xa + 3, l, 3, n), e1 = row(xa + 9, l, 3, n);
   int64_t a[3] = {row(xa + 0, v, 3, n) + e0, row(xa + 6, v, 3, n) + e1, row(xa + 12, v, 3, n) - e0 - e1};
   const int64_t od[4] = {o[0], o[1], o[2], int64_t{1} << policy::kGeneralRayBits};
-  const int64_t det = row(xd, od, 4, n);
-  const int64_t k = int64_t{1} << ka;
-  for (int64_t& ai : a) {
-    if (det < 0) ai = -ai;
-    if (ai < -k) return false;
+  int64_t det = row(xd, od, 4, n);
+  if (det < 0) {
+    det = -det;
+    for (int64_t& ai : a) ai = -ai;
   }
-  return true;
+  const int64_t k = int64_t{1} << ka;
+  bool gate = true, none_positive = true;
+  for (int64_t ai : a) {
+    gate = gate && ai >= -k;
+    none_positive = none_positive && ai < k;
+  }
+  // The head's flag: det within its bound of 0 and no A_i certainly positive.
+  const bool flags = det < (int64_t{1} << kd) && none_positive;
+  return gate || flags;
 }
 
 }  // namespace fmpp::isect
