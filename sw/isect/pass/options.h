@@ -169,6 +169,7 @@ const char* to_string(Origins o);
     "box_reads",                                                                                                    \
     "FMPP box tests of leaves always on the FMPP, never decided by reading the reach words of the few rays that "  \
     "could need the leaf (the same answers, more clocks)",                                                          \
+    "", "form identity: it steers a call, not a form")                                                             \
   /* The host's run of the broadcasts' heads (docs/certification.md, "The host's run of                            \
      the leaf tests and the gates"): where the form gives its gate as a function of the                              \
      words the host loads (GateRows, RayForm::may_affect), a broadcast that would affect                             \
