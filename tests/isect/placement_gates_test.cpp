@@ -60,14 +60,17 @@ TEST_P(SharedOriginPlacement, GatesAndSkippedReadsChangeNoAnswer) {
       for (bool watertight : {false, true}) {
         SCOPED_TRACE("scale 2^" + std::to_string(e) + ", shifted " + std::to_string(far) +
                      (watertight ? ", watertight" : ", paper"));
-        // 0: no culling, no gates (whole programs, every ray read); 1: gates off; 2: default.
-        KernelStats st[3];
-        std::vector<Hit> got[3];
-        for (int c = 0; c < 3; ++c) {
+        // 0: no culling, no gates (whole programs, every ray read); 1: gates off; 2: default;
+        // 3: without the reads of the leaf tests; 4: nor the host's run of the gates.
+        KernelStats st[5];
+        std::vector<Hit> got[5];
+        for (int c = 0; c < 5; ++c) {
           KernelOptions o;
           o.watertight = watertight;
           o.cull = c > 0;
-          o.gates = c == 2;
+          o.gates = c != 1;
+          o.box_reads = c < 3;
+          o.host_gates = c < 4;
           auto be = make_backend(GetParam(), Config{64, 32});
           Device dev(be->bus());
           ASSERT_NO_THROW(got[c] = intersect_fmpp(dev, rays, tris, o, &st[c]));
@@ -80,10 +83,18 @@ TEST_P(SharedOriginPlacement, GatesAndSkippedReadsChangeNoAnswer) {
           EXPECT_EQ(got[1][i].t, got[2][i].t) << "ray " << i;
           EXPECT_EQ(got[1][i].t_err, got[2][i].t_err) << "ray " << i;
           EXPECT_EQ(got[1][i].redo, got[2][i].redo) << "ray " << i;
+          // Nor do the reads and the host's run of the gates (they leave out only leaves
+          // that no block needs or whose broadcast would change no block).
+          for (int c = 3; c < 5; ++c) {
+            EXPECT_EQ(got[c][i].tri, got[2][i].tri) << "ray " << i << " run " << c;
+            EXPECT_EQ(got[c][i].t, got[2][i].t) << "ray " << i << " run " << c;
+            EXPECT_EQ(got[c][i].t_err, got[2][i].t_err) << "ray " << i << " run " << c;
+            EXPECT_EQ(got[c][i].redo, got[2][i].redo) << "ray " << i << " run " << c;
+          }
           // Culling and the skipped reads: the same answer wherever it lies before tmax.
           const double tmax = rays[i].tmax;
           const bool want = ref[i].hit() && ref[i].t < tmax;
-          for (int c = 0; c < 3; ++c) {
+          for (int c = 0; c < 5; ++c) {
             const bool has = got[c][i].hit() && got[c][i].t < tmax;
             EXPECT_EQ(has, want) << "ray " << i << " run " << c;
             if (has && want) {
@@ -101,6 +112,10 @@ TEST_P(SharedOriginPlacement, GatesAndSkippedReadsChangeNoAnswer) {
         // form culls on the host and reads every ray.
         if (!watertight) {
           EXPECT_GT(st[2].unread_rays, 0u) << "some ray's best beyond its tmax went unread";
+          EXPECT_GT(st[2].read_box_tests, 0u) << "some leaf decided by reads";
+          EXPECT_EQ(st[3].read_box_tests, 0u);
+          EXPECT_LE(st[2].broadcasts, st[3].broadcasts);
+          EXPECT_LE(st[3].broadcasts, st[4].broadcasts);
         }
       }
     }
