@@ -181,15 +181,7 @@ SharedBoxTest::Verdict SharedBoxTest::classes_meeting(const Box& box, int hint, 
       }
     }
     // No block of the class can pass: left out, without a clock on the FMPP.
-    std::vector<uint32_t> found;
-    if (!host_passes(c, cmps, rect_lo, rect_hi, gate, out->collect ? &found : nullptr)) continue;
-    if (out->collect) {
-      int64_t thr = std::numeric_limits<int64_t>::max();
-      for (const Compare& m : cmps) {
-        if (m.kind == Compare::kDist && m.word == kD) thr = m.c;
-      }
-      for (uint32_t b : found) out->cands.emplace_back(b, thr);
-    }
+    if (!host_class(c, cmps, rect_lo, rect_hi, gate, out)) continue;
     // A ray of the pass is of this class and passes (unless it is a hinted one: then the
     // blocks decide, with the class test alone).
     if (cmps.empty() && hint < 0) return Verdict::kSome;
@@ -277,6 +269,19 @@ void SharedBoxTest::append_stop(Program& p) const {
   if (guard_) p << cmp(CmpFn::kAnd, CmpLt::kGe, cull_.hint, 0, kWin, kWin);
   p.mask(0);
   p << writes(kD, static_cast<uint32_t>(int64_t{1} << 30), kWin);
+}
+
+bool SharedBoxTest::host_class(unsigned c, const std::vector<Compare>& cmps, const int64_t* lo, const int64_t* hi,
+                               const GateRows* gate, Classes* out) const {
+  if (!out->collect) return host_passes(c, cmps, lo, hi, gate);
+  std::vector<uint32_t> found;
+  if (!host_passes(c, cmps, lo, hi, gate, &found)) return false;
+  int64_t thr = std::numeric_limits<int64_t>::max();  // the class's distance constant (none: no cut)
+  for (const Compare& m : cmps) {
+    if (m.kind == Compare::kDist && m.word == kD) thr = m.c;
+  }
+  for (uint32_t b : found) out->cands.emplace_back(b, thr);
+  return true;
 }
 
 int64_t SharedBoxTest::word_value(size_t ray, unsigned word, bool* known) const {

@@ -163,6 +163,10 @@ class SharedBoxTest {
   // all: where given, every such ray is appended (else the first ends the search).
   bool host_passes(unsigned c, const std::vector<slopes::Compare>& cmps, const int64_t* lo, const int64_t* hi,
                    const GateRows* gate, std::vector<uint32_t>* all = nullptr) const;
+  // host_passes for class c of a test, its candidates and distance constant appended to
+  // out->cands where out->collect (the reads).
+  bool host_class(unsigned c, const std::vector<slopes::Compare>& cmps, const int64_t* lo, const int64_t* hi,
+                  const GateRows* gate, Classes* out) const;
   int64_t word_value(size_t ray, unsigned word, bool* known) const;
 
   glm::dvec3 origin_;
