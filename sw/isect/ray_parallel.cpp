@@ -414,8 +414,8 @@ class RayParallelPlan : public PassPlan {
     push_counted(dev, p.code(), st_);
   }
   // Read only the changed bests (best_cache.h); where the FMPP's box tests choose the rays
-  // to read (to_read), those have a best already and every one is read.
-  bool changed_reads() const { return opt_.changed_reads && !boxes_; }
+  // to read by their reach (to_read), those have a best already and every one is read.
+  bool changed_reads() const { return opt_.changed_reads && !(boxes_ && boxes_->reads_by_reach()); }
   // The bests of blocks 0 .. count - 1 after the broadcasts `sent` (only those `only`
   // names; every block without it): on_hit(block, best, position in sent, t bound).
   template <class OnHit>

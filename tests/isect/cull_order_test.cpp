@@ -3,6 +3,7 @@
 // (sw/isect/cull/order.h) is a permutation that tiles an image.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -118,6 +119,77 @@ TEST(CoherentOrder, PermutesAndTilesAnImage) {
   EXPECT_EQ(ymax - ymin, 7);
   EXPECT_EQ(morton2(3, 0), 5u);
   EXPECT_EQ(morton3(1, 1, 1), 7u);
+}
+
+// The projections of a camera's pixels without roll: rows share one coordinate up to
+// rounding, each row ordered by the other, whose spacing may vary from row to row (a
+// pitched camera). grid_morton ranks them: code = morton2(column, row). Jitter, a row
+// short of a point, or one point per row is no grid.
+TEST(CoherentOrder, GridMortonRanksAGridUpToRounding) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int rows = 2 + static_cast<int>(rng() % 40), cols = 2 + static_cast<int>(rng() % 40);
+    const bool swap = trial % 2;
+    std::vector<glm::dvec2> p;
+    std::vector<std::pair<int, int>> at;
+    for (int r = 0; r < rows; ++r) {
+      const double y = 0.7 * r / rows - 0.3, stretch = 1 + 0.4 * y * y;
+      for (int c = 0; c < cols; ++c) {
+        const double x = (c - cols / 2.0) / cols / stretch;
+        const double noise = std::ldexp(u(rng), -50);
+        p.push_back(swap ? glm::dvec2(y + noise, x) : glm::dvec2(x, y + noise));
+        at.emplace_back(c, r);
+      }
+    }
+    std::vector<size_t> shuffle(p.size());
+    for (size_t i = 0; i < shuffle.size(); ++i) shuffle[i] = i;
+    std::shuffle(shuffle.begin(), shuffle.end(), rng);
+    std::vector<glm::dvec2> q(p.size());
+    for (size_t i = 0; i < p.size(); ++i) q[i] = p[shuffle[i]];
+    const std::vector<uint32_t> code = grid_morton(q);
+    ASSERT_EQ(code.size(), q.size()) << "trial " << trial;
+    for (size_t i = 0; i < q.size(); ++i) {
+      const auto [c, r] = at[shuffle[i]];
+      const uint32_t want = swap ? morton2(static_cast<uint32_t>(r), static_cast<uint32_t>(c))
+                                 : morton2(static_cast<uint32_t>(c), static_cast<uint32_t>(r));
+      ASSERT_EQ(code[i], want) << "trial " << trial << " point " << i;
+    }
+    std::vector<glm::dvec2> short_row(q.begin(), q.end() - 1);
+    if (rows > 2 && cols > 2) {
+      EXPECT_TRUE(grid_morton(short_row).empty()) << "trial " << trial;
+    }
+    std::vector<glm::dvec2> jitter = q;
+    for (glm::dvec2& v : jitter) v += glm::dvec2(u(rng), u(rng)) * 1e-4;
+    EXPECT_TRUE(grid_morton(jitter).empty()) << "trial " << trial;
+  }
+  EXPECT_TRUE(grid_morton({{0, 0}, {1, 1}, {2, 2}, {3, 3}}).empty());
+}
+
+// A pitched camera's 64 x 64 pixels (a pass of 4,096 blocks) in coherent order: each row
+// of pixels fills a cube of positions (the positions that agree outside six of the
+// twelve index bits), so a word each row shares costs one REF (pass_words.h).
+TEST(CoherentOrder, RowsOfAPitchedCameraFillCubes) {
+  const glm::dvec3 fwd = glm::normalize(glm::dvec3(0, -0.4, -1)), right(1, 0, 0), up = glm::cross(right, fwd);
+  std::vector<Ray> rays;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      rays.push_back(Ray{{0.5, 2, 3}, fwd + ((x + 0.5) / 32 - 1) * 0.5 * right + (1 - (y + 0.5) / 32) * 0.5 * up});
+    }
+  }
+  std::vector<size_t> idx(rays.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  const std::vector<size_t> order = coherent_order(rays, idx);
+  std::vector<uint32_t> all(64, ~0u), any(64, 0);
+  std::vector<unsigned> n(64, 0);
+  for (uint32_t pos = 0; pos < order.size(); ++pos) {
+    const size_t y = order[pos] / 64;
+    all[y] &= pos, any[y] |= pos, ++n[y];
+  }
+  for (size_t y = 0; y < 64; ++y) {
+    EXPECT_EQ(n[y], 64u);
+    EXPECT_EQ(1u << __builtin_popcount(all[y] ^ any[y]), 64u) << "row " << y;
+  }
 }
 
 }  // namespace

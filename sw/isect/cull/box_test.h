@@ -84,6 +84,9 @@ class SharedBoxTest {
   // reach words (set_reach); stops(): this pass has them and the stop is on.
   void set_stop(bool on) { stop_ = on; }
   bool stops() const { return stop_ && reach_; }
+  // Whether this pass's blocks hold their reach (set_reach), so that to_read leaves out
+  // the blocks without a best within it.
+  bool reads_by_reach() const { return reach_; }
   // guard: the pass's hint words mark the rays that must get their nearest hit (kNoStop:
   // an infinite tmax, or a hint not proven beyond the reach, pass_hints.h); the stop
   // leaves those blocks alone. Without it every block of the pass may stop.

@@ -77,7 +77,40 @@ std::vector<uint32_t> morton_of(const std::vector<glm::dvec2>& p) {
   return out;
 }
 
+// Where one coordinate of the points takes a few values (up to rounding: values closer
+// than 2^-32 of its span are one) and each value the same number of points, at least
+// two, a row of a grid: the Morton codes of (the point's rank in its row by the other
+// coordinate, its row's rank). Otherwise empty.
+std::vector<uint32_t> grid_morton_along(const std::vector<glm::dvec2>& p, int row_axis) {
+  const size_t n = p.size();
+  const int col_axis = 1 - row_axis;
+  std::vector<size_t> by_row(n);
+  for (size_t i = 0; i < n; ++i) by_row[i] = i;
+  std::sort(by_row.begin(), by_row.end(), [&](size_t a, size_t b) { return p[a][row_axis] < p[b][row_axis]; });
+  const double tol = std::ldexp(p[by_row.back()][row_axis] - p[by_row.front()][row_axis], -32);
+  std::vector<uint32_t> out(n);
+  size_t rows = 0, width = 0;
+  for (size_t a = 0, e; a < n; a = e) {
+    for (e = a + 1; e < n && p[by_row[e]][row_axis] - p[by_row[e - 1]][row_axis] <= tol;) ++e;
+    if (a == 0) width = e - a;
+    if (e - a != width || width < 2 || width > 0x10000u || ++rows > 0x10000u) return {};
+    std::sort(by_row.begin() + static_cast<long>(a), by_row.begin() + static_cast<long>(e),
+              [&](size_t x, size_t y) { return p[x][col_axis] < p[y][col_axis]; });
+    for (size_t i = a; i < e; ++i) {
+      const auto col = static_cast<uint32_t>(i - a), row = static_cast<uint32_t>(rows - 1);
+      out[by_row[i]] = row_axis == 1 ? morton2(col, row) : morton2(row, col);
+    }
+  }
+  return rows >= 2 ? out : std::vector<uint32_t>{};
+}
+
 }  // namespace
+
+std::vector<uint32_t> grid_morton(const std::vector<glm::dvec2>& p) {
+  if (p.size() < 4) return {};
+  std::vector<uint32_t> out = grid_morton_along(p, 1);
+  return out.empty() ? grid_morton_along(p, 0) : out;
+}
 
 uint32_t morton2(uint32_t x, uint32_t y) { return static_cast<uint32_t>(spread2(x) | (spread2(y) << 1)); }
 
@@ -98,7 +131,9 @@ std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vect
     hi = glm::max(hi, r.o);
     shared = shared && r.o == rays[idx[0]].o;
   }
-  const std::vector<uint32_t> dir = morton_of(direction_coords(u));
+  const std::vector<glm::dvec2> coords = direction_coords(u);
+  std::vector<uint32_t> dir = shared ? grid_morton(coords) : std::vector<uint32_t>{};
+  if (dir.empty()) dir = morton_of(coords);
   std::vector<uint64_t> key(n);
   const double span = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   for (size_t i = 0; i < n; ++i) {

@@ -21,11 +21,20 @@ uint32_t morton2(uint32_t x, uint32_t y);
 // Morton code of three 10-bit coordinates.
 uint32_t morton3(uint32_t x, uint32_t y, uint32_t z);
 
+// Where the points are a grid up to rounding (one coordinate takes a few values, each
+// equally often and at least twice: the rows; the other orders each row), the Morton
+// code of each point's (rank in its row, row's rank): a run of 4^k consecutive codes is
+// then a square of the grid, whose rows and columns are each a cube of positions (the
+// blocks that agree outside some index bits: pass_words.h). Otherwise (or below 4
+// points) empty.
+std::vector<uint32_t> grid_morton(const std::vector<glm::dvec2>& p);
+
 // idx reordered so that passes and packets are spatially coherent:
 //  - rays sharing one origin: by direction, in Morton order of their projection onto
 //    the plane across the batch's mean direction when every direction lies within 60
 //    degrees of it (primary rays: square image tiles), else of the octahedral map of
-//    the unit sphere;
+//    the unit sphere; where the projections form a grid (grid_morton: the pixels of a
+//    camera without roll), in Morton order of their ranks in it;
 //  - rays with several origins: by the octant of the direction, then in Morton order of
 //    the origin within the batch's bounding box, then by direction as above.
 // Ties keep the order of idx, so the result is deterministic.
