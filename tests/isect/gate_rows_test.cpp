@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
@@ -105,6 +106,27 @@ void check_pass(const KernelOptions& opt, const glm::dvec3& origin, const std::v
     }
     dev.push(std::vector<uint64_t>(code.begin() + static_cast<std::ptrdiff_t>(marks.gate), code.end()));
     ++n->broadcasts;
+  }
+}
+
+// The host's floor of a shift (the FMPP's arithmetic shift right) is floor(x / 2^s) for
+// every sign, the types' extremes included.
+TEST(FmppGateRows, FloorShiftIsTheFloorOfTheQuotient) {
+  std::mt19937_64 rng(17);
+  const auto floor_div = [](__int128 x, unsigned s) {
+    const __int128 d = static_cast<__int128>(1) << s;
+    __int128 q = x / d;
+    if (q * d != x && x < 0) --q;
+    return q;
+  };
+  std::vector<int64_t> xs = {0, 1, -1, 2, -2, 3, -3, INT64_MAX, INT64_MIN, INT64_MIN + 1};
+  for (int i = 0; i < 2000; ++i) xs.push_back(static_cast<int64_t>(rng()) >> (rng() % 64));
+  for (int64_t x : xs) {
+    for (unsigned s = 0; s < 63; ++s) {
+      ASSERT_EQ(floor_shift(x, s), static_cast<int64_t>(floor_div(x, s))) << x << " >> " << s;
+      const __int128 wide = static_cast<__int128>(x) * (static_cast<__int128>(1) << 40) - 7;
+      ASSERT_TRUE(floor_shift(wide, s + 40) == floor_div(wide, s + 40)) << x << " (wide) >> " << s + 40;
+    }
   }
 }
 

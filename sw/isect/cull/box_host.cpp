@@ -8,6 +8,7 @@
 #include "sw/isect/cull/box_slopes.h"
 #include "sw/isect/cull/box_test.h"
 #include "sw/isect/forms/shared_origin_layout.h"
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/pass/pass.h"
 
 namespace fmpp::isect {
@@ -55,7 +56,7 @@ bool SharedBoxTest::host_passes(unsigned c, const std::vector<Compare>& cmps, co
         const int64_t x = word_value(*it, m.x, &kx), y = word_value(*it, m.y, &ky);
         known = kx && ky;
         // ADD / SUB: (x >>> shr) +- y, the shift arithmetic (a floor).
-        const int64_t xs = x >= 0 ? x >> m.shr : -((-x - 1) >> m.shr) - 1;
+        const int64_t xs = floor_shift(x, m.shr);
         w = m.sub ? xs - y : xs + y;
       } else {
         w = word_value(*it, m.word, &known);

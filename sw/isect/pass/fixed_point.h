@@ -16,6 +16,14 @@ namespace fmpp::isect {
 // direction in a batch of long ones keeps all its bits; t is corrected per ray.
 inline double max_component(const glm::dvec3& d) { return std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)}); }
 
+// floor(x / 2^s) for a signed integer type (int64_t, __int128), the value the FMPP's
+// arithmetic shift right gives, written so as never to shift a negative value (for x < 0,
+// ~x = -x - 1 >= 0) nor to negate the type's least value.
+template <class T>
+constexpr T floor_shift(T x, unsigned s) {
+  return x >= 0 ? x >> s : ~(~x >> s);
+}
+
 // Exponent e with max|v| < 2^e, and out[k] = round(v[k] 2^(bits - e)), all below 2^bits
 // in magnitude.
 int mantissas(const double* v, int count, unsigned bits, int64_t* out);

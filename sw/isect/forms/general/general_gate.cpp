@@ -1,6 +1,7 @@
 // The arbitrary-origin form's gate on the host (see general_gate.h).
 #include "sw/isect/forms/general/general_gate.h"
 
+#include "sw/isect/pass/fixed_point.h"
 #include "sw/isect/pass/policy.h"
 
 namespace fmpp::isect {
@@ -10,8 +11,7 @@ namespace {
 int64_t row(const int64_t* c, const int64_t* y, unsigned count, unsigned n) {
   __int128 s = 0;
   for (unsigned j = 0; j < count; ++j) s += static_cast<__int128>(c[j]) * y[j];
-  const __int128 q = s >= 0 ? s >> n : -((-s - 1) >> n) - 1;
-  return static_cast<int64_t>(q);
+  return static_cast<int64_t>(floor_shift(s, n));
 }
 
 }  // namespace
