@@ -4,12 +4,11 @@
 #include <utility>
 #include <vector>
 
-#include "sw/isect/cull/tuning.h"
-
 #include "sw/isect/cull/box_test.h"
+#include "sw/isect/cull/tuning.h"
+#include "sw/isect/forms/shared_origin_layout.h"
 #include "sw/isect/pass/layout.h"
 #include "sw/isect/pass/pass.h"
-#include "sw/isect/forms/shared_origin_layout.h"
 
 namespace fmpp::isect {
 

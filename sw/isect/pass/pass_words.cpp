@@ -72,9 +72,15 @@ void PassWords::plan_column(Column& c, Program& pre, std::vector<char>* bus) {
     return a.second != b.second ? a.second < b.second : a.first < b.first;
   });
   bus->assign(v.size(), 1);
+  // The end of the run of equal values that starts at a.
+  const auto run_end = [&](size_t a) {
+    size_t e = a;
+    while (e < v.size() && v[e].second == v[a].second) ++e;
+    return e;
+  };
   size_t mode_at = 0, mode_n = 0;
   for (size_t a = 0, e; a < v.size(); a = e) {
-    for (e = a; e < v.size() && v[e].second == v[a].second;) ++e;
+    e = run_end(a);
     if (e - a > mode_n) mode_at = a, mode_n = e - a;
   }
   if (mode_n >= 2) {  // one WRITES would save no bus write for a value of one block
@@ -86,7 +92,7 @@ void PassWords::plan_column(Column& c, Program& pre, std::vector<char>* bus) {
   std::vector<uint32_t> blocks;
   std::vector<AddrCube> cubes;
   for (size_t a = 0, e; a < v.size(); a = e) {
-    for (e = a; e < v.size() && v[e].second == v[a].second;) ++e;
+    e = run_end(a);
     if (a == mode_at || e - a < 4) continue;  // four blocks at least to beat the bus
     blocks.clear();
     for (size_t i = a; i < e; ++i) blocks.push_back(v[i].first);
