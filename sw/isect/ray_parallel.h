@@ -2,7 +2,8 @@
 // (docs/intersection.md). What differs between intersection forms - the triangle
 // programs, the words a ray occupies, how a block's best becomes a distance - is a
 // RayForm; the passes themselves (culling, loading, broadcasting, reading back, the
-// host's share) are the same for every form and live in ray_parallel.cpp.
+// host's share) are the same for every form and live in ray_parallel.cpp and, for
+// what each pass broadcasts, ray_parallel_pick.cpp (ray_parallel_plan.h).
 #pragma once
 
 #include <cstddef>

@@ -3,26 +3,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <tuple>
 #include <utility>
 
 #include "fmpp/model_bus.h"
 #include "sw/fmpp/device.h"
-#include "sw/isect/geometry/hierarchy.h"
-#include "sw/isect/cull/order.h"
-#include "sw/isect/form_cache.h"
 #include "sw/isect/forms/forms.h"
+#include "sw/plan/frame_pricer.h"
 #include "sw/plan/object_cost.h"
 #include "sw/render/render.h"
 
 namespace rt {
 namespace {
 
-using fmpp::isect::Box;
-using fmpp::isect::Bvh;
-using fmpp::isect::Hit;
 using fmpp::isect::Ray;
 
 // Clocks of a broadcast (box tests included) and of loading and reading back a ray,
@@ -44,34 +38,6 @@ std::pair<double, double> measure(const Scene& scene, const std::vector<Ray>& ra
   // With no broadcast in the sample, a broadcast of the paper's form at n = 24.
   return {st.broadcasts ? static_cast<double>(st.compute_cycles + st.box_cycles) / st.broadcasts : 200.0,
           static_cast<double>(st.load_cycles + st.readback_cycles) / static_cast<double>(sample.size())};
-}
-
-using Reach = BatchReach;
-
-// The broadcasts of passes of `blocks` rays, in the order `order` (indices of the
-// batch's rays): per pass, the triangles some of its rays reach (all, without culling).
-// stamp (one entry per triangle) marks the pass that last counted a triangle; `pass`
-// numbers the passes across calls, so that it is never cleared.
-uint64_t broadcasts(const Reach& reach, const std::vector<size_t>& order, unsigned blocks, size_t tris, bool cull,
-                    std::vector<uint64_t>& stamp, uint64_t& pass) {
-  uint64_t total = 0;
-  for (size_t base = 0; base < order.size(); base += blocks) {
-    if (!cull) {
-      total += tris;
-      continue;
-    }
-    ++pass;
-    for (size_t i = base; i < std::min(order.size(), base + blocks); ++i) {
-      for (uint32_t j = reach.start[order[i]]; j < reach.start[order[i] + 1]; ++j) {
-        const uint32_t k = reach.tris[j];
-        if (stamp[k] != pass) {
-          stamp[k] = pass;
-          ++total;
-        }
-      }
-    }
-  }
-  return total;
 }
 
 std::string fmt_clocks(double c) {
@@ -122,7 +88,6 @@ void choose_merge(PassCostModel* m, unsigned blocks, Estimate&& estimate) {
   m->why_merge = why.str();
 }
 
-
 // The clocks of a broadcast and of a ray, for rays sharing an origin and for the others:
 // `rates` where known, else measured on samples of the frame's rays, grouped as the
 // kernels group them on `blocks` blocks (*from_sample names what was measured so).
@@ -149,177 +114,6 @@ PassRates frame_rates(const Scene& scene, const FrameRecord& frame, const fmpp::
   }
   return r;
 }
-
-// The reach lists, listed beside the frame sample (add_reach), else here on the
-// triangles' own hierarchy: the one culling keeps where the options carry its cache.
-std::vector<Reach> reach_lists(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt) {
-  std::vector<Reach> reach;
-  if (!opt.cull) {
-    reach.resize(frame.batches.size());
-  } else if (frame.reach.size() == frame.batches.size()) {
-    reach = frame.reach;
-  } else {
-    std::vector<Box> boxes;
-    std::vector<fmpp::isect::PlaneSlab> planes;
-    for (const auto& t : scene.triangles) {
-      boxes.push_back(fmpp::isect::padded_box(t, 0));
-      planes.push_back(fmpp::isect::plane_slab(t));
-    }
-    fmpp::isect::FormCache* forms = opt.forms && opt.forms->holds(scene.triangles) ? opt.forms : nullptr;
-    const Bvh bvh = forms ? forms->shapes().shape(scene.triangles, 1).refit(boxes) : Bvh(boxes, {}, 1);
-    for (const auto& batch : frame.batches) reach.push_back(reach_of(batch.second, bvh, boxes, planes));
-  }
-  return reach;
-}
-
-// The frame's clocks under one set of choices: the cost model's estimate. Its units are
-// every batch (0 .. N - 1), then each pair of a shadow batch and the next depth's rays
-// cast with it (FrameRecord::pairs) as one call (N ..), their rays and reach lists one
-// after the other. What the estimates share is kept: the coherent orders, the routings.
-class FramePricer {
- public:
-  FramePricer(const Scene& scene, const FrameRecord& frame, const fmpp::isect::KernelOptions& opt, const PassRates& r)
-      : scene_(scene), frame_(frame), opt_(opt), r_(r), reach_(reach_lists(scene, frame, opt)),
-        N_(frame.batches.size()), stamp_(scene.triangles.size(), 0) {
-    for (size_t p : frame.pairs) pair_unit(p);
-    orders_.resize(reach_.size());
-    own_general_.assign(reach_.size(), 0);
-    if (merging()) {
-      fmpp::isect::KernelOptions none = opt;
-      none.merge_below = 1;
-      for (size_t k = 0; k < reach_.size(); ++k) {
-        own_general_[k] = fmpp::isect::route_rays(rays_of(k), none, 0).general.size();
-      }
-    }
-  }
-
-  // Whether the kernels merge origins' rays at all: with origins auto, in the ray-parallel
-  // mapping.
-  bool merging() const {
-    return opt_.origins == fmpp::isect::Origins::kAuto && opt_.mapping == fmpp::isect::Mapping::kRay;
-  }
-
-  // Whether the largest threshold priced (kMergeFractions') moves some rays: a batch with
-  // several origins.
-  bool merge_moves_rays(unsigned blocks) const {
-    fmpp::isect::KernelOptions most = opt_;
-    most.merge_below = 2 * blocks;
-    for (size_t k = 0; k < frame_.batches.size() && merging(); ++k) {
-      if (fmpp::isect::route_rays(frame_.batches[k].second, most, blocks).general.size() != own_general_[k]) {
-        return true;
-      }
-    }
-    return false;
-  }
-
-  // With origins shared by fewer than `below` rays merged (0: the kernels' default);
-  // *merged (if not null) gets the rays so moved to the arbitrary-origin batch;
-  // general_over_box scales that form's broadcasts (kGeneralOverBox); the kinds of
-  // `object` (nullptr: none) object-parallel at `orates`; with `together`, each shadow
-  // batch in one call with the next depth's rays.
-  double estimate(unsigned blocks, bool coherent, uint64_t* bc, unsigned below = 0, size_t* merged = nullptr,
-                  double general_over_box = 1, const KindFlags* object = nullptr, const KindRates* orates = nullptr,
-                  bool together = false) {
-    double clocks = 0;
-    *bc = 0;
-    if (merged) *merged = 0;
-    // A shadow batch moved to the object-parallel mapping cannot share the secondary
-    // rays' call.
-    const bool join = together && !(object && (*object)[static_cast<int>(BatchKind::kShadow)]);
-    for (size_t k : units(join)) {
-      const int kind = static_cast<int>(k < N_ ? frame_.batches[k].first : BatchKind::kSecondary);
-      const bool op = object && (*object)[kind];
-      fmpp::isect::KernelOptions o = opt_;
-      o.merge_below = below;
-      if (op) o.mapping = fmpp::isect::Mapping::kObject;
-      const fmpp::isect::RayRoutes& routes = routes_of(k, o, blocks);
-      if (merged) *merged += routes.general.size() - own_general_[k];
-      auto add = [&](const std::vector<size_t>& idx, bool shared) {
-        if (idx.empty()) return;
-        const uint64_t b = broadcasts(reach_[k], coherent ? coherent_order(k, idx) : idx, blocks,
-                                      scene_.triangles.size(), opt_.cull, stamp_, pass_);
-        *bc += b;
-        clocks += static_cast<double>(b) * (shared ? r_.shared_b : general_over_box * r_.general_b) +
-                  static_cast<double>(idx.size()) * (shared ? r_.shared_r : r_.general_r);
-      };
-      for (const auto& g : routes.groups) {
-        if (op) {
-          clocks += object_group_clocks((*orates)[kind], g.second.size(), scene_.triangles.size(), blocks);
-        } else {
-          add(g.second, true);
-        }
-      }
-      add(routes.general, false);
-    }
-    return clocks;
-  }
-
- private:
-  // The unit of shadow batch p and the next depth's rays: their rays and reach lists.
-  void pair_unit(size_t p) {
-    const std::vector<Ray>&a = frame_.batches[p].second, &b = frame_.batches[p + 1].second;
-    paired_.emplace_back(a);
-    paired_.back().insert(paired_.back().end(), b.begin(), b.end());
-    Reach r = reach_[p];
-    if (opt_.cull) {
-      const uint32_t base = static_cast<uint32_t>(r.tris.size());
-      for (size_t i = 1; i < reach_[p + 1].start.size(); ++i) r.start.push_back(base + reach_[p + 1].start[i]);
-      r.tris.insert(r.tris.end(), reach_[p + 1].tris.begin(), reach_[p + 1].tris.end());
-    }
-    reach_.push_back(std::move(r));
-  }
-
-  const std::vector<Ray>& rays_of(size_t u) const { return u < N_ ? frame_.batches[u].second : paired_[u - N_]; }
-
-  // The units of the frame, with the kinds apart or each pair in one call.
-  std::vector<size_t> units(bool together) const {
-    std::vector<size_t> u;
-    size_t next_pair = 0;
-    for (size_t k = 0; k < N_; ++k) {
-      if (together && next_pair < frame_.pairs.size() && frame_.pairs[next_pair] == k) {
-        u.push_back(N_ + next_pair++);
-        ++k;  // its second batch is in the unit
-        continue;
-      }
-      u.push_back(k);
-    }
-    return u;
-  }
-
-  // A group's coherent order, kept for the other sizes that group the batch alike.
-  const std::vector<size_t>& coherent_order(size_t k, const std::vector<size_t>& idx) {
-    for (const auto& o : orders_[k]) {
-      if (o.first == idx) return o.second;
-    }
-    orders_[k].emplace_back(idx, fmpp::isect::coherent_order(rays_of(k), idx));
-    return orders_[k].back().second;
-  }
-
-  // A unit's routing, kept: it depends only on the mapping and the threshold below which
-  // an origin's rays are merged (route_rays), which many of the estimates share.
-  const fmpp::isect::RayRoutes& routes_of(size_t k, const fmpp::isect::KernelOptions& o, unsigned blocks) {
-    const size_t below = o.merge_below ? o.merge_below : std::max<size_t>(16, blocks / 8);
-    const auto key = std::make_tuple(k, static_cast<int>(o.mapping), below);
-    auto it = routed_.find(key);
-    if (it == routed_.end()) it = routed_.emplace(key, fmpp::isect::route_rays(rays_of(k), o, blocks)).first;
-    return it->second;
-  }
-
-  const Scene& scene_;
-  const FrameRecord& frame_;
-  const fmpp::isect::KernelOptions& opt_;
-  const PassRates r_;
-  std::vector<Reach> reach_;  // per unit
-  const size_t N_;            // the batches; the pairs' units follow
-  std::vector<std::vector<Ray>> paired_;
-  std::vector<uint64_t> stamp_;  // broadcasts(): per triangle, the pass that last counted it
-  uint64_t pass_ = 0;
-  std::vector<std::vector<std::pair<std::vector<size_t>, std::vector<size_t>>>> orders_;
-  // Each unit's rays routed to the arbitrary-origin form when no origin's are merged
-  // (KernelOptions::merge_below = 1): the base of the merged rays counted.
-  std::vector<size_t> own_general_;
-  std::map<std::tuple<size_t, int, size_t>, fmpp::isect::RayRoutes> routed_;
-};
 
 // The pass size: the fewest candidate blocks whose frame is estimated within
 // kPassSizeSlack of the fewest clocks; then, at that size, the pass order.

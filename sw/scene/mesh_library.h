@@ -1,11 +1,12 @@
-// Parts of the mesh reader (mesh.cpp): what assimp may open, the material factors of glTF files as the file
-// wrote them, and a Mesh as bytes, the form in which it comes back from the reader
-// process (isolate.h).
+// Parts of the mesh reader (mesh.cpp): what assimp may open, the material factors of glTF
+// files as the file wrote them, the materials of a file the library reads, and a Mesh as
+// bytes, the form in which it comes back from the reader process (isolate.h).
 #pragma once
 
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
 #include <assimp/material.h>
+#include <assimp/scene.h>
 
 #include <algorithm>
 #include <cstring>
@@ -106,6 +107,13 @@ struct GltfExtras {
 std::vector<GltfExtras> gltf_extras(const std::string& data, const std::string& ext);
 // A glTF material as the renderer's material, its factors checked and named by `path`.
 FileMaterial gltf_material(const aiMaterial& a, const std::string& name, const std::string& path, const GltfExtras& x);
+
+// The file's materials (OBJ: its MTL libraries, each beside the mesh; glTF: its own), as
+// Mesh::materials appended to m, and for each of the library's materials its index there
+// (-1: the library's default, given to faces without a material); binary STL has none.
+// `text` is the file's text (OBJ) or bytes (glTF). mesh_materials.cpp.
+std::vector<int> file_materials(const std::string& path, const std::string& ext, const aiScene& sc,
+                                const std::string& text, Mesh& m);
 
 std::string serialize(const Mesh& m);
 Mesh deserialize(const std::string& s);

@@ -41,7 +41,7 @@ std::vector<uint32_t> grid_morton(const std::vector<glm::dvec2>& p);
 std::vector<size_t> coherent_order(const std::vector<Ray>& rays, const std::vector<size_t>& idx);
 
 // The indices of `size` by decreasing size, ties in increasing index (the costliest
-// passes first: ray_parallel.cpp).
+// passes first: ray_parallel_plan.h).
 std::vector<size_t> largest_first(const std::vector<size_t>& size);
 
 // The passes of `items` rays, `blocks` to a pass, costliest first (largest_first): by the

@@ -1,4 +1,4 @@
-// The host's side of the ray-parallel passes' front-to-back probe (ray_parallel.cpp;
+// The host's side of the ray-parallel passes' front-to-back probe (ray_parallel_pick.cpp;
 // docs/intersection.md, "Culling"): which triangles each ray may still need once it has a
 // best distance, and the next probe round of rays of their own origins.
 #pragma once

@@ -1,4 +1,4 @@
-// The measured tuning of culling in the ray-parallel passes (ray_parallel.cpp): the
+// The measured tuning of culling in the ray-parallel passes (ray_parallel_pick.cpp): the
 // probe's reach, the hierarchy's leaf size and where a gate pays. Each value is the one
 // of fewest FMPP clocks among those measured on the shipped frames (4096 blocks of 32
 // words, n = 24); the measurements are in docs/perf-history.md, "The measurements
@@ -14,13 +14,13 @@ namespace fmpp::isect {
 // when the triangles behind the rays' first hits are many).
 inline constexpr int kProbeLeavesShared = 1;
 inline constexpr size_t kProbeShareOwn = 2, kProbeShareShared = 4;
-// Rays of their own origins probe in rounds (ray_parallel.cpp, refine): each round sends
+// Rays of their own origins probe in rounds (ray_parallel_pick.cpp, refine_pick): each round sends
 // the next kProbeLeavesOwn leaves of each ray's front among the triangles left, reads
 // back the bests of the rays that probed, and cuts their reach; up to
 // KernelOptions::max_probe_rounds rounds in all (--probe-rounds, 8 by default), each
 // after the first only while it sends less than what is left.
 inline constexpr int kProbeLeavesOwn = 1;
-// The FMPP's walk (ray_parallel.cpp) tests an inner node of the hierarchy, not only its
+// The FMPP's walk (ray_parallel_pick.cpp) tests an inner node of the hierarchy, not only its
 // leaves, where the node holds kNodeTestLeaves or more leaves the host's walk reached and
 // the running share of the pass's leaf tests that found no ray (each test weighing
 // kNodeTestMemory) is kNodeTestNoShare or more: late in a pass, where most rays hold

@@ -132,7 +132,7 @@ const char* to_string(Origins o);
     "cull", "broadcast every triangle in every pass", "", "")                                                      \
   /* Culling, front to back: each pass first broadcasts the nearest leaves of every ray                             \
      (a probe), reads the distances found, and then broadcasts, from a fresh start, only                            \
-     the triangles that may lie as near as those (ray_parallel.cpp). */                                             \
+     the triangles that may lie as near as those (ray_parallel_pick.cpp). */                                        \
   X(bool, cull_probe, true, OptClear, 0, 0, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,             \
     "--no-probe", "cull_probe", "culling without the front-to-back probe",                                         \
     "culling without the front-to-back probe of rays with their own origins", "")                                  \
@@ -189,7 +189,7 @@ const char* to_string(Origins o);
   X(unsigned, cull_packet, 1, OptValue, 1, 65536, kFormIdentity | kPlanKey | kAgreed | kReported | kRenderFlag,       \
     "--cull-packet", "cull_packet", "rays per culling packet", "", "")                                             \
   /* Rays of their own origins: the rounds the front-to-back probe may take in a pass,                              \
-     its first included (cull/tuning.h, ray_parallel.cpp: each round sends the next leaves                           \
+     its first included (cull/tuning.h, ray_parallel_pick.cpp: each round sends the next leaves                      \
      of each ray's front, reads back the probing rays' bests and cuts their reach). */                               \
   X(unsigned, max_probe_rounds, 8, OptValue, 1, 64, kPlanKey | kAgreed | kReported | kRenderFlag, "--probe-rounds", \
     "max_probe_rounds", "probe rounds in a pass for rays of their own origins, the first included (1: no more)",   \
@@ -325,7 +325,7 @@ struct KernelStats {
   uint64_t fmpp_box_tests = 0;   // culling: box tests run on the FMPP (box_test.h)
   uint64_t read_box_tests = 0;   // culling: box tests decided by reading reach words instead
   uint64_t box_reads = 0;        // the reach words those read
-  uint64_t fmpp_node_tests = 0;  // of which of inner nodes (ray_parallel.cpp, tuning.h)
+  uint64_t fmpp_node_tests = 0;  // of which of inner nodes (ray_parallel_pick.cpp, tuning.h)
   uint64_t diagonal_tests = 0;   // of which with diagonal compares (box_test.h, set_slope_compares)
   uint64_t edge_tests = 0;       // of which with edge compares (box_slopes.h)
   uint64_t edge_compares = 0;    // the edge compares of those
