@@ -33,14 +33,15 @@
 # A step that fails stops the flow with its name and the end of its log.
 #
 # Usage: asic.sh [--pnr BxW[,BxW...] | --no-pnr] [--energy BxW,BxW | --no-energy]
-#                [--no-latch] [--reuse] [BxW ...]
+#                [--no-latch] [--no-chip] [--reuse] [BxW ...]
 #   default sizes: 1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32; default --pnr 1x8 (--pnr-until
 #   place stops after the placement: its wire estimate is timed, routing is skipped);
 #   default --energy 8x32,16x32 (two sizes of 32 words, the words of the traced machine:
 #   their difference is the energy of a block). --reuse keeps what an earlier run into the
 #   same ASIC_OUT finished (a size's <top>_BxW.sta.log, a place and route's pnr.done)
 #   instead of running it again (placing and routing takes most of an hour per size);
-#   each reuse is printed.
+#   each reuse is printed. After the sizes, tools/asic_chip.py times the 4,096-block chip
+#   with its global networks and wires (docs/asic/notes.md; --no-chip skips it).
 set -euo pipefail
 root=${FMPP_ROOT:-$(cd "$(dirname "$0")/.." && pwd)}
 tech=${ASIC_TECH:-/usr/share/qflow/tech/osu018}
@@ -71,6 +72,7 @@ pnr_until=route
 energy_sizes=(8x32 16x32)
 pnr_reuse=0
 latch=1
+chip=1
 sizes=()
 while [ $# -gt 0 ]; do
   case $1 in
@@ -82,6 +84,7 @@ while [ $# -gt 0 ]; do
     --energy) IFS=, read -r -a energy_sizes <<< "${2:-}"; shift 2 ;;
     --no-energy) energy_sizes=(); shift ;;
     --no-latch) latch=0; shift ;;
+    --no-chip) chip=0; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) echo "asic.sh: unknown option $1" >&2; exit 2 ;;
     *) sizes+=("$1"); shift ;;
@@ -321,6 +324,17 @@ if [ ${#energy_sizes[@]} -gt 0 ]; then
     done
     echo "  $s: activity and power per class in $(( $(date +%s) - t0 )) s"
   done
+fi
+
+# The 4,096-block chip with its global networks and wires (tools/asic_chip.py): its result
+# files go beside the sizes' (chip.csv, chip_paths.csv, chip_check.csv).
+if [ $chip -eq 1 ]; then
+  echo "chip: tools/asic_chip.py (the 64-lane tile, the array with stand-in tiles at 1, 4, 16, 64 tiles, the wires)"
+  reuse_flag=(); [ $pnr_reuse -eq 1 ] && reuse_flag=(--reuse)
+  nice -n 10 "$py" "$root/tools/asic_chip.py" --out "$out/chip" "${reuse_flag[@]}" || fail "the chip's timing (tools/asic_chip.py)" ""
+  nice -n 10 "$py" "$root/tools/asic_chip.py" --out "$out/chip" --check 2x2 "${reuse_flag[@]}" \
+    || fail "the chip's composition against a flat netlist (tools/asic_chip.py --check 2x2)" ""
+  cp "$out/chip/chip.csv" "$out/chip/chip_paths.csv" "$out/chip/chip_check.csv" "$out/"
 fi
 
 "$py" "$root/tools/asic_report.py" collect --dir "$out" --top "$top" --lef "$lef" --spice "$spice" --lib "$lib" \

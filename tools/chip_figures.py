@@ -18,6 +18,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gallery  # noqa: E402
 import node_scale  # noqa: E402
 import rtl_hash  # noqa: E402
 
@@ -25,10 +26,13 @@ ROOT = rtl_hash.ROOT
 ASIC = os.path.join(ROOT, "docs", "asic")
 FPGA_CSV = os.path.join(ROOT, "docs", "data", "fpga", "summary.csv")
 WHAT_A_PROJECTION_LEAVES_OUT = (
-    "it scales the gate delay of the unplaced %s path only: it leaves out the wires (no "
-    "wire load in the measured figure), the clock tree and its skew, the global networks of a "
-    "4,096-block chip (the broadcast to every tile, the any-flag and responder reductions across "
-    "tiles, none of them timed here), other corners than the typical one, and hold")
+    "it scales the whole path of %s by the ratio of gate delays, its repeated wires with it: a wire's delay "
+    "scales worse than a gate's, so where the path is wire (the table of the chip in docs/generated/area.md says "
+    "how much) the projection is optimistic; it leaves out the clock tree and its skew, other corners than the "
+    "typical one, and hold")
+WHAT_AN_UNPLACED_PROJECTION_LEAVES_OUT = (
+    "it scales the gate delay of the unplaced %s path only: it leaves out the wires, the clock tree and its skew, "
+    "the global networks of a 4,096-block chip, other corners than the typical one, and hold")
 
 
 def read(path):
@@ -108,6 +112,21 @@ def energy():
     return e_fix + B * e_blk, per["all"][1] + B * per["all"][0], frame.get("steps_per_broadcast", {}), B
 
 
+def chip_row():
+    """The table row of the largest chip tools/asic_chip.py timed (docs/asic/chip.csv), or None."""
+    path = os.path.join(ASIC, "chip.csv")
+    if not os.path.exists(path):
+        return None
+    comments, rows = read(path)
+    r = max(rows, key=lambda r: int(r["blocks"]))
+    return ("| OSU 0.18 um standard cells, the chip: %s tiles with their global networks and repeated wires "
+            "(tools/asic_chip.py: the tile and the logic between tiles timed apart, a floorplan's wires; typical "
+            "corner, ideal clock) | %s x 32 | **%s MHz** flip-flop to flip-flop, set by the %s network; %s MHz from "
+            "the bus (%s); die %.1f mm across | %s |" % (
+                r["tiles"], fmt(r["blocks"]), r["fmax_reg_mhz"], r["critical"].replace("_", " "), r["fmax_io_mhz"],
+                r["critical_io"].replace("_", " "), float(r["die_side_mm"]), rtl_of(comments)))
+
+
 def chip_block():
     ac, timed, acmd, awhen = asic()
     fc, frows, fcmd = fpga()
@@ -119,6 +138,9 @@ def chip_block():
                      "(worst path %s ns, %s -> %s), %s cells, %.2f mm^2 of cells | %s |" % (
                          r["blocks"], r["words"], float(r["fmax_mhz"]), r["path_ns"], r["crit_from"], r["crit_to"],
                          fmt(r["cells"]), float(r["area_um2"]) / 1e6, rtl_of(ac)))
+    chip = chip_row()
+    if chip:
+        o.append(chip)
     placed = [r for r in frows if r["device"] == "hx8k" and r["placed"] == "1"]
     if placed:
         r = max(placed, key=lambda r: int(r["blocks"]) * int(r["words"]))
@@ -139,16 +161,14 @@ def chip_block():
         o.append("| OSU 0.18 um, energy from a traced frame | - | not measured on this RTL (docs/asic/ holds no "
                  "energy.csv; the last figures, of an earlier RTL: [perf-history.md](perf-history.md#the-clock-of-each-"
                  "design-step-on-the-rtl-of-its-day)) | - |")
-    if big:
-        proj = node_scale.project_mhz(float(big["fmax_mhz"]))
-        o.append("| projection of the %s x %s clock above to 10 nm (%s; not a measurement) | %s x %s | %.0f MHz | "
-                 "from the figure above |" % (big["blocks"], big["words"], node_scale.CITATION, big["blocks"],
-                                              big["words"], proj))
+    mhz, what = gallery.asic_clock(ASIC)
+    o.append("| projection of the clock of the frames (%s) to 10 nm (%s; not a measurement) | the same | %.0f MHz | "
+             "from the figure above |" % (what, node_scale.CITATION, node_scale.project_mhz(mhz)))
     o.append("")
     o.append("Standard cells: `%s` (%s). iCE40: `%s` (%s)." % (
         acmd, awhen, fcmd, header(fc, "# Yosys").split("; ")[-1] if header(fc, "# Yosys") else "?"))
-    if big:
-        o.append("The 10 nm projection: %s." % (WHAT_A_PROJECTION_LEAVES_OUT % ("%s x %s" % (big["blocks"], big["words"]))))
+    text = WHAT_A_PROJECTION_LEAVES_OUT if "chip" in what else WHAT_AN_UNPLACED_PROJECTION_LEAVES_OUT
+    o.append("The 10 nm projection: %s." % (text % what.split(", RTL")[0].replace("0.18 um cells, ", "")))
     return "\n".join(o)
 
 

@@ -70,7 +70,7 @@ def paper_clocks():
     """--clock arguments of fmpp-report paper: make asic's measured clock and its projection to the CPU's node."""
     asic, size = gallery.asic_clock()
     proj, label = gallery.projected_clock(asic)
-    return ["--clock", "%.1f:0.18 um cells, %s, measured unplaced" % (asic, size), "--clock", "%.1f:%s" % (proj, label)]
+    return ["--clock", "%.1f:%s" % (asic, size), "--clock", "%.1f:%s" % (proj, label)]
 
 
 def gen_paper(build):

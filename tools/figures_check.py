@@ -45,12 +45,15 @@ _CLOCK = ("README.md (gallery table: the iCE40 and 0.18 um clock columns and the
           "docs/generated/paper-reproduction.md, docs/generated/area.md")
 SOURCES = [
     # (path relative to the root, role, quoted by / RTL label)
-    ("docs/asic/summary.csv", "current", "standard-cell Fmax, cells, area, power: " + _CLOCK),
+    ("docs/asic/summary.csv", "current", "standard-cell Fmax, cells, area, power of the sizes: docs/generated/area.md, "
+     "docs/architecture.md and docs/perf.md (block chip-figures)"),
     ("docs/asic/cells.csv", "current", "cell counts by type: docs/generated/area.md"),
     ("docs/asic/library.csv", "current", "the library's cell areas (read with the above): docs/generated/area.md"),
     ("docs/asic/energy.csv", "current", "energy per instruction class: docs/generated/area.md, docs/perf.md (block chip-figures)"),
     ("docs/asic/energy_frame.json", "current", "the traced frame of the energy figures: docs/generated/area.md"),
     ("docs/asic/pnr.csv", "current", "the placed and routed sizes: docs/generated/area.md"),
+    ("docs/asic/chip*.csv", "current", "the 4,096-block chip's clock with its networks' wires (tools/asic_chip.py): "
+     + _CLOCK),
     ("docs/data/fpga/summary.csv", "current", "iCE40 Fmax, logic cells: " + _CLOCK),
     ("docs/data/fpga/critical_*.txt", "current", "the iCE40 critical paths: docs/generated/area.md"),
     ("docs/data/synth/*.csv", "current", "make synth's generic cells per size and type: docs/generated/area.md"),
@@ -135,9 +138,9 @@ def quoted_clocks(root):
     import node_scale
     try:
         now = {"fpga": gallery.fpga_mhz(os.path.join(root, "docs", "data", "fpga", "summary.csv")),
-               "asic": gallery.asic_clock(os.path.join(root, "docs", "asic", "summary.csv"))[0]}
+               "asic": gallery.asic_clock(os.path.join(root, "docs", "asic"))[0]}
     except (OSError, SystemExit, KeyError, ValueError) as e:
-        return [("docs/asic/summary.csv or docs/data/fpga/summary.csv", 0, "?", str(e), "clock")]
+        return [("docs/asic/chip.csv, summary.csv or docs/data/fpga/summary.csv", 0, "?", str(e), "clock")]
     now["projected"] = node_scale.project_mhz(now["asic"])
     bad = []
     docs = ["README.md"] + sorted(os.path.relpath(p, root) for p in glob.glob(os.path.join(root, "docs", "**", "*.md"),

@@ -23,7 +23,7 @@ import gallery  # noqa: E402
 
 ROOT = gallery.ROOT
 NOTE = ("Columns at the measured clocks recomputed from the FMPP clocks by `tools/reclock.py` for the result "
-        "files of RTL %s (docs/data/fpga/summary.csv, docs/asic/summary.csv).")
+        "files of RTL %s (docs/data/fpga/summary.csv, docs/asic/chip.csv).")
 
 
 def cells(line):
@@ -52,11 +52,7 @@ def clocks():
 
 
 def rtl_short():
-    with open(gallery.ASIC_CSV, encoding="utf-8") as f:
-        for line in f:
-            if line.startswith("# rtl-sha256 "):
-                return line.split()[2][:12]
-    return "?"
+    return gallery.rtl_of(os.path.join(gallery.ASIC_DIR, "summary.csv"))
 
 
 def with_note(lines):
@@ -76,7 +72,7 @@ def gallery_table(text):
         cs = cells(line) if line.startswith("|") else None
         if cs and cs[0] == "scene" and len(cs) == 13:
             cs[9] = "at %.1f MHz (iCE40, measured)" % fpga
-            cs[10] = "at %.1f MHz (0.18 um cells, %s, measured)" % (asic, size)
+            cs[10] = "at %.1f MHz (%s)" % (asic, size)
             cs[11] = "at %.0f MHz (%s)" % (proj, label)
             line = row(cs)
         elif cs and len(cs) == 13 and cs[0] not in ("---",) and re.fullmatch(r"[\d,]+", cs[4]):
@@ -97,7 +93,7 @@ def embree_table(text):
         cs = cells(line) if line.startswith("|") else None
         if cs and len(cs) == 12 and cs[0] == "scene, frame":
             cs[7] = "at %.1f MHz (iCE40, measured)" % fpga
-            cs[8] = "at %.1f MHz (0.18 um cells, %s, measured unplaced)" % (asic, size)
+            cs[8] = "at %.1f MHz (%s)" % (asic, size)
             cs[9] = "faster Embree / FMPP at %.1f MHz" % asic
             cs[10] = "at %.0f MHz (%s)" % (proj, label)
             line = row(cs)
@@ -126,7 +122,7 @@ def paper_file(text):
     for line in text.split("\n"):
         cs = cells(line) if line.startswith("|") else None
         if cs and len(cs) == 7 and cs[0] == "blocks":
-            cs[3] = "tests/s at %.1f MHz (0.18 um cells, %s, measured unplaced)" % (asic, size)
+            cs[3] = "tests/s at %.1f MHz (%s)" % (asic, size)
             cs[5] = "tests/s at %.1f MHz (%s)" % (proj, label)
             line = row(cs)
         elif cs and len(cs) == 7 and cs[0].endswith("^2"):

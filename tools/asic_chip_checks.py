@@ -1,0 +1,129 @@
+"""The OpenSTA checks of tools/asic_chip.py: which paths it times in each netlist.
+
+Each check prints `=== label` before its report_checks, and asic_chip_flow.checks reads
+them back. A path's figure is PERIOD - slack: for a path that ends at a flip-flop it
+includes that flip-flop's setup time, for one that starts at a flip-flop its clock-to-Q.
+"""
+
+# A Tcl helper: the flip-flops (the OSU cell) whose Q drives a net matching a pattern.
+FLOPS_TCL = """proc flops {pat} {
+  set r {}
+  foreach n [get_nets -quiet $pat] {
+    foreach p [get_pins -quiet -of_objects $n] {
+      if {[get_property $p direction] == "output"} {
+        set c [get_cells -of_objects $p]
+        if {[get_property $c ref_name] == "DFFPOSX1"} { lappend r $c }
+      }
+    }
+  }
+  if {[llength $r] == 0} { error "no flip-flop drives a net $pat" }
+  return $r
+}
+"""
+
+
+PERIOD = 10.0  # asic_chip_flow.PERIOD
+
+
+def check(label, args, kind="max"):
+    return f'puts "=== {label}"\nreport_checks -path_delay {kind} -digits 3 {args}\n'
+
+
+# The tile's ports by role (the names of fmpp_tile.sv): the broadcast, the host's read request
+# and the responder request (inputs); the responders' outputs.
+BCAST_PORTS = ("opr_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i", "f_i", "d_i", "x_i",
+               "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i")
+RD_PORTS = ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i")
+RESP_OUT = ("sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o")
+
+# fmpp_top with tools/asic/tile_stub.sv for every tile: the logic between the tiles, bit by
+# bit of the tile's ports. `to:P` is the worst path into the stand-in's flip-flops of port
+# bit P (of any tile), `from:P` the worst out of them. Bus inputs arrive 1 ns after the edge
+# and outputs are needed 1 ns before it (asic.sh's constraints).
+ARRAY_TCL = """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
+set_input_delay 1.0 -clock clk $data_in
+set_driving_cell -lib_cell BUFX2 -pin Y $data_in
+set_output_delay 1.0 -clock clk [all_outputs]
+set_load 0.05 [all_outputs]
+set groups [dict create]
+foreach n [get_nets -quiet *u_tile.q_*] {
+  set key [regsub {^.*u_tile[.]q_} [get_full_name $n] {}]
+  foreach p [get_pins -quiet -of_objects $n] {
+    if {[get_property $p direction] == "output"} {
+      set c [get_cells -of_objects $p]
+      if {[get_property $c ref_name] == "DFFPOSX1"} { dict lappend groups $key $c }
+    }
+  }
+}
+if {[dict size $groups] == 0} { error "no stand-in flip-flop (u_tile.q_*) in the netlist" }
+set stub {}
+dict for {key cells} $groups { set stub [concat $stub $cells] }
+set core [delete_from_list [all_registers] $stub]
+dict for {key cells} $groups {
+  if {[string match *_o $key] || [string match {*_o\\[*} $key]} {
+    puts "=== from:$key"
+    report_checks -path_delay max -digits 3 -from $cells
+  } else {
+    puts "=== to:$key"
+    report_checks -path_delay max -digits 3 -to $cells
+  }
+}
+""" + "".join([
+    check("any", "-from [dict get $groups flagop_any_o] -to [dict get $groups flagop_any_i]"),
+    check("central", "-from $core -to $core"),
+    check("io_in", "-from $data_in"),
+    check("io_out", "-to [all_outputs]"),
+    check("hold", "-from $core -to $core", "min"),
+])
+
+# fmpp_tile alone, bit by bit of its ports, which arrive at the clock edge (from a BUFX2) and
+# are needed at the next edge (loaded with a BUFX4's input): `from:P` is the worst path from
+# input bit P into the tile's flip-flops, `to:P` the worst from a flip-flop to output bit P,
+# `rd:P` and `resp:P` the worst from the read or responder request to output bit P.
+TILE_TCL = """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
+set_input_delay 0 -clock clk $data_in
+set_driving_cell -lib_cell BUFX2 -pin Y $data_in
+set_output_delay 0 -clock clk [all_outputs]
+set_load %(load)s [all_outputs]
+set regs [all_registers]
+set rd_in [get_ports {rd_en_i rd_kind_i* rd_block_i* rd_word_i* rd_flag_i*}]
+foreach p [get_ports {%(bcast)s flagop_any_i}] {
+  puts "=== from:[get_full_name $p]"
+  report_checks -path_delay max -digits 3 -from $p
+}
+# From the flip-flops to each output: with the inputs pushed a period early, no path from
+# an input is the worst to an output (a flip-flop's is).
+set_input_delay -%(period)s -clock clk $data_in
+foreach p [all_outputs] {
+  puts "=== to:[get_full_name $p]"
+  report_checks -path_delay max -digits 3 -to $p
+}
+set_input_delay 0 -clock clk $data_in
+foreach p [get_ports rd_data_o*] {
+  puts "=== rd:[get_full_name $p]"
+  report_checks -path_delay max -digits 3 -from $rd_in -to $p
+}
+foreach p [get_ports {sel_any_o sel_count_o* sel_first_o* ovf_any_o}] {
+  puts "=== resp:[get_full_name $p]"
+  report_checks -path_delay max -digits 3 -from [get_ports resp_en_i] -to $p
+}
+""".replace("%(bcast)s", " ".join(p if p.endswith("en_i") or p == "exec_i" else p + "*" for p in BCAST_PORTS)).replace(
+    "%(period)s", str(PERIOD)) + "".join([
+    check("internal", "-from $regs -to $regs"),
+    check("hold", "-from $regs -to $regs", "min"),
+])
+
+# fmpp_top as one flat netlist (the check of the composition): the worst path from flip-flop
+# to flip-flop, the worst into the read-data register, and the worst from a bus input into it.
+FLAT_TCL = FLOPS_TCL + """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
+set_input_delay 1.0 -clock clk $data_in
+set_driving_cell -lib_cell BUFX2 -pin Y $data_in
+set_output_delay 1.0 -clock clk [all_outputs]
+set_load 0.05 [all_outputs]
+set regs [all_registers]
+set rdata [flops *s_axil_rdata_o*]
+""" + "".join([
+    check("reg", "-from $regs -to $regs"),
+    check("into_rdata", "-from $regs -to $rdata"),
+    check("bus_into_rdata", "-from $data_in -to $rdata"),
+])
