@@ -22,17 +22,17 @@ class FlowError(Exception):
     pass
 
 
-def run(cmd, log, cwd=None):
+def run(cmd, log):
     """Runs cmd (nice 10) with its output in log; FlowError with the log's end on failure."""
     with open(log, "w") as f:
-        r = subprocess.run(["nice", "-n", "10"] + cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+        r = subprocess.run(["nice", "-n", "10"] + cmd, stdout=f, stderr=subprocess.STDOUT)
     if r.returncode != 0:
         with open(log) as f:
             tail = "".join(f.readlines()[-20:])
         raise FlowError(f"{' '.join(cmd[:2])} failed (exit {r.returncode}); end of {log}:\n{tail}")
 
 
-def synth(out, name, top, params, sources, abc_fast=False):
+def synth(out, name, top, params, sources):
     """yosys: sources onto the library, flattened; writes out/name.blif and name.stat."""
     chparam = " ".join(f"-set {k} {v}" for k, v in params.items())
     ys = os.path.join(out, name + ".ys")
@@ -43,7 +43,7 @@ chparam {chparam} {top}
 synth -top {top} -flatten
 dfflegalize -cell $_DFF_P_ x
 dfflibmap -liberty {LIB}
-abc {'-fast ' if abc_fast else ''}-liberty {LIB}
+abc -liberty {LIB}
 setattr -mod -unset keep_hierarchy
 flatten
 setundef -zero
@@ -96,19 +96,7 @@ def sta(out, name, top, body, verilog=None, clock_port="clk_i"):
     return text
 
 
-def cell_area(out, name):
-    """Chip area (um^2) of yosys' stat -liberty listing."""
-    with open(os.path.join(out, name + ".stat")) as f:
-        m = re.search(r"Chip area for (?:top )?module .*: ([\d.]+)", f.read())
-    if not m:
-        raise FlowError(f"{out}/{name}.stat: no chip area")
-    return float(m.group(1))
-
-
 # --- reading OpenSTA's reports -------------------------------------------------------
-
-CHECK = re.compile(r"^=== (\S+)$")
-
 
 def checks(text):
     """{label: path} of the reports that a script prints after `puts "=== label"` (a path
