@@ -221,11 +221,11 @@ def provenance(argv, reps, density):
 
 PATH_COLS = ["tiles", "blocks", "network", "kind", "path_ns", "tile_ns", "between_ns", "wire_crossings", "wire_ns",
              "start", "end"]
-CHIP_COLS = ["tiles", "blocks", "tile_side_mm", "die_side_mm", "reach_mm", "wire_ns", "fmax_reg_mhz", "critical",
+CHIP_COLS = ["tiles", "blocks", "words", "tile_side_mm", "die_side_mm", "reach_mm", "wire_ns", "fmax_reg_mhz", "critical",
              "fmax_io_mhz", "critical_io", "hold_slack_ns", "tile_area_um2", "array_area_um2"]
 
 
-def chip_rows(tiles, t, t_area, a, a_area, reps, density):
+def chip_rows(tiles, words, t, t_area, a, a_area, reps, density):
     side, die, reach = floorplan(t_area, tiles, density)
     w = wire_ns(reps, reach, tiles)
     paths = networks(t, a, w)
@@ -234,7 +234,7 @@ def chip_rows(tiles, t, t_area, a, a_area, reps, density):
     reg = max((p for p in paths if p[1] == "reg"), key=lambda p: p[2])
     io = max((p for p in paths if p[1] == "io"), key=lambda p: p[2])
     hold = min(t["hold"]["ns"], a["hold"]["ns"])
-    crow = [tiles, tiles * LANE_W, f"{side:.3f}", f"{die:.3f}", f"{reach:.3f}", f"{w:.3f}", f"{1000.0 / reg[2]:.1f}",
+    crow = [tiles, tiles * LANE_W, words, f"{side:.3f}", f"{die:.3f}", f"{reach:.3f}", f"{w:.3f}", f"{1000.0 / reg[2]:.1f}",
             reg[0], f"{1000.0 / io[2]:.1f}", io[0], f"{hold:.3f}", f"{t_area:.0f}", f"{a_area:.0f}"]
     return prow, crow
 
@@ -272,11 +272,11 @@ def main():
         prows, crows = [], []
         for n in tiles:
             arr, arr_area, secs = time_array(a.out, n, a.words, a.reuse)
-            p, c = chip_rows(n, t, t_area * LANE_W / a.lanes, arr, arr_area, reps, a.density)
+            p, c = chip_rows(n, a.words, t, t_area * LANE_W / a.lanes, arr, arr_area, reps, a.density)
             prows += p
             crows.append(c)
-            print(f"{n} tiles: {c[6]} MHz register to register ({c[7]}), {c[8]} MHz from the bus ({c[9]}), "
-                  f"die {c[3]} mm, {secs:.0f} s", flush=True)
+            print(f"{n} tiles: {c[7]} MHz register to register ({c[8]}), {c[9]} MHz from the bus ({c[10]}), "
+                  f"die {c[4]} mm, {secs:.0f} s", flush=True)
     except (fl.FlowError, ac.ReportError, KeyError) as e:
         print(f"asic_chip.py: {e}", file=sys.stderr)
         return 1

@@ -121,9 +121,9 @@ def chip_row():
     r = max(rows, key=lambda r: int(r["blocks"]))
     return ("| OSU 0.18 um standard cells, the chip: %s tiles with their global networks and repeated wires "
             "(tools/asic_chip.py: the tile and the logic between tiles timed apart, a floorplan's wires; typical "
-            "corner, ideal clock) | %s x 32 | **%s MHz** flip-flop to flip-flop, set by the %s network; %s MHz from "
+            "corner, ideal clock) | %s x %s | **%s MHz** flip-flop to flip-flop, set by the %s network; %s MHz from "
             "the bus (%s); die %.1f mm across | %s |" % (
-                r["tiles"], fmt(r["blocks"]), r["fmax_reg_mhz"], r["critical"].replace("_", " "), r["fmax_io_mhz"],
+                r["tiles"], fmt(r["blocks"]), r["words"], r["fmax_reg_mhz"], r["critical"].replace("_", " "), r["fmax_io_mhz"],
                 r["critical_io"].replace("_", " "), float(r["die_side_mm"]), rtl_of(comments)))
 
 

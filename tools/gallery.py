@@ -131,8 +131,8 @@ def asic_clock(asic_dir=ASIC_DIR):
         if not rows:
             sys.exit("%s: no timed chip" % chip)
         best = max(rows, key=lambda r: int(r["blocks"]))
-        return float(best["fmax_reg_mhz"]), "0.18 um cells, the %s x 32 chip with its networks' wires, RTL %s" % (
-            format(int(best["blocks"]), ","), rtl_of(chip))
+        return float(best["fmax_reg_mhz"]), "0.18 um cells, the %s x %s chip with its networks' wires, RTL %s" % (
+            format(int(best["blocks"]), ","), best["words"], rtl_of(chip))
     path = os.path.join(asic_dir, "summary.csv")
     timed = [r for r in _csv_rows(path) if r.get("fmax_mhz")]
     if not timed:
