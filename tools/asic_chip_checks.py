@@ -29,6 +29,15 @@ def check(label, args, kind="max"):
     return f'puts "=== {label}"\nreport_checks -path_delay {kind} -digits 3 {args}\n'
 
 
+# fmpp_top's bus constraints, those of tools/asic.sh: inputs arrive 1 ns after the edge from
+# a BUFX2, outputs are needed 1 ns before it and drive 0.05 pF.
+BUS_CONSTRAINTS = """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
+set_input_delay 1.0 -clock clk $data_in
+set_driving_cell -lib_cell BUFX2 -pin Y $data_in
+set_output_delay 1.0 -clock clk [all_outputs]
+set_load 0.05 [all_outputs]
+"""
+
 # The tile's ports by role (the names of fmpp_tile.sv): the broadcast, the host's read request
 # and the responder request (inputs); the responders' outputs.
 BCAST_PORTS = ("opr_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i", "f_i", "d_i", "x_i",
@@ -40,12 +49,7 @@ RESP_OUT = ("sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o")
 # bit of the tile's ports. `to:P` is the worst path into the stand-in's flip-flops of port
 # bit P (of any tile), `from:P` the worst out of them. Bus inputs arrive 1 ns after the edge
 # and outputs are needed 1 ns before it (asic.sh's constraints).
-ARRAY_TCL = """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
-set_input_delay 1.0 -clock clk $data_in
-set_driving_cell -lib_cell BUFX2 -pin Y $data_in
-set_output_delay 1.0 -clock clk [all_outputs]
-set_load 0.05 [all_outputs]
-set groups [dict create]
+ARRAY_TCL = BUS_CONSTRAINTS + """set groups [dict create]
 foreach n [get_nets -quiet *u_tile.q_*] {
   set key [regsub {^.*u_tile[.]q_} [get_full_name $n] {}]
   foreach p [get_pins -quiet -of_objects $n] {
@@ -115,12 +119,7 @@ foreach p [get_ports {sel_any_o sel_count_o* sel_first_o* ovf_any_o}] {
 
 # fmpp_top as one flat netlist (the check of the composition): the worst path from flip-flop
 # to flip-flop, the worst into the read-data register, and the worst from a bus input into it.
-FLAT_TCL = FLOPS_TCL + """set data_in [delete_from_list [all_inputs] [get_ports clk_i]]
-set_input_delay 1.0 -clock clk $data_in
-set_driving_cell -lib_cell BUFX2 -pin Y $data_in
-set_output_delay 1.0 -clock clk [all_outputs]
-set_load 0.05 [all_outputs]
-set regs [all_registers]
+FLAT_TCL = FLOPS_TCL + BUS_CONSTRAINTS + """set regs [all_registers]
 set rdata [flops *s_axil_rdata_o*]
 """ + "".join([
     check("reg", "-from $regs -to $regs"),
