@@ -199,7 +199,7 @@ def check_composition(out, tiles, words, reuse):
             row("bus input into the read-data register", ["read_request", "responder_request"], flat["bus_into_rdata"])]
 
 
-def provenance(argv, reps, density):
+def provenance(argv, reps, density, title="FMPP chip timing: tools/asic_chip.py"):
     cpu = ""
     with open("/proc/cpuinfo") as f:
         for line in f:
@@ -210,7 +210,7 @@ def provenance(argv, reps, density):
     sta = subprocess.run(["sta", "-no_init"], input="exit\n", capture_output=True, text=True)
     reps_txt = "; ".join(f"{layer} {r[1]} every {r[2]} um: {r[0] * 1000:.1f} ps/mm, a forked stage +{r[3] * 1000:.0f} ps"
                          for layer, r in sorted(reps.items()))
-    return [f"# FMPP chip timing: tools/asic_chip.py {' '.join(argv)}",
+    return [f"# {title} {' '.join(argv)}",
             f"# {subprocess.run(['yosys', '-V'], capture_output=True, text=True).stdout.strip()}; "
             f"{(sta.stdout + sta.stderr).split(' Copyright')[0].strip() or 'OpenSTA'}; OSU018 ({fl.LIB})",
             f"# commit {commit or 'unknown'}, {time.strftime('%Y-%m-%dT%H:%M:%SZ', time.gmtime())}, on {cpu}, "

@@ -5,6 +5,7 @@ import os
 import sys
 
 import asic_chip_doc
+import asic_chip_energy_doc
 from asic_baseline import BASELINE_DIR, baseline_markdown
 from asic_common import *  # noqa: F401,F403
 
@@ -311,7 +312,7 @@ def cmd_check(a):
 
 def cmd_doc(a):
     """docs/generated/area.md = fmpp-report area's output, then docs/asic/notes.md with the tables of fit
-    and of the chip (tools/asic_chip_doc.py)."""
+    and of the chip (tools/asic_chip_doc.py, tools/asic_chip_energy_doc.py)."""
     base = read(a.area_md)
     notes = read(os.path.join(a.dir, "notes.md"))
     marker = "<!-- asic tables: tools/asic_report.py fit -->"
@@ -330,6 +331,9 @@ def cmd_doc(a):
     if asic_chip_doc.MARKER not in notes:
         raise ReportError(f"{a.dir}/notes.md has no line {asic_chip_doc.MARKER!r}")
     notes = notes.replace(asic_chip_doc.MARKER, asic_chip_doc.chip_tables(a.dir))
+    if asic_chip_energy_doc.MARKER not in notes:
+        raise ReportError(f"{a.dir}/notes.md has no line {asic_chip_energy_doc.MARKER!r}")
+    notes = notes.replace(asic_chip_energy_doc.MARKER, asic_chip_energy_doc.energy_tables(a.dir))
     text = base.rstrip("\n") + "\n\n" + notes.replace(marker, buf.getvalue().rstrip("\n"))
     if a.check:
         cur = read(a.check)

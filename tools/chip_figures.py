@@ -14,12 +14,15 @@ import argparse
 import csv
 import json
 import os
+import re
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import docblock  # noqa: E402
 import gallery  # noqa: E402
 import node_scale  # noqa: E402
+import reclock  # noqa: E402
 import rtl_hash  # noqa: E402
 
 ROOT = rtl_hash.ROOT
@@ -112,6 +115,54 @@ def energy():
     return e_fix + B * e_blk, per["all"][1] + B * per["all"][0], frame.get("steps_per_broadcast", {}), B
 
 
+def chip_energy():
+    """(comments, tiles, pJ per clock, pJ per block and clock) of the largest chip of
+    docs/asic/chip_energy.csv (tools/asic_chip_energy.py), or None."""
+    path = os.path.join(ASIC, "chip_energy.csv")
+    if not os.path.exists(path):
+        return None
+    comments, rows = read(path)
+    chip = [r for r in rows if r["section"] == "chip"]
+    tiles = max(int(r["tiles"]) for r in chip)
+    val = {r["key"]: float(r["energy_pj"]) for r in chip if int(r["tiles"]) == tiles}
+    return comments, tiles, val["total"], val["per block"]
+
+
+# A CPU core's power for the energy per ray (no power meter in this VM: a published figure).
+CPU_CORE_W = 350.0 / 64
+CPU_SOURCE = ("a core's share of the rated power of the Intel Xeon Platinum 8592+, 350 W TDP for 64 cores (Intel's "
+              "product specifications), the largest part of the 5th-generation Xeon Scalable family that this "
+              "machine's CPU belongs to (family 6, model 207); the share includes the package's uncore")
+
+
+def energy_block():
+    """docs/perf.md's energy per ray: each frame of the Embree table (its FMPP clocks and rays, Embree's rate)
+    at the chip's energy per clock, beside a CPU core's."""
+    ce = chip_energy()
+    if not ce:
+        return "The chip's energy was not measured on this RTL (docs/asic/ holds no chip_energy.csv)."
+    comments, tiles, total, per_block = ce
+    o = ["| scene, frame | rays (FMPP render) | FMPP clocks | FMPP, 0.18 um: energy per ray | Embree, 1 core: rays/s "
+         "(the faster of per ray and stream) | CPU core: energy per ray | FMPP / CPU core |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for line in docblock.read_block(os.path.join(ROOT, "docs", "perf.md"), "embree").split("\n"):
+        cs = reclock.cells(line) if line.startswith("|") else None
+        if not (cs and len(cs) == 12 and cs[5].replace(",", "").isdigit()):
+            continue
+        rays, cyc = reclock.num(re.search(r"\(([\d,]+)\)", cs[1]).group(1)), reclock.num(cs[5])
+        rate = max(reclock.si_value(cs[2]), reclock.si_value(cs[3]))
+        fmpp_uj, cpu_uj = total * cyc / rays / 1e6, CPU_CORE_W / rate * 1e6
+        o.append("| %s | %s | %s | %.1f uJ | %s | %.2f uJ | %.0f |" % (
+            cs[0], fmt(rays), fmt(cyc), fmpp_uj, cs[2] if reclock.si_value(cs[2]) >= rate else cs[3], cpu_uj,
+            fmpp_uj / cpu_uj))
+    o += ["", "The FMPP: %.2f uJ per clock of the %s-block chip (%.0f pJ per block and clock, the traced frame's mix "
+          "of instructions; docs/asic/chip_energy.csv, RTL %s, method and parts in "
+          "[generated/area.md](generated/area.md)), times the frame's clocks (the Embree table above), over its rays. "
+          "The CPU core: %.2f W (%s) over Embree's rays per second in the table above." % (
+              total / 1e6, fmt(64 * tiles), per_block, rtl_of(comments), CPU_CORE_W, CPU_SOURCE)]
+    return "\n".join(o)
+
+
 def chip_row():
     """The table row of the largest chip tools/asic_chip.py timed (docs/asic/chip.csv), or None."""
     path = os.path.join(ASIC, "chip.csv")
@@ -151,7 +202,14 @@ def chip_block():
                      statistics.median(mhz) if mhz else float(r["fmax_mhz"]), fmt(r["lcs"]), fmt(r["lcs_avail"]),
                      r["crit_ns"], r["crit_from"], r["crit_to"], rtl_of(fc)))
     e = energy()
-    if e:
+    ce = chip_energy()
+    if ce:
+        comments, tiles, total, per_block = ce
+        o.append("| OSU 0.18 um, energy from a traced frame: the 64-lane tile, the central logic and the wires of %s tiles "
+                 "(tools/asic_chip_energy.py; typical corner, no wires inside a tile, no glitches) | %s x 32 | **%.0f pJ "
+                 "per block and clock** (frame mix), %.2f uJ per clock of the chip | %s |" % (
+                     tiles, fmt(64 * tiles), per_block, total / 1e6, rtl_of(comments)))
+    elif e:
         e_instr, e_all, spb, B = e
         tests = "; ".join("%s %.0f nJ (S = %.1f)" % (k, v * e_instr / B / 1000, v) for k, v in sorted(spb.items()) if v)
         o.append("| OSU 0.18 um, energy from a traced frame, extrapolated to %s blocks x 32 words | %s | %.2f uJ per "
@@ -174,7 +232,6 @@ def chip_block():
 
 def critical(dev, b, w):
     """(LUTs on the path, carry cells on it, ns of logic, ns of routing) of a run's critical path listing, or None."""
-    import re
     path = os.path.join(os.path.dirname(FPGA_CSV), "critical_%s_%sx%s.txt" % (dev, b, w))
     if not os.path.exists(path):
         return None
@@ -217,10 +274,10 @@ def fpga_block():
     return "\n".join(o)
 
 
-BLOCKS = {"chip": chip_block, "fpga": fpga_block}
+BLOCKS = {"chip": chip_block, "fpga": fpga_block, "energy": energy_block}
 # (target document, block name, generator)
 TARGETS = (("docs/architecture.md", "chip-figures", "chip"), ("docs/perf.md", "chip-figures", "chip"),
-           ("docs/verification.md", "fpga-figures", "fpga"))
+           ("docs/verification.md", "fpga-figures", "fpga"), ("docs/perf.md", "energy-per-ray", "energy"))
 
 
 def main():

@@ -52,8 +52,8 @@ SOURCES = [
     ("docs/asic/energy.csv", "current", "energy per instruction class: docs/generated/area.md, docs/perf.md (block chip-figures)"),
     ("docs/asic/energy_frame.json", "current", "the traced frame of the energy figures: docs/generated/area.md"),
     ("docs/asic/pnr.csv", "current", "the placed and routed sizes: docs/generated/area.md"),
-    ("docs/asic/chip*.csv", "current", "the 4,096-block chip's clock with its networks' wires (tools/asic_chip.py): "
-     + _CLOCK),
+    ("docs/asic/chip*.csv", "current", "the 4,096-block chip's clock with its networks' wires (tools/asic_chip.py) "
+     "and its energy (tools/asic_chip_energy.py; docs/perf.md, block energy-per-ray): " + _CLOCK),
     ("docs/data/fpga/summary.csv", "current", "iCE40 Fmax, logic cells: " + _CLOCK),
     ("docs/data/fpga/critical_*.txt", "current", "the iCE40 critical paths: docs/generated/area.md"),
     ("docs/data/synth/*.csv", "current", "make synth's generic cells per size and type: docs/generated/area.md"),

@@ -1,0 +1,345 @@
+#!/usr/bin/env python3
+"""The energy of the 4,096-block chip, from its parts and a traced frame (make asic's
+chip-energy step, after tools/asic_chip.py has made the tile's and the array's netlists).
+
+A clock of the chip of T tiles costs T times a tile's energy, plus the central logic's,
+plus the wires of its global networks and of its clock between the tiles:
+
+  1. the frame: a render of a shipped scene through the Verilated FMPP of one tile (the
+     `small` configuration, 64 blocks of 32 words), traced (FST);
+  2. the tile: the real fmpp_tile of 64 lanes and 32 words (asic_chip.py's netlist), every
+     net's switching activity from the trace (tools/asic_activity.py: the traced registers
+     and ports, the gates evaluated from them, no glitches), and OpenSTA's power with that
+     activity: in every instruction class, and by part (tools/asic_energy_parts.py) over
+     the whole frame. The tile is traced as the only tile of its machine: every tile of a
+     larger chip is taken to work as hard as it (each holds rays in every pass);
+  3. the central logic: fmpp_top with the stand-in tile (asic_chip.py's array of one tile),
+     its activity from the same trace, OpenSTA's power without the stand-in's cells (the
+     read data and responders the stand-in returns are not the tile's, so the bus slave's
+     read path toggles as the stand-in's answers do);
+  4. the wires: every bit of the tile's ports is a network that reaches all T tiles of the
+     floorplan (asic_chip.py's: square tiles at the placement density, a grid around the
+     central logic), the shortest tree over a grid of T points T - 1 pitches long plus half
+     a pitch to the central logic, half on metal5 and half on metal6 with the repeaters
+     asic_chip.py times fastest. A toggle of a bit costs the energy OpenSTA gives a chain of
+     those repeaters and wires (the LEF's capacitance, SPEF) per millimetre; each bit toggles
+     as often as the traced tile's port. The clock's tree between the tiles is such a wire
+     that toggles twice a cycle.
+
+Per block and clock: the chip's energy per clock / (64 T). Left out: wires inside the tile
+and the central logic (the netlists are not placed; the clock's buffer tree inside the tile
+is there, its wires are not), glitches (zero-delay activity), the queue's bus side beyond
+one tile's traffic, other corners than the typical.
+
+Usage: asic_chip_energy.py [--chip DIR] [--build DIR] [--tiles 1,4,16,64] [--density 0.6]
+                           [--reuse]
+       asic_chip_energy.py --self-test       the arithmetic (a ctest)
+Writes DIR/chip_energy.csv (with the provenance lines of tools/asic_chip.py's files).
+"""
+import argparse
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import asic_chip as chip  # noqa: E402
+import asic_chip_flow as fl  # noqa: E402
+import asic_chip_wires as wires  # noqa: E402
+import asic_energy_parts as ep  # noqa: E402
+from asic_netlist import Fail, Trace  # noqa: E402
+
+ROOT = chip.ROOT
+RENDER = "--scene scenes/cornell.json --backend rtl --config small --bits 24 --width 16 --height 16"
+TILE_SCOPE = "TOP.fmpp_top.u_array.g_tile[0].u_tile"
+# The tile's ports by global network (clk_i, rst_ni and the constant base_i are not networks).
+NETWORKS = {
+    "broadcast": ("opr_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i", "f_i", "d_i", "x_i",
+                  "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i"),
+    "flagop_any": ("flagop_any_o", "flagop_any_i"),
+    "read": ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i", "rd_data_o"),
+    "responders": ("resp_en_i", "sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o"),
+}
+COLS = ["section", "key", "tiles", "cycles", "energy_pj", "internal_pj", "switching_pj", "leakage_pj", "seq_pj", "comb_pj",
+        "note"]
+
+
+def volts():
+    with open(fl.LIB) as f:
+        m = re.search(r"\bnom_voltage\s*:\s*([\d.]+)", f.read())
+    if not m:
+        raise fl.FlowError(f"{fl.LIB}: no nom_voltage")
+    return float(m.group(1))
+
+
+def trace(out, build, reuse):
+    """The traced frame: (FST path, the render's clocks)."""
+    fst, args = os.path.join(out, "render.fst"), os.path.join(out, "render.args")
+    if not (reuse and os.path.exists(fst) and os.path.exists(args) and open(args).read().strip() == RENDER):
+        log = os.path.join(out, "render.log")
+        fl.run([os.path.join(build, "fmpp-render")] + RENDER.split() +
+               ["--trace", fst, "--out", os.path.join(out, "render.png"), "--report", os.path.join(out, "render.json")], log)
+        with open(args, "w") as f:
+            f.write(RENDER + "\n")
+    import json
+    with open(os.path.join(out, "render.json")) as f:
+        return fst, json.load(f)["cycles"]
+
+
+def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
+    """tools/asic_activity.py on netlist: its summary (cycles by class)."""
+    import json
+    summary = os.path.join(out, name + ".json")
+    if not (reuse and os.path.exists(summary) and os.path.getmtime(summary) > os.path.getmtime(fst)):
+        cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
+               "--fst", fst, "--scope", scope, "--pkg", os.path.join(ROOT, "rtl", "fmpp_pkg.sv"),
+               "--out", os.path.join(out, name)]
+        for k in ("exec", "kind", "op"):
+            cmd += [f"--{k}", f"{cls_prefix}{k}_i"]
+        fl.run(cmd, os.path.join(out, name + ".activity.log"))
+    with open(summary) as f:
+        return json.load(f)
+
+
+def groups(text):
+    """{'Sequential'|'Combinational'|'Total': [internal, switching, leakage, total] W}."""
+    r = {}
+    for g in ("Sequential", "Combinational", "Total"):
+        m = re.search(rf"^{g}\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", text, re.M)
+        if not m:
+            raise fl.FlowError(f"OpenSTA reported no {g} power")
+        r[g] = [float(x) for x in m.groups()]
+    return r
+
+
+def power(out, name, top, netlist, tcl, reuse, instances=False):
+    """OpenSTA's power of netlist with the activity Tcl: its groups, and with `instances`
+    the path of its per-instance listing (kept from an earlier run with `reuse` when newer
+    than the Tcl)."""
+    # The inputs arrive with the clock: OpenSTA gives an unclocked pin next to no power.
+    body = (f"set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
+            f"source {tcl}\nreport_power -digits 6")
+    log, listing = os.path.join(out, name + ".chip.log"), os.path.join(out, name + ".instances.log")
+    if instances:
+        body += f"\nreport_power -instances [get_cells *] -digits 6 > {listing}"
+    done = os.path.exists(log) and os.path.getmtime(log) > os.path.getmtime(tcl) and \
+        (not instances or os.path.exists(listing))
+    if reuse and done:
+        with open(log) as f:
+            return groups(f.read()), listing
+    return groups(fl.sta(out, name, top, body, verilog=netlist)), listing
+
+
+def pj(watts):
+    """Energy in pJ of a clock period at `watts`."""
+    return watts * fl.PERIOD * 1e3
+
+
+def tile_classes(out, netlist, act, reuse):
+    """Rows of the tile's energy per clock in each instruction class and over the frame."""
+    rows = []
+    for cls in ["all"] + sorted(c for c in act["classes"] if os.path.exists(os.path.join(out, f"tile.{c}.tcl"))):
+        g, _ = power(out, f"tile_power_{cls}", "fmpp_tile", netlist, os.path.join(out, f"tile.{cls}.tcl"), reuse)
+        cyc = act["cycles"] if cls == "all" else act["classes"][cls]
+        t = g["Total"]
+        rows.append(["tile_class", cls, 1, cyc, pj(t[3]), pj(t[0]), pj(t[1]), pj(t[2]), pj(g["Sequential"][3]),
+                     pj(g["Combinational"][3]), "the 64-lane tile"])
+    return rows
+
+
+def tile_parts(out, netlist, reuse):
+    """Rows of the tile's energy per clock over the frame, by part."""
+    _, listing = power(out, "tile_power_parts", "fmpp_tile", netlist, os.path.join(out, "tile.all.tcl"), reuse, True)
+    sums = ep.by_part(ep.parts(netlist, fl.LIB), ep.instance_power(listing))
+    return [["tile_part", part, 1, "", pj(s[3]), pj(s[0]), pj(s[1]), pj(s[2]), "", "", f"{s[4]} cells"]
+            for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
+
+
+def stub_instances(netlist):
+    """The stand-in tile's cells in an array netlist: its flip-flops (q_<port>) and the
+    gates that only join them to one another."""
+    lib = ep.read_liberty(fl.LIB)
+    _, _, insts, _ = ep.read_netlist(netlist, lib)
+    comb, seqs, fcache, _ = ep.compile_cells(insts, lib)
+    conns = {name: c for name, _, c in insts}
+    driver, readers, ins = ep._graph(comb, fcache, conns)
+    stub = re.compile(r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")
+    flops = {name for name, _, _, q in seqs if stub.match(q)}
+    fwd = ep._forward([q for name, _, _, q in seqs if name in flops], readers, ep._outs(comb))
+    others = [d for name, _, d, _ in seqs if name not in flops]
+    masks = ep._backward_masks([[d for name, _, d, _ in seqs if name in flops], others], driver, ins)
+    return flops | {g for g in fwd if masks.get(g, 0) == 1}
+
+
+def central(out, netlist, fst, reuse):
+    """The central logic's row: the array of one stand-in tile without the stand-in."""
+    act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
+    _, listing = power(out, "central_power", "fmpp_top", netlist, os.path.join(out, "central.all.tcl"), reuse, True)
+    skip = stub_instances(netlist)
+    tot = [0.0] * 4
+    for inst, p in ep.instance_power(listing).items():
+        if inst not in skip:
+            tot = [a + b for a, b in zip(tot, p)]
+    return ["central", "all", "", act["cycles"], pj(tot[3]), pj(tot[0]), pj(tot[1]), pj(tot[2]), "", "",
+            f"fmpp_top with one stand-in tile less its {len(skip)} cells"]
+
+
+def wire_pj_per_mm(out, reps):
+    """{layer: pJ per toggle per mm}: OpenSTA's power of a chain of the layer's repeaters
+    and wires (asic_chip_wires.py's netlist and SPEF) with every net toggling each cycle
+    (the input is given the clock, or OpenSTA gives its logic no activity)."""
+    specs = [(layer, r[1], r[2], False) for layer, r in sorted(reps.items())]
+    chs = wires.chains(specs, fl.LEF)
+    res = {}
+    for ch in chs:
+        n = ch[0]
+        v, spef = os.path.join(out, f"energy_{n}.v"), os.path.join(out, f"energy_{n}.spef")
+        wires.write_netlist(v, [ch])
+        wires.write_spef(spef, [ch])
+        body = (f"read_spef {spef}\nset_driving_cell -lib_cell {ch[2]} -pin Y [get_ports in_{n}]\n"
+                "set_input_delay 0 -clock clk [all_inputs]\nset_power_activity -input -activity 1.0 -duty 0.5\n"
+                "set_power_activity -global -activity 1.0 -duty 0.5\nreport_power -digits 6")
+        g = groups(fl.sta(out, f"energy_{n}", "wires", body, verilog=v, clock_port=None))
+        # STAGES repeaters drive STAGES - 1 wires of the spacing (the last drives nothing)
+        res[ch[1]] = pj(g["Total"][3]) / ((wires.STAGES - 1) * ch[3] / 1000.0)
+    return res
+
+
+def port_toggles(fst, cycles):
+    """{network: toggles per clock, summed over its bits} of the traced tile's ports."""
+    names = {f"{TILE_SCOPE}.{p}": n for n, ps in NETWORKS.items() for p in ps}
+    tr = Trace(fst, set(names))
+    if tr.missing:
+        raise Fail(f"{fst}: the trace lacks {tr.missing[:4]}")
+    prev, tog, n = None, {}, 0
+    for vals in tr.cycles():
+        if prev is not None:
+            for s, v in vals.items():
+                tog[names[s]] = tog.get(names[s], 0) + bin(v ^ prev[s]).count("1")
+        prev, n = vals, n + 1
+    if n < 2:
+        raise Fail(f"{fst}: fewer than two cycles")
+    return {k: v / (n - 1) for k, v in tog.items()}
+
+
+def tree_mm(tiles, side_mm):
+    """The shortest tree over a g x g grid of tile centres (pitch side_mm), T - 1 pitches
+    (a spine and its ribs), and half a pitch more to the central logic beside it."""
+    return (tiles - 0.5) * side_mm
+
+
+def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles):
+    """Rows of the chip of `tiles` tiles per clock: the tiles, the central logic, each
+    network's wires, the clock's wires between the tiles, the total, per block."""
+    mm = tree_mm(tiles, side_mm)
+    per_toggle = sum(pj_mm.values()) / len(pj_mm) * mm  # half on each layer
+    rows = [["chip", "tiles", tiles, "", tiles * tile_pj], ["chip", "central logic", tiles, "", central_pj]]
+    for n in sorted(toggles):
+        rows.append(["chip", f"wires: {n}", tiles, "", toggles[n] * per_toggle])
+    rows.append(["chip", "wires: clock between the tiles", tiles, "", 2 * per_toggle])
+    total = sum(r[4] for r in rows)
+    rows.append(["chip", "total", tiles, "", total])
+    rows.append(["chip", "per block", tiles, "", total / (chip.LANE_W * tiles)])
+    return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires") else ""] for r in rows]
+
+
+def measure(a):
+    """Every row of chip_energy.csv, and the provenance's repeaters."""
+    out = os.path.join(a.chip, "energy")
+    os.makedirs(out, exist_ok=True)
+    tile_v = os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.v")
+    array_v = os.path.join(a.chip, f"array_1t_{a.words}w.v")
+    for v in (tile_v, array_v):
+        if not os.path.exists(v):
+            raise fl.FlowError(f"{v} is missing: run tools/asic_chip.py first (make asic does)")
+    fst, _ = trace(out, a.build, a.reuse)
+    act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
+    rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse)
+    rows.append(central(out, array_v, fst, a.reuse))
+    reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
+    pj_mm = wire_pj_per_mm(out, reps)
+    toggles = port_toggles(fst, act["cycles"])
+    side, _, _ = chip.floorplan(chip.lef_area(a.chip, f"tile_{chip.LANE_W}x{a.words}"), 1, a.density)
+    tile_pj, central_pj = rows[0][4], next(r[4] for r in rows if r[0] == "central")
+    for t in a.tiles:
+        rows += compose(tile_pj, central_pj, toggles, pj_mm, side, t)
+    rows.append(["wire", "pJ per toggle per mm", "", "", "", "", "", "", "", "",
+                 "; ".join(f"{k}: {v:.4f}" for k, v in sorted(pj_mm.items()))])
+    rows.append(["wire", "toggles per clock", "", "", "", "", "", "", "", "",
+                 "; ".join(f"{k}: {v:.3f}" for k, v in sorted(toggles.items()))])
+    return rows, reps
+
+
+def fmt(x):
+    text = f"{x:.3f}" if isinstance(x, float) else str(x)
+    if "," in text:
+        raise fl.FlowError(f"a field of chip_energy.csv holds a comma: {text!r}")
+    return text
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    build = os.environ.get("BUILD", os.path.join(ROOT, "build"))
+    ap.add_argument("--chip", default=os.path.join(build, "asic", "chip"), help="tools/asic_chip.py's --out")
+    ap.add_argument("--build", default=build, help="the build with fmpp-render (the traced frame)")
+    ap.add_argument("--tiles", default="1,4,16,64")
+    ap.add_argument("--words", type=int, default=32)
+    ap.add_argument("--density", type=float, default=0.6)
+    ap.add_argument("--reuse", action="store_true", help="keep the trace and activity an earlier run made")
+    ap.add_argument("--self-test", action="store_true")
+    a = ap.parse_args()
+    if a.self_test:
+        return self_test()
+    a.tiles = [int(x) for x in a.tiles.split(",")]
+    try:
+        rows, reps = measure(a)
+    except (fl.FlowError, Fail, KeyError, OSError) as e:
+        print(f"asic_chip_energy.py: {e}", file=sys.stderr)
+        return 1
+    head = chip.provenance(sys.argv[1:], reps, a.density, "FMPP chip energy: tools/asic_chip_energy.py")
+    head.append(f"# energy per clock of {fl.PERIOD} ns at {volts()} V; the frame: fmpp-render {RENDER}")
+    path = os.path.join(a.chip, "chip_energy.csv")
+    chip.write_csv(path, head, COLS, [[fmt(x) for x in r] for r in rows])
+    for r in rows:
+        if r[0] == "chip" and r[1] == "per block":
+            print(f"{r[2]} tiles: {r[4]:.1f} pJ per block and clock")
+    print(f"wrote {path}")
+    return 0
+
+
+def self_test():
+    """The arithmetic on made-up figures, and the readers on made-up reports."""
+    def near(x, y):
+        return abs(x - y) <= 1e-9 * max(1.0, abs(y))
+    errs = []
+    if not near(tree_mm(1, 6.0), 3.0) or not near(tree_mm(64, 2.0), 127.0):
+        errs.append("tree_mm")
+    rows = compose(100.0, 30.0, {"broadcast": 2.0, "read": 0.5}, {"metal5": 0.3, "metal6": 0.1}, 2.0, 4)
+    got = {r[1]: r[4] for r in rows}
+    per_toggle = 0.2 * 7.0  # (0.3 + 0.1) / 2 pJ per mm, 3.5 pitches of 2 mm
+    want = {"tiles": 400.0, "central logic": 30.0, "wires: broadcast": 2.0 * per_toggle, "wires: read": 0.5 * per_toggle,
+            "wires: clock between the tiles": 2 * per_toggle}
+    want["total"] = sum(want.values())
+    want["per block"] = want["total"] / 256
+    errs += [k for k, v in want.items() if not near(got.get(k, -1.0), v)]
+    if not near(pj(0.5), 5000.0):
+        errs.append("pj")
+    text = ("Sequential 1.0e-03 2.0e-04 1.0e-09 1.2e-03 40.0%\nCombinational 1.0e-03 8.0e-04 1.0e-09 1.8e-03 60%\n"
+            "Total 2.0e-03 1.0e-03 2.0e-09 3.0e-03 100.0%\n")
+    if groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:
+        errs.append("groups")
+    if ep.sink_part(0b0001) != "logic into the words" or ep.sink_part(0b1000) != "logic to the tile's outputs" or \
+            ep.sink_part(0b0011) != ep.SHARED or ep.sink_part(0) != ep.SHARED:
+        errs.append("sink_part")
+    if ep.register_part("mem_q[3][17]") != "words (flip-flops)" or ep.register_part("opb[5]") != \
+            "operand registers (flip-flops)" or ep.register_part("s3_op_q[1]") != ep.OTHER_REG:
+        errs.append("register_part")
+    errs += ep.self_test()
+    if errs:
+        print("asic_chip_energy.py self-test FAILED: " + ", ".join(errs), file=sys.stderr)
+        return 1
+    print(f"asic_chip_energy.py self-test: the composition of {len(rows)} rows, the readers and the parts agree")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,178 @@
+"""The parts of a gate-level tile netlist, for its power by part (tools/asic_chip_energy.py).
+
+A flattened netlist keeps the names of its registers (the flip-flops' Q nets) but not
+which module a gate came from, so a gate is put in a part by where its signals go:
+
+  - a flip-flop by its register: the words (mem_q), the flags (flag_q), the operand
+    registers (opa, opb, cin: stage 3's A, addend and carry-in), or another register;
+  - a gate of the clock's buffer tree (the tree blifFanout builds from the clock port);
+  - a gate that no flip-flop reaches (its inputs come only from the tile's ports): the
+    decoding and the fanout buffers of the broadcast instruction inside the tile;
+  - every other gate by the registers and ports its output reaches: into the words only
+    (the word write), into the flags only, into the operand registers only (the word
+    read and the shifter), to the tile's output ports only (responders, read port, the
+    "if any" OR), or into several of these (the ALU, whose result goes to a word and to
+    C and V, and the write data forwarded into the operand registers).
+"""
+import os
+import re
+
+from asic_netlist import compile_cells, read_liberty, read_netlist
+
+REGISTERS = (("words", r"^mem_q\b"), ("flags", r"^flag_q\b"), ("operand registers", r"^(opa|opb|cin)"))
+SINKS = ("words", "flags", "operand registers", "ports")
+CLOCK = "clock buffers"
+BROADCAST = "broadcast decode and fanout"
+OTHER_REG = "other registers"
+SHARED = "logic into several of these (words/flags/operands/ports)"
+
+
+def sink_part(mask):
+    """The part of a gate whose output reaches the sinks of bit mask `mask`."""
+    hit = [s for i, s in enumerate(SINKS) if mask >> i & 1]
+    if len(hit) != 1:
+        return SHARED
+    return "logic to the tile's outputs" if hit[0] == "ports" else "logic into the " + hit[0]
+
+
+def register_part(qnet):
+    for part, pat in REGISTERS:
+        if re.search(pat, qnet):
+            return part + " (flip-flops)"
+    return OTHER_REG
+
+
+def _graph(comb, fcache, conns):
+    """Per net its driving gate and the gates that read it; per gate its input nets."""
+    driver, readers, ins = {}, {}, {}
+    for name, cell, o, net in comb:
+        driver[net] = name
+        ins[name] = [conns[name][p] for p in fcache[(cell, o)][0] if p in conns[name]]
+        for n in ins[name]:
+            readers.setdefault(n, set()).add(name)
+    return driver, readers, ins
+
+
+def _outs(comb):
+    outs = {}
+    for name, _, _, net in comb:
+        outs.setdefault(name, []).append(net)
+    return outs
+
+
+def _forward(starts, readers, outs):
+    """Gates reached from the nets `starts` through combinational gates."""
+    seen, todo = set(), list(starts)
+    while todo:
+        for g in readers.get(todo.pop(), ()):
+            if g not in seen:
+                seen.add(g)
+                todo.extend(outs[g])
+    return seen
+
+
+def _backward_masks(sink_nets, driver, ins):
+    """Per gate the bit mask of the sinks (index into SINKS) its output reaches."""
+    mask = {}
+    for i, nets in enumerate(sink_nets):
+        todo = [driver[n] for n in nets if n in driver]
+        while todo:
+            g = todo.pop()
+            if mask.get(g, 0) >> i & 1:
+                continue
+            mask[g] = mask.get(g, 0) | (1 << i)
+            todo.extend(driver[n] for n in ins[g] if n in driver)
+    return mask
+
+
+def parts(netlist, liberty, clock="clk_i"):
+    """{instance name: part} for every cell of the netlist."""
+    lib = read_liberty(liberty)
+    _, portbits, insts, find = read_netlist(netlist, lib)
+    comb, seqs, fcache, _ = compile_cells(insts, lib)
+    conns = {name: c for name, _, c in insts}
+    driver, readers, ins = _graph(comb, fcache, conns)
+    outs = _outs(comb)
+    clock_gates = _forward([find(clock)], readers, outs)
+    state_gates = _forward([q for _, _, _, q in seqs], readers, outs)
+    sink_nets = [[], [], [], [find(p) for p, d in portbits.items() if d == "output"]]
+    part = {}
+    for name, _, d, q in seqs:
+        part[name] = register_part(q)
+        for i, s in enumerate(SINKS[:3]):
+            if part[name].startswith(s):
+                sink_nets[i].append(d)
+    mask = _backward_masks(sink_nets, driver, ins)
+    for name in outs:
+        if name in clock_gates:
+            part[name] = CLOCK
+        elif name not in state_gates:
+            part[name] = BROADCAST
+        else:
+            part[name] = sink_part(mask.get(name, 0))
+    return part
+
+
+def instance_power(log):
+    """{instance: (internal, switching, leakage, total) in W} from OpenSTA's
+    `report_power -instances` listing."""
+    row = re.compile(r"^\s*([-\d.e+]+)\s+([-\d.e+]+)\s+([-\d.e+]+)\s+([-\d.e+]+)\s+(\S+)\s*$")
+    out = {}
+    with open(log) as f:
+        for line in f:
+            m = row.match(line)
+            if m:
+                out[m.group(5).lstrip("\\")] = tuple(float(m.group(i)) for i in range(1, 5))
+    return out
+
+
+def by_part(part, power):
+    """{part: [internal, switching, leakage, total, cells]} summed over the instances."""
+    sums = {}
+    for inst, p in power.items():
+        s = sums.setdefault(part.get(inst, "unattributed"), [0.0, 0.0, 0.0, 0.0, 0])
+        for i in range(4):
+            s[i] += p[i]
+        s[4] += 1
+    return sums
+
+
+# A made-up library and netlist with a gate of every kind of part, for self_test.
+LIB_TEXT = """library (t) {
+cell (BUFX2) { pin (A) { direction : input; } pin (Y) { direction : output; function : "A"; } }
+cell (AND2X2) { pin (A) { direction : input; } pin (B) { direction : input; }
+  pin (Y) { direction : output; function : "(A B)"; } }
+cell (DFFPOSX1) { ff (DS0000,P0000) { next_state : "D"; clocked_on : "CLK"; }
+  pin (CLK) { direction : input; } pin (D) { direction : input; } pin (Q) { direction : output; function : "DS0000"; } }
+}
+"""
+NETLIST_TEXT = """module t (clk_i, a_i, y_o);
+input clk_i;
+input a_i;
+output y_o;
+BUFX2 g_clk (.A(clk_i), .Y(ck));
+BUFX2 g_in (.A(a_i), .Y(ad));
+DFFPOSX1 r_w (.CLK(ck), .D(m), .Q(mem_q));
+DFFPOSX1 r_f (.CLK(ck), .D(f), .Q(flag_q));
+AND2X2 g_w (.A(ad), .B(flag_q), .Y(m));
+AND2X2 g_x (.A(mem_q), .B(ad), .Y(x));
+BUFX2 g_f (.A(x), .Y(f));
+AND2X2 g_o (.A(x), .B(mem_q), .Y(y_o));
+endmodule
+"""
+
+
+def self_test():
+    """Errors of parts() on a made-up netlist with one gate of each kind (none when it works)."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as d:
+        lib, net = os.path.join(d, "t.lib"), os.path.join(d, "t.v")
+        with open(lib, "w") as f:
+            f.write(LIB_TEXT)
+        with open(net, "w") as f:
+            f.write(NETLIST_TEXT)
+        got = parts(net, lib)
+    want = {"g_clk": CLOCK, "g_in": BROADCAST, "r_w": "words (flip-flops)", "r_f": "flags (flip-flops)",
+            "g_w": "logic into the words", "g_x": SHARED, "g_f": "logic into the flags",
+            "g_o": "logic to the tile's outputs"}
+    return [f"part of {k}: {got.get(k)!r}" for k, v in want.items() if got.get(k) != v]
