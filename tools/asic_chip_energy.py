@@ -37,6 +37,7 @@ Usage: asic_chip_energy.py [--chip DIR] [--build DIR] [--tiles 1,4,16,64] [--den
 Writes DIR/chip_energy.csv (with the provenance lines of tools/asic_chip.py's files).
 """
 import argparse
+import json
 import os
 import re
 import sys
@@ -71,23 +72,28 @@ def volts():
     return float(m.group(1))
 
 
+def same_text(path, text):
+    if not os.path.exists(path):
+        return False
+    with open(path) as f:
+        return f.read().strip() == text
+
+
 def trace(out, build, reuse):
-    """The traced frame: (FST path, the render's clocks)."""
+    """The traced frame's FST (made again unless `reuse` finds one of the same render)."""
     fst, args = os.path.join(out, "render.fst"), os.path.join(out, "render.args")
-    if not (reuse and os.path.exists(fst) and os.path.exists(args) and open(args).read().strip() == RENDER):
+    if not (reuse and os.path.exists(fst) and same_text(args, RENDER)):
         log = os.path.join(out, "render.log")
-        fl.run([os.path.join(build, "fmpp-render")] + RENDER.split() +
+        args_abs = [os.path.join(ROOT, x) if x.startswith("scenes/") else x for x in RENDER.split()]
+        fl.run([os.path.join(build, "fmpp-render")] + args_abs +
                ["--trace", fst, "--out", os.path.join(out, "render.png"), "--report", os.path.join(out, "render.json")], log)
         with open(args, "w") as f:
             f.write(RENDER + "\n")
-    import json
-    with open(os.path.join(out, "render.json")) as f:
-        return fst, json.load(f)["cycles"]
+    return fst
 
 
 def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
     """tools/asic_activity.py on netlist: its summary (cycles by class)."""
-    import json
     summary = os.path.join(out, name + ".json")
     if not (reuse and os.path.exists(summary) and os.path.getmtime(summary) > os.path.getmtime(fst)):
         cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
@@ -251,7 +257,7 @@ def measure(a):
     for v in (tile_v, array_v):
         if not os.path.exists(v):
             raise fl.FlowError(f"{v} is missing: run tools/asic_chip.py first (make asic does)")
-    fst, _ = trace(out, a.build, a.reuse)
+    fst = trace(out, a.build, a.reuse)
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
     rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse)
     rows.append(central(out, array_v, fst, a.reuse))
