@@ -160,27 +160,11 @@ def tile_parts(out, netlist, reuse):
             for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
 
 
-def stub_instances(netlist):
-    """The stand-in tile's cells in an array netlist: its flip-flops (q_<port>) and the
-    gates that only join them to one another."""
-    lib = ep.read_liberty(fl.LIB)
-    _, _, insts, _ = ep.read_netlist(netlist, lib)
-    comb, seqs, fcache, _ = ep.compile_cells(insts, lib)
-    conns = {name: c for name, _, c in insts}
-    driver, readers, ins = ep._graph(comb, fcache, conns)
-    stub = re.compile(r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")
-    flops = {name for name, _, _, q in seqs if stub.match(q)}
-    fwd = ep._forward([q for name, _, _, q in seqs if name in flops], readers, ep._outs(comb))
-    others = [d for name, _, d, _ in seqs if name not in flops]
-    masks = ep._backward_masks([[d for name, _, d, _ in seqs if name in flops], others], driver, ins)
-    return flops | {g for g in fwd if masks.get(g, 0) == 1}
-
-
 def central(out, netlist, fst, reuse):
     """The central logic's row: the array of one stand-in tile without the stand-in."""
     act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
     _, listing = power(out, "central_power", "fmpp_top", netlist, os.path.join(out, "central.all.tcl"), reuse, True)
-    skip = stub_instances(netlist)
+    skip = ep.island(netlist, fl.LIB, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
     tot = [0.0] * 4
     for inst, p in ep.instance_power(listing).items():
         if inst not in skip:

@@ -42,68 +42,61 @@ def register_part(qnet):
     return OTHER_REG
 
 
-def _graph(comb, fcache, conns):
-    """Per net its driving gate and the gates that read it; per gate its input nets."""
-    driver, readers, ins = {}, {}, {}
-    for name, cell, o, net in comb:
-        driver[net] = name
-        ins[name] = [conns[name][p] for p in fcache[(cell, o)][0] if p in conns[name]]
-        for n in ins[name]:
-            readers.setdefault(n, set()).add(name)
-    return driver, readers, ins
+class Graph:
+    """A gate-level netlist as a graph: its flip-flops (instance, cell, D net, Q net), per net
+    its driving gate and readers, per gate its input and output nets."""
 
+    def __init__(self, netlist, liberty):
+        lib = read_liberty(liberty)
+        _, self.portbits, insts, self.find = read_netlist(netlist, lib)
+        comb, self.seqs, fcache, _ = compile_cells(insts, lib)
+        conns = {name: c for name, _, c in insts}
+        self.driver, self.readers, self.ins, self.outs = {}, {}, {}, {}
+        for name, cell, o, net in comb:
+            self.driver[net] = name
+            self.outs.setdefault(name, []).append(net)
+            self.ins[name] = [conns[name][p] for p in fcache[(cell, o)][0] if p in conns[name]]
+            for n in self.ins[name]:
+                self.readers.setdefault(n, set()).add(name)
 
-def _outs(comb):
-    outs = {}
-    for name, _, _, net in comb:
-        outs.setdefault(name, []).append(net)
-    return outs
-
-
-def _forward(starts, readers, outs):
-    """Gates reached from the nets `starts` through combinational gates."""
-    seen, todo = set(), list(starts)
-    while todo:
-        for g in readers.get(todo.pop(), ()):
-            if g not in seen:
-                seen.add(g)
-                todo.extend(outs[g])
-    return seen
-
-
-def _backward_masks(sink_nets, driver, ins):
-    """Per gate the bit mask of the sinks (index into SINKS) its output reaches."""
-    mask = {}
-    for i, nets in enumerate(sink_nets):
-        todo = [driver[n] for n in nets if n in driver]
+    def forward(self, starts):
+        """Gates reached from the nets `starts` through combinational gates."""
+        seen, todo = set(), list(starts)
         while todo:
-            g = todo.pop()
-            if mask.get(g, 0) >> i & 1:
-                continue
-            mask[g] = mask.get(g, 0) | (1 << i)
-            todo.extend(driver[n] for n in ins[g] if n in driver)
-    return mask
+            for g in self.readers.get(todo.pop(), ()):
+                if g not in seen:
+                    seen.add(g)
+                    todo.extend(self.outs[g])
+        return seen
+
+    def masks(self, sink_nets):
+        """Per gate the bit mask of the groups of sink_nets (bit i: group i) its output reaches."""
+        mask = {}
+        for i, nets in enumerate(sink_nets):
+            todo = [self.driver[n] for n in nets if n in self.driver]
+            while todo:
+                g = todo.pop()
+                if mask.get(g, 0) >> i & 1:
+                    continue
+                mask[g] = mask.get(g, 0) | (1 << i)
+                todo.extend(self.driver[n] for n in self.ins[g] if n in self.driver)
+        return mask
 
 
 def parts(netlist, liberty, clock="clk_i"):
     """{instance name: part} for every cell of the netlist."""
-    lib = read_liberty(liberty)
-    _, portbits, insts, find = read_netlist(netlist, lib)
-    comb, seqs, fcache, _ = compile_cells(insts, lib)
-    conns = {name: c for name, _, c in insts}
-    driver, readers, ins = _graph(comb, fcache, conns)
-    outs = _outs(comb)
-    clock_gates = _forward([find(clock)], readers, outs)
-    state_gates = _forward([q for _, _, _, q in seqs], readers, outs)
-    sink_nets = [[], [], [], [find(p) for p, d in portbits.items() if d == "output"]]
+    gr = Graph(netlist, liberty)
+    clock_gates = gr.forward([gr.find(clock)])
+    state_gates = gr.forward([q for _, _, _, q in gr.seqs])
+    sink_nets = [[], [], [], [gr.find(p) for p, d in gr.portbits.items() if d == "output"]]
     part = {}
-    for name, _, d, q in seqs:
+    for name, _, d, q in gr.seqs:
         part[name] = register_part(q)
         for i, s in enumerate(SINKS[:3]):
             if part[name].startswith(s):
                 sink_nets[i].append(d)
-    mask = _backward_masks(sink_nets, driver, ins)
-    for name in outs:
+    mask = gr.masks(sink_nets)
+    for name in gr.outs:
         if name in clock_gates:
             part[name] = CLOCK
         elif name not in state_gates:
@@ -111,6 +104,18 @@ def parts(netlist, liberty, clock="clk_i"):
         else:
             part[name] = sink_part(mask.get(name, 0))
     return part
+
+
+def island(netlist, liberty, qpat):
+    """The flip-flops whose Q net matches the regex qpat, and the gates that only join them to
+    one another (fed by them and reaching no other flip-flop): a stand-in's cells."""
+    gr = Graph(netlist, liberty)
+    pat = re.compile(qpat)
+    flops = {name for name, _, _, q in gr.seqs if pat.match(q)}
+    fwd = gr.forward([q for name, _, _, q in gr.seqs if name in flops])
+    masks = gr.masks([[d for name, _, d, _ in gr.seqs if name in flops],
+                      [d for name, _, d, _ in gr.seqs if name not in flops]])
+    return flops | {g for g in fwd if masks.get(g, 0) == 1}
 
 
 def instance_power(log):

@@ -147,10 +147,9 @@ def energy_block():
          "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for line in docblock.read_block(os.path.join(ROOT, "docs", "perf.md"), "embree").split("\n"):
         cs = reclock.cells(line) if line.startswith("|") else None
-        if not (cs and len(cs) == 12 and cs[5].replace(",", "").isdigit()):
+        if not (cs and reclock.embree_row(cs)):
             continue
-        rays, cyc = reclock.num(re.search(r"\(([\d,]+)\)", cs[1]).group(1)), reclock.num(cs[5])
-        rate = max(reclock.si_value(cs[2]), reclock.si_value(cs[3]))
+        rays, cyc, rate = reclock.embree_row(cs)
         fmpp_uj, cpu_uj = total * cyc / rays / 1e6, CPU_CORE_W / rate * 1e6
         o.append("| %s | %s | %s | %.1f uJ | %s | %.2f uJ | %.0f |" % (
             cs[0], fmt(rays), fmt(cyc), fmpp_uj, cs[2] if reclock.si_value(cs[2]) >= rate else cs[3], cpu_uj,

@@ -85,6 +85,14 @@ def gallery_table(text):
     return "\n".join(with_note(out))
 
 
+def embree_row(cs):
+    """(FMPP rays, FMPP clocks, Embree's faster rate) of a data row of docs/perf.md's Embree
+    table (its cells), or None for any other row."""
+    if len(cs) != 12 or not re.fullmatch(r"[\d,]+", cs[5]):
+        return None
+    return num(re.search(r"\(([\d,]+)\)", cs[1]).group(1)), num(cs[5]), max(si_value(cs[2]), si_value(cs[3]))
+
+
 def embree_table(text):
     import bench_embree
     fpga, asic, size, proj, label = clocks()
@@ -97,10 +105,8 @@ def embree_table(text):
             cs[9] = "faster Embree / FMPP at %.1f MHz" % asic
             cs[10] = "at %.0f MHz (%s)" % (proj, label)
             line = row(cs)
-        elif cs and len(cs) == 12 and re.fullmatch(r"[\d,]+", cs[5]):
-            n = num(re.search(r"\(([\d,]+)\)", cs[1]).group(1))
-            cyc = num(cs[5])
-            embree = max(si_value(cs[2]), si_value(cs[3]))
+        elif cs and embree_row(cs):
+            n, cyc, embree = embree_row(cs)
             fmpp = lambda mhz: n / (cyc / (mhz * 1e6))  # noqa: E731
             cs[7] = bench_embree.si(fmpp(fpga))
             cs[8] = bench_embree.si(fmpp(asic))
