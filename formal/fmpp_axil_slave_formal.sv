@@ -170,6 +170,14 @@ module fmpp_axil_slave_formal #(
   always_ff @(posedge clk_i) begin
     f_err_ev_q <= rst_ni && ((w_hs && (!w_ok || awaddr_i == fmpp_pkg::REG_ERROR)) || (r_hs && !r_ok));
   end
+  // Clocks in a row that the read on AR could have been served.
+  logic       f_servable;
+  logic [7:0] f_rwait_q;
+  assign f_servable = arvalid_i && (!rvalid || rready_i) && q_empty_i && !f_err_ev_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni || !f_servable || arready) f_rwait_q <= 8'd0;
+    else f_rwait_q <= f_rwait_q + 8'd1;
+  end
 
   logic [1:0]  f_bresp_q, f_rresp_q;
   logic        f_bvalid_q, f_rvalid_q, f_bready_q, f_rready_q;
@@ -231,7 +239,10 @@ module fmpp_axil_slave_formal #(
       // back-pressure pattern on B and R can deadlock the port.
       if (awvalid_i && wvalid_i && (!bvalid || bready_i) && (w_queued ? !q_full_i : q_empty_i))
         p_no_stall_w: assert (awready);
-      if (arvalid_i && (!rvalid || rready_i) && q_empty_i && !f_err_ev_q) p_no_stall_r: assert (arready);
+      // A RESP or STATUS read (resp_en) is accepted after RespLatency clocks in which it could be
+      // served (the responder tree's registers), and not before.
+      if (f_servable && (!resp_en || 32'(f_rwait_q) == fmpp_pkg::RespLatency)) p_no_stall_r: assert (arready);
+      if (arready && resp_en) p_resp_waits: assert (32'(f_rwait_q) == fmpp_pkg::RespLatency);
     end
   end
 
@@ -247,5 +258,5 @@ module fmpp_axil_slave_formal #(
   end
 
   logic unused;
-  assign unused = ^{rd_en, rd_kind, rd_block, rd_word, rd_flag, resp_en, gap, awprot_i, arprot_i};
+  assign unused = ^{rd_en, rd_kind, rd_block, rd_word, rd_flag, gap, awprot_i, arprot_i};
 endmodule

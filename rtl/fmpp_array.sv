@@ -37,7 +37,8 @@ module fmpp_array #(
   input  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_i,
   output logic [63:0]          rd_data_o,
 
-  // Responders and summaries (combinational, evaluated when resp_en_i)
+  // Responders and summaries (the responder tree's top registers: valid RespLatency clocks
+  // after resp_en_i rose with the flags settled)
   input  logic                 resp_en_i,
   output logic                 resp_any_o,
   output logic [fmpp_pkg::REG_RESP_COUNT_W-1:0] resp_count_o,
@@ -64,7 +65,7 @@ module fmpp_array #(
   // and an entry executed then would write a word (words have no reset) that the reset
   // was meant to drop (found by the soak's resets in the middle of programs). The
   // pipeline's valid bits reset with it, and the tiles gate their word write with rst_ni.
-  assign pop      = rst_ni && head_valid_i && gap_q == '0;
+  assign pop      = rst_ni && head_valid_i && gap_q == '0 && !hold;
   assign pop_o    = pop;
   assign is_instr = head_i.kind == fmpp_pkg::QE_INSTR;
   assign instr    = head_i.data;
@@ -83,54 +84,54 @@ module fmpp_array #(
   // (public: the lockstep checker snapshots the state after every retire).
   logic                         s2_valid_q, s3_valid_q;
   logic                         retire /*verilator public_flat_rd*/;
+  // (The central copies keep only what the sequencer needs: the tiles take their fields from
+  // their group's copies below.)
   fmpp_pkg::qkind_e             s2_kind_q, s3_kind_q;
   logic [fmpp_pkg::F_OP_W-1:0]  s2_op_q, s3_op_q;
-  logic [fmpp_pkg::F_F_W-1:0]   s2_f_q, s3_f_q;
-  logic [fmpp_pkg::F_D_W-1:0]   s2_d_q, s3_d_q;
-  logic [fmpp_pkg::F_A_W-1:0]   s2_a_q;
-  logic [fmpp_pkg::F_B_W-1:0]   s2_b_q;
-  logic [fmpp_pkg::F_X_W-1:0]   s2_x_q, s3_x_q;
   logic [fmpp_pkg::F_IMM_W-1:0] s2_imm_q, s3_imm_q;
-  logic [fmpp_pkg::BlockIdxW-1:0] s2_block_q, s3_block_q;
-  logic [3:0]                   s2_strb_q, s3_strb_q;
+
+  // A FLAGOP with FLAG_ANY waits in stage 3 for the any tree (the tile, group and top registers
+  // and the group's copy of the answer):
+  // the pipeline holds for AnyLatency clocks (no pop, stages 2 and 3 keep their entries, the
+  // tiles write nothing), and the entry executes in the clock after, with the tree's answer.
+  // The centre and every group compute the hold from their own copies of stage 3's control
+  // fields (alike by construction), so that no hold crosses the die.
+  localparam int unsigned AnyLat = fmpp_pkg::AnyLatency;
+  localparam int unsigned CntW   = $clog2(AnyLat + 1);
+  logic [CntW-1:0] hold_cnt_q;
+  logic hold;
+  assign hold = s3_valid_q && s3_kind_q == fmpp_pkg::QE_INSTR && s3_op_q == fmpp_pkg::OP_FLAGOP &&
+                s3_imm_q[fmpp_pkg::FLAG_ANY_LSB] && 32'(hold_cnt_q) != AnyLat;
 
   always_ff @(posedge clk_i) begin
     if (!rst_ni) begin
       s2_valid_q <= 1'b0;
       s3_valid_q <= 1'b0;
+      hold_cnt_q <= '0;
+    end else if (hold) begin
+      hold_cnt_q <= hold_cnt_q + 1'b1;
     end else begin
       s2_valid_q <= pop;
       s3_valid_q <= s2_valid_q;
+      hold_cnt_q <= '0;
     end
   end
 
   // The payload moves only with an entry (no reset: its valid bit says whether it counts).
   always_ff @(posedge clk_i) begin
     if (pop) begin
-      s2_kind_q  <= head_i.kind;
-      s2_op_q    <= dc_op;
-      s2_f_q     <= instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W];
-      s2_d_q     <= dc_d;
-      s2_a_q     <= instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W];
-      s2_b_q     <= instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
-      s2_x_q     <= instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W];
-      s2_imm_q   <= dc_imm;
-      s2_block_q <= head_i.block;
-      s2_strb_q  <= head_i.strb;
+      s2_kind_q <= head_i.kind;
+      s2_op_q   <= dc_op;
+      s2_imm_q  <= dc_imm;
     end
-    if (s2_valid_q) begin
-      s3_kind_q  <= s2_kind_q;
-      s3_op_q    <= s2_op_q;
-      s3_f_q     <= s2_f_q;
-      s3_d_q     <= s2_d_q;
-      s3_x_q     <= s2_x_q;
-      s3_imm_q   <= s2_imm_q;
-      s3_block_q <= s2_block_q;
-      s3_strb_q  <= s2_strb_q;
+    if (s2_valid_q && !hold) begin
+      s3_kind_q <= s2_kind_q;
+      s3_op_q   <= s2_op_q;
+      s3_imm_q  <= s2_imm_q;
     end
   end
 
-  assign retire = s3_valid_q;
+  assign retire = s3_valid_q && !hold;
   assign busy_o = s2_valid_q || s3_valid_q;
 
   logic [63:0] instret_inc;
@@ -157,13 +158,86 @@ module fmpp_array #(
   assign mask_o    = mask_q;
   assign instret_o = instret_q;
 
-  // The executing entry's fields, shared by every tile (IMM carries a window write's data).
+  // The executing entry's opcode, for the waveforms and the cover points.
   logic [fmpp_pkg::F_OP_W-1:0]  op;
-  logic [fmpp_pkg::F_X_W-1:0]   x;
-  logic [fmpp_pkg::F_IMM_W-1:0] imm;
   assign op  = s3_op_q;
-  assign x   = s3_x_q;
-  assign imm = s3_imm_q;
+
+  // The broadcast: every group of TreeGroup tiles has its own copy of the stage-2 registers
+  // and their valid bit, of stage 3's control fields and of the hold (loaded at the same
+  // edges as the central ones); every tile has its own copy of stage 3 and of MASK, loaded
+  // from its group's stage 2. So no register drives more than a group's tiles, and a tile's
+  // stage 3 sits at the tile. (The copies' processes are kept: yosys would merge copies that
+  // have the same inputs into one.)
+  localparam int unsigned GroupW    = fmpp_pkg::TreeGroup;
+  localparam int unsigned NumGroups = (NumTiles + GroupW - 1) / GroupW;
+  logic top_flag_q;
+  for (genvar g = 0; g < NumGroups; g++) begin : g_bc
+    logic                         v2_q, v3_q, any3_q, ans_q, hold_g;
+    logic [fmpp_pkg::F_A_W-1:0]   a2_q;
+    logic [fmpp_pkg::F_B_W-1:0]   b2_q;
+    logic [fmpp_pkg::F_OP_W-1:0]  op2_q, op3_q;
+    logic [fmpp_pkg::F_IMM_W-1:0] imm2_q;
+    fmpp_pkg::qkind_e             kind2_q, kind3_q;
+    logic [fmpp_pkg::F_F_W-1:0]   f2_q;
+    logic [fmpp_pkg::F_D_W-1:0]   d2_q;
+    logic [fmpp_pkg::F_X_W-1:0]   x2_q;
+    logic [fmpp_pkg::BlockIdxW-1:0] block2_q;
+    logic [3:0]                   strb2_q;
+    logic [CntW-1:0]              cnt_q;
+    // The same hold as the centre's, from the group's own copies.
+    assign hold_g = v3_q && kind3_q == fmpp_pkg::QE_INSTR && op3_q == fmpp_pkg::OP_FLAGOP && any3_q &&
+                    32'(cnt_q) != AnyLat;
+    (* keep *) always_ff @(posedge clk_i) begin
+      if (!rst_ni) begin
+        {v2_q, v3_q, cnt_q} <= '0;
+      end else if (hold_g) begin
+        cnt_q <= cnt_q + 1'b1;
+      end else begin
+        {v2_q, v3_q, cnt_q} <= {pop, v2_q, CntW'(0)};
+      end
+    end
+    (* keep *) always_ff @(posedge clk_i) begin
+      if (pop) begin
+        {kind2_q, op2_q, f2_q, d2_q} <= {head_i.kind, dc_op, instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W], dc_d};
+        {a2_q, b2_q, x2_q}           <= {instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W],
+                                         instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W],
+                                         instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W]};
+        {imm2_q, block2_q, strb2_q}  <= {dc_imm, head_i.block, head_i.strb};
+      end
+      if (v2_q && !hold_g) {kind3_q, op3_q, any3_q} <= {kind2_q, op2_q, imm2_q[fmpp_pkg::FLAG_ANY_LSB]};
+      // The last register of the any tree: the top register's answer, near the group's tiles.
+      ans_q <= top_flag_q;
+    end
+  end
+
+  for (genvar t = 0; t < NumTiles; t++) begin : g_t3
+    logic                         v3_q;
+    fmpp_pkg::qkind_e             kind3_q;
+    logic [fmpp_pkg::F_OP_W-1:0]  op3_q;
+    logic [fmpp_pkg::F_F_W-1:0]   f3_q;
+    logic [fmpp_pkg::F_D_W-1:0]   d3_q;
+    logic [fmpp_pkg::F_X_W-1:0]   x3_q;
+    logic [fmpp_pkg::F_IMM_W-1:0] imm3_q;
+    logic [fmpp_pkg::BlockIdxW-1:0] block3_q;
+    logic [3:0]                   strb3_q;
+    logic [31:0]                  tmask_q;
+    (* keep *) always_ff @(posedge clk_i) begin
+      if (!rst_ni) begin
+        {v3_q, tmask_q} <= '0;
+      end else begin
+        if (!g_bc[t / GroupW].hold_g) v3_q <= g_bc[t / GroupW].v2_q;
+        if (v3_q && kind3_q == fmpp_pkg::QE_INSTR && op3_q == fmpp_pkg::OP_MASKSET) tmask_q <= imm3_q;
+      end
+    end
+    (* keep *) always_ff @(posedge clk_i) begin
+      if (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g) begin
+        {kind3_q, op3_q, f3_q, d3_q, x3_q} <= {g_bc[t / GroupW].kind2_q, g_bc[t / GroupW].op2_q,
+                                               g_bc[t / GroupW].f2_q, g_bc[t / GroupW].d2_q, g_bc[t / GroupW].x2_q};
+        {imm3_q, block3_q, strb3_q}       <= {g_bc[t / GroupW].imm2_q, g_bc[t / GroupW].block2_q,
+                                               g_bc[t / GroupW].strb2_q};
+      end
+    end
+  end
 
   // Tiles
   logic        t_flagop_any [NumTiles];
@@ -172,7 +246,6 @@ module fmpp_array #(
   logic [fmpp_pkg::LaneIdxW-1:0] t_sel_first [NumTiles];
   logic        t_ovf_any    [NumTiles];
   logic [63:0] t_rd_data    [NumTiles];
-  logic        flagop_any;
 
   for (genvar t = 0; t < NumTiles; t++) begin : g_tile
     localparam int unsigned Lanes = (t == NumTiles - 1) ? LastLanes : LaneW;
@@ -180,23 +253,24 @@ module fmpp_array #(
       .clk_i,
       .rst_ni,
       .base_i       (t * LaneW),
-      .opr_en_i     (s2_valid_q),
-      .a_i          (s2_a_q),
-      .b_i          (s2_b_q),
-      .opr_op_i     (s2_op_q),
-      .opr_imm_i    (s2_imm_q),
-      .exec_i       (s3_valid_q),
-      .kind_i       (s3_kind_q),
-      .op_i         (op),
-      .f_i          (s3_f_q),
-      .d_i          (s3_d_q),
-      .x_i          (x),
-      .imm_i        (imm),
-      .mask_i       (mask_q),
-      .hw_block_i   (s3_block_q),
-      .hw_strb_i    (s3_strb_q),
-      .hw_data_i    (imm),
-      .flagop_any_i (flagop_any),
+      .opr_en_i     (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g),
+      .a_i          (g_bc[t / GroupW].a2_q),
+      .b_i          (g_bc[t / GroupW].b2_q),
+      .opr_op_i     (g_bc[t / GroupW].op2_q),
+      .opr_imm_i    (g_bc[t / GroupW].imm2_q),
+      .exec_i       (g_t3[t].v3_q),
+      .kind_i       (g_t3[t].kind3_q),
+      .op_i         (g_t3[t].op3_q),
+      .f_i          (g_t3[t].f3_q),
+      .d_i          (g_t3[t].d3_q),
+      .x_i          (g_t3[t].x3_q),
+      .imm_i        (g_t3[t].imm3_q),
+      .mask_i       (g_t3[t].tmask_q),
+      .hw_block_i   (g_t3[t].block3_q),
+      .hw_strb_i    (g_t3[t].strb3_q),
+      .hw_data_i    (g_t3[t].imm3_q),
+      // The tiles write FLAGOP's "if any" only once the tree has answered (none while holding).
+      .flagop_any_i (g_bc[t / GroupW].ans_q && !g_bc[t / GroupW].hold_g),
       .flagop_any_o (t_flagop_any[t]),
       .rd_en_i      (rd_en_i),
       .rd_kind_i    (rd_kind_i),
@@ -212,10 +286,6 @@ module fmpp_array #(
     );
   end
 
-  always_comb begin
-    flagop_any = 1'b0;
-    for (int t = 0; t < NumTiles; t++) flagop_any = flagop_any | t_flagop_any[t];
-  end
 
   // Read data: only the addressed tile drives a non-zero value.
   always_comb begin
@@ -223,21 +293,65 @@ module fmpp_array #(
     for (int t = 0; t < NumTiles; t++) rd_data_o = rd_data_o | t_rd_data[t];
   end
 
-  // Responders: FIRST is the lowest selected block, so scan tiles from the top down.
-  always_comb begin
-    resp_any_o   = 1'b0;
-    resp_count_o = '0;
-    resp_first_o = '0;
-    ovf_any_o    = 1'b0;
-    if (resp_en_i) begin
-      for (int t = NumTiles - 1; t >= 0; t--) begin
-        resp_count_o = resp_count_o + t_sel_count[t];
-        ovf_any_o    = ovf_any_o | t_ovf_any[t];
-        if (t_sel_any[t]) begin
-          resp_any_o   = 1'b1;
-          resp_first_o = fmpp_pkg::REG_RESP_FIRST_W'(t * LaneW) | fmpp_pkg::REG_RESP_FIRST_W'(t_sel_first[t]);
+  // The reduction trees: each tile's answers are registered in the tile, a register per group
+  // of TreeGroup tiles combines its tiles', and a top register combines the groups'. The
+  // responders follow the flags while a RESP or STATUS read waits (resp_en_i) and the slave
+  // accepts the read RespLatency clocks after the queue drained; FLAGOP's any runs every clock.
+  logic        g_any_q   [NumGroups];
+  logic [31:0] g_count_q [NumGroups];
+  logic [fmpp_pkg::REG_RESP_FIRST_W-1:0] g_first_q [NumGroups];
+  logic        g_ovf_q   [NumGroups];
+  logic        g_flag_q  [NumGroups];
+
+  // FIRST is the lowest selected block, so each scan runs from the top down.
+  always_ff @(posedge clk_i) begin
+    for (int g = 0; g < NumGroups; g++) begin
+      logic any, ovf, fl;
+      logic [31:0] count;
+      logic [fmpp_pkg::REG_RESP_FIRST_W-1:0] first;
+      {any, ovf, fl, count, first} = '0;
+      for (int t = GroupW - 1; t >= 0; t--) begin
+        if (g * GroupW + t < NumTiles) begin
+          count = count + t_sel_count[g * GroupW + t];
+          ovf   = ovf | t_ovf_any[g * GroupW + t];
+          fl    = fl | t_flagop_any[g * GroupW + t];
+          if (t_sel_any[g * GroupW + t]) begin
+            any   = 1'b1;
+            first = fmpp_pkg::REG_RESP_FIRST_W'((g * GroupW + t) * LaneW) |
+                    fmpp_pkg::REG_RESP_FIRST_W'(t_sel_first[g * GroupW + t]);
+          end
         end
       end
+      g_flag_q[g] <= fl;
+      if (resp_en_i) begin
+        g_any_q[g]   <= any;
+        g_count_q[g] <= count;
+        g_first_q[g] <= first;
+        g_ovf_q[g]   <= ovf;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    logic any, ovf, fl;
+    logic [fmpp_pkg::REG_RESP_COUNT_W-1:0] count;
+    logic [fmpp_pkg::REG_RESP_FIRST_W-1:0] first;
+    {any, ovf, fl, count, first} = '0;
+    for (int g = NumGroups - 1; g >= 0; g--) begin
+      count = count + fmpp_pkg::REG_RESP_COUNT_W'(g_count_q[g]);
+      ovf   = ovf | g_ovf_q[g];
+      fl    = fl | g_flag_q[g];
+      if (g_any_q[g]) begin
+        any   = 1'b1;
+        first = g_first_q[g];
+      end
+    end
+    top_flag_q <= fl;
+    if (resp_en_i) begin
+      resp_any_o   <= any;
+      resp_count_o <= count;
+      resp_first_o <= first;
+      ovf_any_o    <= ovf;
     end
   end
 
@@ -256,6 +370,20 @@ module fmpp_array #(
   // bubbles, a full pipeline, a read or register access waiting for the drain, a reset
   // dropping entries in flight.
 `ifdef FMPP_COVERAGE
+  // The words the entries in stages 2 and 3 read and write (every group's copies are alike).
+  logic [fmpp_pkg::F_A_W-1:0] s2_a_q;
+  logic [fmpp_pkg::F_B_W-1:0] s2_b_q;
+  logic [fmpp_pkg::F_D_W-1:0] s3_d_q;
+  assign s2_a_q = g_bc[0].a2_q;
+  assign s2_b_q = g_bc[0].b2_q;
+  assign s3_d_q = g_t3[0].d3_q;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [fmpp_pkg::F_X_W-1:0]   s2_x_q, x;  // REF's part in s2_x_q; every sub-field in x
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [fmpp_pkg::F_IMM_W-1:0] imm;
+  assign s2_x_q = g_bc[0].x2_q;
+  assign x      = g_t3[0].x3_q;
+  assign imm    = s3_imm_q;
   // Executed at this edge: an instruction (ex_instr); which word the entry in stage 3
   // writes and which words the instruction in stage 2 reads.
   logic ex_instr, s3_wr_word, s2_rd_a, s2_rd_b, s2_instr, s3_wr_flag, s2_rd_flag, s2_rd_mask;
@@ -342,8 +470,9 @@ module fmpp_array #(
   c_cmp_and_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_AND && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
   c_cmp_or_ge: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_GE);
   c_cmp_or_lt: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_CMP && x[fmpp_pkg::CMP_FN_LSB +: fmpp_pkg::CMP_FN_W] == fmpp_pkg::CMP_FN_OR && x[fmpp_pkg::CMP_LT_LSB +: fmpp_pkg::CMP_LT_W] == fmpp_pkg::CMP_LT_LT);
-  c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && flagop_any);
-  c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && !flagop_any);
+  c_flagop_any_taken: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && g_bc[0].ans_q);
+  c_flagop_any_holds: cover property (@(posedge clk_i) hold && s2_valid_q && head_valid_i);
+  c_flagop_any_skipped: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_FLAGOP && imm[fmpp_pkg::FLAG_ANY_LSB] && !g_bc[0].ans_q);
   c_shr_add_max: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_ADD && &imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
   c_shr_sub: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_SUB && |imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);
   c_shr_rshift: cover property (@(posedge clk_i) ex_instr && op == fmpp_pkg::OP_RSHIFT && |imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W]);

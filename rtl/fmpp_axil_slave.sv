@@ -236,8 +236,19 @@ module fmpp_axil_slave #(
   // instruction's legality, several LUT levels) stay off the accept. Every other access
   // waits for the queue to drain.
   assign w_accept = awvalid_i && wvalid_i && (!bvalid_q || bready_i) && (w_target ? !q_full_i : q_empty_i);
-  // A read also waits while an error event is pending (fmpp_err_reg).
-  assign r_accept = arvalid_i && (!rvalid_q || rready_i) && q_empty_i && !err_pend;
+  // A read also waits while an error event is pending (fmpp_err_reg), and a RESP or STATUS
+  // read (resp_en_o) for RespLatency more clocks, ready all the while, so that the responder
+  // tree's registers (tile, group, top) take the drained machine's flags.
+  localparam int unsigned RespLat = fmpp_pkg::RespLatency;
+  logic r_ready, r_wait_done;
+  logic [$clog2(RespLat + 1)-1:0] resp_wait_q;
+  assign r_ready     = arvalid_i && (!rvalid_q || rready_i) && q_empty_i && !err_pend;
+  assign r_wait_done = !resp_en_o || 32'(resp_wait_q) == RespLat;
+  assign r_accept    = r_ready && r_wait_done;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni || !r_ready || r_accept) resp_wait_q <= '0;
+    else resp_wait_q <= resp_wait_q + 1'b1;
+  end
 
   assign awready_o    = w_accept;
   assign wready_o     = w_accept;
@@ -331,6 +342,7 @@ module fmpp_axil_slave #(
   c_r_backpressure: cover property (@(posedge clk_i) rst_ni && rvalid_q && !rready_i);
   c_read_waits_err: cover property (@(posedge clk_i) rst_ni && arvalid_i && (!rvalid_q || rready_i) && q_empty_i &&
                                      err_pend);
+  c_resp_waits: cover property (@(posedge clk_i) rst_ni && r_ready && !r_wait_done);
   c_push_full: cover property (@(posedge clk_i) rst_ni && awvalid_i && wvalid_i && w_push && !w_err && q_full_i);
   c_bad_push_busy: cover property (@(posedge clk_i) rst_ni && w_accept && w_target && w_err && !q_empty_i);
 `endif

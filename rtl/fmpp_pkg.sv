@@ -14,6 +14,9 @@ package fmpp_pkg;
   parameter int unsigned MaxWords = 64;  // largest NumWords (word fields are 6 bits)
   parameter int unsigned MaxBlocks = 65536;  // largest NumBlocks (PLANES window holds 1024 tiles)
   parameter int unsigned QueueDepth = 16;  // instruction queue entries
+  parameter int unsigned TreeGroup = 8;  // tiles a group serves: a copy of the broadcast's stage-2 registers and a register of each reduction tree (responders, FLAGOP's any)
+  parameter int unsigned RespLatency = 3;  // clocks a RESP or STATUS read waits, once the queue has drained, for the responder tree's registers (tile, group, top)
+  parameter int unsigned AnyLatency = 4;  // clocks a FLAGOP with FLAG_ANY waits in stage 3 for the any tree's registers (tile, group, top, the group's copy of the answer) before it writes
   parameter int unsigned BlockIdxW = 16;  // bits of a block index (below MaxBlocks)
   parameter int unsigned WordIdxW = 6;  // bits of a word index (below MaxWords)
   parameter int unsigned FlagIdxW = 3;  // bits of a flag index (below NumFlags)

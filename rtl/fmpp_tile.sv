@@ -47,8 +47,8 @@ module fmpp_tile #(
   input  logic [fmpp_pkg::BlockIdxW-1:0] hw_block_i,  // block of a window write
   input  logic [3:0]                   hw_strb_i,
   input  logic [31:0]                  hw_data_i,
-  input  logic                         flagop_any_i, // FLAGOP: some block in the array has v = 1
-  output logic                         flagop_any_o, // FLAGOP: some block in this tile has v = 1
+  input  logic                         flagop_any_i, // FLAGOP: some block in the array has v = 1 (0 while it waits)
+  output logic                         flagop_any_o, // FLAGOP: some block in this tile had v = 1 a clock ago
 
   // Host read port (combinational, evaluated only for the addressed tile)
   input  logic                         rd_en_i,     // a window read is being requested
@@ -58,7 +58,7 @@ module fmpp_tile #(
   input  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_i,
   output logic [63:0]                  rd_data_o,
 
-  // Responders over SEL and the overflow summary (only evaluated when resp_en_i)
+  // Responders over SEL and the overflow summary (registered; they follow the flags while resp_en_i)
   input  logic                         resp_en_i,
   output logic                         sel_any_o,
   output logic [31:0]                  sel_count_o,
@@ -170,7 +170,9 @@ module fmpp_tile #(
                  ({Lanes{lut[2]}} &  flag_a & ~flag_b) | ({Lanes{lut[3]}} &  flag_a & flag_b);
     end
   end
-  assign flagop_any_o = |flagop_v;
+  // The tile's "if any", registered: the first stage of the array's any tree (a FLAGOP with
+  // FLAG_ANY waits fmpp_pkg::AnyLatency clocks in stage 3 for the tree's answer).
+  always_ff @(posedge clk_i) flagop_any_o <= |flagop_v;
 
   // The locals of the clocked and read-port blocks are left out of waveform traces: a traced
   // temporary is one Verilator must keep in the model's memory instead of a C++ local (a
@@ -395,17 +397,18 @@ module fmpp_tile #(
   end
 
   // Responders: any, count and the lowest selected lane (isolate the lowest set bit,
-  // then encode it), and whether any lane has V.
-  always_comb begin
+  // then encode it), and whether any lane has V, into the first registers of the array's
+  // responder tree. They follow the flags while a RESP or STATUS read waits (resp_en_i: the
+  // read is accepted fmpp_pkg::RespLatency clocks after the queue drained) and hold otherwise.
+  always_ff @(posedge clk_i) begin
     lane_t sel, lowest;
-    sel         = flag_q[fmpp_pkg::FlagSEL*Lanes +: Lanes];
-    {lowest, sel_any_o, sel_count_o, sel_first_o, ovf_any_o} = '0;
     if (resp_en_i) begin
-      sel_any_o   = |sel;
-      sel_count_o = $countones(sel);
-      lowest      = sel & (~sel + 1'b1);
-      for (int k = 0; k < 6; k++) sel_first_o[k] = |(lowest & index[k*Lanes +: Lanes]);
-      ovf_any_o   = |flag_q[FV*Lanes +: Lanes];
+      sel          = flag_q[fmpp_pkg::FlagSEL*Lanes +: Lanes];
+      lowest       = sel & (~sel + 1'b1);
+      sel_any_o   <= |sel;
+      sel_count_o <= $countones(sel);
+      for (int k = 0; k < 6; k++) sel_first_o[k] <= |(lowest & index[k*Lanes +: Lanes]);
+      ovf_any_o   <= |flag_q[FV*Lanes +: Lanes];
     end
   end
 

@@ -37,6 +37,13 @@ module fmpp_top #(
   localparam int unsigned QDepth = fmpp_pkg::QueueDepth;
 
   logic                 push, pop, q_full, q_empty, busy;
+
+  // An access that waits for the array (a read, a register write) waits until the array has
+  // been idle a whole clock: the words and flags a read returns have then stood still for two
+  // clocks, so the read data's path from a tile's storage across the die to the read register
+  // has two clocks (tools/asic_chip.py times it so; a_read_still below checks it).
+  logic                 busy_q;
+  always_ff @(posedge clk_i) busy_q <= rst_ni && busy;
   fmpp_pkg::qentry_t    push_entry, head;
   logic [$clog2(QDepth+1)-1:0] q_level;
 
@@ -78,7 +85,7 @@ module fmpp_top #(
     .push_o       (push),
     .push_entry_o (push_entry),
     .q_full_i     (q_full),
-    .q_empty_i    (q_empty && !busy),  // every push executed
+    .q_empty_i    (q_empty && !busy && !busy_q),  // every push executed, a clock ago
     .rd_en_o      (rd_en),
     .rd_kind_o    (rd_kind),
     .rd_block_o   (rd_block),
@@ -133,4 +140,10 @@ module fmpp_top #(
   logic unused_level;
   assign unused_level = ^q_level;
 
+`ifndef SYNTHESIS
+  // The array wrote nothing at the edge before a read is accepted (the two-clock read path).
+  a_read_still: assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (s_axil_arvalid_i && s_axil_arready_o) |-> !busy_q)
+    else $error("fmpp_top: read accepted in the clock after the array was busy");
+`endif
 endmodule

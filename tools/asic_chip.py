@@ -49,6 +49,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_chip_checks as ck  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
+import asic_chip_net as net  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
 import asic_common as ac  # noqa: E402
 import rtl_hash  # noqa: E402
@@ -111,76 +112,6 @@ def time_array(out, tiles, words, reuse):
     return named(out, name, fl.checks(fl.sta(out, name, "fmpp_top", ck.ARRAY_TCL))), lef_area(out, name), secs
 
 
-def floorplan(tile_um2, tiles, density):
-    """(tile side mm, die side mm, the farthest lane's distance from the centre in mm):
-    a g x g grid of square tiles, g = sqrt(tiles); the path runs from the centre to the
-    farthest tile's centre and on to its farthest corner (Manhattan)."""
-    g = math.isqrt(tiles)
-    if g * g != tiles:
-        raise fl.FlowError(f"{tiles} tiles do not make a square grid")
-    side = math.sqrt(tile_um2 / density) / 1000.0
-    return side, g * side, (g - 1) * side + side
-
-
-def wire_ns(reps, mm, tiles):
-    """A network's wire of mm millimetres, half on each layer, with a forked stage per
-    level of the tree over the tiles."""
-    per_mm = sum(r[0] for r in reps.values()) / len(reps)
-    fork = sum(r[3] for r in reps.values()) / len(reps)
-    return per_mm * mm + fork * math.log2(tiles)
-
-
-def port_of(bit):
-    """'a_i[3]' -> 'a_i'."""
-    return bit.split("[")[0]
-
-
-def worst(items):
-    """The (ns, ...) tuple with the largest ns; KeyError when there is none."""
-    items = list(items)
-    if not items:
-        raise KeyError("no path through the tile's ports")
-    return max(items, key=lambda x: x[0])
-
-
-def networks(t, a, w):
-    """[(network, kind, path ns, wire crossings, start, end, ns in the tile, ns between the
-    tiles)] from the tile's checks t and the array's a, port bit by port bit, and one
-    crossing's wire w (ns); kind reg (flip-flop to flip-flop) or io (from a bus input, with
-    its 1 ns input delay). At each bit of the tile's ports the path into it and the path out
-    of it are added (the stand-in's flip-flop taken off the array's side); a network's path
-    is the worst over its bits."""
-    bits = lambda side, tag, ports: [k.split(":", 1)[1] for k in side if k.startswith(tag + ":") and  # noqa: E731
-                                     port_of(k.split(":", 1)[1]) in ports]
-    into = lambda b: a["to:" + b]["ns"] - a["to:" + b]["setup"]  # noqa: E731
-    out_of = lambda b: a["from:" + b]["ns"] - a["from:" + b]["clk_q"]  # noqa: E731
-    tile = lambda k: "tile " + k  # noqa: E731
-    bc = worst((into(b) + t["from:" + b]["ns"], t["from:" + b]["ns"], b) for b in bits(a, "to", ck.BCAST_PORTS)
-               if "from:" + b in t)
-    rows = [("broadcast", a["to:" + bc[2]], bc[1], bc[0] - bc[1], 1, a["to:" + bc[2]]["start"],
-             tile(t["from:" + bc[2]]["end"]))]
-    any_t = t["to:flagop_any_o"]["ns"] + t["from:flagop_any_i"]["ns"]
-    rows.append(("flagop_any", t["to:flagop_any_o"], any_t, a["any"]["ns"] - a["any"]["clk_q"] - a["any"]["setup"], 2,
-                 tile(t["to:flagop_any_o"]["start"]), tile(t["from:flagop_any_i"]["end"])))
-    for name, ports in (("responders", ck.RESP_OUT), ("read_data", ("rd_data_o",))):
-        r = worst((t["to:" + b]["ns"] + out_of(b), t["to:" + b]["ns"], b) for b in bits(a, "from", ports) if "to:" + b in t)
-        rows.append((name, t["to:" + r[2]], r[1], r[0] - r[1], 1, tile(t["to:" + r[2]]["start"]), a["from:" + r[2]]["end"]))
-    rows.append(("tile_datapath", t["internal"], t["internal"]["ns"], 0.0, 0, tile(t["internal"]["start"]),
-                 tile(t["internal"]["end"])))
-    rows.append(("central", a["central"], 0.0, a["central"]["ns"], 0, a["central"]["start"], a["central"]["end"]))
-    for name, ins, tag, ports in (("read_request", ck.RD_PORTS, "rd", ("rd_data_o",)),
-                                  ("responder_request", ("resp_en_i",), "resp", ck.RESP_OUT)):
-        i = worst((into(b), b) for b in bits(a, "to", ins))
-        o = worst((t[f"{tag}:{b}"]["ns"] + w + out_of(b), t[f"{tag}:{b}"]["ns"], b) for b in bits(a, "from", ports)
-                  if f"{tag}:{b}" in t)
-        rows.append((name, a["to:" + i[1]], o[1], i[0] + o[0] - o[1] - w, 2, a["to:" + i[1]]["start"],
-                     a["from:" + o[2]]["end"]))
-    for name, k in (("bus_in", "io_in"), ("bus_out", "io_out")):
-        rows.append((name, a[k], 0.0, a[k]["ns"], 0, a[k]["start"], a[k]["end"]))
-    return [(n, "io" if first.get("start_port") else "reg", ti + be + c * w, c, s0, e0, ti, be)
-            for n, first, ti, be, c, s0, e0 in rows]
-
-
 def check_composition(out, tiles, words, reuse):
     """The composition against one flat netlist of `tiles` full tiles (no wires in either):
     [(what, composed ns, flat ns, the composed path's network, the flat path's ends)]."""
@@ -189,14 +120,16 @@ def check_composition(out, tiles, words, reuse):
     name = f"flat_{tiles}t_{words}w"
     build(out, name, "fmpp_top", {"NumBlocks": LANE_W * tiles, "NumWords": words}, rtl_sources(), reuse)
     flat = named(out, name, fl.checks(fl.sta(out, name, "fmpp_top", ck.FLAT_TCL)))
-    paths = {p[0]: p for p in networks(t, a, 0.0)}  # no wires
+    paths = {p[0]: p for p in net.networks(t, a, {"group": 0.0, "trunk": 0.0, "full": 0.0})}  # no wires
+    for key, name in (("core_rdata", "central"), ("io_rdata", "bus_in")):  # the central logic's own paths into it
+        paths[key] = (name, "", a[key]["ns"]) if key in a else (name, "", 0.0)
 
     def row(what, names, f):
-        n = max(names, key=lambda n: paths[n][2])
-        return (what, paths[n][2], f["ns"], n, f"{f['start']} -> {f['end']}")
+        n = max((n for n in names if n in paths), key=lambda n: paths[n][2])
+        return (what, paths[n][2], f["ns"], paths[n][0], f"{f['start']} -> {f['end']}")
     return [row("flip-flop to flip-flop", [p for p in paths if paths[p][1] == "reg"], flat["reg"]),
-            row("into the read-data register", ["responders", "read_data"], flat["into_rdata"]),
-            row("bus input into the read-data register", ["read_request", "responder_request"], flat["bus_into_rdata"])]
+            row("into the read-data register", ["read_data", "core_rdata"], flat["into_rdata"]),
+            row("bus input into the read-data register", ["read_request", "io_rdata"], flat["bus_into_rdata"])]
 
 
 def provenance(argv, reps, density, title="FMPP chip timing: tools/asic_chip.py"):
@@ -219,23 +152,28 @@ def provenance(argv, reps, density, title="FMPP chip timing: tools/asic_chip.py"
             f"# typical corner, ideal clock; placement density {density}; repeaters: {reps_txt}"]
 
 
-PATH_COLS = ["tiles", "blocks", "network", "kind", "path_ns", "tile_ns", "between_ns", "wire_crossings", "wire_ns",
-             "start", "end"]
-CHIP_COLS = ["tiles", "blocks", "words", "tile_side_mm", "die_side_mm", "reach_mm", "wire_ns", "fmax_reg_mhz", "critical",
-             "fmax_io_mhz", "critical_io", "hold_slack_ns", "tile_area_um2", "array_area_um2"]
+PATH_COLS = ["tiles", "blocks", "network", "kind", "path_ns", "clocks", "tile_ns", "between_ns", "wire_segments",
+             "wire_mm", "wire_ns", "start", "end"]
+CHIP_COLS = ["tiles", "blocks", "words", "tile_side_mm", "die_side_mm", "group_mm", "trunk_mm", "reach_mm", "wire_ns",
+             "fmax_reg_mhz", "critical", "fmax_io_mhz", "critical_io", "hold_slack_ns", "tile_area_um2", "array_area_um2"]
 
 
-def chip_rows(tiles, words, t, t_area, a, a_area, reps, density):
-    side, die, reach = floorplan(t_area, tiles, density)
-    w = wire_ns(reps, reach, tiles)
-    paths = networks(t, a, w)
-    prow = [[tiles, tiles * LANE_W, n, k, f"{ns:.3f}", f"{ti:.3f}", f"{be:.3f}", c, f"{c * w:.3f}", s, e]
-            for n, k, ns, c, s, e, ti, be in paths]
-    reg = max((p for p in paths if p[1] == "reg"), key=lambda p: p[2])
-    io = max((p for p in paths if p[1] == "io"), key=lambda p: p[2])
+def chip_rows(tiles, words, t, t_area, a, a_area, reps, density, group):
+    side, die, _ = net.floorplan(t_area, tiles, density)
+    segs = net.segments(side, tiles, group)
+    w = {s: net.wire_ns(reps, mm, forks) for s, (mm, forks) in segs.items()}
+    paths = net.networks(t, a, w)
+    prow = [[tiles, tiles * LANE_W, n, k, f"{ns:.3f}", clk, f"{ti:.3f}", f"{be:.3f}", "+".join(sg) or "none",
+             f"{sum(segs[x][0] for x in sg):.3f}", f"{sum(w[x] for x in sg):.3f}", s, e]
+            for n, k, ns, sg, s, e, ti, be, clk in paths]
+    # The clock a path needs: its ns over the clocks it has.
+    reg = max((p for p in paths if p[1] == "reg"), key=lambda p: p[2] / p[8])
+    io = max((p for p in paths if p[1] == "io"), key=lambda p: p[2] / p[8])
     hold = min(t["hold"]["ns"], a["hold"]["ns"])
-    crow = [tiles, tiles * LANE_W, words, f"{side:.3f}", f"{die:.3f}", f"{reach:.3f}", f"{w:.3f}", f"{1000.0 / reg[2]:.1f}",
-            reg[0], f"{1000.0 / io[2]:.1f}", io[0], f"{hold:.3f}", f"{t_area:.0f}", f"{a_area:.0f}"]
+    crow = [tiles, tiles * LANE_W, words, f"{side:.3f}", f"{die:.3f}", f"{segs['group'][0]:.3f}", f"{segs['trunk'][0]:.3f}",
+            f"{segs['full'][0]:.3f}", f"{w['full']:.3f}", f"{1000.0 * reg[8] / reg[2]:.1f}", reg[0],
+            f"{1000.0 * io[8] / io[2]:.1f}", io[0],
+            f"{hold:.3f}", f"{t_area:.0f}", f"{a_area:.0f}"]
     return prow, crow
 
 
@@ -254,6 +192,8 @@ def main():
                     help="lanes of the tile timed (a full tile has 64; fewer for a quick look: its area is scaled to 64)")
     ap.add_argument("--words", type=int, default=32)
     ap.add_argument("--density", type=float, default=0.6)
+    ap.add_argument("--group", type=int, default=net.GROUP_DEFAULT, help="tiles a group's registers serve "
+                    "(fmpp_pkg::TreeGroup)")
     ap.add_argument("--reuse", action="store_true", help="keep netlists an earlier run into --out finished")
     ap.add_argument("--check", metavar="TILESxWORDS", help="only compare the composition (without wires) with one "
                     "flat netlist of that many full tiles and words a block, e.g. 2x2; writes chip_check.csv")
@@ -272,12 +212,12 @@ def main():
         prows, crows = [], []
         for n in tiles:
             arr, arr_area, secs = time_array(a.out, n, a.words, a.reuse)
-            p, c = chip_rows(n, a.words, t, t_area * LANE_W / a.lanes, arr, arr_area, reps, a.density)
+            p, c = chip_rows(n, a.words, t, t_area * LANE_W / a.lanes, arr, arr_area, reps, a.density, a.group)
             prows += p
             crows.append(c)
-            print(f"{n} tiles: {c[7]} MHz register to register ({c[8]}), {c[9]} MHz from the bus ({c[10]}), "
+            print(f"{n} tiles: {c[9]} MHz register to register ({c[10]}), {c[11]} MHz from the bus ({c[12]}), "
                   f"die {c[4]} mm, {secs:.0f} s", flush=True)
-    except (fl.FlowError, ac.ReportError, KeyError) as e:
+    except (fl.FlowError, ac.ReportError, KeyError, net.GeometryError) as e:
         print(f"asic_chip.py: {e}", file=sys.stderr)
         return 1
     head = provenance(sys.argv[1:], reps, a.density)
@@ -288,40 +228,10 @@ def main():
 
 
 def self_test():
-    """The composition, floorplan and wire arithmetic on made-up paths (no tools run)."""
+    """The composition, floorplan and wire arithmetic (asic_chip_net) and the wires' SPEF on
+    made-up paths (no tools run)."""
     import tempfile
-
-    def path(ns, start="s", end="e", port=False, cq=0.0, su=0.0):
-        return {"ns": ns, "start": start, "end": end, "start_port": port, "clk_q": cq, "setup": su}
-    # Two bits of each network: the worst composition pairs each bit's own two halves, so
-    # the slow half of one bit never meets the slow half of another.
-    t = {k: path(v) for k, v in {"from:a_i[0]": 2.0, "from:a_i[1]": 0.5, "from:flagop_any_i": 0.5,
-                                  "to:flagop_any_o": 0.75, "to:sel_count_o[0]": 0.5, "to:sel_count_o[5]": 2.0,
-                                  "to:rd_data_o[0]": 1.0, "to:rd_data_o[1]": 0.25, "rd:rd_data_o[0]": 1.25,
-                                  "rd:rd_data_o[1]": 0.5, "resp:sel_count_o[0]": 0.25, "resp:sel_count_o[5]": 1.5,
-                                  "internal": 4.0}.items()}
-    a = {k: path(v, cq=0.125, su=0.25) for k, v in {"to:a_i[0]": 1.0, "to:a_i[1]": 3.0, "any": 1.5,
-                                                      "from:sel_count_o[0]": 3.0, "from:sel_count_o[5]": 0.5,
-                                                      "from:rd_data_o[0]": 2.0, "from:rd_data_o[1]": 2.5,
-                                                      "central": 3.5, "io_in": 4.5, "io_out": 3.75}.items()}
-    a["to:rd_word_i[0]"], a["to:resp_en_i"] = path(2.5, port=True, su=0.25), path(2.25, port=True, su=0.25)
-    got = {n: (k, round(ns, 9), c) for n, k, ns, c, *_ in networks(t, a, 10.0)}
-    want = {"broadcast": ("reg", 3.0 - 0.25 + 0.5 + 10, 1), "flagop_any": ("reg", 0.75 + 1.5 - 0.375 + 0.5 + 20, 2),
-            "responders": ("reg", 0.5 + 3.0 - 0.125 + 10, 1), "read_data": ("reg", 1.0 + 2.0 - 0.125 + 10, 1),
-            "tile_datapath": ("reg", 4.0, 0), "central": ("reg", 3.5, 0),
-            "read_request": ("io", 2.5 - 0.25 + 1.25 + 2.0 - 0.125 + 20, 2),
-            "responder_request": ("io", 2.25 - 0.25 + 0.25 + 3.0 - 0.125 + 20, 2), "bus_in": ("reg", 4.5, 0),
-            "bus_out": ("reg", 3.75, 0)}
-    errors = [f"{n}: {got.get(n)} != {w}" for n, w in want.items() if got.get(n) != w]
-    split = {n: (ti, be) for n, _, _, _, _, _, ti, be in networks(t, a, 10.0)}
-    if split["flagop_any"] != (1.25, 1.125) or split["read_request"] != (1.25, 2.25 + 1.875):
-        errors.append(f"the split into tile and between the tiles: {split}")
-    side, die, reach = floorplan(4e6 * 0.6, 64, 0.6)  # a 2 mm tile at density 0.6
-    if (round(side, 9), round(die, 9), round(reach, 9)) != (2.0, 16.0, 16.0):
-        errors.append(f"floorplan of 64 tiles: {(side, die, reach)}")
-    reps = {"m5": (0.1, "B", 1000, 0.5), "m6": (0.3, "B", 2000, 0.25)}
-    if abs(wire_ns(reps, 10.0, 16) - (0.2 * 10 + 0.375 * 4)) > 1e-12:
-        errors.append(f"wire_ns: {wire_ns(reps, 10.0, 16)}")
+    errors = net.self_test()
     with tempfile.TemporaryDirectory() as d:
         lef = os.path.join(d, "t.lef")
         with open(lef, "w") as f:

@@ -46,10 +46,14 @@ RD_PORTS = ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i")
 RESP_OUT = ("sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o")
 
 # fmpp_top with tools/asic/tile_stub.sv for every tile: the logic between the tiles, bit by
-# bit of the tile's ports. `to:P` is the worst path into the stand-in's flip-flops of port
-# bit P (of any tile), `from:P` the worst out of them. Bus inputs arrive 1 ns after the edge
-# and outputs are needed 1 ns before it (asic.sh's constraints).
-ARRAY_TCL = BUS_CONSTRAINTS + """set groups [dict create]
+# bit of the tile's ports. Its registers are the stand-in's (`stub`, u_tile.q_*), the groups'
+# (`grp`: the broadcast's stage-2 copies g_bc and the trees' group registers g_*_q), the
+# tiles' stage-3 copies (`loc`: g_t3, which sit at their tile) and the rest (`core`: the bus
+# slave, the queue, the sequencer, the trees' top). `to:P@S` is the
+# worst path from S's registers (or `in`, the bus inputs) into the stand-in's flip-flops of
+# port bit P (of any tile), `from:P@S` the worst out of them into S's. Bus inputs arrive 1 ns
+# after the edge and outputs are needed 1 ns before it (asic.sh's constraints).
+ARRAY_TCL = FLOPS_TCL + BUS_CONSTRAINTS + """set groups [dict create]
 foreach n [get_nets -quiet *u_tile.q_*] {
   set key [regsub {^.*u_tile[.]q_} [get_full_name $n] {}]
   foreach p [get_pins -quiet -of_objects $n] {
@@ -62,22 +66,35 @@ foreach n [get_nets -quiet *u_tile.q_*] {
 if {[dict size $groups] == 0} { error "no stand-in flip-flop (u_tile.q_*) in the netlist" }
 set stub {}
 dict for {key cells} $groups { set stub [concat $stub $cells] }
-set core [delete_from_list [all_registers] $stub]
+set grp [flops {*u_array.g_bc* *u_array.g_any_q* *u_array.g_count_q* *u_array.g_first_q* *u_array.g_ovf_q*
+                *u_array.g_flag_q*}]
+set loc [flops *u_array.g_t3*]
+set core [delete_from_list [delete_from_list [delete_from_list [all_registers] $stub] $grp] $loc]
+set rdata [flops *s_axil_rdata_o*]
 dict for {key cells} $groups {
   if {[string match *_o $key] || [string match {*_o\\[*} $key]} {
-    puts "=== from:$key"
-    report_checks -path_delay max -digits 3 -from $cells
+    foreach {tag dst} [list grp $grp core $core] {
+      puts "=== from:$key@$tag"
+      report_checks -path_delay max -digits 3 -from $cells -to $dst
+    }
   } else {
-    puts "=== to:$key"
-    report_checks -path_delay max -digits 3 -to $cells
+    foreach {tag src} [list loc $loc grp $grp core $core in $data_in] {
+      puts "=== to:$key@$tag"
+      report_checks -path_delay max -digits 3 -from $src -to $cells
+    }
   }
 }
 """ + "".join([
-    check("any", "-from [dict get $groups flagop_any_o] -to [dict get $groups flagop_any_i]"),
+    check("core_grp", "-from $core -to $grp"),
+    check("grp_loc", "-from $grp -to $loc"),
+    check("grp_core", "-from $grp -to $core"),
+    check("group", "-from $grp -to $grp"),
     check("central", "-from $core -to $core"),
+    check("core_rdata", "-from $core -to $rdata"),
+    check("io_rdata", "-from $data_in -to $rdata"),
     check("io_in", "-from $data_in"),
     check("io_out", "-to [all_outputs]"),
-    check("hold", "-from $core -to $core", "min"),
+    check("hold", "-from [concat $core $grp $loc] -to [concat $core $grp $loc]", "min"),
 ])
 
 # fmpp_tile alone, bit by bit of its ports, which arrive at the clock edge (from a BUFX2) and
@@ -91,7 +108,7 @@ set_output_delay 0 -clock clk [all_outputs]
 set_load %(load)s [all_outputs]
 set regs [all_registers]
 set rd_in [get_ports {rd_en_i rd_kind_i* rd_block_i* rd_word_i* rd_flag_i*}]
-foreach p [get_ports {%(bcast)s flagop_any_i}] {
+foreach p [get_ports {%(bcast)s flagop_any_i resp_en_i}] {
   puts "=== from:[get_full_name $p]"
   report_checks -path_delay max -digits 3 -from $p
 }

@@ -4,21 +4,11 @@ place of the marker line of docs/asic/notes.md.
 """
 import os
 
+from asic_chip_net import NETWORKS as NETWORKS_LIST
 from asic_common import ReportError, read_csv
 
 MARKER = "<!-- asic chip: tools/asic_chip.py -->"
-NETWORKS = {
-    "broadcast": "broadcast: a stage register to a tile's flip-flop",
-    "flagop_any": "FLAGOP \"if any\": a tile's flags, the OR of all tiles, back into every tile's flags",
-    "responders": "responders: a tile's SEL flags to the read-data register (count, first, any)",
-    "read_data": "read data: a tile's words or flags to the read-data register",
-    "tile_datapath": "the tile's own datapath (no global network; no wires inside the tile)",
-    "central": "the central logic (bus slave, queue, sequencer)",
-    "read_request": "from the bus: a read address to a tile and its data back into the read-data register",
-    "responder_request": "from the bus: a RESP read to every tile and the count back",
-    "bus_in": "from the bus: an input into the queue or a register",
-    "bus_out": "to the bus: an output",
-}
+NETWORKS = {name: what for name, _, _, what in NETWORKS_LIST}
 
 
 def provenance(comments):
@@ -35,11 +25,13 @@ def chip_tables(d):
     if not chip or not paths:
         raise ReportError(f"{d}/chip.csv or chip_paths.csv has no rows")
     o = ["Measured by " + "; ".join(provenance(comments)[:1]) + ".", "", *("    " + p for p in provenance(comments)[1:]), ""]
-    o += ["| tiles | blocks | die side (mm) | centre to the farthest lane (mm) | one crossing's wire (ns) | "
+    o += ["| tiles | blocks | die side (mm) | wires (mm): a group's middle to its farthest lane, the centre to the "
+          "farthest group's middle, the centre to the farthest lane | the last one's wire (ns) | "
           "**Fmax, flip-flop to flip-flop** | its path | Fmax from the bus | its path | worst hold slack (ns) |",
           "| ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | ---: |"]
     for r in chip:
-        o.append(f"| {r['tiles']} | {int(r['blocks']):,} | {float(r['die_side_mm']):.1f} | {float(r['reach_mm']):.1f} | "
+        o.append(f"| {r['tiles']} | {int(r['blocks']):,} | {float(r['die_side_mm']):.1f} | {float(r['group_mm']):.1f}, "
+                 f"{float(r['trunk_mm']):.1f}, {float(r['reach_mm']):.1f} | "
                  f"{float(r['wire_ns']):.2f} | **{r['fmax_reg_mhz']} MHz** | {r['critical']} | {r['fmax_io_mhz']} MHz | "
                  f"{r['critical_io']} | {r['hold_slack_ns']} |")
     tiles = [r["tiles"] for r in chip]
@@ -54,7 +46,8 @@ def chip_tables(d):
             continue
         last = cells[-1]
         o.append(f"| {what} | {last['kind']} | " + " | ".join(
-            f"{float(c['path_ns']):.2f} ({float(c['wire_ns']):.2f})" if c else "-" for c in cells) +
+            f"{float(c['path_ns']):.2f} ({float(c['wire_ns']):.2f}){'' if c['clocks'] == '1' else ', ' + c['clocks'] + ' clocks'}"
+            if c else "-" for c in cells) +
             f" | {last['start']} -> {last['end']} |")
     return "\n".join(o + limits(chip[-1], by) + check_table(d, chip[-1], by))
 
@@ -63,16 +56,22 @@ def limits(r, by):
     """What sets the largest chip's clock, in words made from its row of chip_paths.csv."""
     p = by[(r["critical"], r["tiles"])]
     o = ["", f"**What limits the {int(r['blocks']):,}-block chip**: its slowest path from flip-flop to flip-flop, "
-         f"{NETWORKS[r['critical']].split(':')[0]}, takes {float(p['path_ns']):.2f} ns: {float(p['tile_ns']):.2f} ns "
+         f"{NETWORKS[r['critical']].split(':')[0]}, takes {float(p['path_ns']):.2f} ns{per_clock(p)}: "
+         f"{float(p['tile_ns']):.2f} ns "
          f"of logic in the tile, {float(p['between_ns']):.2f} ns of logic between the tiles and "
-         f"{float(p['wire_ns']):.2f} ns of wire ({p['wire_crossings']} crossing"
-         f"{'s' if p['wire_crossings'] != '1' else ''} of {float(r['reach_mm']):.1f} mm)."]
+         f"{float(p['wire_ns']):.2f} ns of wire ({float(p['wire_mm']):.1f} mm: {p['wire_segments']})."]
     rest = sorted((q for (n, t), q in by.items() if t == r["tiles"] and q["kind"] == "reg" and n != r["critical"]),
-                  key=lambda q: -float(q["path_ns"]))
+                  key=lambda q: -float(q["path_ns"]) / int(q["clocks"]))
     if rest:
-        o[-1] += (f" Next: {NETWORKS[rest[0]['network']].split(':')[0]}, {float(rest[0]['path_ns']):.2f} ns "
-                  f"({float(rest[0]['wire_ns']):.2f} ns of it wire).")
+        o[-1] += (f" Next: {NETWORKS[rest[0]['network']].split(':')[0]}, {float(rest[0]['path_ns']):.2f} ns"
+                  f"{per_clock(rest[0])} ({float(rest[0]['wire_ns']):.2f} ns of it wire).")
     return o
+
+
+def per_clock(p):
+    """' in 2 clocks (3.21 ns a clock)' for a path with more than one clock, else ''."""
+    c = int(p["clocks"])
+    return f" in {c} clocks ({float(p['path_ns']) / c:.2f} ns a clock)" if c > 1 else ""
 
 
 def check_table(d, last, by):

@@ -16,7 +16,9 @@ plus the wires of its global networks and of its clock between the tiles:
   3. the central logic: fmpp_top with the stand-in tile (asic_chip.py's array of one tile),
      its activity from the same trace, OpenSTA's power without the stand-in's cells (the
      read data and responders the stand-in returns are not the tile's, so the bus slave's
-     read path toggles as the stand-in's answers do);
+     read path toggles as the stand-in's answers do); of it, the copies that the chip has
+     once per tile (the stage-3 registers beside each tile) and once per group of tiles
+     (the broadcast's stage 2, the hold, the trees' group registers) are counted as often;
   4. the wires: every bit of the tile's ports is a network that reaches all T tiles of the
      floorplan (asic_chip.py's: square tiles at the placement density, a grid around the
      central logic), the shortest tree over a grid of T points T - 1 pitches long plus half
@@ -44,6 +46,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_chip as chip  # noqa: E402
+import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
 import asic_energy_parts as ep  # noqa: E402
@@ -160,17 +163,39 @@ def tile_parts(out, netlist, reuse):
             for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
 
 
+# The central netlist's registers that the chip has once per tile (the stage-3 copies beside
+# each tile) and once per group of TreeGroup tiles (the broadcast's stage-2 copies, the
+# hold, the trees' group registers): rtl/fmpp_array.sv's g_t3, g_bc and g_*_q.
+PER_TILE = r"^u_array\.g_t3\[\d+\]\."
+PER_GROUP = r"^u_array\.(g_bc\[\d+\]\.|g_(any|count|first|ovf|flag)_q)"
+
+
 def central(out, netlist, fst, reuse):
-    """The central logic's row: the array of one stand-in tile without the stand-in."""
+    """The central logic's rows: the array of one stand-in tile without the stand-in, and of
+    that the copies the chip has per tile and per group."""
     act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
     _, listing = power(out, "central_power", "fmpp_top", netlist, os.path.join(out, "central.all.tcl"), reuse, True)
     skip = ep.island(netlist, fl.LIB, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
-    tot = [0.0] * 4
+    parts = {"a tile's copies": ep.island(netlist, fl.LIB, PER_TILE), "a group's copies": ep.island(netlist, fl.LIB, PER_GROUP)}
+    tot = {k: [0.0] * 4 for k in ("all", *parts)}
     for inst, p in ep.instance_power(listing).items():
-        if inst not in skip:
-            tot = [a + b for a, b in zip(tot, p)]
-    return ["central", "all", "", act["cycles"], pj(tot[3]), pj(tot[0]), pj(tot[1]), pj(tot[2]), "", "",
-            f"fmpp_top with one stand-in tile less its {len(skip)} cells"]
+        if inst in skip:
+            continue
+        for k in ["all"] + [k for k, cells in parts.items() if inst in cells]:
+            tot[k] = [a + b for a, b in zip(tot[k], p)]
+    notes = {"all": f"fmpp_top with one stand-in tile less its {len(skip)} cells",
+             **{k: f"{len(cells)} cells of the above that the chip has once per {k.split()[1][:-2]}"
+                for k, cells in parts.items()}}
+    return [["central", k, "", act["cycles"], pj(t[3]), pj(t[0]), pj(t[1]), pj(t[2]), "", "", notes[k]]
+            for k, t in tot.items()]
+
+
+def central_pj(rows, tiles):
+    """The central logic of a chip of `tiles` tiles: the one-tile array's, with its per-tile
+    and per-group copies counted once per tile and once per group."""
+    c = {r[1]: r[4] for r in rows if r[0] == "central"}
+    groups = -(-tiles // net.GROUP_DEFAULT)
+    return c["all"] + (tiles - 1) * c["a tile's copies"] + (groups - 1) * c["a group's copies"]
 
 
 def wire_pj_per_mm(out, reps):
@@ -244,14 +269,13 @@ def measure(a):
     fst = trace(out, a.build, a.reuse)
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
     rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse)
-    rows.append(central(out, array_v, fst, a.reuse))
+    rows += central(out, array_v, fst, a.reuse)
     reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
     pj_mm = wire_pj_per_mm(out, reps)
     toggles = port_toggles(fst, act["cycles"])
-    side, _, _ = chip.floorplan(chip.lef_area(a.chip, f"tile_{chip.LANE_W}x{a.words}"), 1, a.density)
-    tile_pj, central_pj = rows[0][4], next(r[4] for r in rows if r[0] == "central")
+    side, _, _ = net.floorplan(chip.lef_area(a.chip, f"tile_{chip.LANE_W}x{a.words}"), 1, a.density)
     for t in a.tiles:
-        rows += compose(tile_pj, central_pj, toggles, pj_mm, side, t)
+        rows += compose(rows[0][4], central_pj(rows, t), toggles, pj_mm, side, t)
     rows.append(["wire", "pJ per toggle per mm", "", "", "", "", "", "", "", "",
                  "; ".join(f"{k}: {v:.4f}" for k, v in sorted(pj_mm.items()))])
     rows.append(["wire", "toggles per clock", "", "", "", "", "", "", "", "",
@@ -313,6 +337,11 @@ def self_test():
     errs += [k for k, v in want.items() if not near(got.get(k, -1.0), v)]
     if not near(pj(0.5), 5000.0):
         errs.append("pj")
+    crow = [["central", "all", "", 0, 50.0], ["central", "a tile's copies", "", 0, 2.0],
+            ["central", "a group's copies", "", 0, 3.0]]
+    if not near(central_pj(crow, 1), 50.0) or not near(central_pj(crow, 64), 50.0 + 63 * 2.0 + 7 * 3.0) or \
+            not near(central_pj(crow, 9), 50.0 + 8 * 2.0 + 1 * 3.0):
+        errs.append("central_pj")
     text = ("Sequential 1.0e-03 2.0e-04 1.0e-09 1.2e-03 40.0%\nCombinational 1.0e-03 8.0e-04 1.0e-09 1.8e-03 60%\n"
             "Total 2.0e-03 1.0e-03 2.0e-09 3.0e-03 100.0%\n")
     if groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:

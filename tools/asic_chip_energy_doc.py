@@ -94,5 +94,6 @@ def energy_tables(d):
     o += routed_share(d)
     central = rows_by(rows, "central")
     if central:
-        o += ["", f"The central logic: {float(central[0]['energy_pj']):,.1f} pJ per clock ({central[0]['note']})."]
+        o += ["", f"The central logic: {float(central[0]['energy_pj']):,.1f} pJ per clock ({central[0]['note']})" +
+              "".join(f"; {r['key']}: {float(r['energy_pj']):,.1f} pJ ({r['note']})" for r in central[1:]) + "."]
     return "\n".join(o)

@@ -93,6 +93,8 @@ def sta(out, name, top, body, verilog=None, clock_port="clk_i"):
         text = f.read()
     if re.search(r"^Error", text, re.M):
         raise FlowError(f"{log}: OpenSTA reported an error")
+    if 'puts "===' in body and "=== " not in text:
+        raise FlowError(f"{log}: OpenSTA printed none of the script's reports (a Tcl error it did not report?)")
     return text
 
 

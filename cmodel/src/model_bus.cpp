@@ -73,6 +73,8 @@ void ModelBus::reset() {
   cycle_ = 0;
   gap_ = 0;
   gap_cnt_ = 0;
+  any_wait_ = 0;
+  was_busy_ = false;
   err_ = ErrorState{};
   err_event_ = false;
 }
@@ -144,10 +146,33 @@ void ModelBus::execute(const QueueEntry& e) {
   }
 }
 
+bool ModelBus::waits_for_any(const QueueEntry& e) {
+  return e.kind == QueueEntry::Kind::kInstr && static_cast<map::Op>(map::kFieldOp.get(e.data)) == map::Op::kFlagop &&
+         map::kFlagAny.get(map::kFieldImm.get(e.data)) != 0;
+}
+
+void ModelBus::push_entry(const QueueEntry* push) {
+  if (!push) return;
+  if (count_ == ring_.size()) throw std::logic_error("fmpp::ModelBus: push into a full queue");
+  ring_[(head_ + count_) % ring_.size()] = *push;
+  ++count_;
+}
+
 void ModelBus::tick(const QueueEntry* push) {
   err_event_ = false;  // an error event of the last edge lands at this one
+  was_busy_ = pipe_count_ > 0;
   // The last stage executes: its effects land at this edge.
   constexpr size_t kLast = kPipeLatency - 1;
+  // A FLAGOP with FLAG_ANY in stage 3 holds the pipeline kAnyLatency clocks (the any tree's
+  // registers): nothing executes, advances or pops; the GAP counter still counts down.
+  if (pipe_valid_[kLast] && any_wait_ < map::kAnyLatency && waits_for_any(pipe_[kLast])) {
+    ++any_wait_;
+    if (gap_cnt_ > 0) --gap_cnt_;
+    push_entry(push);
+    ++cycle_;
+    return;
+  }
+  any_wait_ = 0;
   const bool retired = pipe_valid_[kLast];
   const QueueEntry done = pipe_[kLast];
   if (retired) {
@@ -170,11 +195,7 @@ void ModelBus::tick(const QueueEntry* push) {
   } else if (gap_cnt_ > 0) {
     --gap_cnt_;
   }
-  if (push) {
-    if (count_ == ring_.size()) throw std::logic_error("fmpp::ModelBus: push into a full queue");
-    ring_[(head_ + count_) % ring_.size()] = *push;
-    ++count_;
-  }
+  push_entry(push);
   ++cycle_;
   // The hook sees the state after the whole edge, as the RTL's observer does.
   if (retired && exec_hook_) exec_hook_(done);
@@ -182,6 +203,11 @@ void ModelBus::tick(const QueueEntry* push) {
 
 void ModelBus::drain() {
   while (count_ > 0 || pipe_count_ > 0) tick(nullptr);
+}
+
+void ModelBus::settle() {
+  drain();
+  if (was_busy_) tick(nullptr);
 }
 
 Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
@@ -200,7 +226,7 @@ Resp ModelBus::write(uint32_t addr, uint64_t data, uint8_t strb) {
     err_event_ = true;
     return Resp::kSlvErr;
   }
-  drain();
+  settle();
   // Accepted at this edge: register effects land with it.
   if (e != Err::kNone) {
     err_.record(e, addr);
@@ -246,8 +272,13 @@ uint64_t ModelBus::register_value(uint32_t reg) const {
 }
 
 Resp ModelBus::read(uint32_t addr, uint64_t* data) {
-  drain();
+  settle();
   if (err_event_) tick(nullptr);
+  // RESP and STATUS wait for the responder tree's registers (the RTL's resp_en: the exact
+  // register offsets, aligned; the flags do not change while they wait).
+  if (addr == map::kRegResp || addr == map::kRegStatus) {
+    for (unsigned k = 0; k < map::kRespLatency; ++k) tick(nullptr);
+  }
   const Decoded d = decode_address(config(), addr);
   Err e = Err::kNone;
   uint64_t v = 0;

@@ -181,9 +181,10 @@ TEST(ModelBus, PushesTakeOneClockAndReadsDrain) {
   // edge 10 the last push is still queued and the kLat before it are in the pipeline.
   EXPECT_EQ(bus.machine().instret(), 9u - kLat) << "the last entries are queued or in flight";
   EXPECT_EQ(bus.in_flight(), kLat);
-  // The read waits one clock for the queue to drain and kLat for the pipeline, then is accepted.
-  EXPECT_EQ(rd(bus, map::kRegCycles), 11u + kLat);
-  EXPECT_EQ(bus.cycles(), 12u + kLat);
+  // The read waits one clock for the queue to drain, kLat for the pipeline and one with the
+  // array idle, then is accepted.
+  EXPECT_EQ(rd(bus, map::kRegCycles), 12u + kLat);
+  EXPECT_EQ(bus.cycles(), 13u + kLat);
   EXPECT_EQ(bus.in_flight(), 0u);
   EXPECT_EQ(rd(bus, map::kRegInstret), 10u);
 }
@@ -206,8 +207,67 @@ TEST(ModelBus, GapFillsTheQueueAndBackPressures) {
   const uint64_t before = bus.cycles();
   EXPECT_EQ(rd(bus, map::kRegInstret), 40u);
   // Drain: 2 clocks left of the current gap, 16 pops 4 clocks apart, the last entry's
-  // kPipeLatency clocks in the pipeline, then the read.
-  EXPECT_EQ(bus.cycles() - before, 2u + 1u + 4u * 15 + ModelBus::kPipeLatency + 1u);
+  // kPipeLatency clocks in the pipeline, the clock idle, then the read.
+  EXPECT_EQ(bus.cycles() - before, 2u + 1u + 4u * 15 + ModelBus::kPipeLatency + 1u + 1u);
+}
+
+TEST(ModelBus, RespAndStatusWaitForTheResponderTree) {
+  ModelBus bus(Config{4, 8});
+  EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);
+  (void)rd(bus, map::kRegCycles);  // drained
+  // A read of any other register is accepted at the first edge; RESP and STATUS wait
+  // kRespLatency more, and see every block selected.
+  uint64_t t = bus.cycles();
+  (void)rd(bus, map::kRegMask);
+  EXPECT_EQ(bus.cycles() - t, 1u);
+  t = bus.cycles();
+  const uint64_t resp = rd(bus, map::kRegResp);
+  EXPECT_EQ(bus.cycles() - t, 1u + map::kRespLatency);
+  EXPECT_EQ(map::kRespCount.get(resp), 4u);
+  t = bus.cycles();
+  EXPECT_EQ(map::kStatusAny.get(rd(bus, map::kRegStatus)), 1u);
+  EXPECT_EQ(bus.cycles() - t, 1u + map::kRespLatency);
+}
+
+TEST(ModelBus, FlagopIfAnyHoldsThePipelineForTheAnyTree) {
+  // The same program with FLAG_ANY set and clear: the first holds stage 3 kAnyLatency
+  // clocks more, and writes only where some block has the value 1.
+  for (bool any : {false, true}) {
+    ModelBus bus(Config{4, 8});
+    EXPECT_EQ(bus.write(map::kRegQueue, resets().encode()), Resp::kOkay);
+    (void)rd(bus, map::kRegCycles);
+    const uint64_t t = bus.cycles();
+    // SEL <- SEL and SEL (0 everywhere): with FLAG_ANY no block has 1, so nothing is written.
+    EXPECT_EQ(bus.write(map::kRegQueue, flagop(map::kFlagSEL, map::kFlagSEL, map::kFlagSEL, 0b1000, any).encode()),
+              Resp::kOkay);
+    EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);
+    EXPECT_EQ(rd(bus, map::kRegInstret), 3u);
+    // Two pushes, a clock to pop the last, the pipeline's latency, the clock idle, the read;
+    // and the hold.
+    EXPECT_EQ(bus.cycles() - t, 2u + 1u + ModelBus::kPipeLatency + 1u + 1u + (any ? map::kAnyLatency : 0u)) << any;
+  }
+}
+
+TEST(ModelBus, AnAccessWaitsForTheArrayIdleAWholeClock) {
+  // A read right after the pipeline drains waits one clock (what it reads then stood still
+  // two clocks); a read with nothing in flight the clock before does not.
+  ModelBus bus(Config{4, 8});
+  EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);  // edge 1: pushed
+  uint64_t t = bus.cycles();
+  (void)rd(bus, map::kRegMask);
+  // Popped at edge 2, retires at 2 + kPipeLatency, idle a clock, then accepted.
+  EXPECT_EQ(bus.cycles() - t, 1u + ModelBus::kPipeLatency + 1u + 1u);
+  t = bus.cycles();
+  (void)rd(bus, map::kRegMask);
+  EXPECT_EQ(bus.cycles() - t, 1u);
+  // A CTRL write waits the same way; an ERROR write with nothing in flight does not.
+  EXPECT_EQ(bus.write(map::kRegQueue, sets().encode()), Resp::kOkay);
+  t = bus.cycles();
+  EXPECT_EQ(bus.write(map::kRegCtrl, 0), Resp::kOkay);
+  EXPECT_EQ(bus.cycles() - t, 1u + ModelBus::kPipeLatency + 1u + 1u);
+  t = bus.cycles();
+  EXPECT_EQ(bus.write(map::kRegCtrl, 0), Resp::kOkay);
+  EXPECT_EQ(bus.cycles() - t, 1u);
 }
 
 }  // namespace

@@ -130,9 +130,16 @@ def gen_md(m):
              "ERROR, and queues nothing.")
     o.append("- The array pops one entry per clock (then idles `CTRL.GAP` clocks) into its three-stage "
              "pipeline (decode, operand read, execute); an entry takes effect two clocks after its pop, "
-             "and the next entry may use its result at once.")
+             "and the next entry may use its result at once. A FLAGOP with FLAG_ANY waits in the execute "
+             f"stage {m['params']['AnyLatency']['value']} clocks for the answer of the any tree (a register "
+             f"in each tile, one for each group of {m['params']['TreeGroup']['value']} tiles, one at the "
+             "top): meanwhile no entry is popped, advances or takes effect (the `CTRL.GAP` count goes on).")
     o.append("- Every other access (every read, and writes to `CTRL` and `ERROR`) waits until the queue "
-             "is empty and the pipeline has drained, so a read always sees the effect of every earlier push.")
+             "is empty and the pipeline has drained, so a read always sees the effect of every earlier push, "
+             "and then one clock more if an entry was in the pipeline in the clock before (what a read returns "
+             "has stood still for two clocks, which gives its path across the chip two clocks). "
+             f"A read of `RESP` or `STATUS` then waits {m['params']['RespLatency']['value']} clocks more, for "
+             "the responder tree's registers (in each tile, for each group of tiles, at the top).")
     o.append("- ERROR changes one clock after the access that changes it (an access with an error, or a "
              "write to `ERROR`): the slave registers the event at the access and applies it at the next "
              "clock edge. A read accepted right after such an access waits that one clock, so what "
@@ -141,8 +148,10 @@ def gen_md(m):
              "read returns 0 in them (a write of 0x1FF to `CTRL` sets GAP to 0xFF). Instructions are "
              "stricter: a reserved instruction bit that is not 0 makes the push ILLEGAL.")
     o.append("- With the bus master keeping BREADY/RREADY high, a push costs one clock and a read costs "
-             "the clocks needed to drain the queue and the pipeline (two clocks after the last pop) plus one "
-             "(and one more right after an access that changes ERROR). The golden model counts clocks by "
+             "the clocks needed to drain the queue and the pipeline (two clocks after the last pop), the idle "
+             "clock after it, plus one "
+             "(and one more right after an access that changes ERROR, and the responder tree's clocks for "
+             "`RESP` and `STATUS`). The golden model counts clocks by "
              "the same rules, so `CYCLES` agrees between model and RTL.")
     o.append("")
     o.extend(_how_generated())

@@ -9,7 +9,11 @@
 // read, execute; its forwarding makes the order of effects that of the entries). A
 // write to QUEUE, FLAGS or WORDS is accepted at the first edge with room in the queue
 // (and queued if legal); every other access at the first edge with the queue empty and
-// the pipeline drained. An access with an
+// the pipeline drained for a whole clock (rtl/fmpp_top.sv: a clock idle after the last
+// entry retired, so that a read's path across the die has two clocks), a read of RESP or
+// STATUS map::kRespLatency edges after that (the responder tree's registers). A FLAGOP with FLAG_ANY holds the pipeline map::kAnyLatency
+// edges before it executes (the any tree's registers): no entry executes, advances or is
+// popped meanwhile, and the GAP counter counts on. An access with an
 // error, or any write to ERROR, changes the ERROR register one edge after its own
 // (rtl/fmpp_err_reg.sv registers the event first), and a read waits for that edge:
 // a read right after such an access is accepted one clock later. cycles() counts
@@ -100,8 +104,11 @@ class ModelBus : public Bus {
 
  private:
   void tick(const QueueEntry* push);  // one rising clock edge
+  void push_entry(const QueueEntry* push);  // the bus's push at an edge (none if null)
+  static bool waits_for_any(const QueueEntry& e);  // FLAGOP with FLAG_ANY
   void execute(const QueueEntry& e);
   void drain();
+  void settle();  // drain, then the clock idle that an access waiting for the array needs
   uint64_t register_value(uint32_t reg) const;
 
   Machine m_;
@@ -116,6 +123,8 @@ class ModelBus : public Bus {
   uint64_t cycle_ = 0;
   uint8_t gap_ = 0;       // CTRL.GAP
   uint8_t gap_cnt_ = 0;   // idle clocks left before the next pop
+  unsigned any_wait_ = 0;  // clocks the FLAGOP with FLAG_ANY in stage 3 has waited
+  bool was_busy_ = false;  // the pipeline held an entry in the clock before the last edge
   // The last edge accepted an access that changes ERROR (an error, or a write to ERROR):
   // the RTL applies it at the next edge, and a read waits for that edge. err_ holds the
   // value as applied (what a read shows).
