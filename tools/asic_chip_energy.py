@@ -176,7 +176,8 @@ def central(out, netlist, fst, reuse):
     act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
     _, listing = power(out, "central_power", "fmpp_top", netlist, os.path.join(out, "central.all.tcl"), reuse, True)
     skip = ep.island(netlist, fl.LIB, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
-    parts = {"a tile's copies": ep.island(netlist, fl.LIB, PER_TILE), "a group's copies": ep.island(netlist, fl.LIB, PER_GROUP)}
+    per = {"a tile's copies": ("tile", PER_TILE), "a group's copies": ("group", PER_GROUP)}
+    parts = {k: ep.island(netlist, fl.LIB, pat) for k, (_, pat) in per.items()}
     tot = {k: [0.0] * 4 for k in ("all", *parts)}
     for inst, p in ep.instance_power(listing).items():
         if inst in skip:
@@ -184,8 +185,7 @@ def central(out, netlist, fst, reuse):
         for k in ["all"] + [k for k, cells in parts.items() if inst in cells]:
             tot[k] = [a + b for a, b in zip(tot[k], p)]
     notes = {"all": f"fmpp_top with one stand-in tile less its {len(skip)} cells",
-             **{k: f"{len(cells)} cells of the above that the chip has once per {k.split()[1][:-2]}"
-                for k, cells in parts.items()}}
+             **{k: f"{len(cells)} cells of the above that the chip has once per {per[k][0]}" for k, cells in parts.items()}}
     return [["central", k, "", act["cycles"], pj(t[3]), pj(t[0]), pj(t[1]), pj(t[2]), "", "", notes[k]]
             for k, t in tot.items()]
 
