@@ -31,7 +31,9 @@ import os
 import re
 import sys
 
-from asic_netlist import Fail, Trace, compile_cells, compile_function, read_liberty, read_netlist, undriven_nets
+from asic_netlist import (Fail, Trace, clock_nets, compile_cells, gated_clock_tcl, gated_pulses, read_liberty,
+                          read_netlist, undriven_nets)
+from asic_netlist_check import functions_errors, gating_errors
 
 LANE_REGS = r"\.u_tile\.(mem_q\[\d+\]|flag_q|opa_q|opb_q|opa|opb)$"
 TILE_REGS = r"\.u_tile\.(\w+_i|cin_q|fa_idx|fb_idx)$"
@@ -54,34 +56,11 @@ def classify(base, lane_re, tile_re, tilereg_re):
 
 
 def self_test():
-    """The Liberty function compiler against truth tables (every OSU018 function form)."""
-    cases = {
-        "(A B)": lambda a, b, c, d: a & b,
-        "(!((A B)+C))": lambda a, b, c, d: 1 - ((a & b) | c),
-        "(!((A B)+(C D)))": lambda a, b, c, d: 1 - ((a & b) | (c & d)),
-        "(!((A+B) C))": lambda a, b, c, d: 1 - ((a | b) & c),
-        "(A^B)": lambda a, b, c, d: a ^ b,
-        "(!(A^B))": lambda a, b, c, d: 1 - (a ^ b),
-        "A'": lambda a, b, c, d: 1 - a,
-        "(!A)": lambda a, b, c, d: 1 - a,
-        "((A & !B) | (B * C))": lambda a, b, c, d: (a & (1 - b)) | (b & c),
-        "(!(A B C))": lambda a, b, c, d: 1 - (a & b & c),
-        "(!((A+B)+C))": lambda a, b, c, d: 1 - (a | b | c),
-    }
-    # all 16 input combinations at once: bit t of each pin's integer is row t
-    pins = {p: sum(((t >> i) & 1) << t for t in range(16)) for i, p in enumerate("ABCD")}
-    for expr, ref in cases.items():
-        fn = eval("lambda M, p_A, p_B, p_C, p_D: " + compile_function(expr, "ABCD"))
-        got = fn(0xFFFF, pins["A"], pins["B"], pins["C"], pins["D"])
-        want = sum(ref((t >> 0) & 1, (t >> 1) & 1, (t >> 2) & 1, (t >> 3) & 1) << t for t in range(16))
-        if got != want:
-            raise Fail(f"self-test: {expr!r} gives {got:#06x}, not {want:#06x}")
-    for bad in ("(A B", "A +", "(A $ B)"):
-        try:
-            compile_function(bad, "AB")
-        except Fail:
-            continue
-        raise Fail(f"self-test: {bad!r} was accepted")
+    """The Liberty function compiler and the gated clocks (tools/asic_netlist_check.py), and
+    how registers are found in the trace."""
+    errs = functions_errors() + gating_errors()
+    if errs:
+        raise Fail("self-test: " + "; ".join(errs))
     # how the pipelined RTL's flip-flops (as yosys names them) are found in the trace
     regs = {
         "u_array.g_tile[0].u_tile.mem_q[7]": "lane", "u_array.g_tile[0].u_tile.flag_q": "lane",
@@ -97,7 +76,7 @@ def self_test():
         got = classify(reg, *res)
         if got != want:
             raise Fail(f"self-test: register {reg} is classed {got!r}, not {want!r}")
-    print(f"asic_activity.py self-test: {len(cases)} functions agree with their truth tables, "
+    print("asic_activity.py self-test: the functions agree with their truth tables, the gated clocks are found, "
           f"{len(regs)} register names are classed as expected")
     return 0
 
@@ -127,6 +106,7 @@ def main():
     ap.add_argument("--chunk", type=int, default=4096, help="cycles evaluated at once")
     ap.add_argument("--max-cycles", type=int, default=0)
     ap.add_argument("--out", required=True, help="output prefix: <out>.json, <out>.<class>.tcl")
+    ap.add_argument("--period", type=float, default=10.0, help="the clock period (ns) of the power runs")
     ap.add_argument("--classes-min", type=int, default=200, help="fewest cycles of a class to get its own Tcl")
     a = ap.parse_args()
 
@@ -231,6 +211,11 @@ def main():
     classes = ["idle"] + [kinds[k] for k in sorted(kinds) if kinds[k] != "INSTR"] + [opnames[k] for k in sorted(opnames)]
     cidx = {c: i for i, c in enumerate(classes)}
     tog = {n: [0] * len(classes) for n in allnets}
+    clocknets, gated, root = clock_nets(order, find("clk_i"))
+    pulses = [[0] * len(classes) for _ in gated]  # per gated clock and class: cycles with a pulse
+    gate_of = {q: root.get(inst_conns[name]["CLK"], -1) for name, _, _, q in seqs}
+    if any(gate_of[q] >= 0 for q in unmapped):
+        raise Fail("a flip-flop on a gated clock is not in the trace (only traced ones are simulated here)")
     ones = {n: [0] * len(classes) for n in allnets}
     ccount = [0] * len(classes)
     check_ok = check_all = 0
@@ -305,13 +290,18 @@ def main():
         else:
             unsettled += 1
             print(f"warning: {changed} simulated flip-flops still changing after 12 rounds", file=sys.stderr)
-        # check: D(t) of the named flip-flops equals their traced Q(t+1)
+        xs = gated_pulses(gated, clocknets, val, M)
+        for k, x in enumerate(xs):
+            for ci, mk in enumerate(masks):
+                pulses[k][ci] += (x & mk).bit_count()
+        # check: D(t) of the named flip-flops equals their traced Q(t+1) (after a clock pulse)
         for _, _, d, q in seqs:
             if flop_src[q] is not None and T > 1:
-                diff = (val[d] ^ (val[q] >> 1)) & ((1 << (T - 1)) - 1)
-                check_all += T - 1
+                ok = ((1 << (T - 1)) - 1) & (xs[gate_of[q]] if gate_of[q] >= 0 else M)
+                diff = (val[d] ^ (val[q] >> 1)) & ok
+                check_all += ok.bit_count()
                 nd = diff.bit_count()
-                check_ok += T - 1 - nd
+                check_ok += ok.bit_count() - nd
                 if nd:
                     reg = flop_src[q][0][len(a.scope) + 1:]
                     check_regs[reg] = check_regs.get(reg, 0) + nd
@@ -357,6 +347,7 @@ def main():
         with open(path, "w") as f:
             f.write(f"# activity over {n_cyc} cycles ({', '.join(classes[i] for i in sel)}) from {os.path.basename(a.fst)}\n")
             f.write("proc act {pins a d} { foreach p $pins { sta::set_power_pin_activity [get_pins $p] $a $d } }\n")
+            f.write(gated_clock_tcl(gated, [sum(p[i] for i in sel) for p in pulses], n_cyc, drivers, a.period))
             for n in allnets:
                 tg = sum(tog[n][i] for i in sel)
                 on = sum(ones[n][i] for i in sel)
@@ -369,13 +360,12 @@ def main():
                 if pl:
                     f.write(f"act {{{' '.join(pl)}}} {ac:.6g} {du:.6g}\n")
         return n_cyc
-    # the clock's buffer tree: OpenSTA gives clock nets the clock's own activity
-    clocknets = {find("clk_i")}
-    for net, _, ins in order:
-        if any(i in clocknets for i in ins):
-            clocknets.add(net)
+    # the clock's buffer tree: OpenSTA gives clock nets their clock's activity (the gated
+    # clocks' own, gated_clock_tcl)
     allnets = [n for n in allnets if n not in clocknets]
     summary["clock_nets"] = len(clocknets)
+    summary["gated_clocks"] = len(gated)
+    summary["gated_pulse_fraction"] = sum(sum(p) for p in pulses) / len(gated) / total if gated else None
     allsel = list(range(len(classes)))
     write_tcl(a.out + ".all.tcl", allsel)
     summary["tcl"] = {"all": a.out + ".all.tcl"}

@@ -6,9 +6,12 @@ each part by OpenSTA on the OSU 0.18 um cells (typical corner), and the parts ad
 each global network:
 
   1. the tile: the real fmpp_tile, 64 lanes of 32 words, synthesized alone (asic.sh's
-     yosys mapping and blifFanout). Its ports are the ends of the networks; OpenSTA times
-     each port to the tile's flip-flops and each flip-flop to a port, and the tile's own
-     flip-flop-to-flip-flop paths (the block datapath; no wires inside the tile);
+     yosys mapping and blifFanout), each word's storage clock-gated (a latch and an AND per
+     word: asic_chip_flow.gating). Its ports are the ends of the networks; OpenSTA times
+     each port to the tile's flip-flops and gates and each flip-flop to a port, and the
+     tile's own flip-flop-to-flip-flop paths (the block datapath; no wires inside the
+     tile); the gates' latch-to-AND check of half a clock is timed again at each chip's
+     own clock;
   2. the logic between the tiles: fmpp_top with NumBlocks = 64 x T, every tile replaced by
      tools/asic/tile_stub.sv (flip-flops on its ports), for T = 1, 4, 16 and 64 tiles:
      the broadcast from the stage registers, the OR of the tiles' "if any", the responder
@@ -40,7 +43,6 @@ and network) with the provenance lines (command, date, machine, the RTL hash of
 tools/rtl_hash.py), and prints a line per tile count.
 """
 import argparse
-import math
 import os
 import subprocess
 import sys
@@ -68,11 +70,27 @@ def rtl_sources():
     return r.stdout.split()
 
 
-def build(out, name, top, params, sources, reuse):
-    """Synthesis and buffering of one netlist (kept when --reuse finds it); seconds taken."""
+def storage_pattern(tile_top):
+    """The word storage's wire pattern (rtl/fmpp.f's `storage` line), for a netlist of the
+    whole FMPP or, with tile_top, of a tile alone (the pattern without its scope)."""
+    r = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "rtl_files.py"), "--root", ROOT, "--storage"],
+                       capture_output=True, text=True)
+    if r.returncode != 0 or not r.stdout.strip():
+        raise fl.FlowError("tools/rtl_files.py --storage: " + (r.stderr.strip() or "no storage line in rtl/fmpp.f"))
+    pat = r.stdout.strip()
+    return pat.rsplit(".", 1)[-1] if tile_top else pat
+
+
+def build(out, name, top, params, sources, reuse, gated_bits=0):
+    """Synthesis and buffering of one netlist (kept when --reuse finds it); seconds taken.
+    gated_bits: the number of word-storage flip-flops the netlist has, each clock-gated by
+    its word (asic_chip_flow.gating); the flow fails if the storage pattern finds another."""
     t0 = time.time()
     if not (reuse and os.path.exists(os.path.join(out, name + ".v"))):
-        fl.synth(out, name, top, params, sources)
+        fl.synth(out, name, top, params, sources, storage_pattern(top == "fmpp_tile") if gated_bits else None)
+        got = fl.storage_count(out, name)
+        if got != gated_bits:
+            raise fl.FlowError(f"{name}: the storage pattern found {got} flip-flops to clock-gate, not {gated_bits}")
         fl.fanout(out, name, top)
     return time.time() - t0
 
@@ -98,11 +116,47 @@ def named(out, name, paths):
     return paths
 
 
+GATE = "a word's clock gate"
+
+
+def with_gates(paths):
+    """The tile's paths with those into the word clock gates' latches taken in: a port's
+    `latch:P` into its `from:P`, the flip-flops' `gate_en` into `internal`, `gate_en_hold`
+    into `hold`, when worse (the gate's latch closes at the rising edge, as a flip-flop
+    samples)."""
+    for k in [k for k in paths if k.startswith("latch:")]:
+        p = dict(paths.pop(k), end=GATE)
+        b = "from:" + k[len("latch:"):]
+        if b not in paths or p["ns"] > paths[b]["ns"]:
+            paths[b] = p
+    if "gate_en" in paths:
+        paths["gate_en"]["end"] = GATE
+        if paths["gate_en"]["ns"] > paths["internal"]["ns"]:
+            paths["internal"] = paths["gate_en"]
+    if "gate_en_hold" in paths and paths["gate_en_hold"]["ns"] < paths["hold"]["ns"]:
+        paths["hold"] = paths["gate_en_hold"]
+    return paths
+
+
 def time_tile(out, lanes, words, reuse):
     name = f"tile_{lanes}x{words}"
-    secs = build(out, name, "fmpp_tile", {"Lanes": lanes, "NumWords": words}, rtl_sources(), reuse)
+    secs = build(out, name, "fmpp_tile", {"Lanes": lanes, "NumWords": words}, rtl_sources(), reuse, lanes * words * 32)
     text = fl.sta(out, name, "fmpp_tile", ck.TILE_TCL.replace("%(load)s", f"{bufx4_input_pf():.5f}"))
-    return named(out, name, fl.checks(text)), lef_area(out, name), secs
+    return with_gates(named(out, name, fl.checks(text))), lef_area(out, name), secs
+
+
+def gate_slacks(out, lanes, words, period):
+    """The word clock gates' own check at the chip's period: the worst setup and hold slack
+    (ns) of each gate's latch into its AND (OpenSTA's clock gating check), or None without
+    gates."""
+    name = f"tile_{lanes}x{words}"
+    body = "set lat [all_registers -level_sensitive]\nif {[llength $lat]} {\n" + \
+        ck.check("gate_clk", "-from $lat") + ck.check("gate_clk_hold", "-from $lat", "min") + "}\n"
+    p = fl.checks(fl.sta(out, f"{name}_gates_{period:.3f}", "fmpp_tile", body, verilog=os.path.join(out, name + ".v"),
+                         period=period))
+    if "gate_clk" not in p:
+        return None
+    return fl.PERIOD - p["gate_clk"]["ns"], p["gate_clk_hold"]["ns"]
 
 
 def time_array(out, tiles, words, reuse):
@@ -118,8 +172,11 @@ def check_composition(out, tiles, words, reuse):
     t = time_tile(out, LANE_W, words, reuse)[0]
     a = time_array(out, tiles, words, reuse)[0]
     name = f"flat_{tiles}t_{words}w"
-    build(out, name, "fmpp_top", {"NumBlocks": LANE_W * tiles, "NumWords": words}, rtl_sources(), reuse)
+    build(out, name, "fmpp_top", {"NumBlocks": LANE_W * tiles, "NumWords": words}, rtl_sources(), reuse,
+          LANE_W * tiles * words * 32)
     flat = named(out, name, fl.checks(fl.sta(out, name, "fmpp_top", ck.FLAT_TCL)))
+    if "gate_en" in flat and flat["gate_en"]["ns"] > flat["reg"]["ns"]:
+        flat["reg"] = dict(flat["gate_en"], end=GATE)
     paths = {p[0]: p for p in net.networks(t, a, {"group": 0.0, "trunk": 0.0, "full": 0.0})}  # no wires
     for key, name in (("core_rdata", "central"), ("io_rdata", "bus_in")):  # the central logic's own paths into it
         paths[key] = (name, "", a[key]["ns"]) if key in a else (name, "", 0.0)
@@ -149,13 +206,15 @@ def provenance(argv, reps, density, title="FMPP chip timing: tools/asic_chip.py"
             f"# commit {commit or 'unknown'}, {time.strftime('%Y-%m-%dT%H:%M:%SZ', time.gmtime())}, on {cpu}, "
             f"{os.cpu_count()} cores",
             f"# rtl-sha256 {rtl_hash.rtl_hash(ROOT)} (tools/rtl_hash.py: the RTL measured)",
-            f"# typical corner, ideal clock; placement density {density}; repeaters: {reps_txt}"]
+            f"# typical corner, ideal clock; word storage clock-gated (tools/asic/clock_gate_map.v); "
+            f"placement density {density}; repeaters: {reps_txt}"]
 
 
 PATH_COLS = ["tiles", "blocks", "network", "kind", "path_ns", "clocks", "tile_ns", "between_ns", "wire_segments",
              "wire_mm", "wire_ns", "start", "end"]
 CHIP_COLS = ["tiles", "blocks", "words", "tile_side_mm", "die_side_mm", "group_mm", "trunk_mm", "reach_mm", "wire_ns",
-             "fmax_reg_mhz", "critical", "fmax_io_mhz", "critical_io", "hold_slack_ns", "tile_area_um2", "array_area_um2"]
+             "fmax_reg_mhz", "critical", "fmax_io_mhz", "critical_io", "hold_slack_ns", "tile_area_um2", "array_area_um2",
+             "gate_setup_slack_ns", "gate_hold_slack_ns"]
 
 
 def chip_rows(tiles, words, t, t_area, a, a_area, reps, density, group):
@@ -213,6 +272,7 @@ def main():
         for n in tiles:
             arr, arr_area, secs = time_array(a.out, n, a.words, a.reuse)
             p, c = chip_rows(n, a.words, t, t_area * LANE_W / a.lanes, arr, arr_area, reps, a.density, a.group)
+            c += [f"{x:.3f}" for x in gate_slacks(a.out, a.lanes, a.words, 1000.0 / float(c[9]))]
             prows += p
             crows.append(c)
             print(f"{n} tiles: {c[9]} MHz register to register ({c[10]}), {c[11]} MHz from the bus ({c[12]}), "
@@ -241,10 +301,23 @@ def self_test():
         if abs(r - 0.08) > 1e-12 or abs(c - 7e-05) > 1e-15:
             errors.append(f"layer_rc: {(r, c)}")
         errors += spef_errors(d, lef)
+    errors += gate_errors()
     for e in errors:
         print("asic_chip.py --self-test: " + e, file=sys.stderr)
     print(f"asic_chip.py --self-test: {'FAILED' if errors else 'passed'}")
     return 1 if errors else 0
+
+
+def gate_errors():
+    """with_gates on made-up paths: the worse of a port's two paths, the gate's enable path
+    taken into `internal`, the smaller hold."""
+    def p(ns, end="r"):
+        return {"ns": ns, "start": "s", "end": end}
+    got = with_gates({"from:a": p(2.0), "latch:a": p(3.0), "from:b": p(2.0), "latch:b": p(1.0), "internal": p(4.0),
+                      "gate_en": p(5.0), "hold": p(0.2), "gate_en_hold": p(0.1)})
+    want = {"from:a": (3.0, GATE), "from:b": (2.0, "r"), "internal": (5.0, GATE), "hold": (0.1, "r")}
+    return [f"with_gates {k}: {got.get(k)}" for k, v in want.items() if (got[k]["ns"], got[k]["end"]) != v] + \
+        ([f"with_gates left {sorted(got)}"] if any(k.startswith("latch:") for k in got) else [])
 
 
 def spef_errors(d, lef):
@@ -255,10 +328,10 @@ def spef_errors(d, lef):
     wires.write_spef(os.path.join(d, "w.spef"), chs)
     with open(os.path.join(d, "w.spef")) as f:
         text = f.read()
-    for net in re.split(r"^\*D_NET ", text, flags=re.M)[1:]:
-        name = net.split()[0]
-        caps = re.search(r"\*CAP\n(.*?)\*RES", net, re.S).group(1).split("\n")
-        res = re.search(r"\*RES\n(.*?)\*END", net, re.S).group(1).split("\n")
+    for dnet in re.split(r"^\*D_NET ", text, flags=re.M)[1:]:
+        name = dnet.split()[0]
+        caps = re.search(r"\*CAP\n(.*?)\*RES", dnet, re.S).group(1).split("\n")
+        res = re.search(r"\*RES\n(.*?)\*END", dnet, re.S).group(1).split("\n")
         c = sum(float(x.split()[2]) for x in caps if x.strip())
         r = sum(float(x.split()[3]) for x in res if x.strip())
         branches = 2 if "fork" in name else 1

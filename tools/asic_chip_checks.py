@@ -97,6 +97,17 @@ dict for {key cells} $groups {
     check("hold", "-from [concat $core $grp $loc] -to [concat $core $grp $loc]", "min"),
 ])
 
+# The word clock gates (asic_chip_flow.gating), when the netlist has them: the enables from
+# the flip-flops into the gates' latches (a full clock: the latch closes at the rising edge),
+# and the hold of the enable into the latch. The latch into the gate's AND is a clock gating
+# check of half a clock, timed at the chip's own period (GATING_TCL).
+GATE_TCL = """if {[llength $lat]} {
+""" + "".join([
+    check("gate_en", "-from $regs -to $lat"),
+    check("gate_en_hold", "-to $lat", "min"),
+]) + "}\n"
+
+
 # fmpp_tile alone, bit by bit of its ports, which arrive at the clock edge (from a BUFX2) and
 # are needed at the next edge (loaded with a BUFX4's input): `from:P` is the worst path from
 # input bit P into the tile's flip-flops, `to:P` the worst from a flip-flop to output bit P,
@@ -106,11 +117,17 @@ set_input_delay 0 -clock clk $data_in
 set_driving_cell -lib_cell BUFX2 -pin Y $data_in
 set_output_delay 0 -clock clk [all_outputs]
 set_load %(load)s [all_outputs]
-set regs [all_registers]
+set regs [all_registers -edge_triggered]
+set lat [all_registers -level_sensitive]
+set ends [concat $regs [all_outputs]]
 set rd_in [get_ports {rd_en_i rd_kind_i* rd_block_i* rd_word_i* rd_flag_i*}]
 foreach p [get_ports {%(bcast)s flagop_any_i resp_en_i}] {
   puts "=== from:[get_full_name $p]"
-  report_checks -path_delay max -digits 3 -from $p
+  report_checks -path_delay max -digits 3 -from $p -to $ends
+  if {[llength $lat]} {
+    puts "=== latch:[get_full_name $p]"
+    report_checks -path_delay max -digits 3 -from $p -to $lat
+  }
 }
 # From the flip-flops to each output: with the inputs pushed a period early, no path from
 # an input is the worst to an output (a flip-flop's is).
@@ -132,13 +149,15 @@ foreach p [get_ports {sel_any_o sel_count_o* sel_first_o* ovf_any_o}] {
     "%(period)s", str(PERIOD)) + "".join([
     check("internal", "-from $regs -to $regs"),
     check("hold", "-from $regs -to $regs", "min"),
-])
+]) + GATE_TCL
+
 
 # fmpp_top as one flat netlist (the check of the composition): the worst path from flip-flop
-# to flip-flop, the worst into the read-data register, and the worst from a bus input into it.
-FLAT_TCL = FLOPS_TCL + BUS_CONSTRAINTS + """set regs [all_registers]
+# to flip-flop (or into a word's clock gate), the worst into the read-data register, and the worst from a bus input into it.
+FLAT_TCL = FLOPS_TCL + BUS_CONSTRAINTS + """set regs [all_registers -edge_triggered]
+set lat [all_registers -level_sensitive]
 set rdata [flops *s_axil_rdata_o*]
-""" + "".join([
+""" + GATE_TCL + "".join([
     check("reg", "-from $regs -to $regs"),
     check("into_rdata", "-from $regs -to $rdata"),
     check("bus_into_rdata", "-from $data_in -to $rdata"),

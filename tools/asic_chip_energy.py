@@ -101,7 +101,7 @@ def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
     if not (reuse and os.path.exists(summary) and os.path.getmtime(summary) > os.path.getmtime(fst)):
         cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
                "--fst", fst, "--scope", scope, "--pkg", os.path.join(ROOT, "rtl", "fmpp_pkg.sv"),
-               "--out", os.path.join(out, name)]
+               "--out", os.path.join(out, name), "--period", str(fl.PERIOD)]
         for k in ("exec", "kind", "op"):
             cmd += [f"--{k}", f"{cls_prefix}{k}_i"]
         fl.run(cmd, os.path.join(out, name + ".activity.log"))

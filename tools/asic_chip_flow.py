@@ -32,16 +32,46 @@ def run(cmd, log):
         raise FlowError(f"{' '.join(cmd[:2])} failed (exit {r.returncode}); end of {log}:\n{tail}")
 
 
-def synth(out, name, top, params, sources):
-    """yosys: sources onto the library, flattened; writes out/name.blif and name.stat."""
+GATE_MAP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "asic", "clock_gate_map.v")
+
+
+def gating(out, name, storage):
+    """The yosys lines that clock-gate the word storage: the enabled flip-flops whose Q drives
+    a wire of the pattern `storage` get one clock gate per enable (tools/asic/clock_gate_map.v);
+    their number goes to out/name.storage.count (storage_count reads it)."""
+    if not storage:
+        return ""
+    return (f"select -set storage w:{storage} %ci1:+$_DFFE_PP_[Q] t:$_DFFE_PP_ %i\n"
+            f"tee -o {out}/{name}.storage.count select -count @storage\n"
+            f"techmap -map {GATE_MAP} @storage\nopt_merge -share_all\n")
+
+
+def storage_count(out, name):
+    """The number of storage flip-flops that synth() clock-gated (0 without gating)."""
+    path = os.path.join(out, name + ".storage.count")
+    if not os.path.exists(path):
+        return 0
+    with open(path) as f:
+        m = re.search(r"(\d+) objects", f.read())
+    if not m:
+        raise FlowError(f"{path}: no count of the storage flip-flops")
+    return int(m.group(1))
+
+
+def synth(out, name, top, params, sources, storage=None):
+    """yosys: sources onto the library, flattened; writes out/name.blif and name.stat. With
+    `storage` (a wire pattern) the word storage is clock-gated (gating())."""
     chparam = " ".join(f"-set {k} {v}" for k, v in params.items())
     ys = os.path.join(out, name + ".ys")
+    count = os.path.join(out, name + ".storage.count")
+    if os.path.exists(count):
+        os.remove(count)
     with open(ys, "w") as f:
         f.write(f"""read_liberty -lib {LIB}
 read_verilog -sv {' '.join(sources)}
 chparam {chparam} {top}
 synth -top {top} -flatten
-dfflegalize -cell $_DFF_P_ x
+{gating(out, name, storage)}dfflegalize -cell $_DFF_P_ x
 dfflibmap -liberty {LIB}
 abc -liberty {LIB}
 setattr -mod -unset keep_hierarchy
@@ -80,14 +110,14 @@ def fanout(out, name, top):
     return i
 
 
-def sta(out, name, top, body, verilog=None, clock_port="clk_i"):
-    """OpenSTA on out/name.v (or verilog) with a PERIOD clock on clock_port (virtual if None)
-    and `body` after it."""
+def sta(out, name, top, body, verilog=None, clock_port="clk_i", period=PERIOD):
+    """OpenSTA on out/name.v (or verilog) with a clock of `period` ns on clock_port (virtual
+    if None) and `body` after it."""
     tcl = os.path.join(out, f"{name}.chip.tcl")
     log = os.path.join(out, f"{name}.chip.log")
     with open(tcl, "w") as f:
         f.write(f"read_liberty {LIB}\nread_verilog {verilog or os.path.join(out, name + '.v')}\nlink_design {top}\n"
-                f"create_clock -name clk -period {PERIOD} {f'[get_ports {clock_port}]' if clock_port else ''}\n{body}\n")
+                f"create_clock -name clk -period {period} {f'[get_ports {clock_port}]' if clock_port else ''}\n{body}\n")
     run(["sta", "-no_init", "-no_splash", "-exit", tcl], log)
     with open(log) as f:
         text = f.read()
@@ -103,7 +133,7 @@ def sta(out, name, top, body, verilog=None, clock_port="clk_i"):
 def checks(text):
     """{label: path} of the reports that a script prints after `puts "=== label"` (a path
     per label, or none). A path is a dict: ns = PERIOD - slack (for a hold check, path
-    type min, the hold slack), start and end (OpenSTA's names), start_port (the path starts
+    type min, the hold slack; into a latch, its arrival plus the latch's setup), start and end (OpenSTA's names), start_port (the path starts
     at an input port), clk_q (the launching flip-flop's clock-to-Q, 0 from a port) and
     setup (the capturing flip-flop's setup time, 0 at a port)."""
     res = {}
@@ -117,7 +147,17 @@ def checks(text):
         cq = re.search(r"^\s+([\d.]+)\s+[\d.]+ [\^v] \S+/Q \(DFFPOSX1\)", rep, re.M)
         su = re.search(r"^\s+(-?[\d.]+)\s+[\d.]+\s+library setup time", rep, re.M)
         hold = re.search(r"^Path Type: min", rep, re.M) is not None
-        res[label] = {"ns": float(m.group(1)) if hold else PERIOD - float(m.group(1)),
+        ns = float(m.group(1)) if hold else PERIOD - float(m.group(1))
+        if not hold and re.search(r"^Endpoint: \S+ \(positive level-sensitive latch", rep, re.M):
+            # A latch open while the clock is low (a clock gate's) is checked against its
+            # opening edge, with time borrowed up to its closing edge, the rising edge: the
+            # path's figure is its arrival plus the latch's setup, as for a flip-flop.
+            arr = re.search(r"^\s+(-?[\d.]+)\s+data arrival time", rep, re.M)
+            ls = re.search(r"^library setup time\s+(-?[\d.]+)", rep, re.M)
+            if not (arr and ls):
+                raise FlowError(f"label {label}: a latch check without its arrival or setup time")
+            ns = float(arr.group(1)) - float(ls.group(1))
+        res[label] = {"ns": ns,
                       "start": sp.group(1), "end": ep.group(1), "start_port": "input port" in sp.group(2),
                       "clk_q": float(cq.group(1)) if cq else 0.0, "setup": -float(su.group(1)) if su else 0.0}
     return res

@@ -5,7 +5,10 @@ which module a gate came from, so a gate is put in a part by where its signals g
 
   - a flip-flop by its register: the words (mem_q), the flags (flag_q), the operand
     registers (opa, opb, cin: stage 3's A, addend and carry-in), or another register;
-  - a gate of the clock's buffer tree (the tree blifFanout builds from the clock port);
+  - a gate of the clock's buffer tree (the tree blifFanout builds from the clock port), a
+    word's clock gate (its inverter, latch and AND: tools/asic/clock_gate_map.v) or a buffer
+    of a gated clock's tree (the tree after a gate, which toggles only when its word is
+    written);
   - a gate that no flip-flop reaches (its inputs come only from the tile's ports): the
     decoding and the fanout buffers of the broadcast instruction inside the tile;
   - every other gate by the registers and ports its output reaches: into the words only
@@ -22,6 +25,8 @@ from asic_netlist import compile_cells, read_liberty, read_netlist
 REGISTERS = (("words", r"^mem_q\b"), ("flags", r"^flag_q\b"), ("operand registers", r"^(opa|opb|cin)"))
 SINKS = ("words", "flags", "operand registers", "ports")
 CLOCK = "clock buffers"
+GATES = "word clock gates"
+GATED = "gated clock buffers"
 BROADCAST = "broadcast decode and fanout"
 OTHER_REG = "other registers"
 SHARED = "logic into several of these (words/flags/operands/ports)"
@@ -87,6 +92,11 @@ def parts(netlist, liberty, clock="clk_i"):
     """{instance name: part} for every cell of the netlist."""
     gr = Graph(netlist, liberty)
     clock_gates = gr.forward([gr.find(clock)])
+    # a gate with the clock and another input (a word's AND) and the latch before it; the
+    # inverted clock that opens the latches runs every clock and stays with the clock buffers
+    ands = {g for g in clock_gates if any(gr.driver.get(n) not in clock_gates and n != gr.find(clock) for n in gr.ins[g])}
+    latches = {gr.driver[n] for g in ands for n in gr.ins[g] if gr.driver.get(n) not in clock_gates and n in gr.driver}
+    gated = gr.forward([n for g in ands for n in gr.outs[g]])
     state_gates = gr.forward([q for _, _, _, q in gr.seqs])
     sink_nets = [[], [], [], [gr.find(p) for p, d in gr.portbits.items() if d == "output"]]
     part = {}
@@ -97,7 +107,11 @@ def parts(netlist, liberty, clock="clk_i"):
                 sink_nets[i].append(d)
     mask = gr.masks(sink_nets)
     for name in gr.outs:
-        if name in clock_gates:
+        if name in ands or name in latches:
+            part[name] = GATES
+        elif name in gated:
+            part[name] = GATED
+        elif name in clock_gates:
             part[name] = CLOCK
         elif name not in state_gates:
             part[name] = BROADCAST
@@ -149,6 +163,9 @@ cell (AND2X2) { pin (A) { direction : input; } pin (B) { direction : input; }
   pin (Y) { direction : output; function : "(A B)"; } }
 cell (DFFPOSX1) { ff (DS0000,P0000) { next_state : "D"; clocked_on : "CLK"; }
   pin (CLK) { direction : input; } pin (D) { direction : input; } pin (Q) { direction : output; function : "DS0000"; } }
+cell (INVX1) { pin (A) { direction : input; } pin (Y) { direction : output; function : "!A"; } }
+cell (LATCH) { latch (DS0000,P0000) { data_in : "D"; enable : "CLK"; }
+  pin (CLK) { direction : input; } pin (D) { direction : input; } pin (Q) { direction : output; function : "DS0000"; } }
 }
 """
 NETLIST_TEXT = """module t (clk_i, a_i, y_o);
@@ -163,6 +180,11 @@ AND2X2 g_w (.A(ad), .B(flag_q), .Y(m));
 AND2X2 g_x (.A(mem_q), .B(ad), .Y(x));
 BUFX2 g_f (.A(x), .Y(f));
 AND2X2 g_o (.A(x), .B(mem_q), .Y(y_o));
+INVX1 g_ckn (.A(clk_i), .Y(ckn));
+LATCH g_lat (.CLK(ckn), .D(ad), .Q(en));
+AND2X2 g_gate (.A(clk_i), .B(en), .Y(gck));
+BUFX2 g_gbuf (.A(gck), .Y(gck2));
+DFFPOSX1 r_g (.CLK(gck2), .D(m), .Q(held));
 endmodule
 """
 
@@ -179,5 +201,6 @@ def self_test():
         got = parts(net, lib)
     want = {"g_clk": CLOCK, "g_in": BROADCAST, "r_w": "words (flip-flops)", "r_f": "flags (flip-flops)",
             "g_w": "logic into the words", "g_x": SHARED, "g_f": "logic into the flags",
-            "g_o": "logic to the tile's outputs"}
+            "g_o": "logic to the tile's outputs", "g_ckn": CLOCK, "g_lat": GATES, "g_gate": GATES, "g_gbuf": GATED,
+            "r_g": OTHER_REG}
     return [f"part of {k}: {got.get(k)!r}" for k, v in want.items() if got.get(k) != v]

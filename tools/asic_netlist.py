@@ -44,7 +44,9 @@ def read_liberty(path):
             ck = re.search(r"clocked_on\s*:\s*\"([^\"]*)\"", body)
             seq = ("ff", ff.group(1), ff.group(2), nx.group(1) if nx else "", ck.group(1) if ck else "")
         if re.search(r"\blatch\s*\(", body):
-            seq = ("latch",)
+            di = re.search(r"data_in\s*:\s*\"(\w+)\"", body)
+            en = re.search(r"\benable\s*:\s*\"(\w+)\"", body)
+            seq = ("latch", di.group(1) if di else "", en.group(1) if en else "")
         cells[m.group(1)] = {"pins": pins, "seq": seq}
     if not cells:
         raise Fail(f"{path}: no cells")
@@ -272,6 +274,16 @@ def compile_cells(insts, lib):
     for name, cell, conns in insts:
         info = lib[cell]
         outs = [p for p, (d, f) in info["pins"].items() if d == "output"]
+        if info["seq"] is not None and info["seq"][0] == "latch" and "Q" in conns:
+            # A clock gate's latch (tools/asic/clock_gate_map.v), open while the clock is low:
+            # its Q in a cycle is its D (the word's enable) of that cycle.
+            key = (cell, "Q")
+            if not info["seq"][1] or info["seq"][1] not in conns:
+                raise Fail(f"{name}: latch without its data input")
+            fcache[key] = ([info["seq"][1]], lambda M, d: d)
+            comb.append((name, cell, "Q", conns["Q"]))
+            drivers[conns["Q"]] = (name, "Q")
+            continue
         if info["seq"] is not None:
             if info["seq"][0] != "ff" or info["seq"][4] != "CLK" or info["seq"][3] not in info["pins"]:
                 raise Fail(f"{cell}: only positive-edge D flip-flops are simulated (got {info['seq']})")
@@ -322,3 +334,44 @@ def undriven_nets(comb, seqs, fcache, inst_conns, by_net, known, portbits, find)
         print(f"{len(undriven)} undriven nets read only by {len(reach) - len(undriven)} dead cell outputs (held at 0): "
               + ", ".join(undriven[:8]) + (" ..." if len(undriven) > 8 else ""), file=sys.stderr)
     return undriven, len(reach) - len(undriven)
+
+
+def clock_nets(order, clock):
+    """The clock's nets (the clock port's net and every gate output it reaches through
+    combinational gates; a latch's enable is not one of its inputs) and the gated clocks:
+    [(net, function, inputs)] of the gates that have the clock and another signal (the word
+    clock gates' ANDs), whose output carries a pulse only in some cycles; and per clock net
+    the index of the gated clock it comes from (-1: the free-running clock)."""
+    nets, gated, root = {clock}, [], {clock: -1}
+    for net, fn, ins in order:
+        ck = [i for i in ins if i in nets]
+        if ck:
+            nets.add(net)
+            root[net] = root[ck[0]]
+            if len(ck) < len(ins):
+                root[net] = len(gated)
+                gated.append((net, fn, ins))
+    return nets, gated, root
+
+
+def gated_pulses(gated, nets, val, M):
+    """Per gated clock the cycles (bit t: cycle t) that end in a pulse: those where the gate's
+    output follows the clock (differs between the clock at 1 and at 0), the other inputs at
+    their values in val."""
+    return [fn(M, *[M if i in nets else val[i] for i in ins]) ^ fn(M, *[0 if i in nets else val[i] for i in ins])
+            for _, fn, ins in gated]
+
+
+def gated_clock_tcl(gated, pulses, n_cyc, drivers, period):
+    """OpenSTA Tcl that gives each gated clock its own rate: OpenSTA gives every pin of a clock
+    network its clock's activity whatever activity is set on it, so the gate's output gets a
+    clock of period / (its fraction of cycles with a pulse); one that never pulses, a period
+    a billion times the clock's."""
+    out = []
+    for k, (net, _, _) in enumerate(gated):
+        inst, pin = drivers[net]
+        f = pulses[k] / n_cyc if n_cyc else 0.0
+        out.append(f"create_clock -name gated_{k} -period {period / f if f else period * 1e9:.6g} "
+                   f"[get_pins {{{inst}/{pin}}}]\n")
+    return "".join(out)
+
