@@ -27,13 +27,15 @@ def chip_tables(d):
     o = ["Measured by " + "; ".join(provenance(comments)[:1]) + ".", "", *("    " + p for p in provenance(comments)[1:]), ""]
     o += ["| tiles | blocks | die side (mm) | wires (mm): a group's middle to its farthest lane, the centre to the "
           "farthest group's middle, the centre to the farthest lane | the last one's wire (ns) | "
-          "**Fmax, flip-flop to flip-flop** | its path | Fmax from the bus | its path | worst hold slack (ns) |",
-          "| ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | ---: |"]
+          "**Fmax, flip-flop to flip-flop** | its path | Fmax from the bus | its path | worst hold slack (ns) | "
+          "the word clock gates at that Fmax: setup, hold slack (ns) |",
+          "| ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | ---: | ---: |"]
     for r in chip:
+        gates = f"{r['gate_setup_slack_ns']}, {r['gate_hold_slack_ns']}" if r.get("gate_setup_slack_ns") else "no gates"
         o.append(f"| {r['tiles']} | {int(r['blocks']):,} | {float(r['die_side_mm']):.1f} | {float(r['group_mm']):.1f}, "
                  f"{float(r['trunk_mm']):.1f}, {float(r['reach_mm']):.1f} | "
                  f"{float(r['wire_ns']):.2f} | **{r['fmax_reg_mhz']} MHz** | {r['critical']} | {r['fmax_io_mhz']} MHz | "
-                 f"{r['critical_io']} | {r['hold_slack_ns']} |")
+                 f"{r['critical_io']} | {r['hold_slack_ns']} | {gates} |")
     tiles = [r["tiles"] for r in chip]
     by = {(p["network"], p["tiles"]): p for p in paths}
     o += ["", "Each network's path in ns (of which wire), by tiles:", "",
