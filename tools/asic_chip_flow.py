@@ -133,9 +133,10 @@ def sta(out, name, top, body, verilog=None, clock_port="clk_i", period=PERIOD):
 def checks(text):
     """{label: path} of the reports that a script prints after `puts "=== label"` (a path
     per label, or none). A path is a dict: ns = PERIOD - slack (for a hold check, path
-    type min, the hold slack; into a latch, its arrival plus the latch's setup), start and end (OpenSTA's names), start_port (the path starts
-    at an input port), clk_q (the launching flip-flop's clock-to-Q, 0 from a port) and
-    setup (the capturing flip-flop's setup time, 0 at a port)."""
+    type min, the hold slack; into a latch, its arrival plus the latch's setup), start and
+    end (OpenSTA's names), start_port (the path starts at an input port), clk_q (the
+    launching flip-flop's clock-to-Q, 0 from a port) and setup (the capturing flip-flop's
+    setup time, 0 at a port)."""
     res = {}
     parts = re.split(r"^=== (\S+)\n", text, flags=re.M)
     for label, rep in zip(parts[1::2], parts[2::2]):
