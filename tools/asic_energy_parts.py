@@ -5,10 +5,10 @@ which module a gate came from, so a gate is put in a part by where its signals g
 
   - a flip-flop by its register: the words (mem_q), the flags (flag_q), the operand
     registers (opa, opb, cin: stage 3's A, addend and carry-in), or another register;
-  - a gate of the clock's buffer tree (the tree blifFanout builds from the clock port), a
-    word's clock gate (its inverter, latch and AND: tools/asic/clock_gate_map.v) or a buffer
-    of a gated clock's tree (the tree after a gate, which toggles only when its word is
-    written);
+  - a gate of the clock's buffer tree (the tree blifFanout builds from the clock port, with
+    the inverted clock that opens the gates' latches), a word's clock gate (its latch and
+    AND: tools/asic/clock_gate_map.v) or a buffer of a gated clock's tree (the tree after a
+    gate, which toggles only when its word is written);
   - a gate that no flip-flop reaches (its inputs come only from the tile's ports): the
     decoding and the fanout buffers of the broadcast instruction inside the tile;
   - every other gate by the registers and ports its output reaches: into the words only
