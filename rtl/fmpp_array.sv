@@ -78,6 +78,28 @@ module fmpp_array #(
   assign dc_op = is_instr ? instr[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W] : fmpp_pkg::OP_NOP;
   assign dc_d  = is_instr ? instr[fmpp_pkg::F_D_LSB +: fmpp_pkg::F_D_W] : head_i.word;
   assign dc_imm = is_instr ? instr[fmpp_pkg::F_IMM_LSB +: fmpp_pkg::F_IMM_W] : head_i.data[31:0];
+  // Which words the entry reads and writes (operand isolation): the stage registers of A, B
+  // and D load only with an entry that uses them, and a tile loads an operand register only
+  // for an entry that uses it, so that an entry leaves the word reads it does not need (and
+  // the ALU behind them) still. dc_ld_b: the addend register (word B, or CMP's IMM).
+  logic dc_rd_a, dc_rd_b, dc_ld_b, dc_wr_d;
+  always_comb begin
+    dc_rd_a = 1'b0;
+    dc_rd_b = 1'b0;
+    dc_wr_d = head_i.kind == fmpp_pkg::QE_WORD;
+    case (dc_op)
+      fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP: begin
+        {dc_rd_a, dc_rd_b, dc_wr_d} = 3'b111;
+      end
+      fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: {dc_rd_a, dc_wr_d} = 2'b11;
+      fmpp_pkg::OP_CMP: dc_rd_a = 1'b1;
+      fmpp_pkg::OP_REF: dc_rd_a = instr[fmpp_pkg::F_X_LSB + fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] ==
+                                  fmpp_pkg::REF_PART_DATA;
+      fmpp_pkg::OP_WRITES: dc_wr_d = 1'b1;
+      default: ;
+    endcase
+    dc_ld_b = dc_rd_b || dc_op == fmpp_pkg::OP_CMP;
+  end
 
   // Stage registers: s2_* holds the entry in operand read, s3_* the entry executing.
   // s3_valid_q is the retire signal: the entry's effects land at the next clock edge
@@ -85,7 +107,7 @@ module fmpp_array #(
   logic                         s2_valid_q, s3_valid_q;
   logic                         retire /*verilator public_flat_rd*/;
   // (The central copies keep only what the sequencer needs: the tiles take their fields from
-  // their group's copies below.)
+  // their group's and their own copies below.)
   fmpp_pkg::qkind_e             s2_kind_q, s3_kind_q;
   logic [fmpp_pkg::F_OP_W-1:0]  s2_op_q, s3_op_q;
   logic [fmpp_pkg::F_IMM_W-1:0] s2_imm_q, s3_imm_q;
@@ -173,6 +195,7 @@ module fmpp_array #(
   logic top_flag_q;
   for (genvar g = 0; g < NumGroups; g++) begin : g_bc
     logic                         v2_q, v3_q, any3_q, ans_q, hold_g;
+    logic                         rd_a2_q, ld_b2_q;  // the entry reads word A; loads the addend
     logic [fmpp_pkg::F_A_W-1:0]   a2_q;
     logic [fmpp_pkg::F_B_W-1:0]   b2_q;
     logic [fmpp_pkg::F_OP_W-1:0]  op2_q, op3_q;
@@ -198,11 +221,14 @@ module fmpp_array #(
     end
     (* keep *) always_ff @(posedge clk_i) begin
       if (pop) begin
-        {kind2_q, op2_q, f2_q, d2_q} <= {head_i.kind, dc_op, instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W], dc_d};
-        {a2_q, b2_q, x2_q}           <= {instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W],
-                                         instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W],
+        {kind2_q, op2_q, f2_q, x2_q} <= {head_i.kind, dc_op, instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W],
                                          instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W]};
+        {rd_a2_q, ld_b2_q}           <= {dc_rd_a, dc_ld_b};
         {imm2_q, block2_q, strb2_q}  <= {dc_imm, head_i.block, head_i.strb};
+        // The word fields keep the last entry's that used them (operand isolation).
+        if (dc_rd_a) a2_q <= instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W];
+        if (dc_rd_b) b2_q <= instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
+        if (dc_wr_d) d2_q <= dc_d;
       end
       if (v2_q && !hold_g) {kind3_q, op3_q, any3_q} <= {kind2_q, op2_q, imm2_q[fmpp_pkg::FLAG_ANY_LSB]};
       // The last register of the any tree: the top register's answer, near the group's tiles.
@@ -253,7 +279,8 @@ module fmpp_array #(
       .clk_i,
       .rst_ni,
       .base_i       (t * LaneW),
-      .opr_en_i     (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g),
+      .opr_a_en_i   (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g && g_bc[t / GroupW].rd_a2_q),
+      .opr_b_en_i   (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g && g_bc[t / GroupW].ld_b2_q),
       .a_i          (g_bc[t / GroupW].a2_q),
       .b_i          (g_bc[t / GroupW].b2_q),
       .opr_op_i     (g_bc[t / GroupW].op2_q),
@@ -378,10 +405,9 @@ module fmpp_array #(
   assign s2_b_q = g_bc[0].b2_q;
   assign s3_d_q = g_t3[0].d3_q;
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [fmpp_pkg::F_X_W-1:0]   s2_x_q, x;  // REF's part in s2_x_q; every sub-field in x
+  logic [fmpp_pkg::F_X_W-1:0]   x;  // every sub-field of the executing entry's X
   /* verilator lint_on UNUSEDSIGNAL */
   logic [fmpp_pkg::F_IMM_W-1:0] imm;
-  assign s2_x_q = g_bc[0].x2_q;
   assign x      = g_t3[0].x3_q;
   assign imm    = s3_imm_q;
   // Executed at this edge: an instruction (ex_instr); which word the entry in stage 3
@@ -408,15 +434,8 @@ module fmpp_array #(
       endcase
     end
     if (s2_instr) begin
-      case (s2_op_q)
-        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP: begin
-          s2_rd_a = 1'b1;
-          s2_rd_b = 1'b1;
-        end
-        fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT, fmpp_pkg::OP_CMP: s2_rd_a = 1'b1;
-        fmpp_pkg::OP_REF: s2_rd_a = s2_x_q[fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] == fmpp_pkg::REF_PART_DATA;
-        default: ;
-      endcase
+      s2_rd_a = g_bc[0].rd_a2_q;
+      s2_rd_b = g_bc[0].ld_b2_q && s2_op_q != fmpp_pkg::OP_CMP;  // CMP's addend is IMM
       // Every opcode but NOP and MASKSET reads a flag (the predicate or a source flag);
       // REF and WRITES read MASK.
       s2_rd_flag = s2_op_q != fmpp_pkg::OP_NOP && s2_op_q != fmpp_pkg::OP_MASKSET;

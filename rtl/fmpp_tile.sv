@@ -30,7 +30,8 @@ module fmpp_tile #(
   input  logic [31:0]                  base_i /*verilator public_flat_rd*/,
 
   // Operand read (pipeline stage 2): the entry's words A and B, and the addend made from B
-  input  logic                         opr_en_i,    // an entry is in stage 2
+  input  logic                         opr_a_en_i,  // an entry in stage 2 reads word A
+  input  logic                         opr_b_en_i,  // it loads the addend (word B or CMP's IMM)
   input  logic [fmpp_pkg::F_A_W-1:0]   a_i,
   input  logic [fmpp_pkg::F_B_W-1:0]   b_i,
   input  logic [fmpp_pkg::F_OP_W-1:0]  opr_op_i,    // the stage-2 entry's opcode
@@ -325,12 +326,14 @@ module fmpp_tile #(
     end
     // No write while rst_ni is low: the entry in stage 3 is dropped by the reset.
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
-    if (opr_en_i) begin
-      fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-      fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+    // Each operand register loads only for an entry that uses it (operand isolation: the
+    // array holds the word fields of the others), so the reads and the ALU stay still.
+    fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+    fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
+    subs = '0;
+    if (opr_a_en_i) begin
       shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
           ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
-      subs = '0;
       if (shr == '0 && opr_op_i != fmpp_pkg::OP_DIVSTEP) begin
         opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];  // A as read: no copy to shift
       end else begin
@@ -349,7 +352,9 @@ module fmpp_tile #(
         if (opr_op_i == fmpp_pkg::OP_DIVSTEP) opa_rd = {opa_rd[(W-1)*Lanes-1:0], {Lanes{1'b0}}};  // A << 1
         opa_q <= opa_rd;
       end
-      // The addend, the opcode tested once for all planes.
+    end
+    if (opr_b_en_i) begin
+      // The addend, the opcode tested once for all planes (DIVSTEP's subs from A above).
       if (opr_op_i == fmpp_pkg::OP_CMP) begin
         for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= {Lanes{~opr_imm_i[k]}};
       end else if (opr_op_i == fmpp_pkg::OP_SUB) begin

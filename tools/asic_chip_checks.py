@@ -40,8 +40,8 @@ set_load 0.05 [all_outputs]
 
 # The tile's ports by role (the names of fmpp_tile.sv): the broadcast, the host's read request
 # and the responder request (inputs); the responders' outputs.
-BCAST_PORTS = ("opr_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i", "f_i", "d_i", "x_i",
-               "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i")
+BCAST_PORTS = ("opr_a_en_i", "opr_b_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i",
+               "f_i", "d_i", "x_i", "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i")
 RD_PORTS = ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i")
 RESP_OUT = ("sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o")
 

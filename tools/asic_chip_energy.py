@@ -46,6 +46,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_chip as chip  # noqa: E402
+import asic_chip_checks as ck  # noqa: E402
 import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
@@ -57,11 +58,10 @@ RENDER = "--scene scenes/cornell.json --backend rtl --config small --bits 24 --w
 TILE_SCOPE = "TOP.fmpp_top.u_array.g_tile[0].u_tile"
 # The tile's ports by global network (clk_i, rst_ni and the constant base_i are not networks).
 NETWORKS = {
-    "broadcast": ("opr_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i", "f_i", "d_i", "x_i",
-                  "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i"),
+    "broadcast": ck.BCAST_PORTS,
     "flagop_any": ("flagop_any_o", "flagop_any_i"),
-    "read": ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i", "rd_data_o"),
-    "responders": ("resp_en_i", "sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o"),
+    "read": ck.RD_PORTS + ("rd_data_o",),
+    "responders": ("resp_en_i",) + ck.RESP_OUT,
 }
 COLS = ["section", "key", "tiles", "cycles", "energy_pj", "internal_pj", "switching_pj", "leakage_pj", "seq_pj", "comb_pj",
         "note"]

@@ -14,7 +14,8 @@ module fmpp_tile #(
   input  logic                           clk_i,
   input  logic                           rst_ni,
   input  logic [31:0]                    base_i,
-  input  logic                           opr_en_i,
+  input  logic                           opr_a_en_i,
+  input  logic                           opr_b_en_i,
   input  logic [fmpp_pkg::F_A_W-1:0]     a_i,
   input  logic [fmpp_pkg::F_B_W-1:0]     b_i,
   input  logic [fmpp_pkg::F_OP_W-1:0]    opr_op_i,
@@ -45,7 +46,7 @@ module fmpp_tile #(
   output logic                           ovf_any_o
 );
   // One flip-flop vector per port, named q_<port> (asic_chip.py finds them by these names).
-  (* keep *) logic                           q_rst_ni, q_opr_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i;
+  (* keep *) logic                           q_rst_ni, q_opr_a_en_i, q_opr_b_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i;
   (* keep *) logic [31:0]                    q_base_i, q_mask_i, q_hw_data_i;
   (* keep *) logic [fmpp_pkg::F_A_W-1:0]     q_a_i;
   (* keep *) logic [fmpp_pkg::F_B_W-1:0]     q_b_i;
@@ -68,8 +69,8 @@ module fmpp_tile #(
   (* keep *) logic [fmpp_pkg::LaneIdxW-1:0]  q_sel_first_o;
 
   always_ff @(posedge clk_i) begin
-    {q_rst_ni, q_opr_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i} <=
-        {rst_ni, opr_en_i, exec_i, flagop_any_i, rd_en_i, resp_en_i};
+    {q_rst_ni, q_opr_a_en_i, q_opr_b_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i} <=
+        {rst_ni, opr_a_en_i, opr_b_en_i, exec_i, flagop_any_i, rd_en_i, resp_en_i};
     {q_base_i, q_mask_i, q_hw_data_i, q_a_i, q_b_i, q_opr_op_i, q_op_i} <= {base_i, mask_i, hw_data_i, a_i, b_i, opr_op_i, op_i};
     {q_opr_imm_i, q_imm_i, q_kind_i, q_rd_kind_i, q_f_i, q_d_i, q_x_i} <= {opr_imm_i, imm_i, kind_i, rd_kind_i, f_i, d_i, x_i};
     {q_hw_block_i, q_rd_block_i, q_hw_strb_i, q_rd_word_i, q_rd_flag_i} <= {hw_block_i, rd_block_i, hw_strb_i, rd_word_i, rd_flag_i};
@@ -78,7 +79,7 @@ module fmpp_tile #(
   // Every input flip-flop reaches an output one: each output vector toggles by the parity of
   // some of the input vectors, so that synthesis keeps them all.
   logic p_ctl, p_words, p_fields, p_addr;
-  assign p_ctl    = ^{q_rst_ni, q_opr_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i};
+  assign p_ctl    = ^{q_rst_ni, q_opr_a_en_i, q_opr_b_en_i, q_exec_i, q_flagop_any_i, q_rd_en_i, q_resp_en_i};
   assign p_words  = ^{q_base_i, q_mask_i, q_hw_data_i, q_a_i, q_b_i, q_opr_op_i, q_op_i};
   assign p_fields = ^{q_opr_imm_i, q_imm_i, q_kind_i, q_rd_kind_i, q_f_i, q_d_i, q_x_i};
   assign p_addr   = ^{q_hw_block_i, q_rd_block_i, q_hw_strb_i, q_rd_word_i, q_rd_flag_i};
