@@ -52,7 +52,7 @@ rtl_sha=$(python3 "$root/tools/rtl_hash.py" --root "$root") || exit 2
 summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 {
-  echo "# FMPP on iCE40: tools/fpga.sh ${runs[*]}"
+  echo "# FMPP on iCE40: FPGA_FREQ=$freq tools/fpga.sh ${runs[*]}"
   echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); target ${freq} MHz, seeds $seeds (the fastest kept); $stamp, on $machine"
   echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to,seeds"
