@@ -69,6 +69,10 @@ def jobs(root, out, quick):
     js.append(dict(name="pipe_1x4", top="fmpp_pipe_formal",
                    src=rtl + [frm("fmpp_array_sc.sv"), frm("fmpp_tile_sc.sv"), frm("fmpp_pipe_formal.sv")], params={"NumBlocks": 1, "NumWords": 4},
                    depth=PIPE_DEPTH_QUICK if quick else PIPE_DEPTH, engine="sat"))
+    # The tile's word reads have two texts (rtl/fmpp_tile.sv): the AND-OR of a one-hot select
+    # (above) and the indexed one of simulators and the FPGA flow (FMPP_INDEXED_READ).
+    if not quick:
+        js.append(dict(js[-1], name="pipe_1x4_indexed", defines=["FMPP_INDEXED_READ"]))
     # The pipelined array against the instruction set (fmpp_isa_ref.sv, word by word from
     # docs/isa.md): several lanes of one tile, and two tiles (65 blocks: the 64-lane tile
     # and a partial one), so that the networks between tiles are in the check.

@@ -121,6 +121,42 @@ module fmpp_tile #(
     .ge_o    (alu_ge)
   );
 
+  // The word reads of A, B and D (32 : 1 of a whole word of every lane). In synthesis each is
+  // a one-hot select decoded once for the tile and an AND-OR per bit, so that a new word
+  // number switches two select lines and the two words' gates, not a tree of multiplexers
+  // whose selects reach every bit (docs/architecture.md, "Operand isolation"). Simulators
+  // (and the FPGA flow, FMPP_INDEXED_READ, whose LUTs make a tree multiplexer well) index
+  // the memory where the word is used, so that a clock copies only the words it needs.
+`ifdef VERILATOR
+`define FMPP_TILE_INDEXED
+`elsif FMPP_INDEXED_READ
+`define FMPP_TILE_INDEXED
+`endif
+`ifdef FMPP_TILE_INDEXED
+`define FMPP_RD_A mem_q[a_i[WIdxW-1:0]]
+`define FMPP_RD_B mem_q[b_i[WIdxW-1:0]]
+`define FMPP_RD_D mem_q[d_i[WIdxW-1:0]]
+`else
+`define FMPP_RD_A rd_a
+`define FMPP_RD_B rd_b
+`define FMPP_RD_D rd_d
+  logic [NumWords-1:0] a_oh, b_oh, d_oh;
+  word_t rd_a, rd_b, rd_d;
+  assign a_oh = NumWords'(1) << a_i[WIdxW-1:0];
+  assign b_oh = NumWords'(1) << b_i[WIdxW-1:0];
+  assign d_oh = NumWords'(1) << d_i[WIdxW-1:0];
+  always_comb begin
+    rd_a = '0;
+    rd_b = '0;
+    rd_d = '0;
+    for (int w = 0; w < NumWords; w++) begin
+      rd_a = rd_a | ({W*Lanes{a_oh[w]}} & mem_q[w]);
+      rd_b = rd_b | ({W*Lanes{b_oh[w]}} & mem_q[w]);
+      rd_d = rd_d | ({W*Lanes{d_oh[w]}} & mem_q[w]);
+    end
+  end
+`endif
+
   // Selections every instruction needs, once per clock (loops, not functions: see the top).
   lane_t pred;         // flag F: the predicate
   lane_t flag_a;       // REF: flag REF_FS; CMP: flag CMP_FS; FLAGOP: flag FLAG_FA
@@ -261,7 +297,7 @@ module fmpp_tile #(
             fmpp_pkg::OP_WRITES: begin
               // Masked parallel write: masked bits and unselected blocks keep their value.
               wr_en = 1'b1;
-              wr_data = mem_q[d_i[WIdxW-1:0]];
+              wr_data = `FMPP_RD_D;
               for (int k = 0; k < W; k++) begin
                 if (!mask_i[k]) begin
                   wr_data[k*Lanes +: Lanes] = ({Lanes{imm_i[k]}} & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
@@ -274,7 +310,7 @@ module fmpp_tile #(
               // of 2:1 multiplexers in synthesis, not a 32-deep priority chain).
               bit_x = opa_q[imm_i[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W]*Lanes +: Lanes];
               wr_en = 1'b1;
-              wr_data = mem_q[d_i[WIdxW-1:0]];
+              wr_data = `FMPP_RD_D;
               for (int k = 0; k < W; k++) begin
                 if (imm_i[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W] == 5'(k)) begin
                   wr_data[k*Lanes +: Lanes] = (bit_x & pred) | (wr_data[k*Lanes +: Lanes] & ~pred);
@@ -285,7 +321,7 @@ module fmpp_tile #(
             fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: begin
               wr_en = 1'b1;
               for (int k = 0; k < W; k++) begin
-                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (mem_q[d_i[WIdxW-1:0]][k*Lanes +: Lanes] & ~pred);
+                wr_data[k*Lanes +: Lanes] = (alu_r[k*Lanes +: Lanes] & pred) | (`FMPP_RD_D[k*Lanes +: Lanes] & ~pred);
               end
               if (alu_wr_c) flags_n[FC*Lanes +: Lanes] = (alu_c & pred) | (flag_q[FC*Lanes +: Lanes] & ~pred);
               if (alu_wr_v) flags_n[FV*Lanes +: Lanes] = flag_q[FV*Lanes +: Lanes] | (alu_v & pred);
@@ -297,7 +333,7 @@ module fmpp_tile #(
           // One word of one block: the lane's word line, byte enables from the strobes.
           if (hw_sel) begin
             wr_en = 1'b1;
-            wr_data = mem_q[d_i[WIdxW-1:0]];
+            wr_data = `FMPP_RD_D;
             for (int k = 0; k < W; k++) begin
               if (hw_strb_i[k / 8]) begin
                 wr_data[k*Lanes +: Lanes] = (wr_data[k*Lanes +: Lanes] & ~hw_lane_sel) | ({Lanes{hw_data_i[k]}} & hw_lane_sel);
@@ -335,9 +371,9 @@ module fmpp_tile #(
       shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
           ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
       if (shr == '0 && opr_op_i != fmpp_pkg::OP_DIVSTEP) begin
-        opa_q <= fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];  // A as read: no copy to shift
+        opa_q <= fwd_a ? wr_data : `FMPP_RD_A;  // A as read: no copy to shift
       end else begin
-        opa_rd = fwd_a ? wr_data : mem_q[a_i[WIdxW-1:0]];
+        opa_rd = fwd_a ? wr_data : `FMPP_RD_A;
         // The shifter: a level per bit of SHR_A, plane k taking plane k + 2^j and the sign
         // plane filling. Each level's condition stands outside its plane loop, so that a
         // simulator tests it once (the same multiplexers).
@@ -358,12 +394,12 @@ module fmpp_tile #(
       if (opr_op_i == fmpp_pkg::OP_CMP) begin
         for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= {Lanes{~opr_imm_i[k]}};
       end else if (opr_op_i == fmpp_pkg::OP_SUB) begin
-        opb_q <= ~(fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]]);
+        opb_q <= ~(fwd_b ? wr_data : `FMPP_RD_B);
       end else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) begin
-        opb_rd = fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+        opb_rd = fwd_b ? wr_data : `FMPP_RD_B;
         for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= opb_rd[k*Lanes +: Lanes] ^ subs;
       end else begin
-        opb_q <= fwd_b ? wr_data : mem_q[b_i[WIdxW-1:0]];
+        opb_q <= fwd_b ? wr_data : `FMPP_RD_B;
       end
       if (opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_CMP) cin_q <= '1;
       else if (opr_op_i == fmpp_pkg::OP_DIVSTEP) cin_q <= subs;
@@ -435,5 +471,10 @@ module fmpp_tile #(
 `endif
 
   /* verilator tracing_on */
+
+`undef FMPP_RD_A
+`undef FMPP_RD_B
+`undef FMPP_RD_D
+`undef FMPP_TILE_INDEXED
 
 endmodule

@@ -7,7 +7,9 @@
 #
 # The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth), read with
 # FMPP_CARRY_CHAIN_ADDER: the ALU's adder as one `+` per block, on the iCE40's carry chain
-# (rtl/fmpp_alu_exec.sv). Modules marked keep_hierarchy are mapped on their own, then flattened.
+# (rtl/fmpp_alu_exec.sv), and FMPP_INDEXED_READ: the tile's word reads as indexed
+# multiplexers, which LUTs make well (rtl/fmpp_tile.sv). Modules marked keep_hierarchy are
+# mapped on their own, then flattened.
 #
 # Writes under $FPGA_OUT (default $BUILD/fpga, BUILD defaulting to build):
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
@@ -67,7 +69,7 @@ for r in "${runs[@]}"; do
   dev=${BASH_REMATCH[1]}; pkg=${BASH_REMATCH[2]}; b=${BASH_REMATCH[3]}; w=${BASH_REMATCH[4]}
   name="${dev}_${b}x${w}"
   t0=$(date +%s)
-  if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv -DFMPP_CARRY_CHAIN_ADDER $sources; \
+  if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv -DFMPP_CARRY_CHAIN_ADDER -DFMPP_INDEXED_READ $sources; \
       chparam -set NumBlocks $b -set NumWords $w fmpp_fpga_top; \
       synth_ice40 -top fmpp_fpga_top; setattr -mod -unset keep_hierarchy; flatten; opt_clean; \
       write_json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
