@@ -97,6 +97,12 @@ module fmpp_pipe_formal #(
   // What the slave lets into the queue.
   logic legal;
   fmpp_instr_check #(.NumWords(NumWords)) u_check (.instr_i (head_i.data), .legal_o (legal));
+  // The words an entry uses, as the slave queues them (fmpp_entry_use).
+  logic use_a, use_b, use_d;
+  fmpp_entry_use u_use (.is_instr_i (head_i.kind == fmpp_pkg::QE_INSTR), .is_word_i (head_i.kind == fmpp_pkg::QE_WORD),
+                        .op_i (head_i.data[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W]),
+                        .ref_part_i (head_i.data[fmpp_pkg::F_X_LSB + fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W]),
+                        .rd_a_o (use_a), .rd_b_o (use_b), .wr_d_o (use_d));
 
   logic f_init = 1'b1;
   always_ff @(posedge clk_i) f_init <= 1'b0;
@@ -106,6 +112,7 @@ module fmpp_pipe_formal #(
     if (head_valid_i) begin
       assume (head_i.kind != 2'd3);
       if (head_i.kind == fmpp_pkg::QE_INSTR) assume (legal);
+      assume ({head_i.rd_a, head_i.rd_b, head_i.wr_d} == {use_a, use_b, use_d});
       if (head_i.kind != fmpp_pkg::QE_INSTR) assume (32'(head_i.block) < NumBlocks);
       if (head_i.kind == fmpp_pkg::QE_WORD) assume (32'(head_i.word) < NumWords && head_i.strb != 4'd0);
     end

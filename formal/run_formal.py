@@ -51,8 +51,8 @@ def jobs(root, out, quick):
                        params={"NumWords": words}, depth=1, kind=0, comb=True))
     js.append(dict(name="fifo_w8", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
                    params={"Width": 8}, depth=12 if quick else 24, kind=3, joint=True))
-    js.append(dict(name="fifo_w92", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
-                   params={"Width": 92}, depth=4 if quick else 8, kind=3, joint=True))
+    js.append(dict(name="fifo_w95", top="fmpp_fifo_formal", src=rtl + [frm("fmpp_fifo_formal.sv")],
+                   params={"Width": 95}, depth=4 if quick else 8, kind=3, joint=True))
     # The ALU's adder, subtracter and compare against `+` and `-` (combinational: a proof).
     # Three times: the adder as standard-cell synthesis reads it (the prefix network, modules
     # per level), as the FPGA flow reads it (a `+` per lane, for the carry chain) and as

@@ -26,6 +26,7 @@ fmpp_alu.sv // sim
 fmpp_tile.sv
 fmpp_fifo.sv
 fmpp_instr_check.sv
+fmpp_entry_use.sv
 fmpp_window.sv
 fmpp_addr_decode.sv
 fmpp_err_reg.sv

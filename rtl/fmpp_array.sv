@@ -81,25 +81,14 @@ module fmpp_array #(
   // Which words the entry reads and writes (operand isolation): the stage registers of A, B
   // and D load only with an entry that uses them, and a tile loads an operand register only
   // for an entry that uses it, so that an entry leaves the word reads it does not need (and
-  // the ALU behind them) still. dc_ld_b: the addend register (word B, or CMP's IMM).
+  // the ALU behind them) still. The slave decodes the uses at the push (queue entry fields
+  // rd_a, rd_b, wr_d), so the pop's enables do not wait for a decode before the trunk to
+  // the groups. dc_ld_b: the addend register (word B, or CMP's IMM).
   logic dc_rd_a, dc_rd_b, dc_ld_b, dc_wr_d;
-  always_comb begin
-    dc_rd_a = 1'b0;
-    dc_rd_b = 1'b0;
-    dc_wr_d = head_i.kind == fmpp_pkg::QE_WORD;
-    case (dc_op)
-      fmpp_pkg::OP_FUNC, fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP: begin
-        {dc_rd_a, dc_rd_b, dc_wr_d} = 3'b111;
-      end
-      fmpp_pkg::OP_BITCOPY, fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: {dc_rd_a, dc_wr_d} = 2'b11;
-      fmpp_pkg::OP_CMP: dc_rd_a = 1'b1;
-      fmpp_pkg::OP_REF: dc_rd_a = instr[fmpp_pkg::F_X_LSB + fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W] ==
-                                  fmpp_pkg::REF_PART_DATA;
-      fmpp_pkg::OP_WRITES: dc_wr_d = 1'b1;
-      default: ;
-    endcase
-    dc_ld_b = dc_rd_b || dc_op == fmpp_pkg::OP_CMP;
-  end
+  assign dc_rd_a = head_i.rd_a;
+  assign dc_rd_b = head_i.rd_b;
+  assign dc_wr_d = head_i.wr_d;
+  assign dc_ld_b = dc_rd_b || dc_op == fmpp_pkg::OP_CMP;
 
   // Stage registers: s2_* holds the entry in operand read, s3_* the entry executing.
   // s3_valid_q is the retire signal: the entry's effects land at the next clock edge
@@ -279,8 +268,8 @@ module fmpp_array #(
       .clk_i,
       .rst_ni,
       .base_i       (t * LaneW),
-      .opr_a_en_i   (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g && g_bc[t / GroupW].rd_a2_q),
-      .opr_b_en_i   (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g && g_bc[t / GroupW].ld_b2_q),
+      .opr_a_en_i   (g_bc[t / GroupW].v2_q && g_bc[t / GroupW].rd_a2_q),
+      .opr_b_en_i   (g_bc[t / GroupW].v2_q && g_bc[t / GroupW].ld_b2_q),
       .a_i          (g_bc[t / GroupW].a2_q),
       .b_i          (g_bc[t / GroupW].b2_q),
       .opr_op_i     (g_bc[t / GroupW].op2_q),

@@ -98,6 +98,16 @@ module fmpp_axil_slave #(
   assign w_ctrl_v  = wdata_i;
   assign w_error_v = wdata_i;
 
+  // Which words a pushed entry uses (fmpp_array's operand isolation), queued with it. A
+  // write that is not pushed carries any.
+  logic w_rd_a, w_rd_b, w_wr_d;
+  fmpp_entry_use u_use (
+    .is_instr_i (!aw_is_word && !aw_is_flags), .is_word_i (aw_is_word),
+    .op_i (wdata_i[fmpp_pkg::F_OP_LSB +: fmpp_pkg::F_OP_W]),
+    .ref_part_i (wdata_i[fmpp_pkg::F_X_LSB + fmpp_pkg::REF_PART_LSB +: fmpp_pkg::REF_PART_W]),
+    .rd_a_o (w_rd_a), .rd_b_o (w_rd_b), .wr_d_o (w_wr_d)
+  );
+
   // The write's error cause, by the documented priority (alignment, then the target,
   // then strobes, then the instruction). Only recorded (ERROR, one clock later): what the
   // accept and the push need is computed flat below, off this chain.
@@ -107,6 +117,7 @@ module fmpp_axil_slave #(
     w_entry.block = aw_block;
     w_entry.word  = aw_word;
     w_entry.strb  = wstrb_i[3:0];
+    {w_entry.rd_a, w_entry.rd_b, w_entry.wr_d} = {w_rd_a, w_rd_b, w_wr_d};
     w_entry.data  = wdata_i;
     if (!aw_aligned) begin
       w_cause = fmpp_pkg::ERR_ALIGN;

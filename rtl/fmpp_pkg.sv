@@ -253,9 +253,12 @@ package fmpp_pkg;
     logic [15:0] block;
     logic [5:0] word;
     logic [3:0] strb;
+    logic [0:0] rd_a;
+    logic [0:0] rd_b;
+    logic [0:0] wr_d;
     logic [63:0] data;
   } qentry_t;
-  parameter int unsigned QEntryW = 92;  // $bits(qentry_t), spelled out for yosys
+  parameter int unsigned QEntryW = 95;  // $bits(qentry_t), spelled out for yosys
 
   // Read port kinds (internal: what the host read port of a tile returns)
   typedef enum logic [1:0] {

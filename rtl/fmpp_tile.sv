@@ -364,10 +364,9 @@ module fmpp_tile #(
     if (wr_en && rst_ni) mem_q[d_i[WIdxW-1:0]] <= wr_data;
     // Each operand register loads only for an entry that uses it (operand isolation: the
     // array holds the word fields of the others), so the reads and the ALU stay still.
-    fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
-    fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
     subs = '0;
     if (opr_a_en_i) begin
+      fwd_a = wr_en && a_i[WIdxW-1:0] == d_i[WIdxW-1:0];
       shr = (opr_op_i == fmpp_pkg::OP_ADD || opr_op_i == fmpp_pkg::OP_SUB || opr_op_i == fmpp_pkg::OP_RSHIFT)
           ? opr_imm_i[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W] : '0;
       if (shr == '0 && opr_op_i != fmpp_pkg::OP_DIVSTEP) begin
@@ -390,6 +389,7 @@ module fmpp_tile #(
       end
     end
     if (opr_b_en_i) begin
+      fwd_b = wr_en && b_i[WIdxW-1:0] == d_i[WIdxW-1:0];
       // The addend, the opcode tested once for all planes (DIVSTEP's subs from A above).
       if (opr_op_i == fmpp_pkg::OP_CMP) begin
         for (int k = 0; k < W; k++) opb_q[k*Lanes +: Lanes] <= {Lanes{~opr_imm_i[k]}};

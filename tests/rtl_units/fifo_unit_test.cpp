@@ -12,7 +12,7 @@
 
 namespace {
 
-// The 92-bit entry as three 32-bit words (VlWide<3>).
+// The 95-bit entry as three 32-bit words (VlWide<3>).
 struct Entry {
   uint32_t w[3];
   bool operator==(const Entry& o) const { return w[0] == o.w[0] && w[1] == o.w[1] && w[2] == o.w[2]; }
@@ -68,7 +68,7 @@ TEST(RtlUnitFifo, MatchesAQueueModelUnderRandomTraffic) {
     const bool fill = (i / 97) % 2 == 0;
     const bool push = q.size() < b.depth() && (rng() % 4 != 0) == fill;
     const bool pop = !q.empty() && (rng() % 4 != 0) != fill;
-    Entry e{{static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng() & 0x0FFFFFFF)}};
+    Entry e{{static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng()), static_cast<uint32_t>(rng() & 0x7FFFFFFF)}};
     t.push_i = push;
     t.pop_i = pop;
     t.data_i[0] = e.w[0];
