@@ -1,8 +1,14 @@
 #!/usr/bin/env python3
 """Switching activity of every net of a gate-level FMPP netlist, from an RTL simulation.
 
-OpenSTA (2019) reads no VCD or SAIF and propagates no activity, so report_power needs
-each pin's activity given with set_power_pin_activity. This tool computes it:
+OpenSTA 2.0.17 (Debian's) reads no VCD or SAIF. This tool computes every net's activity
+from a simulation and writes it as Tcl for OpenSTA; that OpenSTA, however, honours the
+activity only of input ports (and the clocks): on the pins of cells it keeps its own
+estimate, propagated from the input ports through the gates' functions as if their
+inputs were independent, a flip-flop's output taking its D's activity (checked on a
+two-gate netlist: a pin annotation changes neither `get_property activity` nor the
+power). The per-net figures are therefore for tools that price them directly
+(tools/asic_tile_wires.py). The steps:
 
 1. The RTL trace (an FST of a Verilated run, e.g. `fmpp-render --backend rtl --trace`)
    gives, for every clock cycle, the value of every register and every input port

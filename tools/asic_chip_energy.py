@@ -9,10 +9,13 @@ plus the wires of its global networks and of its clock between the tiles:
      `small` configuration, 64 blocks of 32 words), traced (FST);
   2. the tile: the real fmpp_tile of 64 lanes and 32 words (asic_chip.py's netlist), every
      net's switching activity from the trace (tools/asic_activity.py: the traced registers
-     and ports, the gates evaluated from them, no glitches), and OpenSTA's power with that
+     and ports, the gates evaluated from them, no glitches), and OpenSTA's power given that
      activity: in every instruction class, and by part (tools/asic_energy_parts.py) over
-     the whole frame. The tile is traced as the only tile of its machine: every tile of a
-     larger chip is taken to work as hard as it (each holds rays in every pass);
+     the whole frame. OpenSTA 2.0.17 honours the activity of the input ports and clocks
+     only and propagates its own estimate to the cells' pins (tools/asic_activity.py), so
+     inside the tile these are its activities from the traced ports. The tile is traced as
+     the only tile of its machine: every tile of a larger chip is taken to work as hard as
+     it (each holds rays in every pass);
   3. the central logic: fmpp_top with the stand-in tile (asic_chip.py's array of one tile),
      its activity from the same trace, OpenSTA's power without the stand-in's cells (the
      read data and responders the stand-in returns are not the tile's, so the bus slave's
@@ -26,12 +29,13 @@ plus the wires of its global networks and of its clock between the tiles:
      asic_chip.py times fastest. A toggle of a bit costs the energy OpenSTA gives a chain of
      those repeaters and wires (the LEF's capacitance, SPEF) per millimetre; each bit toggles
      as often as the traced tile's port. The clock's tree between the tiles is such a wire
-     that toggles twice a cycle.
+     that toggles twice a cycle;
+  5. the wires inside a tile: tools/asic_tile_wires.py over the same activity, from the tile
+     with one lane placed by GrayWolf (placed_lane).
 
-Per block and clock: the chip's energy per clock / (64 T). Left out: wires inside the tile
-and the central logic (the netlists are not placed; the clock's buffer tree inside the tile
-is there, its wires are not), glitches (zero-delay activity), the queue's bus side beyond
-one tile's traffic, other corners than the typical.
+Per block and clock: the chip's energy per clock / (64 T). Left out: wires inside the
+central logic (its netlist is not placed), glitches (zero-delay activity), the queue's bus
+side beyond one tile's traffic, other corners than the typical.
 
 Usage: asic_chip_energy.py [--chip DIR] [--build DIR] [--tiles 1,4,16,64] [--density 0.6]
                            [--reuse]
@@ -51,6 +55,7 @@ import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
 import asic_energy_parts as ep  # noqa: E402
+import asic_tile_wires as tw  # noqa: E402
 from asic_netlist import Fail, Trace  # noqa: E402
 
 ROOT = chip.ROOT
@@ -242,19 +247,58 @@ def tree_mm(tiles, side_mm):
     return (tiles - 0.5) * side_mm
 
 
-def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles):
-    """Rows of the chip of `tiles` tiles per clock: the tiles, the central logic, each
-    network's wires, the clock's wires between the tiles, the total, per block."""
+def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj):
+    """Rows of the chip of `tiles` tiles per clock: the tiles, the wires inside them, the
+    central logic, each network's wires, the clock's wires between the tiles, the total,
+    per block."""
     mm = tree_mm(tiles, side_mm)
     per_toggle = sum(pj_mm.values()) / len(pj_mm) * mm  # half on each layer
-    rows = [["chip", "tiles", tiles, "", tiles * tile_pj], ["chip", "central logic", tiles, "", central_pj]]
+    rows = [["chip", "tiles", tiles, "", tiles * tile_pj], ["chip", "wires inside the tiles", tiles, "", tiles * tile_wire_pj],
+            ["chip", "central logic", tiles, "", central_pj]]
     for n in sorted(toggles):
         rows.append(["chip", f"wires: {n}", tiles, "", toggles[n] * per_toggle])
     rows.append(["chip", "wires: clock between the tiles", tiles, "", 2 * per_toggle])
     total = sum(r[4] for r in rows)
     rows.append(["chip", "total", tiles, "", total])
     rows.append(["chip", "per block", tiles, "", total / (chip.LANE_W * tiles)])
-    return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires") else ""] for r in rows]
+    return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires:") else ""] for r in rows]
+
+
+def placed_lane(chip_dir, words, reuse):
+    """The DEF of the tile with one lane, synthesized as the chip's tile is and placed by
+    GrayWolf at the flow's density (tools/asic_pnr.sh --until place; kept with `reuse`)."""
+    out = os.path.abspath(os.path.join(chip_dir, "lane"))
+    name, d = f"tile_1x{words}", os.path.join(out, f"pnr_1x{words}")
+    deff = os.path.join(d, "layout", "fmpp_tile.def")
+    if reuse and os.path.exists(os.path.join(d, "place.done")) and os.path.exists(deff):
+        return deff
+    os.makedirs(out, exist_ok=True)
+    chip.build(out, name, "fmpp_tile", {"Lanes": 1, "NumWords": words}, chip.rtl_sources(), False, words * 32)
+    fl.run([os.path.join(ROOT, "tools", "asic_pnr.sh"), "--until", "place", out, name, "fmpp_tile", fl.TECH],
+           os.path.join(out, "place.log"))
+    return deff
+
+
+def tile_wire_rows(a, out, tile_v):
+    """Rows of the wires inside the tile (tools/asic_tile_wires.py) over the frame, and
+    their energy per clock."""
+    deff = placed_lane(a.chip, a.words, a.reuse)
+    args = argparse.Namespace(tile_netlist=tile_v, tile_stat=os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.stat"),
+                              activity=os.path.join(out, "tile.all.tcl"), unit_def=deff,
+                              sta_log=os.path.join(out, "tile_power_all.chip.log"), lanes=chip.LANE_W,
+                              density=a.density, period=fl.PERIOD, volts=volts())
+    r = tw.energy(args)
+    with open(os.path.join(out, "tile_wires.json"), "w") as f:
+        json.dump(r, f, indent=1)
+    note = lambda k: ["", "", "", "", "", k]  # noqa: E731
+    rows = [["tile_wires", k, 1, "", v] + note("") for k, v in r["parts_pj"].items()]
+    rows.append(["tile_wires", "total", 1, "", r["wire_pj"]] + note(f"{r['trees']} nets and buffer trees"))
+    rows.append(["tile_wires", "check: pins", 1, "", r["pins_pj"]] +
+                note(f"OpenSTA's switching {r['sta_switching_pj']:.1f} pJ" if r["sta_switching_pj"] else ""))
+    rows.append(["tile_wires", "lane", "", "", ""] + note(
+        f"pitch {r['lane_pitch_um']:.1f} um; the placed lane's die {r['unit_die_um'][0]:.0f} x {r['unit_die_um'][1]:.0f} um; "
+        "a buffer tree's wire inside a lane by its leaves " + " ".join(f"{k}:{1000 * v:.1f}fF" for k, v in list(r["wire_load_pf"].items())[:8])))
+    return rows, r["wire_pj"]
 
 
 def measure(a):
@@ -269,13 +313,14 @@ def measure(a):
     fst = trace(out, a.build, a.reuse)
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
     rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse)
-    rows += central(out, array_v, fst, a.reuse)
+    wire_rows, tile_wire_pj = tile_wire_rows(a, out, tile_v)
+    rows += wire_rows + central(out, array_v, fst, a.reuse)
     reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
     pj_mm = wire_pj_per_mm(out, reps)
     toggles = port_toggles(fst, act["cycles"])
     side, _, _ = net.floorplan(chip.lef_area(a.chip, f"tile_{chip.LANE_W}x{a.words}"), 1, a.density)
     for t in a.tiles:
-        rows += compose(rows[0][4], central_pj(rows, t), toggles, pj_mm, side, t)
+        rows += compose(rows[0][4], central_pj(rows, t), toggles, pj_mm, side, t, tile_wire_pj)
     rows.append(["wire", "pJ per toggle per mm", "", "", "", "", "", "", "", "",
                  "; ".join(f"{k}: {v:.4f}" for k, v in sorted(pj_mm.items()))])
     rows.append(["wire", "toggles per clock", "", "", "", "", "", "", "", "",
@@ -327,10 +372,11 @@ def self_test():
     errs = []
     if not near(tree_mm(1, 6.0), 3.0) or not near(tree_mm(64, 2.0), 127.0):
         errs.append("tree_mm")
-    rows = compose(100.0, 30.0, {"broadcast": 2.0, "read": 0.5}, {"metal5": 0.3, "metal6": 0.1}, 2.0, 4)
+    rows = compose(100.0, 30.0, {"broadcast": 2.0, "read": 0.5}, {"metal5": 0.3, "metal6": 0.1}, 2.0, 4, 5.0)
     got = {r[1]: r[4] for r in rows}
     per_toggle = 0.2 * 7.0  # (0.3 + 0.1) / 2 pJ per mm, 3.5 pitches of 2 mm
-    want = {"tiles": 400.0, "central logic": 30.0, "wires: broadcast": 2.0 * per_toggle, "wires: read": 0.5 * per_toggle,
+    want = {"tiles": 400.0, "wires inside the tiles": 20.0, "central logic": 30.0, "wires: broadcast": 2.0 * per_toggle,
+            "wires: read": 0.5 * per_toggle,
             "wires: clock between the tiles": 2 * per_toggle}
     want["total"] = sum(want.values())
     want["per block"] = want["total"] / 256
@@ -353,6 +399,8 @@ def self_test():
             "operand registers (flip-flops)" or ep.register_part("s3_op_q[1]") != ep.OTHER_REG:
         errs.append("register_part")
     errs += ep.self_test()
+    if tw.self_test():
+        errs.append("asic_tile_wires")
     if errs:
         print("asic_chip_energy.py self-test FAILED: " + ", ".join(errs), file=sys.stderr)
         return 1

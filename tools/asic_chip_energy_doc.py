@@ -71,6 +71,19 @@ def routed_share(d):
     return []
 
 
+def tile_wires_text(rows):
+    """The paragraph on the wires inside a tile (tools/asic_tile_wires.py's rows), or nothing."""
+    tw = {r["key"]: r for r in rows_by(rows, "tile_wires")}
+    if "total" not in tw:
+        return []
+    e = lambda k: float(tw[k]["energy_pj"])  # noqa: E731
+    parts = "; ".join(f"{k}: {e(k):,.0f} pJ" for k in ("inside a lane", "between lanes", "clock nets") if k in tw)
+    return ["", f"The wires inside a tile over the frame (tools/asic_tile_wires.py): {e('total'):,.0f} pJ per clock "
+            f"({parts}); {tw['lane']['note']}. The same sum at the traced toggles with the cells' input pins in "
+            f"place of the wires: {e('check: pins'):,.0f} pJ, against {tw['check: pins']['note'] or 'no OpenSTA figure'} "
+            "(at its own activities, propagated from the ports)."]
+
+
 def energy_tables(d):
     """Markdown of the chip's energy, or a line saying it was not measured."""
     path = os.path.join(d, "chip_energy.csv")
@@ -91,7 +104,7 @@ def energy_tables(d):
          f"CAM in the same process ({CAM_SOURCE}).", "",
          "The tile in each instruction class of the frame (its cycles executing that opcode, a window write, or "
          "idle):", "", *class_table(rows), "", "The tile over the frame, by part:", "", *part_table(rows)]
-    o += routed_share(d)
+    o += tile_wires_text(rows) or routed_share(d)
     central = rows_by(rows, "central")
     if central:
         o += ["", f"The central logic: {float(central[0]['energy_pj']):,.1f} pJ per clock ({central[0]['note']})" +

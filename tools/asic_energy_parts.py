@@ -48,14 +48,15 @@ def register_part(qnet):
 
 
 class Graph:
-    """A gate-level netlist as a graph: its flip-flops (instance, cell, D net, Q net), per net
-    its driving gate and readers, per gate its input and output nets."""
+    """A gate-level netlist as a graph: its cells (instance, cell, {pin: net}) and their
+    connections by instance, its flip-flops (instance, cell, D net, Q net), per net its
+    driving gate and readers, per gate its input and output nets."""
 
     def __init__(self, netlist, liberty):
         lib = read_liberty(liberty)
-        _, self.portbits, insts, self.find = read_netlist(netlist, lib)
-        comb, self.seqs, fcache, _ = compile_cells(insts, lib)
-        conns = {name: c for name, _, c in insts}
+        _, self.portbits, self.insts, self.find = read_netlist(netlist, lib)
+        comb, self.seqs, fcache, _ = compile_cells(self.insts, lib)
+        self.conns = conns = {name: c for name, _, c in self.insts}
         self.driver, self.readers, self.ins, self.outs = {}, {}, {}, {}
         for name, cell, o, net in comb:
             self.driver[net] = name

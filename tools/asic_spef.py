@@ -24,23 +24,26 @@ def lef_layers(path):
     return out
 
 
-def cmd_placed_spef(a):
-    """A wire estimate from the placement alone: every net a star of its pins' half-perimeter
-    wire length, horizontal on metal3 and vertical on metal2 (the routing layers of
-    qflow's OSU018 setup), lumped at the centre; names as qflow's Verilog writes them."""
-    layers = lef_layers(a.lef)
-    sizes = {}
-    macro = None
-    for line in read(a.lef).splitlines():
+def lef_sizes(path):
+    """Cell -> (width, height) in um, from the LEF's MACRO SIZE lines."""
+    sizes, macro = {}, None
+    for line in read(path).splitlines():
         t = line.split()
         if len(t) >= 2 and t[0] == "MACRO":
             macro = t[1]
         elif macro and len(t) >= 4 and t[0] == "SIZE":
             sizes[macro] = (float(t[1]), float(t[3].rstrip(";")))
-    rh, ch = layers[a.hlayer]
-    rv, cv = layers[a.vlayer]
-    text = read(a.deff)
+    return sizes
+
+
+def placed(deff, lef):
+    """A placed DEF: ({instance or PIN:port: its centre in um}, [(net, [(instance or PIN,
+    pin)])], the die's (width, height) in um)."""
+    sizes = lef_sizes(lef)
+    text = read(deff)
     unit = float(re.search(r"UNITS DISTANCE MICRONS (\d+)", text).group(1))
+    die = re.search(r"DIEAREA \( (-?\d+) (-?\d+) \) \( (-?\d+) (-?\d+) \)", text)
+    die_um = ((int(die.group(3)) - int(die.group(1))) / unit, (int(die.group(4)) - int(die.group(2))) / unit)
     pos = {}
     comp = text[text.index("\nCOMPONENTS"):text.index("END COMPONENTS")]
     for m in re.finditer(r"^- (\S+) (\S+) \+ (?:PLACED|FIXED) \( (-?\d+) (-?\d+) \)", comp, re.M):
@@ -49,7 +52,30 @@ def cmd_placed_spef(a):
     pins = text[text.index("\nPINS"):text.index("END PINS")]
     for m in re.finditer(r"^- (\S+) \+ NET.*?PLACED \( (-?\d+) (-?\d+) \)", pins, re.M | re.S):
         pos["PIN:" + m.group(1)] = (int(m.group(2)) / unit, int(m.group(3)) / unit)
-    nets = text[text.index("\nNETS"):text.index("END NETS")]
+    nets = []
+    body = text[text.index("\nNETS"):text.index("END NETS")]
+    for m in re.finditer(r"^- (\S+)\s*(.*?);", body, re.M | re.S):
+        if m.group(1) in ("vdd", "gnd"):
+            continue
+        # the connections, before any routed geometry (+ ROUTED ...) of a routed DEF
+        nets.append((m.group(1), re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2).split("+", 1)[0])))
+    return pos, nets, die_um
+
+
+def net_points(pos, terms):
+    """The placed centres of a net's connections (those the placement has)."""
+    keys = ["PIN:" + p if i == "PIN" else i for i, p in terms]
+    return [pos[k] for k in keys if k in pos]
+
+
+def cmd_placed_spef(a):
+    """A wire estimate from the placement alone: every net a star of its pins' half-perimeter
+    wire length, horizontal on metal3 and vertical on metal2 (the routing layers of
+    qflow's OSU018 setup), lumped at the centre; names as qflow's Verilog writes them."""
+    layers = lef_layers(a.lef)
+    rh, ch = layers[a.hlayer]
+    rv, cv = layers[a.vlayer]
+    pos, nets, _ = placed(a.deff, a.lef)
     outputs = ("Y", "Q", "YC", "YS")
     portdir = {m.group(2): m.group(1) for m in re.finditer(
         r"^\s*(input|output)\s+(?:\[\d+:\d+\]\s+)?(\S+)\s*;", read(a.verilog), re.M)}
@@ -64,13 +90,8 @@ def cmd_placed_spef(a):
          '*DESIGN_FLOW "PLACED HPWL STAR"', "*DIVIDER /", "*DELIMITER :", "*BUS_DELIMITER [ ]",
          "*T_UNIT 1 NS", "*C_UNIT 1 PF", "*R_UNIT 1 OHM", "*L_UNIT 1 HENRY", ""]
     count = 0
-    for m in re.finditer(r"^- (\S+)\s*(.*?);", nets, re.M | re.S):
-        name = m.group(1)
-        if name in ("vdd", "gnd"):
-            continue
-        # the connections, before any routed geometry (+ ROUTED ...) of a routed DEF
-        terms = re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2).split("+", 1)[0])
-        pts = [pos["PIN:" + p] if i == "PIN" else pos[i] for i, p in terms if ("PIN:" + p if i == "PIN" else i) in pos]
+    for name, terms in nets:
+        pts = net_points(pos, terms)
         if len(terms) < 2 or len(pts) < 2:
             continue
         dx = max(x for x, _ in pts) - min(x for x, _ in pts)

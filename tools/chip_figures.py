@@ -205,7 +205,7 @@ def chip_block():
     if ce:
         comments, tiles, total, per_block = ce
         o.append("| OSU 0.18 um, energy from a traced frame: the 64-lane tile, the central logic and the wires of %s tiles "
-                 "(tools/asic_chip_energy.py; typical corner, no wires inside a tile, no glitches) | %s x 32 | **%.0f pJ "
+                 "(tools/asic_chip_energy.py; typical corner, the wires inside a tile estimated from a placed lane, no glitches) | %s x 32 | **%.0f pJ "
                  "per block and clock** (frame mix), %.2f uJ per clock of the chip | %s |" % (
                      tiles, fmt(64 * tiles), per_block, total / 1e6, rtl_of(comments)))
     elif e:
