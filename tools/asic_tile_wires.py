@@ -8,25 +8,31 @@ are estimated from what does place, and from the tile's own netlist:
    the chip flow's synthesis and placed by GrayWolf at the flow's density
    (tools/asic_pnr.sh --until place). Each of its nets is a star of its pins'
    half-perimeter length, horizontal on metal3 and vertical on metal2 (the LEF's
-   capacitance per um), as `asic_report.py placed-spef` prices it. Their mean by the
-   number of sinks is the wire-load table of a net that stays inside one lane.
+   capacitance per um), as `asic_report.py placed-spef` prices it. A buffer tree (a net and
+   the nets after the buffers on it: synthesis and blifFanout buffer by netlist order, a
+   placer by place) counts as one net with its leaves, the sinks that are not buffers; the
+   mean wire of the lane's trees by their number of leaves is the wire-load table of a net
+   inside one lane (between its rows interpolated on logarithmic scales, beyond the
+   largest growing as the square root of the leaves).
 2. The tile's floorplan: its lanes on a square grid, each lane a square of the 64-lane
    tile's cell area over its lanes at the placement density (the chip's floorplan sizes a
    tile the same way); the ports and the tile's own registers at the tile's centre.
 3. Each cell of the 64-lane netlist placed by what it serves: a flip-flop in its lane (the
    register's bit: plane-major, lane = bit mod Lanes); a gate at the centroid of the lanes
    whose flip-flops its output reaches (one lane: inside it; the broadcast's decode, which
-   reaches all lanes: the tile's centre; a fanout buffer: among the lanes it feeds); a gate
-   that reaches no lane's flip-flop (the tile's outputs: responders, read data, FLAGOP's OR)
-   at the centroid of the lanes that feed it, the centre if none.
-4. A net's capacitance: the wire-load table's for its number of sinks, plus, when its pins
-   sit in more than one place, a rectilinear minimum spanning tree between the places at the
-   mean of metal2's and metal3's capacitance per um.
-5. Energy per clock: for every net, C V^2 / 2 per transition times its transitions per clock
-   (tools/asic_activity.py's Tcl over the frame; the free-running clock's nets two a clock,
-   a gated clock's two a pulse). The same sum with the cells' input pin capacitances instead
-   of the wires' is printed beside OpenSTA's switching power of the same activity, as a check
-   of the arithmetic.
+   reaches all lanes: the tile's centre); a gate that reaches no lane's flip-flop (the
+   tile's outputs: responders, read data, FLAGOP's OR) at the centroid of the lanes that
+   feed it, the centre if none.
+4. A buffer tree's capacitance: in each place, the table's wire for its leaves there, plus
+   a rectilinear minimum spanning tree between the places of its leaves and its root's
+   driver, at the mean of metal2's and metal3's capacitance per um.
+5. Energy per clock: for every tree, C V^2 / 2 per transition times its root's transitions
+   per clock as traced (tools/asic_activity.py's Tcl over the frame; the free-running
+   clock's nets two a clock, a gated clock's two a pulse). The same sum at the traced
+   toggles with the cells' input pin capacitances in place of the wires is printed beside
+   OpenSTA's switching power, which OpenSTA 2.0.17 prices at activities it propagates from
+   the input ports (tools/asic_activity.py): the two differ by as much as the traced
+   activity differs from OpenSTA's estimate.
 
 Left out: routing detours beyond the half-perimeter and the spanning tree, repeaters on the
 long nets inside the tile, coupling, glitches.
