@@ -145,6 +145,21 @@ def time_tile(out, lanes, words, reuse):
     return with_gates(named(out, name, fl.checks(text))), lef_area(out, name), secs
 
 
+def placed_lane(chip_dir, words, reuse):
+    """The DEF of the tile with one lane, synthesized as the chip's tile is and placed by
+    GrayWolf at the flow's density (tools/asic_pnr.sh --until place; kept with `reuse`)."""
+    out = os.path.abspath(os.path.join(chip_dir, "lane"))
+    name, d = f"tile_1x{words}", os.path.join(out, f"pnr_1x{words}")
+    deff = os.path.join(d, "layout", "fmpp_tile.def")
+    if reuse and os.path.exists(os.path.join(d, "place.done")) and os.path.exists(deff):
+        return deff
+    os.makedirs(out, exist_ok=True)
+    build(out, name, "fmpp_tile", {"Lanes": 1, "NumWords": words}, rtl_sources(), False, words * 32)
+    fl.run([os.path.join(ROOT, "tools", "asic_pnr.sh"), "--until", "place", out, name, "fmpp_tile", fl.TECH],
+           os.path.join(out, "place.log"))
+    return deff
+
+
 def gate_slacks(out, lanes, words, period):
     """The word clock gates' own check at the chip's period: the worst setup and hold slack
     (ns) of each gate's latch into its AND (OpenSTA's clock gating check), or None without

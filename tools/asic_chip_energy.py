@@ -31,7 +31,7 @@ plus the wires of its global networks and of its clock between the tiles:
      as often as the traced tile's port. The clock's tree between the tiles is such a wire
      that toggles twice a cycle;
   5. the wires inside a tile: tools/asic_tile_wires.py over the same activity, from the tile
-     with one lane placed by GrayWolf (placed_lane).
+     with one lane placed by GrayWolf (asic_chip.placed_lane).
 
 Per block and clock: the chip's energy per clock / (64 T). Left out: wires inside the
 central logic (its netlist is not placed), glitches (zero-delay activity), the queue's bus
@@ -264,25 +264,10 @@ def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj):
     return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires:") else ""] for r in rows]
 
 
-def placed_lane(chip_dir, words, reuse):
-    """The DEF of the tile with one lane, synthesized as the chip's tile is and placed by
-    GrayWolf at the flow's density (tools/asic_pnr.sh --until place; kept with `reuse`)."""
-    out = os.path.abspath(os.path.join(chip_dir, "lane"))
-    name, d = f"tile_1x{words}", os.path.join(out, f"pnr_1x{words}")
-    deff = os.path.join(d, "layout", "fmpp_tile.def")
-    if reuse and os.path.exists(os.path.join(d, "place.done")) and os.path.exists(deff):
-        return deff
-    os.makedirs(out, exist_ok=True)
-    chip.build(out, name, "fmpp_tile", {"Lanes": 1, "NumWords": words}, chip.rtl_sources(), False, words * 32)
-    fl.run([os.path.join(ROOT, "tools", "asic_pnr.sh"), "--until", "place", out, name, "fmpp_tile", fl.TECH],
-           os.path.join(out, "place.log"))
-    return deff
-
-
 def tile_wire_rows(a, out, tile_v):
     """Rows of the wires inside the tile (tools/asic_tile_wires.py) over the frame, and
     their energy per clock."""
-    deff = placed_lane(a.chip, a.words, a.reuse)
+    deff = chip.placed_lane(a.chip, a.words, a.reuse)
     args = argparse.Namespace(tile_netlist=tile_v, tile_stat=os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.stat"),
                               activity=os.path.join(out, "tile.all.tcl"), unit_def=deff,
                               sta_log=os.path.join(out, "tile_power_all.chip.log"), lanes=chip.LANE_W,
