@@ -160,10 +160,10 @@ def tile_classes(out, netlist, act, reuse):
     return rows
 
 
-def tile_parts(out, netlist, reuse):
-    """Rows of the tile's energy per clock over the frame, by part."""
+def tile_parts(out, netlist, reuse, gr):
+    """Rows of the tile's energy per clock over the frame, by part (gr: the netlist's Graph)."""
     _, listing = power(out, "tile_power_parts", "fmpp_tile", netlist, os.path.join(out, "tile.all.tcl"), reuse, True)
-    sums = ep.by_part(ep.parts(netlist, fl.LIB), ep.instance_power(listing))
+    sums = ep.by_part(ep.parts(netlist, fl.LIB, gr=gr), ep.instance_power(listing))
     return [["tile_part", part, 1, "", pj(s[3]), pj(s[0]), pj(s[1]), pj(s[2]), "", "", f"{s[4]} cells"]
             for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
 
@@ -264,15 +264,15 @@ def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj):
     return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires:") else ""] for r in rows]
 
 
-def tile_wire_rows(a, out, tile_v):
+def tile_wire_rows(a, out, tile_v, gr):
     """Rows of the wires inside the tile (tools/asic_tile_wires.py) over the frame, and
-    their energy per clock."""
+    their energy per clock (gr: the tile netlist's Graph)."""
     deff = chip.placed_lane(a.chip, a.words, a.reuse)
     args = argparse.Namespace(tile_netlist=tile_v, tile_stat=os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.stat"),
                               activity=os.path.join(out, "tile.all.tcl"), unit_def=deff,
                               sta_log=os.path.join(out, "tile_power_all.chip.log"), lanes=chip.LANE_W,
                               density=a.density, period=fl.PERIOD, volts=volts())
-    r = tw.energy(args)
+    r = tw.energy(args, gr)
     with open(os.path.join(out, "tile_wires.json"), "w") as f:
         json.dump(r, f, indent=1)
     note = lambda k: ["", "", "", "", "", k]  # noqa: E731
@@ -297,8 +297,9 @@ def measure(a):
             raise fl.FlowError(f"{v} is missing: run tools/asic_chip.py first (make asic does)")
     fst = trace(out, a.build, a.reuse)
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
-    rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse)
-    wire_rows, tile_wire_pj = tile_wire_rows(a, out, tile_v)
+    gr = ep.Graph(tile_v, fl.LIB)
+    rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse, gr)
+    wire_rows, tile_wire_pj = tile_wire_rows(a, out, tile_v, gr)
     rows += wire_rows + central(out, array_v, fst, a.reuse)
     reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
     pj_mm = wire_pj_per_mm(out, reps)

@@ -89,9 +89,9 @@ class Graph:
         return mask
 
 
-def parts(netlist, liberty, clock="clk_i"):
-    """{instance name: part} for every cell of the netlist."""
-    gr = Graph(netlist, liberty)
+def parts(netlist, liberty, clock="clk_i", gr=None):
+    """{instance name: part} for every cell of the netlist (gr: its Graph, when made already)."""
+    gr = gr or Graph(netlist, liberty)
     clock_gates = gr.forward([gr.find(clock)])
     # a gate with the clock and another input (a word's AND) and the latch before it; the
     # inverted clock that opens the latches runs every clock and stays with the clock buffers

@@ -18,6 +18,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from asic_tile_wires import pin_caps  # noqa: E402
+
 LIB = os.path.join(os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018"), "osu018_stdcells.lib")
 NETLIST = """module t (clk, a, y);
 input clk;
@@ -49,13 +52,6 @@ def switching_w(d, pin_act):
     return float(m.group(1))
 
 
-def u2_a_pf():
-    text = open(LIB).read()
-    cell = text[text.index("cell (INVX1)"):]
-    pin = cell[cell.index("pin(A)") if "pin(A)" in cell else cell.index("pin (A)"):]
-    return float(re.search(r"\bcapacitance\s*:\s*([\d.eE+-]+)", pin).group(1))
-
-
 def main():
     if shutil.which("sta") is None or not os.path.exists(LIB):
         print("asic_sta_activity.py: skipped (no OpenSTA or OSU018 library: make asic-deps)")
@@ -64,7 +60,7 @@ def main():
         with open(os.path.join(d, "t.v"), "w") as f:
             f.write(NETLIST)
         hi, lo = switching_w(d, 0.9), switching_w(d, PORT_ACT)
-    want = 0.5 * u2_a_pf() * 1e-12 * VOLTS ** 2 * PORT_ACT / (PERIOD_NS * 1e-9)
+    want = 0.5 * pin_caps(LIB)[("INVX1", "A")] * 1e-12 * VOLTS ** 2 * PORT_ACT / (PERIOD_NS * 1e-9)
     if abs(hi - lo) > 1e-3 * lo or abs(lo - want) > 0.01 * want:
         print(f"asic_sta_activity.py: OpenSTA now prices a pin at its annotated activity (u1's switching "
               f"{hi:.4g} W at 0.9, {lo:.4g} W at {PORT_ACT}, the port's {want:.4g} W): docs/asic/notes.md and "

@@ -228,10 +228,8 @@ def tile_trees(gr, lanes, pitch, table, pf_um):
     between the places of its leaves and its root's driver."""
     pos, centre = places(gr, lanes, pitch)
     cell_of = {name: cell for name, cell, _ in gr.insts}
-    drv = {n: name for name, _, _, n in gr.seqs}
-    for name, outs in gr.outs.items():
-        for n in outs:
-            drv[n] = name
+    drv = dict(gr.driver)
+    drv.update({n: name for name, _, _, n in gr.seqs})
     conn = {}
     for name, cell, c in gr.insts:
         for p, n in c.items():
@@ -256,8 +254,9 @@ def tile_trees(gr, lanes, pitch, table, pf_um):
 
 
 def transitions(tcl, gr, period):
-    """{net: transitions per clock} from asic_activity.py's Tcl; the clock's nets (which the
-    Tcl leaves to OpenSTA's clocks) two a clock, or two a pulse after a word's clock gate."""
+    """({net: transitions per clock}, the clock's nets) from asic_activity.py's Tcl; the
+    clock's nets (which the Tcl leaves to OpenSTA's clocks: those the clock port reaches
+    through gates) two a clock, or two a pulse after a word's clock gate."""
     rate, gated = {}, {}
     act = re.compile(r"^act \{(\S+)[^}]*\} (\S+) (\S+)$")
     clk = re.compile(r"^create_clock -name \S+ -period (\S+) \[get_pins \{(\S+)/(\S+)\}\]$")
@@ -271,14 +270,15 @@ def transitions(tcl, gr, period):
             m = clk.match(line.strip())
             if m:
                 gated[gr.conns[m.group(2)][m.group(3)]] = 2.0 * period / float(m.group(1))
-    todo = [(gr.find("clk_i"), 2.0)]
+    clock, todo = set(), [(gr.find("clk_i"), 2.0)]
     while todo:
         n, r = todo.pop()
-        if n in rate:
+        if n in clock:
             continue
+        clock.add(n)
         rate[n] = gated.get(n, r)
         todo.extend((o, rate[n]) for g in gr.readers.get(n, ()) for o in gr.outs[g])
-    return rate
+    return rate, clock
 
 
 def pin_caps(lib=LIB):
@@ -300,18 +300,18 @@ def sta_switching_pj(log, period):
     return float(m.group(1)) * period * 1e3 if m else None
 
 
-def energy(a):
-    """The tile's wires' energy per clock and its parts (the JSON this tool writes)."""
+def energy(a, gr=None):
+    """The tile's wires' energy per clock and its parts (the JSON this tool writes); gr:
+    the tile netlist's Graph, when made already."""
     table, rows, die = wire_load(a.unit_def)
     sizes = ac.lef_areas(LEF)
     area = sum(n * sizes[c] for c, n in ac.stat_cells(a.tile_stat).items() if c in sizes)
     pitch = math.sqrt(area / a.density / a.lanes)
-    gr = Graph(a.tile_netlist, LIB)
+    gr = gr or Graph(a.tile_netlist, LIB)
     caps = tile_trees(gr, a.lanes, pitch, table, layer_pf_per_um())
-    rate = transitions(a.activity, gr, a.period)
+    rate, clock = transitions(a.activity, gr, a.period)
     v2 = a.volts ** 2 / 2
     parts = {"inside a lane": 0.0, "between lanes": 0.0, "clock nets": 0.0}
-    clock = clock_nets(gr)
     for n, (local, span) in caps.items():
         e = rate.get(n, 0.0) * v2
         if n in clock:
@@ -326,17 +326,6 @@ def energy(a):
             "lane_pitch_um": pitch, "tile_cell_area_um2": area, "lanes": a.lanes, "density": a.density,
             "unit_die_um": die, "wire_load_pf": {str(k): table(k) for k in (1, 2, 4, 8, 16, 32, 64, 128)},
             "wire_load_rows": {str(k): v for k, v in rows.items()}, "trees": len(caps)}
-
-
-def clock_nets(gr):
-    """The nets the clock reaches through gates (its buffers, the clock gates' outputs)."""
-    nets, todo = set(), [gr.find("clk_i")]
-    while todo:
-        n = todo.pop()
-        if n not in nets:
-            nets.add(n)
-            todo.extend(o for g in gr.readers.get(n, ()) for o in gr.outs[g])
-    return nets
 
 
 def self_test():
