@@ -61,6 +61,21 @@ def classify(base, lane_re, tile_re, tilereg_re):
     return "name"
 
 
+def coincide(arcs, by_net, fcache, inst_conns, tvs):
+    """Adds to arcs[(instance, output pin, input pin)] the cycles of a chunk in which a
+    gate's output and that input both toggle (tvs: {net: toggle bits}; gates of one input
+    are left out, their one arc needs no weight)."""
+    for net, (name, cell, o) in by_net.items():
+        to = tvs.get(net, 0)
+        ins = fcache[(cell, o)][0]
+        if not to or len(ins) < 2:
+            continue
+        for p in ins:
+            c = (to & tvs.get(inst_conns[name][p], 0)).bit_count()
+            if c:
+                arcs[(name, o, p)] = arcs.get((name, o, p), 0) + c
+
+
 def self_test():
     """The Liberty function compiler and the gated clocks (tools/asic_netlist_check.py), and
     how registers are found in the trace."""
@@ -114,6 +129,9 @@ def main():
     ap.add_argument("--out", required=True, help="output prefix: <out>.json, <out>.<class>.tcl")
     ap.add_argument("--period", type=float, default=10.0, help="the clock period (ns) of the power runs")
     ap.add_argument("--classes-min", type=int, default=200, help="fewest cycles of a class to get its own Tcl")
+    ap.add_argument("--arcs", help="write, per input pin of each gate of two or more inputs, the cycles in which "
+                    "it and the gate's output both toggle (TSV: instance, output pin, input pin, cycles; "
+                    "tools/asic_price.py weighs the cell's internal-power arcs by them)")
     a = ap.parse_args()
 
     lib = read_liberty(a.liberty)
@@ -223,6 +241,7 @@ def main():
     if any(gate_of[q] >= 0 for q in unmapped):
         raise Fail("a flip-flop on a gated clock is not in the trace (only traced ones are simulated here)")
     ones = {n: [0] * len(classes) for n in allnets}
+    arcs = {}       # (instance, output pin, input pin) -> cycles both toggle
     ccount = [0] * len(classes)
     check_ok = check_all = 0
     check_regs = {}  # register -> bits and clocks where the netlist's D differs from the traced next Q
@@ -313,10 +332,12 @@ def main():
                     check_regs[reg] = check_regs.get(reg, 0) + nd
         # toggles: between the previous chunk's last cycle and this one's, and within
         flops = set(q for _, _, _, q in seqs)
+        tvs = {}
         for n in allnets:
             v = val[n]
             first = prev_last.get(n)
             t = (v ^ (v >> 1)) & (M >> 1)          # bit t: change from cycle t to t+1
+            tvs[n] = t
             if n in flops:
                 mt = t                              # caused by the instruction of cycle t
             else:
@@ -329,6 +350,9 @@ def main():
                 ci = int(prev_cls_last) if n in flops else int(cyc_cls[0])
                 tg[ci] += 1
             prev_last[n] = (v >> (T - 1)) & 1
+        if a.arcs:
+            coincide(arcs, by_net, fcache, inst_conns, tvs)
+        tvs = None
         prev_cls_last = cyc_cls[-1]
         total += T
         print(f"  {total} cycles", file=sys.stderr)
@@ -382,6 +406,11 @@ def main():
     # mean activity of the nets, for the record
     nets = [n for n in allnets if n not in inports]
     summary["mean_activity"] = sum(sum(tog[n]) for n in nets) / len(nets) / total
+    if a.arcs:
+        with open(a.arcs, "w") as f:
+            f.write(f"# cycles (of {total}) in which a gate's input and output both toggle; from {os.path.basename(a.fst)}\n")
+            f.writelines(f"{i}\t{o}\t{p}\t{c}\n" for (i, o, p), c in arcs.items())
+        summary["arcs"] = a.arcs
     with open(a.out + ".json", "w") as f:
         json.dump(summary, f, indent=1)
     print(json.dumps({k: v for k, v in summary.items() if k != "tcl"}), file=sys.stderr)

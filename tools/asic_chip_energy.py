@@ -55,6 +55,7 @@ import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
 import asic_energy_parts as ep  # noqa: E402
+import asic_price as price  # noqa: E402
 import asic_tile_wires as tw  # noqa: E402
 from asic_netlist import Fail, Trace  # noqa: E402
 
@@ -387,6 +388,8 @@ def self_test():
     errs += ep.self_test()
     if tw.self_test():
         errs.append("asic_tile_wires")
+    if price.self_test():
+        errs.append("asic_price")
     if errs:
         print("asic_chip_energy.py self-test FAILED: " + ", ".join(errs), file=sys.stderr)
         return 1
