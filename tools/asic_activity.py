@@ -39,7 +39,8 @@ import sys
 
 from asic_netlist import (Fail, Trace, clock_nets, compile_cells, gated_clock_tcl, gated_pulses, read_liberty,
                           read_netlist, undriven_nets)
-from asic_netlist_check import functions_errors, gating_errors
+from asic_netlist_check import classify_errors, functions_errors, gating_errors
+from asic_price import coincide
 
 LANE_REGS = r"\.u_tile\.(mem_q\[\d+\]|flag_q|opa_q|opb_q|opa|opb)$"
 TILE_REGS = r"\.u_tile\.(\w+_i|cin_q|fa_idx|fb_idx)$"
@@ -61,44 +62,15 @@ def classify(base, lane_re, tile_re, tilereg_re):
     return "name"
 
 
-def coincide(arcs, by_net, fcache, inst_conns, tvs):
-    """Adds to arcs[(instance, output pin, input pin)] the cycles of a chunk in which a
-    gate's output and that input both toggle (tvs: {net: toggle bits}; gates of one input
-    are left out, their one arc needs no weight)."""
-    for net, (name, cell, o) in by_net.items():
-        to = tvs.get(net, 0)
-        ins = fcache[(cell, o)][0]
-        if not to or len(ins) < 2:
-            continue
-        for p in ins:
-            c = (to & tvs.get(inst_conns[name][p], 0)).bit_count()
-            if c:
-                arcs[(name, o, p)] = arcs.get((name, o, p), 0) + c
-
-
 def self_test():
     """The Liberty function compiler and the gated clocks (tools/asic_netlist_check.py), and
     how registers are found in the trace."""
-    errs = functions_errors() + gating_errors()
+    bad, n = classify_errors(classify, [re.compile(x) for x in (LANE_REGS, TILE_SCOPE, TILE_REGS)], SIM_UNNAMED, SIM_TILE)
+    errs = functions_errors() + gating_errors() + bad
     if errs:
         raise Fail("self-test: " + "; ".join(errs))
-    # how the pipelined RTL's flip-flops (as yosys names them) are found in the trace
-    regs = {
-        "u_array.g_tile[0].u_tile.mem_q[7]": "lane", "u_array.g_tile[0].u_tile.flag_q": "lane",
-        "u_array.g_tile[0].u_tile.opa": "lane", "u_array.g_tile[0].u_tile.opb_q": "lane",
-        "u_array.g_tile[0].u_tile.a_i": "name", "u_array.g_tile[0].u_tile.exec_i": "name",
-        "u_array.g_tile[0].u_tile.cin_q": "name", "u_array.g_tile[0].u_tile.fa_idx": "name",
-        "u_array.s2_x_q": "name", "u_queue.mem_q[3]": "name", "u_slave.u_err.ev_w_q": "name",
-        "u_array.g_tile[0].u_tile.ovf_any_o": SIM_TILE, "u_array.g_tile[0].u_tile.rd_data_o": SIM_TILE,
-        "_000216_": SIM_UNNAMED, "$auto$dff.cc:1": SIM_UNNAMED,
-    }
-    res = [re.compile(x) for x in (LANE_REGS, TILE_SCOPE, TILE_REGS)]
-    for reg, want in regs.items():
-        got = classify(reg, *res)
-        if got != want:
-            raise Fail(f"self-test: register {reg} is classed {got!r}, not {want!r}")
     print("asic_activity.py self-test: the functions agree with their truth tables, the gated clocks are found, "
-          f"{len(regs)} register names are classed as expected")
+          f"{n} register names are classed as expected")
     return 0
 
 

@@ -9,27 +9,26 @@ plus the wires of its global networks and of its clock between the tiles:
      `small` configuration, 64 blocks of 32 words), traced (FST);
   2. the tile: the real fmpp_tile of 64 lanes and 32 words (asic_chip.py's netlist), every
      net's switching activity from the trace (tools/asic_activity.py: the traced registers
-     and ports, the gates evaluated from them, no glitches), and OpenSTA's power given that
-     activity: in every instruction class, and by part (tools/asic_energy_parts.py) over
-     the whole frame. OpenSTA 2.0.17 honours the activity of the input ports and clocks
-     only and propagates its own estimate to the cells' pins (tools/asic_activity.py), so
-     inside the tile these are its activities from the traced ports. The tile is traced as
-     the only tile of its machine: every tile of a larger chip is taken to work as hard as
-     it (each holds rays in every pass);
+     and ports, the gates evaluated from them, no glitches), priced cell by cell from the
+     Liberty file at that activity (tools/asic_price.py): in every instruction class, and
+     by part (tools/asic_energy_parts.py) over the whole frame. OpenSTA's own figure (its
+     activities propagated from the traced ports, its pricing of a transition) is a row
+     beside them. The tile is traced as the only tile of its machine: every tile of a
+     larger chip is taken to work as hard as it (each holds rays in every pass);
   3. the central logic: fmpp_top with the stand-in tile (asic_chip.py's array of one tile),
-     its activity from the same trace, OpenSTA's power without the stand-in's cells (the
-     read data and responders the stand-in returns are not the tile's, so the bus slave's
-     read path toggles as the stand-in's answers do); of it, the copies that the chip has
-     once per tile (the stage-3 registers beside each tile) and once per group of tiles
-     (the broadcast's stage 2, the hold, the trees' group registers) are counted as often;
+     its activity from the same trace, priced the same way without the stand-in's cells
+     (the read data and responders the stand-in returns are not the tile's); of it, the
+     copies that the chip has once per tile (the stage-3 registers beside each tile) and
+     once per group of tiles (the broadcast's stage 2, the hold, the trees' group
+     registers) are counted as often;
   4. the wires: every bit of the tile's ports is a network that reaches all T tiles of the
      floorplan (asic_chip.py's: square tiles at the placement density, a grid around the
      central logic), the shortest tree over a grid of T points T - 1 pitches long plus half
      a pitch to the central logic, half on metal5 and half on metal6 with the repeaters
-     asic_chip.py times fastest. A toggle of a bit costs the energy OpenSTA gives a chain of
-     those repeaters and wires (the LEF's capacitance, SPEF) per millimetre; each bit toggles
-     as often as the traced tile's port. The clock's tree between the tiles is such a wire
-     that toggles twice a cycle;
+     asic_chip.py times fastest. A toggle of a bit costs what a chain of those repeaters
+     and wires (the LEF's capacitance) costs per millimetre (tools/asic_price.py); each bit
+     toggles as often as the traced tile's port. The clock's tree between the tiles is
+     such a wire that toggles twice a cycle;
   5. the wires inside a tile: tools/asic_tile_wires.py over the same activity, from the tile
      with one lane placed by GrayWolf (asic_chip.placed_lane).
 
@@ -73,14 +72,6 @@ COLS = ["section", "key", "tiles", "cycles", "energy_pj", "internal_pj", "switch
         "note"]
 
 
-def volts():
-    with open(fl.LIB) as f:
-        m = re.search(r"\bnom_voltage\s*:\s*([\d.]+)", f.read())
-    if not m:
-        raise fl.FlowError(f"{fl.LIB}: no nom_voltage")
-    return float(m.group(1))
-
-
 def same_text(path, text):
     if not os.path.exists(path):
         return False
@@ -104,10 +95,11 @@ def trace(out, build, reuse):
 def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
     """tools/asic_activity.py on netlist: its summary (cycles by class)."""
     summary = os.path.join(out, name + ".json")
-    if not (reuse and os.path.exists(summary) and os.path.getmtime(summary) > os.path.getmtime(fst)):
+    arcs = os.path.join(out, name + ".arcs.tsv")
+    if not (reuse and os.path.exists(summary) and os.path.exists(arcs) and os.path.getmtime(summary) > os.path.getmtime(fst)):
         cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
                "--fst", fst, "--scope", scope, "--pkg", os.path.join(ROOT, "rtl", "fmpp_pkg.sv"),
-               "--out", os.path.join(out, name), "--period", str(fl.PERIOD)]
+               "--out", os.path.join(out, name), "--period", str(fl.PERIOD), "--arcs", os.path.join(out, name + ".arcs.tsv")]
         for k in ("exec", "kind", "op"):
             cmd += [f"--{k}", f"{cls_prefix}{k}_i"]
         fl.run(cmd, os.path.join(out, name + ".activity.log"))
@@ -126,22 +118,17 @@ def groups(text):
     return r
 
 
-def power(out, name, top, netlist, tcl, reuse, instances=False):
-    """OpenSTA's power of netlist with the activity Tcl: its groups, and with `instances`
-    the path of its per-instance listing (kept from an earlier run with `reuse` when newer
-    than the Tcl)."""
+def power(out, name, top, netlist, tcl, reuse):
+    """OpenSTA's power of netlist with the activity Tcl: its groups (kept from an earlier
+    run with `reuse` when newer than the Tcl)."""
     # The inputs arrive with the clock: OpenSTA gives an unclocked pin next to no power.
     body = (f"set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
             f"source {tcl}\nreport_power -digits 6")
-    log, listing = os.path.join(out, name + ".chip.log"), os.path.join(out, name + ".instances.log")
-    if instances:
-        body += f"\nreport_power -instances [get_cells *] -digits 6 > {listing}"
-    done = os.path.exists(log) and os.path.getmtime(log) > os.path.getmtime(tcl) and \
-        (not instances or os.path.exists(listing))
-    if reuse and done:
+    log = os.path.join(out, name + ".chip.log")
+    if reuse and os.path.exists(log) and os.path.getmtime(log) > os.path.getmtime(tcl):
         with open(log) as f:
-            return groups(f.read()), listing
-    return groups(fl.sta(out, name, top, body, verilog=netlist)), listing
+            return groups(f.read())
+    return groups(fl.sta(out, name, top, body, verilog=netlist))
 
 
 def pj(watts):
@@ -149,23 +136,31 @@ def pj(watts):
     return watts * fl.PERIOD * 1e3
 
 
-def tile_classes(out, netlist, act, reuse):
-    """Rows of the tile's energy per clock in each instruction class and over the frame."""
+def tile_classes(out, pr, act):
+    """Rows of the tile's energy per clock in each instruction class and over the frame
+    (pr: the tile's asic_price.Priced)."""
     rows = []
     for cls in ["all"] + sorted(c for c in act["classes"] if os.path.exists(os.path.join(out, f"tile.{c}.tcl"))):
-        g, _ = power(out, f"tile_power_{cls}", "fmpp_tile", netlist, os.path.join(out, f"tile.{cls}.tcl"), reuse)
+        g = pr.groups(os.path.join(out, f"tile.{cls}.tcl"))
         cyc = act["cycles"] if cls == "all" else act["classes"][cls]
-        t = g["Total"]
-        rows.append(["tile_class", cls, 1, cyc, pj(t[3]), pj(t[0]), pj(t[1]), pj(t[2]), pj(g["Sequential"][3]),
-                     pj(g["Combinational"][3]), "the 64-lane tile"])
+        rows.append(["tile_class", cls, 1, cyc, *g["Total"][3:], *g["Total"][:3], g["Sequential"][3], g["Combinational"][3],
+                     "the 64-lane tile"])
     return rows
 
 
-def tile_parts(out, netlist, reuse, gr):
+def tile_check(out, netlist, reuse):
+    """The row of OpenSTA's own figure for the tile over the frame: its activities
+    propagated from the traced ports, at its pricing of a transition (docs/asic/notes.md)."""
+    g = power(out, "tile_power_all", "fmpp_tile", netlist, os.path.join(out, "tile.all.tcl"), reuse)
+    t = [pj(x) for x in g["Total"]]
+    return [["tile_check", "OpenSTA 2.0.17", 1, "", t[3], t[0], t[1], t[2], pj(g["Sequential"][3]), pj(g["Combinational"][3]),
+             "its activities propagated from the traced ports; each transition priced at rise plus fall energy"]]
+
+
+def tile_parts(out, pr, gr):
     """Rows of the tile's energy per clock over the frame, by part (gr: the netlist's Graph)."""
-    _, listing = power(out, "tile_power_parts", "fmpp_tile", netlist, os.path.join(out, "tile.all.tcl"), reuse, True)
-    sums = ep.by_part(ep.parts(netlist, fl.LIB, gr=gr), ep.instance_power(listing))
-    return [["tile_part", part, 1, "", pj(s[3]), pj(s[0]), pj(s[1]), pj(s[2]), "", "", f"{s[4]} cells"]
+    sums = ep.by_part(ep.parts(None, fl.LIB, gr=gr), pr.instances(os.path.join(out, "tile.all.tcl")))
+    return [["tile_part", part, 1, "", s[3], s[0], s[1], s[2], "", "", f"{s[4]} cells"]
             for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
 
 
@@ -180,20 +175,20 @@ def central(out, netlist, fst, reuse):
     """The central logic's rows: the array of one stand-in tile without the stand-in, and of
     that the copies the chip has per tile and per group."""
     act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
-    _, listing = power(out, "central_power", "fmpp_top", netlist, os.path.join(out, "central.all.tcl"), reuse, True)
+    tcl = os.path.join(out, "central.all.tcl")
+    cost = price.Priced(ep.Graph(netlist, fl.LIB), tcl, os.path.join(out, "central.arcs.tsv"), fl.PERIOD).instances(tcl)
     skip = ep.island(netlist, fl.LIB, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
     per = {"a tile's copies": ("tile", PER_TILE), "a group's copies": ("group", PER_GROUP)}
     parts = {k: ep.island(netlist, fl.LIB, pat) for k, (_, pat) in per.items()}
     tot = {k: [0.0] * 4 for k in ("all", *parts)}
-    for inst, p in ep.instance_power(listing).items():
+    for inst, p in cost.items():
         if inst in skip:
             continue
         for k in ["all"] + [k for k, cells in parts.items() if inst in cells]:
             tot[k] = [a + b for a, b in zip(tot[k], p)]
     notes = {"all": f"fmpp_top with one stand-in tile less its {len(skip)} cells",
              **{k: f"{len(cells)} cells of the above that the chip has once per {per[k][0]}" for k, cells in parts.items()}}
-    return [["central", k, "", act["cycles"], pj(t[3]), pj(t[0]), pj(t[1]), pj(t[2]), "", "", notes[k]]
-            for k, t in tot.items()]
+    return [["central", k, "", act["cycles"], t[3], t[0], t[1], t[2], "", "", notes[k]] for k, t in tot.items()]
 
 
 def central_pj(rows, tiles):
@@ -205,23 +200,21 @@ def central_pj(rows, tiles):
 
 
 def wire_pj_per_mm(out, reps):
-    """{layer: pJ per toggle per mm}: OpenSTA's power of a chain of the layer's repeaters
-    and wires (asic_chip_wires.py's netlist and SPEF) with every net toggling each cycle
-    (the input is given the clock, or OpenSTA gives its logic no activity)."""
-    specs = [(layer, r[1], r[2], False) for layer, r in sorted(reps.items())]
-    chs = wires.chains(specs, fl.LEF)
+    """{layer: pJ per toggle per mm}: a chain of the layer's repeaters and wires
+    (asic_chip_wires.py's netlist, each wire's capacitance from the LEF in its net's load)
+    priced by tools/asic_price.py with every net toggling once a clock."""
+    cells, volts = price.read_lib(fl.LIB)
     res = {}
-    for ch in chs:
-        n = ch[0]
-        v, spef = os.path.join(out, f"energy_{n}.v"), os.path.join(out, f"energy_{n}.spef")
+    for ch in wires.chains([(layer, r[1], r[2], False) for layer, r in sorted(reps.items())], fl.LEF):
+        n, layer, s, c = ch[0], ch[1], ch[3], ch[6]
+        v = os.path.join(out, f"energy_{n}.v")
         wires.write_netlist(v, [ch])
-        wires.write_spef(spef, [ch])
-        body = (f"read_spef {spef}\nset_driving_cell -lib_cell {ch[2]} -pin Y [get_ports in_{n}]\n"
-                "set_input_delay 0 -clock clk [all_inputs]\nset_power_activity -input -activity 1.0 -duty 0.5\n"
-                "set_power_activity -global -activity 1.0 -duty 0.5\nreport_power -digits 6")
-        g = groups(fl.sta(out, f"energy_{n}", "wires", body, verilog=v, clock_port=None))
+        gr = ep.Graph(v, fl.LIB)
+        nl = price.Netlist(gr.insts, cells, {gr.find(f"w_{n}_{k}"): c * s for k in range(1, wires.STAGES)})
+        rate = {net: 1.0 for _, _, conns in gr.insts for net in conns.values()}
+        per = price.price(nl, price.unit_energies(nl, volts, {}, rate, set()), rate, fl.PERIOD)
         # STAGES repeaters drive STAGES - 1 wires of the spacing (the last drives nothing)
-        res[ch[1]] = pj(g["Total"][3]) / ((wires.STAGES - 1) * ch[3] / 1000.0)
+        res[layer] = sum(sum(x) for x in per.values()) / ((wires.STAGES - 1) * s / 1000.0)
     return res
 
 
@@ -272,7 +265,7 @@ def tile_wire_rows(a, out, tile_v, gr):
     args = argparse.Namespace(tile_netlist=tile_v, tile_stat=os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.stat"),
                               activity=os.path.join(out, "tile.all.tcl"), unit_def=deff,
                               sta_log=os.path.join(out, "tile_power_all.chip.log"), lanes=chip.LANE_W,
-                              density=a.density, period=fl.PERIOD, volts=volts())
+                              density=a.density, period=fl.PERIOD, volts=price.read_lib(fl.LIB)[1])
     r = tw.energy(args, gr)
     with open(os.path.join(out, "tile_wires.json"), "w") as f:
         json.dump(r, f, indent=1)
@@ -299,7 +292,8 @@ def measure(a):
     fst = trace(out, a.build, a.reuse)
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
     gr = ep.Graph(tile_v, fl.LIB)
-    rows = tile_classes(out, tile_v, act, a.reuse) + tile_parts(out, tile_v, a.reuse, gr)
+    pr = price.Priced(gr, os.path.join(out, "tile.all.tcl"), os.path.join(out, "tile.arcs.tsv"), fl.PERIOD)
+    rows = tile_classes(out, pr, act) + tile_parts(out, pr, gr) + tile_check(out, tile_v, a.reuse)
     wire_rows, tile_wire_pj = tile_wire_rows(a, out, tile_v, gr)
     rows += wire_rows + central(out, array_v, fst, a.reuse)
     reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
@@ -342,7 +336,7 @@ def main():
         print(f"asic_chip_energy.py: {e}", file=sys.stderr)
         return 1
     head = chip.provenance(sys.argv[1:], reps, a.density, "FMPP chip energy: tools/asic_chip_energy.py")
-    head.append(f"# energy per clock of {fl.PERIOD} ns at {volts()} V; the frame: fmpp-render {RENDER}")
+    head.append(f"# energy per clock of {fl.PERIOD} ns at {price.read_lib(fl.LIB)[1]} V; the frame: fmpp-render {RENDER}")
     path = os.path.join(a.chip, "chip_energy.csv")
     chip.write_csv(path, head, COLS, [[fmt(x) for x in r] for r in rows])
     for r in rows:

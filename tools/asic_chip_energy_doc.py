@@ -84,6 +84,18 @@ def tile_wires_text(rows):
             "(at its own activities, propagated from the ports)."]
 
 
+def sta_text(rows):
+    """The line setting OpenSTA's own figure for the tile beside the priced one, or nothing."""
+    chk, tile = rows_by(rows, "tile_check"), [r for r in rows_by(rows, "tile_class") if r["key"] == "all"]
+    if not chk or not tile:
+        return []
+    c, t = chk[0], tile[0]
+    f = lambda r, k: float(r[k])  # noqa: E731
+    return [f"OpenSTA 2.0.17's own figure for the tile over the frame: {f(c, 'energy_pj'):,.0f} pJ a clock (internal "
+            f"{f(c, 'internal_pj'):,.0f}, switching {f(c, 'switching_pj'):,.0f}), at {c['note']}; priced: "
+            f"{f(t, 'energy_pj'):,.0f} pJ (internal {f(t, 'internal_pj'):,.0f}, switching {f(t, 'switching_pj'):,.0f}).", ""]
+
+
 def energy_tables(d):
     """Markdown of the chip's energy, or a line saying it was not measured."""
     path = os.path.join(d, "chip_energy.csv")
@@ -96,14 +108,15 @@ def energy_tables(d):
     chip, per_block, tiles = chip_table(rows)
     wire = {r["key"]: r["note"] for r in rows_by(rows, "wire")}
     o = ["Measured by " + prov[0] + ".", "", *("    " + p for p in prov[1:]), "", *chip, "",
-         f"Wires, pJ a toggle and mm: {wire.get('pJ per toggle per mm', '?')} (OpenSTA's power of a chain of the "
-         f"layer's repeaters and wires); toggles a clock of the traced tile's ports, by network: "
+         f"Wires, pJ a toggle and mm: {wire.get('pJ per toggle per mm', '?')} (a chain of the layer's repeaters and "
+         f"wires priced by tools/asic_price.py); toggles a clock of the traced tile's ports, by network: "
          f"{wire.get('toggles per clock', '?')}.", "",
          f"Per stored bit: {1000 * per_block / BITS_A_BLOCK:.0f} fJ a clock ({per_block:.1f} pJ per block of "
          f"{BITS_A_BLOCK:,} bits at {64 * tiles:,} blocks), against {CAM_FJ_PER_BIT} fJ a bit for a search of a NOR "
          f"CAM in the same process ({CAM_SOURCE}).", "",
          "The tile in each instruction class of the frame (its cycles executing that opcode, a window write, or "
-         "idle):", "", *class_table(rows), "", "The tile over the frame, by part:", "", *part_table(rows)]
+         "idle), each cell priced at the traced toggles of its pins (tools/asic_price.py):", "", *class_table(rows), "",
+         *sta_text(rows), "The tile over the frame, by part:", "", *part_table(rows)]
     o += tile_wires_text(rows) or routed_share(d)
     central = rows_by(rows, "central")
     if central:

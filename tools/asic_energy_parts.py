@@ -133,19 +133,6 @@ def island(netlist, liberty, qpat):
     return flops | {g for g in fwd if masks.get(g, 0) == 1}
 
 
-def instance_power(log):
-    """{instance: (internal, switching, leakage, total) in W} from OpenSTA's
-    `report_power -instances` listing."""
-    row = re.compile(r"^\s*([-\d.e+]+)\s+([-\d.e+]+)\s+([-\d.e+]+)\s+([-\d.e+]+)\s+(\S+)\s*$")
-    out = {}
-    with open(log) as f:
-        for line in f:
-            m = row.match(line)
-            if m:
-                out[m.group(5).lstrip("\\")] = tuple(float(m.group(i)) for i in range(1, 5))
-    return out
-
-
 def by_part(part, power):
     """{part: [internal, switching, leakage, total, cells]} summed over the instances."""
     sums = {}

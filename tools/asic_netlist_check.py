@@ -51,3 +51,21 @@ def gating_errors():
             gated, [0], 4, {"g": ("u1", "Y")}, 10.0):
         errs.append("gated_clock_tcl: " + tcl)
     return errs
+
+
+def classify_errors(classify, res, unnamed, per_tile):
+    """How tools/asic_activity.py finds the pipelined RTL's flip-flops (as yosys names them)
+    in the trace: (its classify(register, *res) against the expected class of each name,
+    the names checked)."""
+    regs = {
+        "u_array.g_tile[0].u_tile.mem_q[7]": "lane", "u_array.g_tile[0].u_tile.flag_q": "lane",
+        "u_array.g_tile[0].u_tile.opa": "lane", "u_array.g_tile[0].u_tile.opb_q": "lane",
+        "u_array.g_tile[0].u_tile.a_i": "name", "u_array.g_tile[0].u_tile.exec_i": "name",
+        "u_array.g_tile[0].u_tile.cin_q": "name", "u_array.g_tile[0].u_tile.fa_idx": "name",
+        "u_array.s2_x_q": "name", "u_queue.mem_q[3]": "name", "u_slave.u_err.ev_w_q": "name",
+        "u_array.g_tile[0].u_tile.ovf_any_o": per_tile, "u_array.g_tile[0].u_tile.rd_data_o": per_tile,
+        "_000216_": unnamed, "$auto$dff.cc:1": unnamed,
+    }
+    errs = [f"register {reg} is classed {classify(reg, *res)!r}, not {want!r}" for reg, want in regs.items()
+            if classify(reg, *res) != want]
+    return errs, len(regs)

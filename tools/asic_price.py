@@ -2,9 +2,10 @@
 """The power of a gate-level netlist priced from its Liberty file at every net's traced activity.
 
 OpenSTA 2.0.17 prices a cell's pins at activities it propagates itself from the input
-ports (tools/asic_activity.py), so the traced activity of each net inside a netlist is
-priced here, cell by cell, with the Liberty models and OpenSTA's conventions
-(power/Power.cc):
+ports (tools/asic_activity.py), and prices each transition at the sum of the rise and
+the fall energy (OpenSTA 2.1 and later take their mean: a transition is one or the other).
+So the traced activity of each net is priced here, cell by cell, with the Liberty models
+(tools/asic_liberty.py) and the conventions of today's OpenSTA (power/Power.cc):
 
 - internal power of an output pin: its transitions times the energy per transition,
   the mean of the to-rise and to-fall tables at the load on the pin and the slew at the
@@ -17,21 +18,23 @@ priced here, cell by cell, with the Liberty models and OpenSTA's conventions
 - internal power of an input pin (a flip-flop's clock and data): the pin's transitions
   times the mean of its rise and fall tables at its slew;
 - switching power: C V^2 / 2 per transition of each output net, C its pins' load (the
-  Liberty capacitance of the pins it drives) and, given, the wires' (--wire-pf);
+  Liberty capacitance of the pins it drives) and, where given, its wire's (a repeater
+  chain's; the wires inside a tile are priced by tools/asic_tile_wires.py);
 - leakage: each cell's cell_leakage_power.
 
 Slews come from the Liberty transition tables, propagated in topological order from the
 input ports (slew 0, as OpenSTA without set_input_transition) through every gate, the
 clock's buffers and gates included (OpenSTA's set_propagated_clock), each net's rise and
-fall the largest over its driver's arcs. The tables are read between and beyond their
-points by bilinear interpolation, as OpenSTA does.
+fall the largest over its driver's arcs.
 
-Left out: the wires' capacitance in the tables' load (it is priced as switching), glitches
-(the activity is zero-delay), a transition's direction within a class (each class takes
-the mean of rise and fall energy).
+tools/asic_sta_activity.py (a ctest) checks this pricing against OpenSTA on a netlist whose
+activity OpenSTA propagates exactly, at the 2.0.17 conventions: they agree within 0.2 %.
 
-Usage: asic_price.py --netlist V --activity TCL [--arcs TSV] [--period 10]   per-part totals
-       asic_price.py --self-test                                              the tables
+Left out: the wires inside a tile in the tables' load, glitches (the activity is
+zero-delay), a transition's direction within a class (each takes the mean of rise and fall).
+
+Usage: asic_price.py --netlist V --activity TCL --arcs TSV [--frame TCL] [--period 10]
+       asic_price.py --self-test
 """
 import argparse
 import os
@@ -39,122 +42,8 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-
-TECH = os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018")
-LIB = os.path.join(TECH, "osu018_stdcells.lib")
-TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[{}();:,]|[^\s{}();:,"]+')
-
-
-class LibError(Exception):
-    pass
-
-
-def groups(text):
-    """A Liberty file as nested groups: (name, [args], {attribute: value}, [children]);
-    a complex attribute (name (a, b);) holds its list of arguments."""
-    text = re.sub(r"/\*.*?\*/", " ", text, flags=re.S).replace("\\\n", " ")
-    toks = TOKEN.findall(text)
-    root = ("", [], {}, [])
-    stack, i = [root], 0
-    while i < len(toks):
-        t = toks[i]
-        if t == "}":
-            stack.pop()
-            i += 1
-        elif i + 1 < len(toks) and toks[i + 1] == ":":
-            j = toks.index(";", i)
-            stack[-1][2][t] = " ".join(x.strip('"') for x in toks[i + 2:j])
-            i = j + 1
-        elif i + 1 < len(toks) and toks[i + 1] == "(":
-            j = toks.index(")", i)
-            args = [x.strip('"') for x in toks[i + 2:j] if x != ","]
-            if j + 1 < len(toks) and toks[j + 1] == "{":
-                g = (t, args, {}, [])
-                stack[-1][3].append(g)
-                stack.append(g)
-                i = j + 2
-            else:
-                stack[-1][2][t] = args
-                i = j + 2 if j + 1 < len(toks) and toks[j + 1] == ";" else j + 1
-        else:
-            i += 1
-    if len(stack) != 1:
-        raise LibError("unbalanced braces")
-    return root
-
-
-def floats(arg):
-    return [float(x) for x in ",".join(arg).replace(",", " ").split()]
-
-
-class Table:
-    """A Liberty table by its template's variables: value(load=pF, slew=ns)."""
-
-    def __init__(self, g, templates):
-        var = templates.get(g[1][0] if g[1] else "", [])
-        a = g[2]
-        self.axes = [(var[k] if k < len(var) else "", floats(a[f"index_{k + 1}"])) for k in range(2) if f"index_{k + 1}" in a]
-        rows = [floats([r]) for r in a["values"]]
-        self.values = rows if len(self.axes) == 2 else [sum(rows, [])]
-
-    def value(self, load, slew):
-        pick = {"total_output_net_capacitance": load, "input_transition_time": slew, "input_net_transition": slew}
-        if not self.axes:
-            return self.values[0][0]
-        x = [pick[v] for v, _ in self.axes]
-        if len(self.axes) == 1:
-            return interp(self.axes[0][1], self.values[0], x[0])
-        col = [interp(self.axes[1][1], row, x[1]) for row in self.values]
-        return interp(self.axes[0][1], col, x[0])
-
-
-def interp(axis, ys, x):
-    """Linear between the two points that bracket x, or the two nearest (extrapolated)."""
-    if len(axis) == 1:
-        return ys[0]
-    k = 0
-    while k < len(axis) - 2 and x > axis[k + 1]:
-        k += 1
-    x0, x1 = axis[k], axis[k + 1]
-    return ys[k] + (ys[k + 1] - ys[k]) * (x - x0) / (x1 - x0)
-
-
-def read_lib(path=LIB):
-    """{cell: {"leak": W, "seq": bool, "pins": {pin: (direction, pF)}, "internal": [(pin,
-    related or None, rise Table, fall Table)], "arcs": {(out, related): (sense, rise
-    transition Table, fall transition Table)}}} and the library's voltage."""
-    with open(path) as f:
-        lib = groups(f.read())[3]
-    if not lib or lib[0][0] != "library":
-        raise LibError(f"{path}: no library group")
-    lib = lib[0]
-    templates = {g[1][0]: [g[2][k] for k in ("variable_1", "variable_2") if k in g[2]] for g in lib[3]
-                 if g[0] in ("lu_table_template", "power_lut_template")}
-    unit = {"1nW": 1e-9, "1uW": 1e-6, "1pW": 1e-12, "1mW": 1e-3}.get(lib[2].get("leakage_power_unit", "1nW"))
-    if unit is None:
-        raise LibError(f"{path}: leakage_power_unit {lib[2]['leakage_power_unit']} is not known")
-    cells = {}
-    for c in (g for g in lib[3] if g[0] == "cell"):
-        cell = {"leak": float(c[2].get("cell_leakage_power", 0)) * unit, "pins": {}, "internal": [], "arcs": {},
-                "seq": any(g[0] in ("ff", "latch") for g in c[3])}
-        for p in (g for g in c[3] if g[0] == "pin"):
-            name, a = p[1][0], p[2]
-            cell["pins"][name] = (a.get("direction", ""), max(float(a.get(k, 0)) for k in
-                                                             ("capacitance", "rise_capacitance", "fall_capacitance")))
-            for g in p[3]:
-                tabs = {t[0]: Table(t, templates) for t in g[3]}
-                if g[0] == "internal_power":
-                    cell["internal"].append((name, g[2].get("related_pin"), tabs.get("rise_power"), tabs.get("fall_power")))
-                elif g[0] == "timing" and "rise_transition" in tabs and g[2].get("timing_type", "combinational") in \
-                        ("combinational", "rising_edge", "falling_edge"):
-                    cell["arcs"][(name, g[2]["related_pin"])] = (g[2].get("timing_sense", "non_unate"),
-                                                                 tabs["rise_transition"], tabs["fall_transition"])
-        cells[c[1][0]] = cell
-    volts = float(lib[2].get("nom_voltage", 0))
-    if not cells or volts <= 0:
-        raise LibError(f"{path}: no cells or no nom_voltage")
-    return cells, volts
-
+import asic_liberty as liberty  # noqa: E402
+from asic_liberty import LIB, LibError, read_lib  # noqa: E402
 
 def mean_energy(rise, fall, load, slew_r, slew_f, sta2017=False):
     """The mean of a to-rise and a to-fall table (either may be missing); with sta2017
@@ -296,6 +185,49 @@ def price(nl, units, rate, period):
     return out
 
 
+def transitions(tcl, gr, period):
+    """({net: transitions per clock}, the clock's nets) from asic_activity.py's Tcl; the
+    clock's nets (which the Tcl leaves to OpenSTA's clocks: those the clock port reaches
+    through gates) two a clock, or two a pulse after a word's clock gate."""
+    rate, gated = {}, {}
+    act = re.compile(r"^act \{(\S+)[^}]*\} (\S+) (\S+)$")
+    clk = re.compile(r"^create_clock -name \S+ -period (\S+) \[get_pins \{(\S+)/(\S+)\}\]$")
+    with open(tcl) as f:
+        for line in f:
+            m = act.match(line)
+            if m:
+                inst, pin = m.group(1).rsplit("/", 1)
+                rate[gr.conns[inst][pin]] = float(m.group(2))
+                continue
+            m = clk.match(line.strip())
+            if m:
+                gated[gr.conns[m.group(2)][m.group(3)]] = 2.0 * period / float(m.group(1))
+    clock, todo = set(), [(gr.find("clk_i"), 2.0)]
+    while todo:
+        n, r = todo.pop()
+        if n in clock:
+            continue
+        clock.add(n)
+        rate[n] = gated.get(n, r)
+        todo.extend((o, rate[n]) for g in gr.readers.get(n, ()) for o in gr.outs[g])
+    return rate, clock
+
+
+def coincide(arcs, by_net, fcache, inst_conns, tvs):
+    """Adds to arcs[(instance, output pin, input pin)] the cycles of a chunk in which a
+    gate's output and that input both toggle (tvs: {net: toggle bits}; gates of one input
+    are left out, their one arc needs no weight)."""
+    for net, (name, cell, o) in by_net.items():
+        to = tvs.get(net, 0)
+        ins = fcache[(cell, o)][0]
+        if not to or len(ins) < 2:
+            continue
+        for p in ins:
+            c = (to & tvs.get(inst_conns[name][p], 0)).bit_count()
+            if c:
+                arcs[(name, o, p)] = arcs.get((name, o, p), 0) + c
+
+
 def read_arcs(path):
     """{(instance, output pin, input pin): cycles} from tools/asic_activity.py --arcs."""
     out = {}
@@ -319,25 +251,30 @@ def totals(per, nl):
     return res
 
 
+class Priced:
+    """A netlist (gr: its asic_energy_parts.Graph) priced at a traced frame: each cell's
+    energy per transition from the frame's Tcl (tools/asic_activity.py) and arcs, then
+    the cells' power at any class's Tcl."""
+
+    def __init__(self, gr, tcl_all, arcs_path, period, lib=LIB):
+        self.cells, self.volts = read_lib(lib)
+        self.gr, self.period = gr, period
+        self.nl = Netlist(gr.insts, self.cells)
+        rate, self.clock = transitions(tcl_all, gr, period)
+        self.units = unit_energies(self.nl, self.volts, read_arcs(arcs_path), rate, self.clock)
+
+    def instances(self, tcl):
+        """{instance: [internal, switching, leakage, total] pJ a clock} at the Tcl's activity."""
+        rate, _ = transitions(tcl, self.gr, self.period)
+        return {k: v + [sum(v)] for k, v in price(self.nl, self.units, rate, self.period).items()}
+
+    def groups(self, tcl):
+        """totals() at the Tcl's activity."""
+        return totals({k: v[:3] for k, v in self.instances(tcl).items()}, self.nl)
+
+
 def self_test():
-    errs = []
-    lib = ('library (t) { leakage_power_unit : "1nW"; nom_voltage : 1.8;\n'
-           'power_lut_template (e) { variable_1 : total_output_net_capacitance; variable_2 : input_transition_time;'
-           ' index_1 ("1, 2"); index_2 ("1, 2"); }\n'
-           'cell (G) { cell_leakage_power : 2.0; pin (A) { direction : input; capacitance : 0.01; '
-           'rise_capacitance : 0.02; }\n pin (Y) { direction : output; function : "!A"; internal_power () {'
-           ' related_pin : "A"; rise_power (e) { index_1 ("0.0, 0.1"); index_2 ("0.0, 1.0");\n values ( \\\n'
-           ' "1.0, 2.0", \\\n "3.0, 4.0"); } } } } }\n')
-    g = groups(lib)
-    cell = g[3][0][3][1]
-    templates = {"e": ["total_output_net_capacitance", "input_transition_time"]}
-    t = Table(cell[3][1][3][0][3][0], templates)
-    for (load, slew), want in {(0.0, 0.0): 1.0, (0.1, 1.0): 4.0, (0.05, 0.5): 2.5, (0.2, 0.0): 5.0,
-                               (0.0, 2.0): 3.0}.items():
-        if abs(t.value(load, slew) - want) > 1e-12:
-            errs.append(f"table at load {load}, slew {slew}: {t.value(load, slew)}, not {want}")
-    if cell[3][0][2].get("rise_capacitance") != "0.02" or g[3][0][2]["nom_voltage"] != "1.8":
-        errs.append("attributes")
+    errs = liberty.self_test()
     if in_slews("negative_unate", 1.0, 2.0) != (2.0, 1.0) or in_slews("non_unate", 1.0, 2.0) != (1.0, 2.0) or \
             timing_slews("non_unate", 1.0, 2.0) != (2.0, 2.0):
         errs.append("in_slews")
@@ -349,6 +286,11 @@ def self_test():
         errs.append("weights by rate")
     if weights(c, "g", conns, "Y", {("g", "Y", "B"): 5}, {}, {"a", "y"}) != {"A": 1.0}:
         errs.append("weights of a clock gate")
+    arcs = {}
+    coincide(arcs, {"y": ("g", "NAND2X1", "Y")}, {("NAND2X1", "Y"): (["A", "B"], None)}, {"g": conns},
+             {"y": 0b1011, "a": 0b0011, "b": 0b1000})
+    if arcs != {("g", "Y", "A"): 2, ("g", "Y", "B"): 1}:
+        errs.append(f"coincide: {arcs}")
     for e in errs:
         print("asic_price.py self-test: " + e, file=sys.stderr)
     if not errs:
@@ -358,10 +300,27 @@ def self_test():
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--netlist", help="gate-level Verilog")
+    ap.add_argument("--activity", help="tools/asic_activity.py's Tcl of the frame (or a class: --frame gives the frame's)")
+    ap.add_argument("--frame", help="the frame's Tcl, which weighs the arcs (default: --activity)")
+    ap.add_argument("--arcs", help="tools/asic_activity.py --arcs of the frame")
+    ap.add_argument("--period", type=float, default=10.0)
     ap.add_argument("--self-test", action="store_true")
     a = ap.parse_args()
-    return self_test() if a.self_test else 0
+    if a.self_test:
+        return self_test()
+    if not (a.netlist and a.activity and a.arcs):
+        ap.error("--netlist, --activity and --arcs are needed")
+    from asic_energy_parts import Graph
+    pr = Priced(Graph(a.netlist, LIB), a.frame or a.activity, a.arcs, a.period)
+    for k, v in pr.groups(a.activity).items():
+        print(f"{k:14s} internal {v[0]:12.3f}  switching {v[1]:12.3f}  leakage {v[2]:9.4f}  total {v[3]:12.3f} pJ a clock")
+    return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except (LibError, OSError, KeyError) as e:
+        print(f"asic_price.py: {e}", file=sys.stderr)
+        sys.exit(1)

@@ -28,7 +28,6 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_price as ap  # noqa: E402
-from asic_tile_wires import pin_caps  # noqa: E402
 
 LIB = os.path.join(os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018"), "osu018_stdcells.lib")
 NETLIST = """module t (clk, a, y);
@@ -127,7 +126,7 @@ def main():
         return 1
     print(f"asic_sta_activity.py: tools/asic_price.py at OpenSTA 2.0.17's pricing agrees with it: {text}; "
           f"at the mean of rise and fall, the internal power is {mean[0]:.5f} pJ ({mean[0] / mine[0]:.3f} of it)")
-    want = 0.5 * pin_caps(LIB)[("INVX1", "A")] * 1e-12 * VOLTS ** 2 * PORT_ACT / (PERIOD_NS * 1e-9)
+    want = 0.5 * ap.read_lib(LIB)[0]["INVX1"]["pins"]["A"][1] * 1e-12 * VOLTS ** 2 * PORT_ACT / (PERIOD_NS * 1e-9)
     if abs(hi - lo) > 1e-3 * lo or abs(lo - want) > 0.01 * want:
         print(f"asic_sta_activity.py: OpenSTA now prices a pin at its annotated activity (u1's switching "
               f"{hi:.4g} W at 0.9, {lo:.4g} W at {PORT_ACT}, the port's {want:.4g} W): docs/asic/notes.md and "

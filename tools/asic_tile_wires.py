@@ -50,6 +50,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_common as ac  # noqa: E402
+import asic_price as price  # noqa: E402
 from asic_energy_parts import Graph  # noqa: E402
 from asic_spef import lef_layers, net_points, placed  # noqa: E402
 
@@ -253,47 +254,6 @@ def tile_trees(gr, lanes, pitch, table, pf_um):
     return out
 
 
-def transitions(tcl, gr, period):
-    """({net: transitions per clock}, the clock's nets) from asic_activity.py's Tcl; the
-    clock's nets (which the Tcl leaves to OpenSTA's clocks: those the clock port reaches
-    through gates) two a clock, or two a pulse after a word's clock gate."""
-    rate, gated = {}, {}
-    act = re.compile(r"^act \{(\S+)[^}]*\} (\S+) (\S+)$")
-    clk = re.compile(r"^create_clock -name \S+ -period (\S+) \[get_pins \{(\S+)/(\S+)\}\]$")
-    with open(tcl) as f:
-        for line in f:
-            m = act.match(line)
-            if m:
-                inst, pin = m.group(1).rsplit("/", 1)
-                rate[gr.conns[inst][pin]] = float(m.group(2))
-                continue
-            m = clk.match(line.strip())
-            if m:
-                gated[gr.conns[m.group(2)][m.group(3)]] = 2.0 * period / float(m.group(1))
-    clock, todo = set(), [(gr.find("clk_i"), 2.0)]
-    while todo:
-        n, r = todo.pop()
-        if n in clock:
-            continue
-        clock.add(n)
-        rate[n] = gated.get(n, r)
-        todo.extend((o, rate[n]) for g in gr.readers.get(n, ()) for o in gr.outs[g])
-    return rate, clock
-
-
-def pin_caps(lib=LIB):
-    """{(cell, input pin): pF} from the Liberty file."""
-    text = ac.read(lib)
-    out = {}
-    for m in re.finditer(r"\bcell\s*\(\s*\"?(\w+)\"?\s*\)", text):
-        body = text[m.end():text.find("\ncell", m.end()) % (len(text) + 1)]
-        for pm in re.finditer(r"\bpin\s*\(\s*\"?(\w+)\"?\s*\)\s*\{(.*?)\n\s*\}", body, re.S):
-            c = re.search(r"\bcapacitance\s*:\s*([\d.eE+-]+)", pm.group(2))
-            if re.search(r"direction\s*:\s*input", pm.group(2)) and c:
-                out[(m.group(1), pm.group(1))] = float(c.group(1))
-    return out
-
-
 def sta_switching_pj(log, period):
     """OpenSTA's switching power of the whole tile (report_power's Total row) in pJ a clock."""
     m = re.search(r"^Total\s+\S+\s+(\S+)", ac.read(log), re.M)
@@ -309,7 +269,7 @@ def energy(a, gr=None):
     pitch = math.sqrt(area / a.density / a.lanes)
     gr = gr or Graph(a.tile_netlist, LIB)
     caps = tile_trees(gr, a.lanes, pitch, table, layer_pf_per_um())
-    rate, clock = transitions(a.activity, gr, a.period)
+    rate, clock = price.transitions(a.activity, gr, a.period)
     v2 = a.volts ** 2 / 2
     parts = {"inside a lane": 0.0, "between lanes": 0.0, "clock nets": 0.0}
     for n, (local, span) in caps.items():
@@ -319,8 +279,9 @@ def energy(a, gr=None):
         else:
             parts["inside a lane"] += e * local
             parts["between lanes"] += e * span
-    cap = pin_caps()
-    pins = sum(rate.get(n, 0.0) * v2 * cap.get((cell, p), 0.0) for _, cell, c in gr.insts for p, n in c.items())
+    cells, _ = price.read_lib(LIB)
+    pins = sum(rate.get(n, 0.0) * v2 * cells[cell]["pins"][p][1] for _, cell, c in gr.insts for p, n in c.items()
+               if cells[cell]["pins"].get(p, ("",))[0] == "input")
     return {"wire_pj": sum(parts.values()), "parts_pj": parts, "pins_pj": pins,
             "sta_switching_pj": sta_switching_pj(a.sta_log, a.period) if a.sta_log else None,
             "lane_pitch_um": pitch, "tile_cell_area_um2": area, "lanes": a.lanes, "density": a.density,
