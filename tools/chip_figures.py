@@ -155,7 +155,7 @@ def energy_block():
             cs[0], fmt(rays), fmt(cyc), fmpp_uj, cs[2] if reclock.si_value(cs[2]) >= rate else cs[3], cpu_uj,
             fmpp_uj / cpu_uj))
     o += ["", "The FMPP: %.2f uJ per clock of the %s-block chip (%.0f pJ per block and clock, the traced frame's mix "
-          "of instructions, the cells at the activities OpenSTA propagates from the traced ports; docs/asic/chip_energy.csv, "
+          "of instructions, each cell priced from the Liberty file at its pins' traced toggles (tools/asic_price.py); docs/asic/chip_energy.csv, "
           "RTL %s, method and parts in [generated/area.md](generated/area.md)), times the frame's clocks (the Embree table above), over its rays. "
           "The CPU core: %.2f W (%s) over Embree's rays per second in the table above." % (
               total / 1e6, fmt(64 * tiles), per_block, rtl_of(comments), CPU_CORE_W, CPU_SOURCE)]
@@ -205,7 +205,7 @@ def chip_block():
     if ce:
         comments, tiles, total, per_block = ce
         o.append("| OSU 0.18 um, energy from a traced frame: the 64-lane tile, the central logic and the wires of %s tiles "
-                 "(tools/asic_chip_energy.py; typical corner, the cells at the activities OpenSTA propagates from the traced ports, the wires inside a tile estimated from a placed lane, no glitches) | %s x 32 | **%.0f pJ "
+                 "(tools/asic_chip_energy.py; typical corner, each cell priced from the Liberty file at its pins' traced toggles (tools/asic_price.py), the wires inside a tile estimated from a placed lane, no glitches) | %s x 32 | **%.0f pJ "
                  "per block and clock** (frame mix), %.2f uJ per clock of the chip | %s |" % (
                      tiles, fmt(64 * tiles), per_block, total / 1e6, rtl_of(comments)))
     elif e:
