@@ -1,14 +1,10 @@
 #!/usr/bin/env python3
 """Switching activity of every net of a gate-level FMPP netlist, from an RTL simulation.
 
-OpenSTA 2.0.17 (Debian's) reads no VCD or SAIF. This tool computes every net's activity
-from a simulation and writes it as Tcl for OpenSTA; that OpenSTA, however, honours the
-activity only of input ports (and the clocks): on the pins of cells it keeps its own
-estimate, propagated from the input ports through the gates' functions as if their
-inputs were independent, a flip-flop's output taking its D's activity (checked on a
-two-gate netlist: a pin annotation changes neither `get_property activity` nor the
-power). The per-net figures are therefore for tools that price them directly
-(tools/asic_tile_wires.py). The steps:
+OpenSTA 2.0.17 (Debian's) reads no VCD or SAIF, and prices a cell's pins at activities it
+propagates from the input ports, not at those annotated on them (docs/asic/notes.md). This
+tool computes every net's activity from a simulation and writes it as Tcl, which
+tools/asic_price.py and tools/asic_tile_wires.py price net by net. The steps:
 
 1. The RTL trace (an FST of a Verilated run, e.g. `fmpp-render --backend rtl --trace`)
    gives, for every clock cycle, the value of every register and every input port
@@ -23,7 +19,9 @@ power). The per-net figures are therefore for tools that price them directly
    iterated; these are counted by reason and listed by register (stderr and the JSON).
 3. The combinational cells are evaluated from those values with each cell's Liberty
    function, all cycles at once (one Python integer per net, bit t = cycle t): a
-   zero-delay, cycle-based simulation (no glitches).
+   zero-delay, cycle-based simulation (no glitches; --glitch samples chunks under unit
+   delay, tools/asic_glitch.py; --arcs counts, per gate input, the cycles it toggles with
+   the gate's output).
 4. Per net: toggles (value changes between consecutive cycles) and cycles at 1, in all
    cycles and per instruction class (the opcode executing in the cycle, a window write,
    or idle), written as OpenSTA Tcl (activity = toggles per clock cycle, duty).
@@ -37,9 +35,11 @@ import os
 import re
 import sys
 
-from asic_netlist import (Fail, Trace, clock_nets, compile_cells, gated_clock_tcl, gated_pulses, read_liberty,
+from asic_netlist import (Fail, clock_nets, comb_order, compile_cells, gated_clock_tcl, gated_pulses, read_liberty,
                           read_netlist, undriven_nets)
+from asic_trace import Trace
 from asic_netlist_check import classify_errors, functions_errors, gating_errors
+from asic_glitch import unit_delay
 from asic_price import coincide
 
 LANE_REGS = r"\.u_tile\.(mem_q\[\d+\]|flag_q|opa_q|opb_q|opa|opb)$"
@@ -101,6 +101,9 @@ def main():
     ap.add_argument("--out", required=True, help="output prefix: <out>.json, <out>.<class>.tcl")
     ap.add_argument("--period", type=float, default=10.0, help="the clock period (ns) of the power runs")
     ap.add_argument("--classes-min", type=int, default=200, help="fewest cycles of a class to get its own Tcl")
+    ap.add_argument("--glitch", help="write every gate output's transitions under unit delay and zero delay over the "
+                    "sampled chunks (TSV; tools/asic_glitch.py)")
+    ap.add_argument("--glitch-every", type=int, default=1, help="with --glitch, evaluate every n-th chunk (1: all)")
     ap.add_argument("--arcs", help="write, per input pin of each gate of two or more inputs, the cycles in which "
                     "it and the gate's output both toggle (TSV: instance, output pin, input pin, cycles; "
                     "tools/asic_price.py weighs the cell's internal-power arcs by them)")
@@ -118,35 +121,11 @@ def main():
 
     # topological order of the combinational cells
     inst_conns = {name: conns for name, cell, conns in insts}
-    order, state = [], {}
     known = set(q for _, _, _, q in seqs) | {find(p) for p, d in portbits.items() if d == "input"}
     known |= {"1'b0", "1'b1", "1'bx"}
     by_net = {net: (name, cell, o) for name, cell, o, net in comb}
     undriven, dead = undriven_nets(comb, seqs, fcache, inst_conns, by_net, known, portbits, find)
-    known |= set(undriven)
-    sys.setrecursionlimit(1000000)
-    done = set(known)
-    for net0 in by_net:
-        stack = [net0]
-        while stack:
-            net = stack[-1]
-            if net in done:
-                stack.pop()
-                continue
-            if net not in by_net:
-                raise Fail(f"net {net} has no driver")
-            name, cell, o = by_net[net]
-            ins, _ = fcache[(cell, o)]
-            pend = [inst_conns[name][p] for p in ins if inst_conns[name][p] not in done]
-            if pend:
-                if state.get(net) == 1:
-                    raise Fail(f"combinational loop through {net}")
-                state[net] = 1
-                stack.extend(pend)
-            else:
-                done.add(net)
-                order.append((net, fcache[(cell, o)][1], [inst_conns[name][p] for p in ins]))
-                stack.pop()
+    order = comb_order(comb, fcache, inst_conns, known | set(undriven))
 
     # the flip-flops' RTL names. A flip-flop not read from the trace is simulated from its D
     # input (Q(t) = D(t-1)); each one is counted under its reason and listed by register.
@@ -214,6 +193,7 @@ def main():
         raise Fail("a flip-flop on a gated clock is not in the trace (only traced ones are simulated here)")
     ones = {n: [0] * len(classes) for n in allnets}
     arcs = {}       # (instance, output pin, input pin) -> cycles both toggle
+    glitch = {"cycles": 0, "steps": 0, "nets": {}}  # net -> [unit-delay, zero-delay transitions]
     ccount = [0] * len(classes)
     check_ok = check_all = 0
     check_regs = {}  # register -> bits and clocks where the netlist's D differs from the traced next Q
@@ -287,6 +267,8 @@ def main():
         else:
             unsettled += 1
             print(f"warning: {changed} simulated flip-flops still changing after 12 rounds", file=sys.stderr)
+            for net, fn, ins in order:  # the gates as the flip-flops' last values give them
+                val[net] = fn(M, *[val[i] for i in ins])
         xs = gated_pulses(gated, clocknets, val, M)
         for k, x in enumerate(xs):
             for ci, mk in enumerate(masks):
@@ -324,6 +306,12 @@ def main():
             prev_last[n] = (v >> (T - 1)) & 1
         if a.arcs:
             coincide(arcs, by_net, fcache, inst_conns, tvs)
+        if a.glitch and (total // a.chunk) % a.glitch_every == 0:
+            unit, zero, steps = unit_delay(order, val, M, clocknets)
+            glitch["cycles"] += T
+            glitch["steps"] = max(glitch["steps"], steps)
+            for n, u in unit.items():
+                glitch["nets"][n] = [x + y for x, y in zip(glitch["nets"].get(n, (0, 0)), (u, zero[n]))]
         tvs = None
         prev_cls_last = cyc_cls[-1]
         total += T
@@ -378,6 +366,11 @@ def main():
     # mean activity of the nets, for the record
     nets = [n for n in allnets if n not in inports]
     summary["mean_activity"] = sum(sum(tog[n]) for n in nets) / len(nets) / total
+    if a.glitch:
+        with open(a.glitch, "w") as f:
+            f.write(f"# transitions under unit and zero delay over {glitch['cycles']} of {total} cycles "
+                    f"(every {a.glitch_every}. chunk of {a.chunk}; at most {glitch['steps']} steps a clock)\n")
+            f.writelines(f"{n}\t{u}\t{z}\n" for n, (u, z) in glitch["nets"].items() if u)
     if a.arcs:
         with open(a.arcs, "w") as f:
             f.write(f"# cycles (of {total}) in which a gate's input and output both toggle; from {os.path.basename(a.fst)}\n")

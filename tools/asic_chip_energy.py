@@ -9,7 +9,7 @@ plus the wires of its global networks and of its clock between the tiles:
      `small` configuration, 64 blocks of 32 words), traced (FST);
   2. the tile: the real fmpp_tile of 64 lanes and 32 words (asic_chip.py's netlist), every
      net's switching activity from the trace (tools/asic_activity.py: the traced registers
-     and ports, the gates evaluated from them, no glitches), priced cell by cell from the
+     and ports, the gates evaluated from them at zero delay), priced cell by cell from the
      Liberty file at that activity (tools/asic_price.py): in every instruction class, and
      by part (tools/asic_energy_parts.py) over the whole frame. OpenSTA's own figure (its
      activities propagated from the traced ports, its pricing of a transition) is a row
@@ -30,11 +30,13 @@ plus the wires of its global networks and of its clock between the tiles:
      toggles as often as the traced tile's port. The clock's tree between the tiles is
      such a wire that toggles twice a cycle;
   5. the wires inside a tile: tools/asic_tile_wires.py over the same activity, from the tile
-     with one lane placed by GrayWolf (asic_chip.placed_lane).
+     with one lane placed by GrayWolf (asic_chip.placed_lane);
+  6. the tile's glitches: its clocks under unit delay (tools/asic_glitch.py), the
+     transitions beyond the zero-delay ones priced as above, in rows of their own.
 
-Per block and clock: the chip's energy per clock / (64 T). Left out: wires inside the
-central logic (its netlist is not placed), glitches (zero-delay activity), the queue's bus
-side beyond one tile's traffic, other corners than the typical.
+Per block and clock: the chip's energy per clock / (64 T), without and with the glitches.
+Left out: wires inside the central logic (its netlist is not placed), the central logic's
+glitches, the queue's bus side beyond one tile's traffic, other corners than the typical.
 
 Usage: asic_chip_energy.py [--chip DIR] [--build DIR] [--tiles 1,4,16,64] [--density 0.6]
                            [--reuse]
@@ -44,7 +46,6 @@ Writes DIR/chip_energy.csv (with the provenance lines of tools/asic_chip.py's fi
 import argparse
 import json
 import os
-import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -54,9 +55,12 @@ import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
 import asic_energy_parts as ep  # noqa: E402
+import asic_energy_tile as et  # noqa: E402
+import asic_glitch as glitch  # noqa: E402
 import asic_price as price  # noqa: E402
 import asic_tile_wires as tw  # noqa: E402
-from asic_netlist import Fail, Trace  # noqa: E402
+from asic_netlist import Fail  # noqa: E402
+from asic_trace import Trace  # noqa: E402
 
 ROOT = chip.ROOT
 RENDER = "--scene scenes/cornell.json --backend rtl --config small --bits 24 --width 16 --height 16"
@@ -96,72 +100,18 @@ def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
     """tools/asic_activity.py on netlist: its summary (cycles by class)."""
     summary = os.path.join(out, name + ".json")
     arcs = os.path.join(out, name + ".arcs.tsv")
-    if not (reuse and os.path.exists(summary) and os.path.exists(arcs) and os.path.getmtime(summary) > os.path.getmtime(fst)):
+    glitch = os.path.join(out, name + ".glitch.tsv")
+    if not (reuse and all(os.path.exists(x) for x in (summary, arcs, glitch)) and
+            os.path.getmtime(summary) > os.path.getmtime(fst)):
         cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
                "--fst", fst, "--scope", scope, "--pkg", os.path.join(ROOT, "rtl", "fmpp_pkg.sv"),
-               "--out", os.path.join(out, name), "--period", str(fl.PERIOD), "--arcs", os.path.join(out, name + ".arcs.tsv")]
+               "--out", os.path.join(out, name), "--period", str(fl.PERIOD), "--arcs", os.path.join(out, name + ".arcs.tsv"),
+               "--glitch", os.path.join(out, name + ".glitch.tsv")]
         for k in ("exec", "kind", "op"):
             cmd += [f"--{k}", f"{cls_prefix}{k}_i"]
         fl.run(cmd, os.path.join(out, name + ".activity.log"))
     with open(summary) as f:
         return json.load(f)
-
-
-def groups(text):
-    """{'Sequential'|'Combinational'|'Total': [internal, switching, leakage, total] W}."""
-    r = {}
-    for g in ("Sequential", "Combinational", "Total"):
-        m = re.search(rf"^{g}\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", text, re.M)
-        if not m:
-            raise fl.FlowError(f"OpenSTA reported no {g} power")
-        r[g] = [float(x) for x in m.groups()]
-    return r
-
-
-def power(out, name, top, netlist, tcl, reuse):
-    """OpenSTA's power of netlist with the activity Tcl: its groups (kept from an earlier
-    run with `reuse` when newer than the Tcl)."""
-    # The inputs arrive with the clock: OpenSTA gives an unclocked pin next to no power.
-    body = (f"set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
-            f"source {tcl}\nreport_power -digits 6")
-    log = os.path.join(out, name + ".chip.log")
-    if reuse and os.path.exists(log) and os.path.getmtime(log) > os.path.getmtime(tcl):
-        with open(log) as f:
-            return groups(f.read())
-    return groups(fl.sta(out, name, top, body, verilog=netlist))
-
-
-def pj(watts):
-    """Energy in pJ of a clock period at `watts`."""
-    return watts * fl.PERIOD * 1e3
-
-
-def tile_classes(out, pr, act):
-    """Rows of the tile's energy per clock in each instruction class and over the frame
-    (pr: the tile's asic_price.Priced)."""
-    rows = []
-    for cls in ["all"] + sorted(c for c in act["classes"] if os.path.exists(os.path.join(out, f"tile.{c}.tcl"))):
-        g = pr.groups(os.path.join(out, f"tile.{cls}.tcl"))
-        cyc = act["cycles"] if cls == "all" else act["classes"][cls]
-        rows.append(["tile_class", cls, 1, cyc, *g["Total"][3:], *g["Total"][:3], g["Sequential"][3], g["Combinational"][3],
-                     "the 64-lane tile"])
-    return rows
-
-
-def tile_check(out, netlist, reuse):
-    """The row of OpenSTA's own figure for the tile over the frame: its activities
-    propagated from the traced ports, at its pricing of a transition (docs/asic/notes.md)."""
-    g = power(out, "tile_power_all", "fmpp_tile", netlist, os.path.join(out, "tile.all.tcl"), reuse)
-    t = [pj(x) for x in g["Total"]]
-    return [["tile_check", "OpenSTA 2.0.17", 1, "", t[3], t[0], t[1], t[2], pj(g["Sequential"][3]), pj(g["Combinational"][3]),
-             "its activities propagated from the traced ports; each transition priced at rise plus fall energy"]]
-
-
-def tile_parts(out, pr, gr):
-    """Rows of the tile's energy per clock over the frame, by part (gr: the netlist's Graph)."""
-    sums = ep.by_part(ep.parts(None, fl.LIB, gr=gr), pr.instances(os.path.join(out, "tile.all.tcl")))
-    return [["tile_part", part, 1, "", s[3], s[0], s[1], s[2], "", "", f"{s[4]} cells"]
-            for part, s in sorted(sums.items(), key=lambda x: -x[1][3])]
 
 
 # The central netlist's registers that the chip has once per tile (the stage-3 copies beside
@@ -241,10 +191,11 @@ def tree_mm(tiles, side_mm):
     return (tiles - 0.5) * side_mm
 
 
-def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj):
+def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj, glitch_pj):
     """Rows of the chip of `tiles` tiles per clock: the tiles, the wires inside them, the
     central logic, each network's wires, the clock's wires between the tiles, the total,
-    per block."""
+    per block; then the tiles' glitches (glitch_pj a tile) and the total and per block
+    with them."""
     mm = tree_mm(tiles, side_mm)
     per_toggle = sum(pj_mm.values()) / len(pj_mm) * mm  # half on each layer
     rows = [["chip", "tiles", tiles, "", tiles * tile_pj], ["chip", "wires inside the tiles", tiles, "", tiles * tile_wire_pj],
@@ -253,31 +204,12 @@ def compose(tile_pj, central_pj, toggles, pj_mm, side_mm, tiles, tile_wire_pj):
         rows.append(["chip", f"wires: {n}", tiles, "", toggles[n] * per_toggle])
     rows.append(["chip", "wires: clock between the tiles", tiles, "", 2 * per_toggle])
     total = sum(r[4] for r in rows)
-    rows.append(["chip", "total", tiles, "", total])
-    rows.append(["chip", "per block", tiles, "", total / (chip.LANE_W * tiles)])
+    blocks = chip.LANE_W * tiles
+    rows += [["chip", "total", tiles, "", total], ["chip", "per block", tiles, "", total / blocks],
+             ["chip", "glitches in the tiles (unit delay)", tiles, "", tiles * glitch_pj],
+             ["chip", "total with the glitches", tiles, "", total + tiles * glitch_pj],
+             ["chip", "per block with the glitches", tiles, "", (total + tiles * glitch_pj) / blocks]]
     return [r + ["", "", "", "", "", "", f"{mm:.1f} mm of wire a bit" if r[1].startswith("wires:") else ""] for r in rows]
-
-
-def tile_wire_rows(a, out, tile_v, gr):
-    """Rows of the wires inside the tile (tools/asic_tile_wires.py) over the frame, and
-    their energy per clock (gr: the tile netlist's Graph)."""
-    deff = chip.placed_lane(a.chip, a.words, a.reuse)
-    args = argparse.Namespace(tile_netlist=tile_v, tile_stat=os.path.join(a.chip, f"tile_{chip.LANE_W}x{a.words}.stat"),
-                              activity=os.path.join(out, "tile.all.tcl"), unit_def=deff,
-                              sta_log=os.path.join(out, "tile_power_all.chip.log"), lanes=chip.LANE_W,
-                              density=a.density, period=fl.PERIOD, volts=price.read_lib(fl.LIB)[1])
-    r = tw.energy(args, gr)
-    with open(os.path.join(out, "tile_wires.json"), "w") as f:
-        json.dump(r, f, indent=1)
-    note = lambda k: ["", "", "", "", "", k]  # noqa: E731
-    rows = [["tile_wires", k, 1, "", v] + note("") for k, v in r["parts_pj"].items()]
-    rows.append(["tile_wires", "total", 1, "", r["wire_pj"]] + note(f"{r['trees']} nets and buffer trees"))
-    rows.append(["tile_wires", "check: pins", 1, "", r["pins_pj"]] +
-                note(f"OpenSTA's switching {r['sta_switching_pj']:.1f} pJ" if r["sta_switching_pj"] else ""))
-    rows.append(["tile_wires", "lane", "", "", ""] + note(
-        f"pitch {r['lane_pitch_um']:.1f} um; the placed lane's die {r['unit_die_um'][0]:.0f} x {r['unit_die_um'][1]:.0f} um; "
-        "a buffer tree's wire inside a lane by its leaves " + " ".join(f"{k}:{1000 * v:.1f}fF" for k, v in list(r["wire_load_pf"].items())[:8])))
-    return rows, r["wire_pj"]
 
 
 def measure(a):
@@ -293,15 +225,19 @@ def measure(a):
     act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
     gr = ep.Graph(tile_v, fl.LIB)
     pr = price.Priced(gr, os.path.join(out, "tile.all.tcl"), os.path.join(out, "tile.arcs.tsv"), fl.PERIOD)
-    rows = tile_classes(out, pr, act) + tile_parts(out, pr, gr) + tile_check(out, tile_v, a.reuse)
-    wire_rows, tile_wire_pj = tile_wire_rows(a, out, tile_v, gr)
-    rows += wire_rows + central(out, array_v, fst, a.reuse)
+    part = ep.parts(None, fl.LIB, gr=gr)
+    rows = et.tile_classes(out, pr, act) + et.tile_parts(out, pr, part) + et.tile_check(out, tile_v, a.reuse)
+    glitch_tsv = os.path.join(out, "tile.glitch.tsv")
+    wire_rows, tile_wire_pj, wire_glitch_pj = et.tile_wire_rows(a, out, tile_v, gr, et.glitch_rates(glitch_tsv)[0])
+    glitch_rows = et.glitch_rows(pr, glitch_tsv, wire_glitch_pj, part)
+    rows += wire_rows + glitch_rows + central(out, array_v, fst, a.reuse)
     reps = wires.repeaters(out, chip.LAYERS, fl.LEF)
     pj_mm = wire_pj_per_mm(out, reps)
     toggles = port_toggles(fst, act["cycles"])
     side, _, _ = net.floorplan(chip.lef_area(a.chip, f"tile_{chip.LANE_W}x{a.words}"), 1, a.density)
     for t in a.tiles:
-        rows += compose(rows[0][4], central_pj(rows, t), toggles, pj_mm, side, t, tile_wire_pj)
+        rows += compose(rows[0][4], central_pj(rows, t), toggles, pj_mm, side, t, tile_wire_pj,
+                        sum(r[4] for r in glitch_rows if r[0] == "tile_glitch"))
     rows.append(["wire", "pJ per toggle per mm", "", "", "", "", "", "", "", "",
                  "; ".join(f"{k}: {v:.4f}" for k, v in sorted(pj_mm.items()))])
     rows.append(["wire", "toggles per clock", "", "", "", "", "", "", "", "",
@@ -353,7 +289,7 @@ def self_test():
     errs = []
     if not near(tree_mm(1, 6.0), 3.0) or not near(tree_mm(64, 2.0), 127.0):
         errs.append("tree_mm")
-    rows = compose(100.0, 30.0, {"broadcast": 2.0, "read": 0.5}, {"metal5": 0.3, "metal6": 0.1}, 2.0, 4, 5.0)
+    rows = compose(100.0, 30.0, {"broadcast": 2.0, "read": 0.5}, {"metal5": 0.3, "metal6": 0.1}, 2.0, 4, 5.0, 7.0)
     got = {r[1]: r[4] for r in rows}
     per_toggle = 0.2 * 7.0  # (0.3 + 0.1) / 2 pJ per mm, 3.5 pitches of 2 mm
     want = {"tiles": 400.0, "wires inside the tiles": 20.0, "central logic": 30.0, "wires: broadcast": 2.0 * per_toggle,
@@ -361,8 +297,11 @@ def self_test():
             "wires: clock between the tiles": 2 * per_toggle}
     want["total"] = sum(want.values())
     want["per block"] = want["total"] / 256
+    want["glitches in the tiles (unit delay)"] = 28.0
+    want["total with the glitches"] = want["total"] + 28.0
+    want["per block with the glitches"] = (want["total"] + 28.0) / 256
     errs += [k for k, v in want.items() if not near(got.get(k, -1.0), v)]
-    if not near(pj(0.5), 5000.0):
+    if not near(et.pj(0.5), 5000.0):
         errs.append("pj")
     crow = [["central", "all", "", 0, 50.0], ["central", "a tile's copies", "", 0, 2.0],
             ["central", "a group's copies", "", 0, 3.0]]
@@ -371,7 +310,7 @@ def self_test():
         errs.append("central_pj")
     text = ("Sequential 1.0e-03 2.0e-04 1.0e-09 1.2e-03 40.0%\nCombinational 1.0e-03 8.0e-04 1.0e-09 1.8e-03 60%\n"
             "Total 2.0e-03 1.0e-03 2.0e-09 3.0e-03 100.0%\n")
-    if groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:
+    if et.groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:
         errs.append("groups")
     if ep.sink_part(0b0001) != "logic into the words" or ep.sink_part(0b1000) != "logic to the tile's outputs" or \
             ep.sink_part(0b0011) != ep.SHARED or ep.sink_part(0) != ep.SHARED:
@@ -384,6 +323,8 @@ def self_test():
         errs.append("asic_tile_wires")
     if price.self_test():
         errs.append("asic_price")
+    if glitch.self_test():
+        errs.append("asic_glitch")
     if errs:
         print("asic_chip_energy.py self-test FAILED: " + ", ".join(errs), file=sys.stderr)
         return 1

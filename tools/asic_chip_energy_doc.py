@@ -45,12 +45,15 @@ def class_table(rows):
 
 def part_table(rows):
     parts = rows_by(rows, "tile_part")
+    glitch = {r["key"]: float(r["energy_pj"]) for r in rows_by(rows, "tile_glitch_part")}
     total = sum(float(r["energy_pj"]) for r in parts)
-    o = ["| part of the tile (tools/asic_energy_parts.py) | cells | pJ per clock | per block | share |",
-         "| --- | ---: | ---: | ---: | ---: |"]
+    o = ["| part of the tile (tools/asic_energy_parts.py) | cells | pJ per clock | per block | share | "
+         "glitches (unit delay), pJ per clock |", "| --- | ---: | ---: | ---: | ---: | ---: |"]
     for r in parts:
         e = float(r["energy_pj"])
-        o.append(f"| {r['key']} | {int(r['note'].split()[0]):,} | {e:,.0f} | {e / 64:,.1f} | {100 * e / total:.1f} % |")
+        g = f"{glitch[r['key']]:,.0f}" if r["key"] in glitch else ""
+        o.append(f"| {r['key']} | {int(r['note'].split()[0]):,} | {e:,.0f} | {e / 64:,.1f} | {100 * e / total:.1f} % | "
+                 f"{g} |")
     return o
 
 
@@ -82,6 +85,20 @@ def tile_wires_text(rows):
             f"({parts}); {tw['lane']['note']}. The same sum at the traced toggles with the cells' input pins in "
             f"place of the wires: {e('check: pins'):,.0f} pJ, against {tw['check: pins']['note'] or 'no OpenSTA figure'} "
             "(at its own activities, propagated from the ports)."]
+
+
+def glitch_text(rows):
+    """The paragraph on the glitches (tools/asic_glitch.py's rows), or nothing."""
+    g = {r["key"]: r for r in rows_by(rows, "tile_glitch")}
+    if "cells" not in g:
+        return []
+    cells, wires = float(g["cells"]["energy_pj"]), float(g["wires inside the tile"]["energy_pj"])
+    return ["", f"The glitches a zero-delay evaluation leaves out, estimated under unit delay (tools/asic_glitch.py: every "
+            f"gate one step; the registers and ports change at step 0): {g['cells']['note']}. Priced at each net's energy "
+            f"per transition, they add {cells:,.0f} pJ a clock to the tile's cells (internal "
+            f"{float(g['cells']['internal_pj']):,.0f}, switching {float(g['cells']['switching_pj']):,.0f}) and "
+            f"{wires:,.0f} pJ to the wires inside it: the chip's rows \"with the glitches\". A unit delay is a coarse "
+            "stand-in for the gates' real delays, which filter the shortest pulses and spread others."]
 
 
 def sta_text(rows):
@@ -118,6 +135,7 @@ def energy_tables(d):
          "idle), each cell priced at the traced toggles of its pins (tools/asic_price.py):", "", *class_table(rows), "",
          *sta_text(rows), "The tile over the frame, by part:", "", *part_table(rows)]
     o += tile_wires_text(rows) or routed_share(d)
+    o += glitch_text(rows)
     central = rows_by(rows, "central")
     if central:
         o += ["", f"The central logic: {float(central[0]['energy_pj']):,.1f} pJ per clock ({central[0]['note']})" +

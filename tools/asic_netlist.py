@@ -1,8 +1,8 @@
 """The netlist side of tools/asic_activity.py: the Liberty cells' logic functions
-compiled to Python, the yosys netlist, and the simulation's trace of register values.
+compiled to Python, the yosys netlist, its gates in topological order, the clock's nets
+(the simulation's trace of register values: tools/asic_trace.py).
 """
 import re
-import subprocess
 import sys
 
 
@@ -188,81 +188,6 @@ def read_netlist(path, lib):
     return m.group(1), portbits, insts, find
 
 
-# --- the RTL trace ---------------------------------------------------------------------
-
-def vcd_stream(fst):
-    p = subprocess.Popen(["fst2vcd", fst], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, bufsize=1 << 20)
-    return p
-
-
-class Trace:
-    """Values at the end of every cycle of the wanted signals (full names, '.'-joined)."""
-
-    def __init__(self, fst, wanted, clock="TOP.clk_i"):
-        self.proc = vcd_stream(fst)
-        f = self.proc.stdout
-        scope, ids, widths = [], {}, {}
-        clk_id = None
-        for line in f:
-            t = line.split()
-            if not t:
-                continue
-            if t[0] == "$scope":
-                scope.append(t[2])
-            elif t[0] == "$upscope":
-                scope.pop()
-            elif t[0] == "$var":
-                full = ".".join(scope + [t[4]])
-                if full == clock:
-                    clk_id = t[3]
-                if full in wanted:
-                    ids.setdefault(t[3], []).append(full)
-                    widths[full] = int(t[2])
-            elif t[0] == "$enddefinitions":
-                break
-        missing = sorted(set(wanted) - set(widths))
-        if clk_id is None:
-            raise Fail(f"{fst}: no clock {clock}")
-        self.missing, self.widths, self.ids, self.clk = missing, widths, ids, clk_id
-        self.f = f
-        self.cur = {i: 0 for i in ids}
-        self.clkv = 0
-
-    def cycles(self):
-        """Yields {signal: int value} at the end of each cycle (before each rising edge)."""
-        pending = []
-        rose = False
-
-        def flush():
-            nonlocal rose
-            if rose:
-                yield {s: self.cur[i] for i, names in self.ids.items() for s in names}
-            for i, v in pending:
-                self.cur[i] = v
-            pending.clear()
-            rose = False
-        for line in self.f:
-            c = line[0]
-            if c == "#":
-                yield from flush()
-            elif c == "b":
-                val, ident = line[1:].split()
-                if ident == self.clk:
-                    continue
-                if ident in self.cur:
-                    pending.append((ident, int(val.replace("x", "0").replace("z", "0"), 2)))
-            elif c in "01xz":
-                ident = line[1:].strip()
-                if ident == self.clk:
-                    if c == "1" and self.clkv == 0:
-                        rose = True
-                    self.clkv = 1 if c == "1" else 0
-                elif ident in self.cur:
-                    pending.append((ident, 1 if c == "1" else 0))
-        yield from flush()
-        self.proc.wait()
-
-
 # --- evaluation ------------------------------------------------------------------------
 
 
@@ -334,6 +259,35 @@ def undriven_nets(comb, seqs, fcache, inst_conns, by_net, known, portbits, find)
         print(f"{len(undriven)} undriven nets read only by {len(reach) - len(undriven)} dead cell outputs (held at 0): "
               + ", ".join(undriven[:8]) + (" ..." if len(undriven) > 8 else ""), file=sys.stderr)
     return undriven, len(reach) - len(undriven)
+
+
+def comb_order(comb, fcache, inst_conns, known):
+    """The combinational gates in topological order: [(net, function, input nets)]; known:
+    the nets no gate drives (the registers' outputs, the input ports, constants)."""
+    by_net = {net: (name, cell, o) for name, cell, o, net in comb}
+    order, state, done = [], {}, set(known)
+    for net0 in by_net:
+        stack = [net0]
+        while stack:
+            net = stack[-1]
+            if net in done:
+                stack.pop()
+                continue
+            if net not in by_net:
+                raise Fail(f"net {net} has no driver")
+            name, cell, o = by_net[net]
+            ins = [inst_conns[name][p] for p in fcache[(cell, o)][0]]
+            pend = [n for n in ins if n not in done]
+            if pend:
+                if state.get(net) == 1:
+                    raise Fail(f"combinational loop through {net}")
+                state[net] = 1
+                stack.extend(pend)
+            else:
+                done.add(net)
+                order.append((net, fcache[(cell, o)][1], ins))
+                stack.pop()
+    return order
 
 
 def clock_nets(order, clock):

@@ -260,9 +260,10 @@ def sta_switching_pj(log, period):
     return float(m.group(1)) * period * 1e3 if m else None
 
 
-def energy(a, gr=None):
+def energy(a, gr=None, extra=None):
     """The tile's wires' energy per clock and its parts (the JSON this tool writes); gr:
-    the tile netlist's Graph, when made already."""
+    the tile netlist's Graph, when made already; extra: {net: transitions a clock} more
+    (glitches), priced apart as glitch_pj."""
     table, rows, die = wire_load(a.unit_def)
     sizes = ac.lef_areas(LEF)
     area = sum(n * sizes[c] for c, n in ac.stat_cells(a.tile_stat).items() if c in sizes)
@@ -272,6 +273,8 @@ def energy(a, gr=None):
     rate, clock = price.transitions(a.activity, gr, a.period)
     v2 = a.volts ** 2 / 2
     parts = {"inside a lane": 0.0, "between lanes": 0.0, "clock nets": 0.0}
+    extra = extra or {}
+    glitch = sum(extra.get(n, 0.0) * v2 * (local + span) for n, (local, span) in caps.items())
     for n, (local, span) in caps.items():
         e = rate.get(n, 0.0) * v2
         if n in clock:
@@ -282,7 +285,7 @@ def energy(a, gr=None):
     cells, _ = price.read_lib(LIB)
     pins = sum(rate.get(n, 0.0) * v2 * cells[cell]["pins"][p][1] for _, cell, c in gr.insts for p, n in c.items()
                if cells[cell]["pins"].get(p, ("",))[0] == "input")
-    return {"wire_pj": sum(parts.values()), "parts_pj": parts, "pins_pj": pins,
+    return {"wire_pj": sum(parts.values()), "parts_pj": parts, "pins_pj": pins, "glitch_pj": glitch,
             "sta_switching_pj": sta_switching_pj(a.sta_log, a.period) if a.sta_log else None,
             "lane_pitch_um": pitch, "tile_cell_area_um2": area, "lanes": a.lanes, "density": a.density,
             "unit_die_um": die, "wire_load_pf": {str(k): table(k) for k in (1, 2, 4, 8, 16, 32, 64, 128)},

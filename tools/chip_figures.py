@@ -116,7 +116,8 @@ def energy():
 
 
 def chip_energy():
-    """(comments, tiles, pJ per clock, pJ per block and clock) of the largest chip of
+    """(comments, tiles, pJ per clock, pJ per block and clock, the last two with the
+    tiles' glitches, or None where not measured) of the largest chip of
     docs/asic/chip_energy.csv (tools/asic_chip_energy.py), or None."""
     path = os.path.join(ASIC, "chip_energy.csv")
     if not os.path.exists(path):
@@ -125,7 +126,8 @@ def chip_energy():
     chip = [r for r in rows if r["section"] == "chip"]
     tiles = max(int(r["tiles"]) for r in chip)
     val = {r["key"]: float(r["energy_pj"]) for r in chip if int(r["tiles"]) == tiles}
-    return comments, tiles, val["total"], val["per block"]
+    return (comments, tiles, val["total"], val["per block"], val.get("total with the glitches"),
+            val.get("per block with the glitches"))
 
 
 # A CPU core's power for the energy per ray (no power meter in this VM: a published figure).
@@ -141,24 +143,28 @@ def energy_block():
     ce = chip_energy()
     if not ce:
         return "The chip's energy was not measured on this RTL (docs/asic/ holds no chip_energy.csv)."
-    comments, tiles, total, per_block = ce
-    o = ["| scene, frame | rays (FMPP render) | FMPP clocks | FMPP, 0.18 um: energy per ray | Embree, 1 core: rays/s "
-         "(the faster of per ray and stream) | CPU core: energy per ray | FMPP / CPU core |",
-         "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    comments, tiles, total, per_block, total_g, per_block_g = ce
+    total_g = total_g or total
+    o = ["| scene, frame | rays (FMPP render) | FMPP clocks | FMPP, 0.18 um: energy per ray | the same with the glitch "
+         "estimate | Embree, 1 core: rays/s (the faster of per ray and stream) | CPU core: energy per ray | FMPP with "
+         "glitches / CPU core |",
+         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for line in docblock.read_block(os.path.join(ROOT, "docs", "perf.md"), "embree").split("\n"):
         cs = reclock.cells(line) if line.startswith("|") else None
         if not (cs and reclock.embree_row(cs)):
             continue
         rays, cyc, rate = reclock.embree_row(cs)
-        fmpp_uj, cpu_uj = total * cyc / rays / 1e6, CPU_CORE_W / rate * 1e6
-        o.append("| %s | %s | %s | %.1f uJ | %s | %.2f uJ | %.0f |" % (
-            cs[0], fmt(rays), fmt(cyc), fmpp_uj, cs[2] if reclock.si_value(cs[2]) >= rate else cs[3], cpu_uj,
-            fmpp_uj / cpu_uj))
+        fmpp_uj, fmpp_g_uj, cpu_uj = total * cyc / rays / 1e6, total_g * cyc / rays / 1e6, CPU_CORE_W / rate * 1e6
+        o.append("| %s | %s | %s | %.1f uJ | %.1f uJ | %s | %.2f uJ | %.0f |" % (
+            cs[0], fmt(rays), fmt(cyc), fmpp_uj, fmpp_g_uj, cs[2] if reclock.si_value(cs[2]) >= rate else cs[3], cpu_uj,
+            fmpp_g_uj / cpu_uj))
     o += ["", "The FMPP: %.2f uJ per clock of the %s-block chip (%.0f pJ per block and clock, the traced frame's mix "
-          "of instructions, each cell priced from the Liberty file at its pins' traced toggles (tools/asic_price.py); docs/asic/chip_energy.csv, "
-          "RTL %s, method and parts in [generated/area.md](generated/area.md)), times the frame's clocks (the Embree table above), over its rays. "
-          "The CPU core: %.2f W (%s) over Embree's rays per second in the table above." % (
-              total / 1e6, fmt(64 * tiles), per_block, rtl_of(comments), CPU_CORE_W, CPU_SOURCE)]
+          "of instructions, each cell priced from the Liberty file at its pins' traced toggles (tools/asic_price.py); "
+          "%.2f uJ and %.0f pJ with the glitches a unit-delay evaluation adds (tools/asic_glitch.py); "
+          "docs/asic/chip_energy.csv, RTL %s, method and parts in [generated/area.md](generated/area.md)), times the "
+          "frame's clocks (the Embree table above), over its rays. The CPU core: %.2f W (%s) over Embree's rays per "
+          "second in the table above." % (total / 1e6, fmt(64 * tiles), per_block, total_g / 1e6, per_block_g or per_block,
+                                          rtl_of(comments), CPU_CORE_W, CPU_SOURCE)]
     return "\n".join(o)
 
 
@@ -203,11 +209,13 @@ def chip_block():
     e = energy()
     ce = chip_energy()
     if ce:
-        comments, tiles, total, per_block = ce
+        comments, tiles, total, per_block, _, per_block_g = ce
+        glitch = "; %.0f pJ with the glitches a unit-delay evaluation adds" % per_block_g if per_block_g else ""
         o.append("| OSU 0.18 um, energy from a traced frame: the 64-lane tile, the central logic and the wires of %s tiles "
-                 "(tools/asic_chip_energy.py; typical corner, each cell priced from the Liberty file at its pins' traced toggles (tools/asic_price.py), the wires inside a tile estimated from a placed lane, no glitches) | %s x 32 | **%.0f pJ "
-                 "per block and clock** (frame mix), %.2f uJ per clock of the chip | %s |" % (
-                     tiles, fmt(64 * tiles), per_block, total / 1e6, rtl_of(comments)))
+                 "(tools/asic_chip_energy.py; typical corner, each cell priced from the Liberty file at its pins' traced "
+                 "toggles (tools/asic_price.py), the wires inside a tile estimated from a placed lane) | %s x 32 | "
+                 "**%.0f pJ per block and clock** (frame mix, zero delay%s), %.2f uJ per clock of the chip | %s |" % (
+                     tiles, fmt(64 * tiles), per_block, glitch, total / 1e6, rtl_of(comments)))
     elif e:
         e_instr, e_all, spb, B = e
         tests = "; ".join("%s %.0f nJ (S = %.1f)" % (k, v * e_instr / B / 1000, v) for k, v in sorted(spb.items()) if v)
