@@ -3,6 +3,7 @@ result file (docs/asic/chip_energy.csv); asic_fit.cmd_doc puts them in place of 
 line of docs/asic/notes.md.
 """
 import os
+import re
 
 from asic_common import ReportError, read_csv
 
@@ -93,8 +94,9 @@ def glitch_text(rows):
     if "cells" not in g:
         return []
     cells, wires = float(g["cells"]["energy_pj"]), float(g["wires inside the tile"]["energy_pj"])
-    return ["", f"The glitches a zero-delay evaluation leaves out, estimated under unit delay (tools/asic_glitch.py: every "
-            f"gate one step; the registers and ports change at step 0): {g['cells']['note']}. Priced at each net's energy "
+    note = re.sub(r"\d{4,}", lambda m: f"{int(m.group()):,}", g["cells"]["note"])
+    return ["", f"The glitches a zero-delay evaluation leaves out (tools/asic_glitch.py: every gate one time step, the "
+            f"registers and ports changing at step 0): {note}. Priced at each net's energy "
             f"per transition, they add {cells:,.0f} pJ a clock to the tile's cells (internal "
             f"{float(g['cells']['internal_pj']):,.0f}, switching {float(g['cells']['switching_pj']):,.0f}) and "
             f"{wires:,.0f} pJ to the wires inside it: the chip's rows \"with the glitches\". A unit delay is a coarse "
