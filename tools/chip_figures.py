@@ -288,9 +288,12 @@ TARGETS = (("docs/architecture.md", "chip-figures", "chip"), ("docs/perf.md", "c
 
 
 def main():
+    global ASIC
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--block", choices=sorted(BLOCKS), default="chip")
+    ap.add_argument("--asic", default=ASIC, help="the result files (make asic writes BUILD/asic; the docs' are docs/asic)")
     a = ap.parse_args()
+    ASIC = a.asic
     print(BLOCKS[a.block]())
     return 0
 
