@@ -58,6 +58,7 @@ import asic_energy_parts as ep  # noqa: E402
 import asic_energy_tile as et  # noqa: E402
 import asic_glitch as glitch  # noqa: E402
 import asic_price as price  # noqa: E402
+import asic_spef as spef  # noqa: E402
 import asic_tile_wires as tw  # noqa: E402
 from asic_netlist import Fail  # noqa: E402
 from asic_trace import Trace  # noqa: E402
@@ -325,6 +326,7 @@ def self_test():
         errs.append("asic_price")
     if glitch.self_test():
         errs.append("asic_glitch")
+    errs += ["asic_spef: " + e for e in spef.self_test()]
     if errs:
         print("asic_chip_energy.py self-test FAILED: " + ", ".join(errs), file=sys.stderr)
         return 1

@@ -137,6 +137,7 @@ def cmd_rc_spef(a):
     """qrouter's RC file (one line per net: name, driver, then the routed tree as nested
     '( R C child , child ... )' segments, R in ohm and C in pF, children being segments
     or the pins at the segment's end) as SPEF for OpenSTA."""
+    sys.setrecursionlimit(max(sys.getrecursionlimit(), 100000))  # a routed net's tree nests a level a segment
     portdir = {m.group(2): m.group(1) for m in re.finditer(
         r"^\s*(input|output)\s+(?:\[\d+:\d+\]\s+)?(\S+)\s*;", read(a.verilog), re.M)}
     o = ['*SPEF "IEEE 1481-1998"', f'*DESIGN "{a.top}"', '*DATE ""', '*VENDOR "FMPP"',
@@ -190,6 +191,8 @@ def cmd_rc_spef(a):
                 elif t == ")":
                     k += 1
                     return
+                elif t == "ERROR":
+                    k += 1  # qrouter's mark of a branch that ends on no pin (a stub): its wire stays
                 else:
                     p = pin(t)
                     conns.append(p)
@@ -224,3 +227,27 @@ def cmd_rc_spef(a):
     with open(a.out, "w") as f:
         f.write("\n".join(o) + "\n")
     print(f"rc-spef: {nets} routed nets")
+
+
+def self_test():
+    """rc-spef on a made-up RC file: a net whose tree ends in one of qrouter's ERROR stubs
+    keeps its wire and gains no pin, and a chain of 5,000 nested segments is read."""
+    import argparse
+    import tempfile
+    deep = "( 1 0.001 " * 5000 + "u3/A" + " )" * 5000
+    rc = (f"n1 1 u1/Y 2 ( 2 0.01 u2/A , ( 3 0.02 ERROR ) )\n"
+          f"n2 1 u2/Y 1 {deep}\n")
+    errs = []
+    with tempfile.TemporaryDirectory() as d:
+        paths = {k: os.path.join(d, k) for k in ("t.rc", "t.v", "t.spef")}
+        with open(paths["t.rc"], "w") as f:
+            f.write(rc)
+        with open(paths["t.v"], "w") as f:
+            f.write("module t (a);\ninput a;\nendmodule\n")
+        cmd_rc_spef(argparse.Namespace(rc=paths["t.rc"], verilog=paths["t.v"], top="t", out=paths["t.spef"]))
+        text = read(paths["t.spef"])
+    if "*D_NET n1 0.03" not in text or "ERROR" in text or "*I u2:A I" not in text:
+        errs.append("a stub's wire or pins")
+    if "*D_NET n2 5" not in text or "*I u3:A I" not in text:
+        errs.append("a deep chain")
+    return errs
