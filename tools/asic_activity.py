@@ -286,12 +286,13 @@ def main():
                     check_regs[reg] = check_regs.get(reg, 0) + nd
         # toggles: between the previous chunk's last cycle and this one's, and within
         flops = set(q for _, _, _, q in seqs)
-        tvs = {}
+        tvs = {} if a.arcs else None      # the toggle bits, for the arcs' cycles
         for n in allnets:
             v = val[n]
             first = prev_last.get(n)
             t = (v ^ (v >> 1)) & (M >> 1)          # bit t: change from cycle t to t+1
-            tvs[n] = t
+            if tvs is not None:
+                tvs[n] = t
             if n in flops:
                 mt = t                              # caused by the instruction of cycle t
             else:

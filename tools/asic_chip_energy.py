@@ -50,6 +50,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_chip as chip  # noqa: E402
+import asic_common as ac  # noqa: E402
 import asic_chip_checks as ck  # noqa: E402
 import asic_chip_net as net  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
@@ -127,10 +128,11 @@ def central(out, netlist, fst, reuse):
     that the copies the chip has per tile and per group."""
     act = activity(out, "central", netlist, fst, "TOP.fmpp_top", "u_array.g_tile[0].u_tile.", reuse)
     tcl = os.path.join(out, "central.all.tcl")
-    cost = price.Priced(ep.Graph(netlist, fl.LIB), tcl, os.path.join(out, "central.arcs.tsv"), fl.PERIOD).instances(tcl)
-    skip = ep.island(netlist, fl.LIB, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
+    gr = ep.Graph(netlist, fl.LIB)
+    cost = price.Priced(gr, tcl, os.path.join(out, "central.arcs.tsv"), fl.PERIOD).instances(tcl)
+    skip = ep.island(gr, r"^u_array\.g_tile\[\d+\]\.u_tile\.q_")  # the stand-in tile
     per = {"a tile's copies": ("tile", PER_TILE), "a group's copies": ("group", PER_GROUP)}
-    parts = {k: ep.island(netlist, fl.LIB, pat) for k, (_, pat) in per.items()}
+    parts = {k: ep.island(gr, pat) for k, (_, pat) in per.items()}
     tot = {k: [0.0] * 4 for k in ("all", *parts)}
     for inst, p in cost.items():
         if inst in skip:
@@ -269,7 +271,7 @@ def main():
     a.tiles = [int(x) for x in a.tiles.split(",")]
     try:
         rows, reps = measure(a)
-    except (fl.FlowError, Fail, KeyError, OSError) as e:
+    except (fl.FlowError, ac.ReportError, Fail, KeyError, OSError) as e:
         print(f"asic_chip_energy.py: {e}", file=sys.stderr)
         return 1
     head = chip.provenance(sys.argv[1:], reps, a.density, "FMPP chip energy: tools/asic_chip_energy.py")
@@ -311,7 +313,7 @@ def self_test():
         errs.append("central_pj")
     text = ("Sequential 1.0e-03 2.0e-04 1.0e-09 1.2e-03 40.0%\nCombinational 1.0e-03 8.0e-04 1.0e-09 1.8e-03 60%\n"
             "Total 2.0e-03 1.0e-03 2.0e-09 3.0e-03 100.0%\n")
-    if et.groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:
+    if ac.power_groups(text)["Total"] != [2.0e-03, 1.0e-03, 2.0e-09, 3.0e-03]:
         errs.append("groups")
     if ep.sink_part(0b0001) != "logic into the words" or ep.sink_part(0b1000) != "logic to the tile's outputs" or \
             ep.sink_part(0b0011) != ep.SHARED or ep.sink_part(0) != ep.SHARED:

@@ -9,9 +9,7 @@ import os
 import re
 import subprocess
 
-TECH = os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018")
-LIB = os.path.join(TECH, "osu018_stdcells.lib")
-LEF = os.path.join(TECH, "osu018_stdcells.lef")
+from asic_common import LEF, LIB, TECH  # noqa: F401 (the flow's library, for its callers too)
 QBIN = os.environ.get("QFLOW_BIN", "/usr/lib/qflow/bin")
 FANOUT_OPTS = os.environ.get("ASIC_FANOUT_OPTS", "-l 100 -c 20").split()
 FANOUT_MAX = 20

@@ -7,6 +7,11 @@ import os
 import re
 import sys
 
+# The OSU 0.18 um library of qflow (ASIC_TECH: another copy of it).
+TECH = os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018")
+LIB = os.path.join(TECH, "osu018_stdcells.lib")
+LEF = os.path.join(TECH, "osu018_stdcells.lef")
+
 # --- parsing -------------------------------------------------------------------------
 
 
@@ -33,18 +38,35 @@ def stat_cells(path):
     return cells
 
 
-def lef_areas(path):
-    """Cell -> area in um^2 from the LEF's MACRO ... SIZE w BY h."""
-    areas, macro = {}, None
+def lef_sizes(path):
+    """Cell -> (width, height) in um, from the LEF's MACRO ... SIZE w BY h."""
+    sizes, macro = {}, None
     for line in read(path).splitlines():
         t = line.split()
         if len(t) >= 2 and t[0] == "MACRO":
             macro = t[1]
         elif macro and len(t) >= 4 and t[0] == "SIZE" and t[2] == "BY":
-            areas[macro] = float(t[1]) * float(t[3].rstrip(";"))
-    if not areas:
+            sizes[macro] = (float(t[1]), float(t[3].rstrip(";")))
+    if not sizes:
         raise ReportError(f"{path}: no MACRO SIZE")
-    return areas
+    return sizes
+
+
+def lef_areas(path):
+    """Cell -> area in um^2 from the LEF's MACRO ... SIZE w BY h."""
+    return {c: w * h for c, (w, h) in lef_sizes(path).items()}
+
+
+def power_groups(text):
+    """{'Sequential'|'Combinational'|'Total': [internal, switching, leakage, total] W} of
+    OpenSTA's report_power."""
+    r = {}
+    for g in ("Sequential", "Combinational", "Total"):
+        m = re.search(rf"^{g}\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", text, re.M)
+        if not m:
+            raise ReportError(f"OpenSTA reported no {g} power")
+        r[g] = [float(x) for x in m.groups()]
+    return r
 
 
 def liberty_areas(path):

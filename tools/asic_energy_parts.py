@@ -121,10 +121,10 @@ def parts(netlist, liberty, clock="clk_i", gr=None):
     return part
 
 
-def island(netlist, liberty, qpat):
+def island(gr, qpat):
     """The flip-flops whose Q net matches the regex qpat, and the gates that only join them to
-    one another (fed by them and reaching no other flip-flop): a stand-in's cells."""
-    gr = Graph(netlist, liberty)
+    one another (fed by them and reaching no other flip-flop): a stand-in's cells (gr: the
+    netlist's Graph)."""
     pat = re.compile(qpat)
     flops = {name for name, _, _, q in gr.seqs if pat.match(q)}
     fwd = gr.forward([q for name, _, _, q in gr.seqs if name in flops])

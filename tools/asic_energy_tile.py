@@ -10,21 +10,11 @@ import os
 import re
 
 import asic_chip as chip
+import asic_common as ac
 import asic_chip_flow as fl
 import asic_energy_parts as ep
 import asic_price as price
 import asic_tile_wires as tw
-
-
-def groups(text):
-    """{'Sequential'|'Combinational'|'Total': [internal, switching, leakage, total] W}."""
-    r = {}
-    for g in ("Sequential", "Combinational", "Total"):
-        m = re.search(rf"^{g}\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", text, re.M)
-        if not m:
-            raise fl.FlowError(f"OpenSTA reported no {g} power")
-        r[g] = [float(x) for x in m.groups()]
-    return r
 
 
 def power(out, name, top, netlist, tcl, reuse):
@@ -36,8 +26,8 @@ def power(out, name, top, netlist, tcl, reuse):
     log = os.path.join(out, name + ".chip.log")
     if reuse and os.path.exists(log) and os.path.getmtime(log) > os.path.getmtime(tcl):
         with open(log) as f:
-            return groups(f.read())
-    return groups(fl.sta(out, name, top, body, verilog=netlist))
+            return ac.power_groups(f.read())
+    return ac.power_groups(fl.sta(out, name, top, body, verilog=netlist))
 
 
 def pj(watts):

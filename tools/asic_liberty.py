@@ -10,8 +10,8 @@ import os
 import re
 import sys
 
-TECH = os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018")
-LIB = os.path.join(TECH, "osu018_stdcells.lib")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from asic_common import LIB  # noqa: E402
 TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[{}();:,]|[^\s{}();:,"]+')
 
 

@@ -24,29 +24,22 @@ def lef_layers(path):
     return out
 
 
-def lef_sizes(path):
-    """Cell -> (width, height) in um, from the LEF's MACRO SIZE lines."""
-    sizes, macro = {}, None
-    for line in read(path).splitlines():
-        t = line.split()
-        if len(t) >= 2 and t[0] == "MACRO":
-            macro = t[1]
-        elif macro and len(t) >= 4 and t[0] == "SIZE":
-            sizes[macro] = (float(t[1]), float(t[3].rstrip(";")))
-    return sizes
+# A cell's output pins in OSU018 (every other pin is an input).
+OUT_PINS = ("Y", "Q", "YC", "YS")
 
 
 def placed(deff, lef):
     """A placed DEF: ({instance or PIN:port: its centre in um}, [(net, [(instance or PIN,
-    pin)])], the die's (width, height) in um)."""
+    pin)])], the die's (width, height) in um, {instance: cell})."""
     sizes = lef_sizes(lef)
     text = read(deff)
     unit = float(re.search(r"UNITS DISTANCE MICRONS (\d+)", text).group(1))
     die = re.search(r"DIEAREA \( (-?\d+) (-?\d+) \) \( (-?\d+) (-?\d+) \)", text)
     die_um = ((int(die.group(3)) - int(die.group(1))) / unit, (int(die.group(4)) - int(die.group(2))) / unit)
-    pos = {}
+    pos, cells = {}, {}
     comp = text[text.index("\nCOMPONENTS"):text.index("END COMPONENTS")]
     for m in re.finditer(r"^- (\S+) (\S+) \+ (?:PLACED|FIXED) \( (-?\d+) (-?\d+) \)", comp, re.M):
+        cells[m.group(1)] = m.group(2)
         w, h = sizes.get(m.group(2), (0.0, 0.0))
         pos[m.group(1)] = (int(m.group(3)) / unit + w / 2, int(m.group(4)) / unit + h / 2)
     pins = text[text.index("\nPINS"):text.index("END PINS")]
@@ -59,13 +52,18 @@ def placed(deff, lef):
             continue
         # the connections, before any routed geometry (+ ROUTED ...) of a routed DEF
         nets.append((m.group(1), re.findall(r"\(\s*(\S+)\s+(\S+)\s*\)", m.group(2).split("+", 1)[0])))
-    return pos, nets, die_um
+    return pos, nets, die_um, cells
 
 
 def net_points(pos, terms):
     """The placed centres of a net's connections (those the placement has)."""
     keys = ["PIN:" + p if i == "PIN" else i for i, p in terms]
     return [pos[k] for k in keys if k in pos]
+
+
+def hpwl(pts):
+    """The half-perimeter of points: (its width, its height)."""
+    return max(x for x, _ in pts) - min(x for x, _ in pts), max(y for _, y in pts) - min(y for _, y in pts)
 
 
 def cmd_placed_spef(a):
@@ -75,8 +73,7 @@ def cmd_placed_spef(a):
     layers = lef_layers(a.lef)
     rh, ch = layers[a.hlayer]
     rv, cv = layers[a.vlayer]
-    pos, nets, _ = placed(a.deff, a.lef)
-    outputs = ("Y", "Q", "YC", "YS")
+    pos, nets, _, _ = placed(a.deff, a.lef)
     portdir = {m.group(2): m.group(1) for m in re.finditer(
         r"^\s*(input|output)\s+(?:\[\d+:\d+\]\s+)?(\S+)\s*;", read(a.verilog), re.M)}
     ports = set(portdir)
@@ -94,8 +91,7 @@ def cmd_placed_spef(a):
         pts = net_points(pos, terms)
         if len(terms) < 2 or len(pts) < 2:
             continue
-        dx = max(x for x, _ in pts) - min(x for x, _ in pts)
-        dy = max(y for _, y in pts) - min(y for _, y in pts)
+        dx, dy = hpwl(pts)
         c, r = dx * ch + dy * cv, dx * rh + dy * rv
         n = vname(name)
         o.append(f"*D_NET {n} {c:.6g}")
@@ -108,7 +104,7 @@ def cmd_placed_spef(a):
                 o.append(f"*P {pe} {d}")
                 nodes.append((pe, d == "I"))
             else:
-                d = "O" if p in outputs else "I"
+                d = "O" if p in OUT_PINS else "I"
                 o.append(f"*I {i}:{p} {d}")
                 nodes.append((f"{i}:{p}", d == "O"))
         o.append("*CAP")
@@ -151,7 +147,7 @@ def cmd_rc_spef(a):
             p = t[4:]
             return p, "*P", "I" if portdir.get(p.split("[", 1)[0]) == "input" else "O"
         inst, pn = t.rsplit("/", 1)
-        return f"{inst}:{pn}", "*I", "O" if pn in ("Y", "Q", "YC", "YS") else "I"
+        return f"{inst}:{pn}", "*I", "O" if pn in OUT_PINS else "I"
     for lineno, line in enumerate(read(a.rc).splitlines(), 1):
         toks = line.replace("(", " ( ").replace(")", " ) ").replace(",", " , ").split()
         if not toks:

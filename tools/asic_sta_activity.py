@@ -27,9 +27,11 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import asic_common as ac  # noqa: E402
 import asic_price as ap  # noqa: E402
+from asic_common import LIB  # noqa: E402
+from asic_energy_parts import Graph  # noqa: E402
 
-LIB = os.path.join(os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018"), "osu018_stdcells.lib")
 NETLIST = """module t (clk, a, y);
 input clk;
 input a;
@@ -61,48 +63,43 @@ PRICED_RATES = {"a": PORT_ACT, "b": 0.0, "n1": PORT_ACT, "n2": PORT_ACT, "n3": P
                 "q1": PORT_ACT, "q": PORT_ACT, "clk": 2.0, "ck1": 2.0}
 
 
-def sta_groups(d):
-    """OpenSTA's Total row (internal, switching, leakage W) of the PRICED netlist."""
-    tcl = os.path.join(d, "v.tcl")
-    with open(os.path.join(d, "v.v"), "w") as f:
-        f.write(PRICED)
+def sta(d, tag, netlist, body):
+    """OpenSTA's output on netlist (written to d; its module's clock port clk at PERIOD_NS)
+    and the Tcl body."""
+    top = re.match(r"module (\w+)", netlist).group(1)
+    v, tcl = os.path.join(d, f"{tag}.v"), os.path.join(d, f"{tag}.tcl")
+    with open(v, "w") as f:
+        f.write(netlist)
     with open(tcl, "w") as f:
-        f.write(f"read_liberty {LIB}\nread_verilog {d}/v.v\nlink_design v\n"
-                f"create_clock -name clk -period {PERIOD_NS} [get_ports clk]\nset_propagated_clock [all_clocks]\n"
-                "set_input_delay 0 -clock clk [get_ports {a b}]\n"
-                f"set_power_activity -input_ports [get_ports a] -activity {PORT_ACT} -duty 0.5\n"
-                "set_power_activity -input_ports [get_ports b] -activity 0 -duty 1\n"
-                "report_power -digits 8\n")
-    out = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", tcl], capture_output=True, text=True).stdout
-    m = re.search(r"^Total\s+(\S+)\s+(\S+)\s+(\S+)", out, re.M)
-    if not m:
-        raise RuntimeError("OpenSTA reported no power:\n" + out[-800:])
-    return [float(x) for x in m.groups()]
+        f.write(f"read_liberty {LIB}\nread_verilog {v}\nlink_design {top}\n"
+                f"create_clock -name clk -period {PERIOD_NS} [get_ports clk]\n{body}")
+    return subprocess.run(["sta", "-no_init", "-no_splash", "-exit", tcl], capture_output=True, text=True).stdout
 
 
-def priced_pj(sta2017):
+def sta_pj(d):
+    """OpenSTA's (internal, switching, leakage) pJ a clock of the PRICED netlist."""
+    out = sta(d, "priced", PRICED, "set_propagated_clock [all_clocks]\nset_input_delay 0 -clock clk [get_ports {a b}]\n"
+              f"set_power_activity -input_ports [get_ports a] -activity {PORT_ACT} -duty 0.5\n"
+              "set_power_activity -input_ports [get_ports b] -activity 0 -duty 1\nreport_power -digits 8\n")
+    return [w * PERIOD_NS * 1e3 for w in ac.power_groups(out)["Total"][:3]]
+
+
+def priced_pj(d, sta2017):
     """tools/asic_price.py's (internal, switching, leakage) pJ a clock of the PRICED netlist
-    (with sta2017, at OpenSTA 2.0.17's pricing of a transition)."""
+    (with sta2017, at OpenSTA 2.0.17's pricing of a transition), as sta_pj wrote it to d."""
     cells, volts = ap.read_lib(LIB)
-    insts = [(m.group(2), m.group(1), dict(re.findall(r"\.(\w+)\((\w+)\)", m.group(3))))
-             for m in re.finditer(r"^([A-Z]\w+) (\w+) \((.*)\);$", PRICED, re.M)]
-    nl = ap.Netlist(insts, cells)
+    nl = ap.Netlist(Graph(os.path.join(d, "priced.v"), LIB).insts, cells)
     per = ap.price(nl, ap.unit_energies(nl, volts, {}, PRICED_RATES, {"clk", "ck1"}, sta2017), PRICED_RATES, PERIOD_NS)
     return ap.totals(per, nl)["Total"][:3]
 
 
 def switching_w(d, pin_act):
     """u1's switching power (W) with the pins of net n1 annotated at pin_act."""
-    tcl = os.path.join(d, f"t_{pin_act}.tcl")
-    with open(tcl, "w") as f:
-        f.write(f"read_liberty {LIB}\nread_verilog {d}/t.v\nlink_design t\n"
-                f"create_clock -name clk -period {PERIOD_NS} [get_ports clk]\n"
-                "set_input_delay 0 -clock clk [get_ports a]\n"
-                f"set_power_activity -input_ports [get_ports a] -activity {PORT_ACT} -duty 0.5\n"
-                f"sta::set_power_pin_activity [get_pins u1/Y] {pin_act} 0.5\n"
-                f"sta::set_power_pin_activity [get_pins u2/A] {pin_act} 0.5\n"
-                "report_power -instances [get_cells u1] -digits 8\n")
-    out = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", tcl], capture_output=True, text=True).stdout
+    out = sta(d, f"t_{pin_act}", NETLIST, "set_input_delay 0 -clock clk [get_ports a]\n"
+              f"set_power_activity -input_ports [get_ports a] -activity {PORT_ACT} -duty 0.5\n"
+              f"sta::set_power_pin_activity [get_pins u1/Y] {pin_act} 0.5\n"
+              f"sta::set_power_pin_activity [get_pins u2/A] {pin_act} 0.5\n"
+              "report_power -instances [get_cells u1] -digits 8\n")
     m = re.search(r"^\s*\S+\s+(\S+)\s+\S+\s+\S+\s+u1\s*$", out, re.M)
     if not m:
         raise RuntimeError("OpenSTA reported no power for u1:\n" + out[-800:])
@@ -114,14 +111,12 @@ def main():
         print("asic_sta_activity.py: skipped (no OpenSTA or OSU018 library: make asic-deps)")
         return 77
     with tempfile.TemporaryDirectory() as d:
-        with open(os.path.join(d, "t.v"), "w") as f:
-            f.write(NETLIST)
         hi, lo = switching_w(d, 0.9), switching_w(d, PORT_ACT)
-        sta = [w * PERIOD_NS * 1e3 for w in sta_groups(d)]
-    mine, mean = priced_pj(True), priced_pj(False)
+        sta_e = sta_pj(d)
+        mine, mean = priced_pj(d, True), priced_pj(d, False)
     text = ", ".join(f"{k} {x:.5f} against OpenSTA's {y:.5f} pJ" for k, x, y in zip(("internal", "switching", "leakage"),
-                                                                                   mine, sta))
-    if any(abs(x - y) > 0.002 * max(abs(y), 1e-9) for x, y in zip(mine, sta)):
+                                                                                   mine, sta_e))
+    if any(abs(x - y) > 0.002 * max(abs(y), 1e-9) for x, y in zip(mine, sta_e)):
         print(f"asic_sta_activity.py: tools/asic_price.py differs from OpenSTA: {text}", file=sys.stderr)
         return 1
     print(f"asic_sta_activity.py: tools/asic_price.py at OpenSTA 2.0.17's pricing agrees with it: {text}; "

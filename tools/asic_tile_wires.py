@@ -52,11 +52,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import asic_common as ac  # noqa: E402
 import asic_price as price  # noqa: E402
 from asic_energy_parts import Graph  # noqa: E402
-from asic_spef import lef_layers, net_points, placed  # noqa: E402
+from asic_common import LEF, LIB  # noqa: E402
+from asic_spef import OUT_PINS, hpwl, lef_layers, net_points, placed  # noqa: E402
 
-TECH = os.environ.get("ASIC_TECH", "/usr/share/qflow/tech/osu018")
-LIB = os.path.join(TECH, "osu018_stdcells.lib")
-LEF = os.path.join(TECH, "osu018_stdcells.lef")
 LAYERS = ("metal2", "metal3")
 # A flip-flop's register and bit (plane-major: lane = bit mod Lanes).
 LANE_REG = re.compile(r"^(?:mem_q\[\d+\]|opa_q|opb_q|flag_q|cin_q)\[(\d+)\]$")
@@ -68,7 +66,6 @@ def layer_pf_per_um(lef=LEF):
 
 
 BUFFERS = ("BUFX2", "BUFX4", "CLKBUF1", "CLKBUF2", "CLKBUF3")
-OUT_PINS = ("Y", "Q", "YC", "YS")
 
 
 def trees(nets, cell_of):
@@ -105,8 +102,7 @@ def def_nets(deff, lef):
     the die's (w, h) in um, the instances' places)."""
     layers = lef_layers(lef)
     ch, cv = layers["metal3"][1], layers["metal2"][1]
-    pos, nets, die = placed(deff, lef)
-    cell_of = dict(re.findall(r"^- (\S+) (\S+) \+ (?:PLACED|FIXED)", ac.read(deff), re.M))
+    pos, nets, die, cell_of = placed(deff, lef)
     conn, cap = {}, {}
     for name, terms in nets:
         drv = [i for i, p in terms if i != "PIN" and p in OUT_PINS]
@@ -114,8 +110,7 @@ def def_nets(deff, lef):
                       [(None if i == "PIN" else i, p) for i, p in terms if not (i != "PIN" and p in OUT_PINS)])
         pts = net_points(pos, terms)
         if len(pts) >= 2:
-            dx = max(x for x, _ in pts) - min(x for x, _ in pts)
-            dy = max(y for _, y in pts) - min(y for _, y in pts)
+            dx, dy = hpwl(pts)
             cap[name] = dx * ch + dy * cv
     return conn, cell_of, cap, die
 
@@ -256,8 +251,7 @@ def tile_trees(gr, lanes, pitch, table, pf_um):
 
 def sta_switching_pj(log, period):
     """OpenSTA's switching power of the whole tile (report_power's Total row) in pJ a clock."""
-    m = re.search(r"^Total\s+\S+\s+(\S+)", ac.read(log), re.M)
-    return float(m.group(1)) * period * 1e3 if m else None
+    return ac.power_groups(ac.read(log))["Total"][1] * period * 1e3
 
 
 def energy(a, gr=None, extra=None):
