@@ -98,17 +98,17 @@ def trace(out, build, reuse):
     return fst
 
 
-def activity(out, name, netlist, fst, scope, cls_prefix, reuse):
-    """tools/asic_activity.py on netlist: its summary (cycles by class)."""
+def activity(out, name, netlist, fst, scope, cls_prefix, reuse, glitch=False):
+    """tools/asic_activity.py on netlist, with its arcs' cycles and, with `glitch`, its
+    unit-delay transitions: its summary (cycles by class)."""
     summary = os.path.join(out, name + ".json")
-    arcs = os.path.join(out, name + ".arcs.tsv")
-    glitch = os.path.join(out, name + ".glitch.tsv")
-    if not (reuse and all(os.path.exists(x) for x in (summary, arcs, glitch)) and
+    made = [os.path.join(out, name + x) for x in (".arcs.tsv", ".glitch.tsv")[:2 if glitch else 1]]
+    if not (reuse and all(os.path.exists(x) for x in [summary] + made) and
             os.path.getmtime(summary) > os.path.getmtime(fst)):
         cmd = [sys.executable, os.path.join(ROOT, "tools", "asic_activity.py"), "--netlist", netlist, "--liberty", fl.LIB,
                "--fst", fst, "--scope", scope, "--pkg", os.path.join(ROOT, "rtl", "fmpp_pkg.sv"),
-               "--out", os.path.join(out, name), "--period", str(fl.PERIOD), "--arcs", os.path.join(out, name + ".arcs.tsv"),
-               "--glitch", os.path.join(out, name + ".glitch.tsv")]
+               "--out", os.path.join(out, name), "--period", str(fl.PERIOD), "--arcs", made[0]]
+        cmd += ["--glitch", made[1]] if glitch else []
         for k in ("exec", "kind", "op"):
             cmd += [f"--{k}", f"{cls_prefix}{k}_i"]
         fl.run(cmd, os.path.join(out, name + ".activity.log"))
@@ -225,7 +225,7 @@ def measure(a):
         if not os.path.exists(v):
             raise fl.FlowError(f"{v} is missing: run tools/asic_chip.py first (make asic does)")
     fst = trace(out, a.build, a.reuse)
-    act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse)
+    act = activity(out, "tile", tile_v, fst, TILE_SCOPE, "", a.reuse, glitch=True)
     gr = ep.Graph(tile_v, fl.LIB)
     pr = price.Priced(gr, os.path.join(out, "tile.all.tcl"), os.path.join(out, "tile.arcs.tsv"), fl.PERIOD)
     part = ep.parts(None, fl.LIB, gr=gr)
