@@ -41,8 +41,9 @@
 #   same ASIC_OUT finished (a size's <top>_BxW.sta.log, a place and route's pnr.done)
 #   instead of running it again (placing and routing takes most of an hour per size);
 #   each reuse is printed. After the sizes, tools/asic_chip.py times the 4,096-block chip
-#   with its global networks and wires, and tools/asic_chip_energy.py prices a clock of it
-#   from a traced frame (docs/asic/notes.md; --no-chip skips both).
+#   with its global networks and wires, tools/asic_lane.py places, routes and times a lane
+#   of its tile with the clock's buffer tree, and tools/asic_chip_energy.py prices a clock
+#   of the chip from a traced frame (docs/asic/notes.md; --no-chip skips the three).
 set -euo pipefail
 root=${FMPP_ROOT:-$(cd "$(dirname "$0")/.." && pwd)}
 tech=${ASIC_TECH:-/usr/share/qflow/tech/osu018}
@@ -329,7 +330,7 @@ fi
 
 # The 4,096-block chip with its global networks and wires (tools/asic_chip.py), then its
 # energy (tools/asic_chip_energy.py): their result files go beside the sizes' (chip.csv,
-# chip_paths.csv, chip_check.csv, chip_energy.csv).
+# chip_paths.csv, chip_check.csv, chip_lane.csv, chip_energy.csv).
 if [ $chip -eq 1 ]; then
   echo "chip: tools/asic_chip.py (the 64-lane tile, the array with stand-in tiles at 1, 4, 16, 64 tiles, the wires)"
   reuse_flag=(); [ $pnr_reuse -eq 1 ] && reuse_flag=(--reuse)
@@ -337,6 +338,10 @@ if [ $chip -eq 1 ]; then
   nice -n 10 "$py" "$root/tools/asic_chip.py" --out "$out/chip" --check 2x2 "${reuse_flag[@]}" \
     || fail "the chip's composition against a flat netlist (tools/asic_chip.py --check 2x2)" ""
   cp "$out/chip/chip.csv" "$out/chip/chip_paths.csv" "$out/chip/chip_check.csv" "$out/"
+  echo "lane: tools/asic_lane.py (a lane of the tile placed, routed and timed with its clock tree; most of an hour)"
+  nice -n 10 "$py" "$root/tools/asic_lane.py" --out "$out/chip" "${reuse_flag[@]}" \
+    || fail "the lane placed, routed and timed (tools/asic_lane.py)" ""
+  cp "$out/chip/chip_lane.csv" "$out/"
   echo "chip energy: tools/asic_chip_energy.py (a traced frame on the 64-lane tile, the central logic, the wires)"
   [ -x "$build/fmpp-render" ] || { echo "asic.sh: $build/fmpp-render not built (make asic builds it; --no-chip skips the chip)" >&2; exit 2; }
   nice -n 10 "$py" "$root/tools/asic_chip_energy.py" --chip "$out/chip" --build "$build" "${reuse_flag[@]}" \

@@ -147,16 +147,24 @@ def time_tile(out, lanes, words, reuse):
 
 def placed_lane(chip_dir, words, reuse):
     """The DEF of the tile with one lane, synthesized as the chip's tile is and placed by
-    GrayWolf at the flow's density (tools/asic_pnr.sh --until place; kept with `reuse`)."""
+    GrayWolf at the flow's density (tools/asic_pnr.sh --until place). The placement is kept
+    with `reuse`, or when it was made from the same RTL and yosys script (pnr_1xW/lane.key;
+    placing again deletes the directory, a route in it included)."""
     out = os.path.abspath(os.path.join(chip_dir, "lane"))
     name, d = f"tile_1x{words}", os.path.join(out, f"pnr_1x{words}")
-    deff = os.path.join(d, "layout", "fmpp_tile.def")
-    if reuse and os.path.exists(os.path.join(d, "place.done")) and os.path.exists(deff):
+    deff, done, keyf = os.path.join(d, "layout", "fmpp_tile.def"), os.path.join(d, "place.done"), os.path.join(d, "lane.key")
+    if reuse and os.path.exists(done) and os.path.exists(deff):
         return deff
     os.makedirs(out, exist_ok=True)
     build(out, name, "fmpp_tile", {"Lanes": 1, "NumWords": words}, rtl_sources(), False, words * 32)
+    with open(os.path.join(out, name + ".ys")) as f:
+        key = f"rtl-sha256 {rtl_hash.rtl_hash(ROOT)}\ndensity {os.environ.get('ASIC_PNR_DENSITY', '0.6')}\n{f.read()}"
+    if os.path.exists(done) and os.path.exists(deff) and os.path.exists(keyf) and ac.read(keyf) == key:
+        return deff
     fl.run([os.path.join(ROOT, "tools", "asic_pnr.sh"), "--until", "place", out, name, "fmpp_tile", fl.TECH],
            os.path.join(out, "place.log"))
+    with open(keyf, "w") as f:
+        f.write(key)
     return deff
 
 

@@ -1,6 +1,7 @@
 """The chip tables of docs/generated/area.md, made from the result files of tools/asic_chip.py
-(docs/asic/chip.csv, chip_paths.csv and chip_check.csv); asic_fit.cmd_doc puts them in
-place of the marker line of docs/asic/notes.md.
+(docs/asic/chip.csv, chip_paths.csv and chip_check.csv) and tools/asic_lane.py
+(chip_lane.csv); asic_fit.cmd_doc puts them in place of their marker lines of
+docs/asic/notes.md.
 """
 import os
 
@@ -8,6 +9,7 @@ from asic_chip_net import NETWORKS as NETWORKS_LIST
 from asic_common import ReportError, read_csv
 
 MARKER = "<!-- asic chip: tools/asic_chip.py -->"
+LANE_MARKER = "<!-- asic lane: tools/asic_lane.py -->"
 NETWORKS = {name: what for name, _, _, what in NETWORKS_LIST}
 
 
@@ -102,3 +104,24 @@ def check_table(d, last, by):
               f"much is {longer:.2f} ns, {'still below' if longer < crit else 'above'} the {crit:.2f} ns of the path that "
               "sets the clock."]
     return o
+
+
+def lane_table(d):
+    """Markdown of the placed and routed lane's timing (chip_lane.csv), or a line saying it
+    was not measured."""
+    path = os.path.join(d, "chip_lane.csv")
+    if not os.path.exists(path):
+        return "The lane was not placed and routed on this RTL (docs/asic/ holds no chip_lane.csv; `tools/asic_lane.py`)."
+    comments, rows = read_csv(path)
+    r0 = rows[0]
+    o = ["Measured by " + "; ".join(provenance(comments)[:1]) + ".", "", *("    " + p for p in provenance(comments)[1:]),
+         "", f"The lane: {int(r0['cells']):,} cells and {int(r0['nets']):,} nets on a die of {r0['die_um']} um.", "",
+         "| wires | clock | **Fmax, flip-flop to flip-flop** | its path (ns): from -> to | worst hold slack (ns) | "
+         "clock skew (ns) | the word clock gates at that Fmax: setup, hold slack (ns) |",
+         "| --- | --- | ---: | --- | ---: | ---: | ---: |"]
+    wires = {"unplaced": "none", "placed": "the placement's estimate", "routed": "routed (qrouter's RC)"}
+    for r in rows:
+        gates = f"{r['gate_setup_slack_ns']}, {r['gate_hold_slack_ns']}" if r["gate_setup_slack_ns"] else "no gates"
+        o.append(f"| {wires.get(r['stage'], r['stage'])} | {r['clock']} | **{r['fmax_mhz']} MHz** | {r['reg_ns']}: "
+                 f"{r['start']} -> {r['end']} | {r['hold_slack_ns']} | {r['skew_ns']} | {gates} |")
+    return "\n".join(o)

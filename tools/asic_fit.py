@@ -330,12 +330,12 @@ def cmd_doc(a):
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf):
         cmd_fit(fa)
-    if asic_chip_doc.MARKER not in notes:
-        raise ReportError(f"{a.dir}/notes.md has no line {asic_chip_doc.MARKER!r}")
-    notes = notes.replace(asic_chip_doc.MARKER, asic_chip_doc.chip_tables(a.dir))
-    if asic_chip_energy_doc.MARKER not in notes:
-        raise ReportError(f"{a.dir}/notes.md has no line {asic_chip_energy_doc.MARKER!r}")
-    notes = notes.replace(asic_chip_energy_doc.MARKER, asic_chip_energy_doc.energy_tables(a.dir))
+    for mark, tables in ((asic_chip_doc.MARKER, asic_chip_doc.chip_tables),
+                         (asic_chip_doc.LANE_MARKER, asic_chip_doc.lane_table),
+                         (asic_chip_energy_doc.MARKER, asic_chip_energy_doc.energy_tables)):
+        if mark not in notes:
+            raise ReportError(f"{a.dir}/notes.md has no line {mark!r}")
+        notes = notes.replace(mark, tables(a.dir))
     text = base.rstrip("\n") + "\n\n" + notes.replace(marker, buf.getvalue().rstrip("\n"))
     if a.check:
         cur = read(a.check)

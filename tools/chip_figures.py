@@ -183,6 +183,22 @@ def chip_row():
                 r["critical_io"].replace("_", " "), float(r["die_side_mm"]), rtl_of(comments)))
 
 
+def lane_row():
+    """The table row of the lane tools/asic_lane.py placed and routed (docs/asic/chip_lane.csv), or None."""
+    path = os.path.join(ASIC, "chip_lane.csv")
+    if not os.path.exists(path):
+        return None
+    comments, rows = read(path)
+    by = {(r["stage"], r["clock"]): r for r in rows}
+    r, bare = by[("routed", "propagated")], by[("unplaced", "ideal")]
+    return ("| OSU 0.18 um standard cells, one lane of the tile placed and routed (tools/asic_lane.py: qflow's GrayWolf "
+            "and qrouter; routed wires, the clock propagated through its buffer tree; typical corner) | 1 x 32 | "
+            "**%s MHz** flip-flop to flip-flop (%s ns, %s -> %s), clock skew %s ns, worst hold slack %s ns; %s MHz "
+            "without wires and with an ideal clock | %s |" % (
+                r["fmax_mhz"], r["reg_ns"], r["start"], r["end"], r["skew_ns"], r["hold_slack_ns"], bare["fmax_mhz"],
+                rtl_of(comments)))
+
+
 def chip_block():
     ac, timed, acmd, awhen = asic()
     fc, frows, fcmd = fpga()
@@ -194,9 +210,7 @@ def chip_block():
                      "(worst path %s ns, %s -> %s), %s cells, %.2f mm^2 of cells | %s |" % (
                          r["blocks"], r["words"], float(r["fmax_mhz"]), r["path_ns"], r["crit_from"], r["crit_to"],
                          fmt(r["cells"]), float(r["area_um2"]) / 1e6, rtl_of(ac)))
-    chip = chip_row()
-    if chip:
-        o.append(chip)
+    o += [r for r in (chip_row(), lane_row()) if r]
     placed = [r for r in frows if r["device"] == "hx8k" and r["placed"] == "1"]
     if placed:
         r = max(placed, key=lambda r: int(r["blocks"]) * int(r["words"]))
