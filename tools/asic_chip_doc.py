@@ -115,9 +115,11 @@ def lane_table(d):
     comments, rows = read_csv(path)
     r0 = rows[0]
     o = ["Measured by " + "; ".join(provenance(comments)[:1]) + ".", "", *("    " + p for p in provenance(comments)[1:]),
-         "", f"The lane: {int(r0['cells']):,} cells and {int(r0['nets']):,} nets on a die of {r0['die_um']} um.", "",
+         "", f"The lane: {int(r0['cells']):,} cells (fillers apart) and {int(r0['nets']):,} nets on a die of "
+         f"{r0['die_um']} um; the clock port drives {r0['clock_buffers']} buffers (blifFanout's), which drive the flip-flops "
+         "and the word clock gates.", "",
          "| wires | clock | **Fmax, flip-flop to flip-flop** | its path (ns): from -> to | worst hold slack (ns) | "
-         "clock skew (ns) | the word clock gates at that Fmax: setup, hold slack (ns) |",
+         "the clock's worst skew between two registers (ns) | the word clock gates at that Fmax: setup, hold slack (ns) |",
          "| --- | --- | ---: | --- | ---: | ---: | ---: |"]
     wires = {"unplaced": "none", "placed": "the placement's estimate", "routed": "routed (qrouter's RC)"}
     for r in rows:

@@ -40,7 +40,7 @@ ROOT = chip.ROOT
 TOP = "fmpp_tile"
 REPORT = os.path.join(ROOT, "tools", "asic_report.py")
 COLS = ["stage", "clock", "reg_ns", "fmax_mhz", "start", "end", "hold_slack_ns", "skew_ns", "gate_setup_slack_ns",
-        "gate_hold_slack_ns", "cells", "die_um", "nets"]
+        "gate_hold_slack_ns", "cells", "die_um", "nets", "clock_buffers"]
 
 BODY = """set regs [all_registers -edge_triggered]
 set lat [all_registers -level_sensitive]
@@ -111,15 +111,23 @@ def time_stage(d, v, stage, spef, clock):
            "start": reg["start"], "end": reg["end"], "hold_slack_ns": f"{hold['ns']:.3f}",
            "skew_ns": f"{skew(text):.3f}" if clock == "propagated" else "0"}
     g = fl.checks(fl.sta(d, name + "_gates", TOP, head + GATE_BODY, verilog=v, period=reg["ns"]))
-    row["gate_setup_slack_ns"] = f"{reg['ns'] - g['gate_clk']['ns']:.3f}" if "gate_clk" in g else ""
+    row["gate_setup_slack_ns"] = f"{fl.PERIOD - g['gate_clk']['ns']:.3f}" if "gate_clk" in g else ""
     row["gate_hold_slack_ns"] = f"{g['gate_clk_hold']['ns']:.3f}" if "gate_clk_hold" in g else ""
     return row
 
 
 def layout_facts(d):
-    """(cells, 'W x H' of the die in um, nets) of the routed lane's DEF."""
+    """(cells without the fillers, 'W x H' of the die in um, nets, buffers on the clock net)
+    of the routed lane."""
     _, nets, die, cells = placed(os.path.join(d, "layout", TOP + ".def"), fl.LEF)
-    return len(cells), f"{die[0]:.0f} x {die[1]:.0f}", len(nets)
+    logic = sum(1 for c in cells.values() if not c.startswith("FILL"))
+    return logic, f"{die[0]:.0f} x {die[1]:.0f}", len(nets), clock_buffers(ac.read(os.path.join(d, TOP + ".v")))
+
+
+def clock_buffers(verilog):
+    """The buffers whose input is the clock port clk_i or a net a buffer made of it
+    (blifFanout names those clk_i_bF_buf<N>)."""
+    return len(re.findall(r"^\s*(?:CLKBUF|BUFX)\w*\s+\S+\s*\(\s*\.A\(clk_i(?:_bF_buf\d+)?\)", verilog, re.M))
 
 
 def main():
@@ -142,7 +150,7 @@ def main():
         for stage, spef in spefs(d).items():
             for clock in ("ideal", "propagated"):
                 r = time_stage(d, v, stage, spef, clock)
-                r["cells"], r["die_um"], r["nets"] = facts
+                r["cells"], r["die_um"], r["nets"], r["clock_buffers"] = facts
                 rows.append(r)
                 print(f"  {stage:9s} {clock:10s} {r['reg_ns']} ns ({r['fmax_mhz']} MHz), hold slack "
                       f"{r['hold_slack_ns']} ns, skew {r['skew_ns']} ns", flush=True)
@@ -192,6 +200,8 @@ def self_test():
         v = netlist(d)
         if "module fmpp_tile(clk_i" not in ac.read(v):
             errors.append("netlist: the module is not renamed")
+        if clock_buffers(ac.read(v)) != 1:
+            errors.append(f"clock_buffers: {clock_buffers(ac.read(v))} (b1 takes clk_i, b2 a net that is not a clk_i_bF_buf)")
         if shutil.which("sta"):
             ideal = fl.checks(fl.sta(d, "t_ideal", TOP, BODY, verilog=v))["internal"]["ns"]
             text = fl.sta(d, "t_prop", TOP, "set_propagated_clock [all_clocks]\n" + BODY, verilog=v)

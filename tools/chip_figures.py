@@ -193,7 +193,7 @@ def lane_row():
     r, bare = by[("routed", "propagated")], by[("unplaced", "ideal")]
     return ("| OSU 0.18 um standard cells, one lane of the tile placed and routed (tools/asic_lane.py: qflow's GrayWolf "
             "and qrouter; routed wires, the clock propagated through its buffer tree; typical corner) | 1 x 32 | "
-            "**%s MHz** flip-flop to flip-flop (%s ns, %s -> %s), clock skew %s ns, worst hold slack %s ns; %s MHz "
+            "**%s MHz** flip-flop to flip-flop (%s ns, %s -> %s), worst clock skew %s ns, worst hold slack %s ns; %s MHz "
             "without wires and with an ideal clock | %s |" % (
                 r["fmax_mhz"], r["reg_ns"], r["start"], r["end"], r["skew_ns"], r["hold_slack_ns"], bare["fmax_mhz"],
                 rtl_of(comments)))
