@@ -9,7 +9,11 @@
 # FMPP_CARRY_CHAIN_ADDER: the ALU's adder as one `+` per block, on the iCE40's carry chain
 # (rtl/fmpp_alu_exec.sv), and FMPP_INDEXED_READ: the tile's word reads as indexed
 # multiplexers, which LUTs make well (rtl/fmpp_tile.sv). Modules marked keep_hierarchy are
-# mapped on their own, then flattened.
+# mapped on their own, then flattened. The LUTs are mapped by ABC9 (synth_ice40 -abc9, which
+# knows the cells' delays) and nextpnr's placer weighs timing at 30 (--placer-heap-timingweight;
+# its default is 10): on the HX8K at 3 x 8 the two together route faster than the defaults
+# (docs/perf-history.md has the measurements of each option). FPGA_SYNTH_OPTS and
+# FPGA_PNR_OPTS replace them.
 #
 # Writes under $FPGA_OUT (default $BUILD/fpga, BUILD defaulting to build):
 #   <dev>_<B>x<W>.json/.log/.report.json/.stat  netlist, logs, nextpnr report, yosys stat
@@ -27,7 +31,7 @@
 # Environment: FPGA_FREQ (target MHz for timing-driven placement, default 50),
 # FPGA_SEEDS (the placer seeds tried per run, default "1 2 3"; FPGA_SEED=N tries N only).
 # Placement is a randomised search: the same netlist routes a few MHz faster or slower
-# with another seed (on the HX8K at 3 x 8 blocks, 56 to 62 MHz). Each run is placed and
+# with another seed. Each run is placed and
 # routed with every seed, and the fastest is the run's result (its log, report and
 # critical path); summary.csv lists every seed's Fmax beside it (column seeds).
 set -euo pipefail
@@ -39,6 +43,8 @@ case $build in /*) ;; *) build=$root/$build ;; esac
 out=${FPGA_OUT:-$build/fpga}
 freq=${FPGA_FREQ:-50}
 seeds=${FPGA_SEEDS:-${FPGA_SEED:-1 2 3}}
+synth_opts=${FPGA_SYNTH_OPTS--abc9}
+pnr_opts=${FPGA_PNR_OPTS---placer-heap-timingweight 30}
 for s in $seeds; do
   [[ $s =~ ^[0-9]+$ ]] || { echo "fpga.sh: seed '$s' is not a number (FPGA_SEEDS)" >&2; exit 2; }
 done
@@ -55,7 +61,7 @@ summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 {
   echo "# FMPP on iCE40: FPGA_FREQ=$freq tools/fpga.sh ${runs[*]}"
-  echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); target ${freq} MHz, seeds $seeds (the fastest kept); $stamp, on $machine"
+  echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); synth_ice40 ${synth_opts:-(defaults)}; nextpnr ${pnr_opts:-(defaults)}; target ${freq} MHz, seeds $seeds (the fastest kept); $stamp, on $machine"
   echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to,seeds"
 } > "$summary"
@@ -71,7 +77,7 @@ for r in "${runs[@]}"; do
   t0=$(date +%s)
   if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv -DFMPP_CARRY_CHAIN_ADDER -DFMPP_INDEXED_READ $sources; \
       chparam -set NumBlocks $b -set NumWords $w fmpp_fpga_top; \
-      synth_ice40 -top fmpp_fpga_top; setattr -mod -unset keep_hierarchy; flatten; opt_clean; \
+      synth_ice40 -top fmpp_fpga_top $synth_opts; setattr -mod -unset keep_hierarchy; flatten; opt_clean; \
       write_json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
     echo "fpga.sh: yosys failed for $r:" >&2; tail -20 "$out/$name.yosys.log" >&2; exit 1
   fi
@@ -81,8 +87,9 @@ for r in "${runs[@]}"; do
   placed=1
   best=""; best_mhz=0; seed_list=""
   for seed in $seeds; do
+    # shellcheck disable=SC2086  # $pnr_opts: options, split into words
     if ! nextpnr-ice40 "--$dev" --package "$pkg" --json "$out/$name.json" --pcf-allow-unconstrained \
-        --freq "$freq" --timing-allow-fail --seed "$seed" --report "$out/$name.s$seed.report.json" \
+        --freq "$freq" --timing-allow-fail --seed "$seed" $pnr_opts --report "$out/$name.s$seed.report.json" \
         -l "$out/$name.s$seed.pnr.log" -q >/dev/null 2>&1; then
       over=$(awk '/Device utilisation:/ {u = 1; next}
                   u && match($0, /[A-Za-z0-9_]+: *[0-9]+\/ *[0-9]+/) {
