@@ -81,12 +81,12 @@ def netlist(d):
 def spefs(d):
     """{stage: SPEF file or None}: no wires, the placement's estimate, the routed wires."""
     v, deff, lef = os.path.join(d, TOP + ".v"), os.path.join(d, "layout", TOP + ".def"), fl.LEF
-    placed, routed = os.path.join(d, TOP + ".placed.spef"), os.path.join(d, TOP + ".spef")
+    estimate, routed = os.path.join(d, TOP + ".placed.spef"), os.path.join(d, TOP + ".spef")
     fl.run([sys.executable, REPORT, "placed-spef", "--def", deff, "--lef", lef, "--verilog", v, "--top", TOP,
-            "--out", placed], os.path.join(d, "placed_spef.log"))
+            "--out", estimate], os.path.join(d, "placed_spef.log"))
     fl.run([sys.executable, REPORT, "rc-spef", "--rc", os.path.join(d, "layout", TOP + ".rc"), "--verilog", v,
             "--top", TOP, "--out", routed], os.path.join(d, "rc_spef.log"))
-    return {"unplaced": None, "placed": placed, "routed": routed}
+    return {"unplaced": None, "placed": estimate, "routed": routed}
 
 
 def skew(text):
