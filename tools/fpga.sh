@@ -57,11 +57,12 @@ stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
 machine="${cpu:-$(uname -m)}, $(nproc) cores, $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME")"
 rtl_sha=$(python3 "$root/tools/rtl_hash.py" --root "$root") || exit 2
+commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 {
   echo "# FMPP on iCE40: FPGA_FREQ=$freq tools/fpga.sh ${runs[*]}"
-  echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); synth_ice40 ${synth_opts:-(defaults)}; nextpnr ${pnr_opts:-(defaults)}; target ${freq} MHz, seeds $seeds (the fastest kept); $stamp, on $machine"
+  echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); synth_ice40 ${synth_opts:-(defaults)}; nextpnr ${pnr_opts:-(defaults)}; target ${freq} MHz, seeds $seeds (the fastest kept); commit $commit, $stamp, on $machine"
   echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to,seeds"
 } > "$summary"
