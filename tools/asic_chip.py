@@ -60,6 +60,7 @@ ROOT = rtl_hash.ROOT
 STUB = os.path.join(ROOT, "tools", "asic", "tile_stub.sv")
 LAYERS = ("metal5", "metal6")
 LANE_W = 64  # blocks of a full tile (fmpp_pkg::LaneW)
+PNR_DENSITY = os.environ.get("ASIC_PNR_DENSITY", "0.6")  # GrayWolf's, as tools/asic_pnr.sh reads it
 
 
 def rtl_sources():
@@ -158,7 +159,7 @@ def placed_lane(chip_dir, words, reuse):
     os.makedirs(out, exist_ok=True)
     build(out, name, "fmpp_tile", {"Lanes": 1, "NumWords": words}, rtl_sources(), False, words * 32)
     with open(os.path.join(out, name + ".ys")) as f:
-        key = f"rtl-sha256 {rtl_hash.rtl_hash(ROOT)}\ndensity {os.environ.get('ASIC_PNR_DENSITY', '0.6')}\n{f.read()}"
+        key = f"rtl-sha256 {rtl_hash.rtl_hash(ROOT)}\ndensity {PNR_DENSITY}\n{f.read()}"
     if os.path.exists(done) and os.path.exists(deff) and os.path.exists(keyf) and ac.read(keyf) == key:
         return deff
     fl.run([os.path.join(ROOT, "tools", "asic_pnr.sh"), "--until", "place", out, name, "fmpp_tile", fl.TECH],
@@ -173,10 +174,8 @@ def gate_slacks(out, lanes, words, period):
     (ns) of each gate's latch into its AND (OpenSTA's clock gating check), or None without
     gates."""
     name = f"tile_{lanes}x{words}"
-    body = "set lat [all_registers -level_sensitive]\nif {[llength $lat]} {\n" + \
-        ck.check("gate_clk", "-from $lat") + ck.check("gate_clk_hold", "-from $lat", "min") + "}\n"
-    p = fl.checks(fl.sta(out, f"{name}_gates_{period:.3f}", "fmpp_tile", body, verilog=os.path.join(out, name + ".v"),
-                         period=period))
+    p = fl.checks(fl.sta(out, f"{name}_gates_{period:.3f}", "fmpp_tile", ck.GATE_CLK_TCL,
+                         verilog=os.path.join(out, name + ".v"), period=period))
     if "gate_clk" not in p:
         return None
     return fl.PERIOD - p["gate_clk"]["ns"], p["gate_clk_hold"]["ns"]

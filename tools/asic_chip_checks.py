@@ -108,6 +108,13 @@ GATE_TCL = """if {[llength $lat]} {
 ]) + "}\n"
 
 
+# The word clock gates' own check at a chip's period: each gate's latch into its AND (OpenSTA's
+# clock gating check, half a clock), setup and hold; nothing without gates.
+GATE_CLK_TCL = """set lat [all_registers -level_sensitive]
+if {[llength $lat]} {
+""" + check("gate_clk", "-from $lat") + check("gate_clk_hold", "-from $lat", "min") + "}\n"
+
+
 # fmpp_tile alone, bit by bit of its ports, which arrive at the clock edge (from a BUFX2) and
 # are needed at the next edge (loaded with a BUFX4's input): `from:P` is the worst path from
 # input bit P into the tile's flip-flops, `to:P` the worst from a flip-flop to output bit P,

@@ -48,10 +48,6 @@ set lat [all_registers -level_sensitive]
     """puts "=== skew"
 report_clock_skew -digits 3
 """
-GATE_BODY = """set lat [all_registers -level_sensitive]
-if {[llength $lat]} {
-""" + ck.check("gate_clk", "-from $lat") + ck.check("gate_clk_hold", "-from $lat", "min") + "}\n"
-
 
 def route(lane_dir, words, reuse):
     """The lane placed (asic_chip.placed_lane) and routed; the routed project's directory."""
@@ -110,7 +106,7 @@ def time_stage(d, v, stage, spef, clock):
     row = {"stage": stage, "clock": clock, "reg_ns": f"{reg['ns']:.3f}", "fmax_mhz": f"{1000.0 / reg['ns']:.1f}",
            "start": reg["start"], "end": reg["end"], "hold_slack_ns": f"{hold['ns']:.3f}",
            "skew_ns": f"{skew(text):.3f}" if clock == "propagated" else "0"}
-    g = fl.checks(fl.sta(d, name + "_gates", TOP, head + GATE_BODY, verilog=v, period=reg["ns"]))
+    g = fl.checks(fl.sta(d, name + "_gates", TOP, head + ck.GATE_CLK_TCL, verilog=v, period=reg["ns"]))
     row["gate_setup_slack_ns"] = f"{fl.PERIOD - g['gate_clk']['ns']:.3f}" if "gate_clk" in g else ""
     row["gate_hold_slack_ns"] = f"{g['gate_clk_hold']['ns']:.3f}" if "gate_clk_hold" in g else ""
     return row
@@ -157,9 +153,9 @@ def main():
     except (fl.FlowError, ac.ReportError, KeyError, OSError) as e:
         print(f"asic_lane.py: {e}", file=sys.stderr)
         return 1
-    head = chip.provenance(sys.argv[1:], {}, 0.6, title="FMPP lane placed and routed: tools/asic_lane.py")[:4]
+    head = chip.provenance(sys.argv[1:], {}, chip.PNR_DENSITY, title="FMPP lane placed and routed: tools/asic_lane.py")[:4]
     head.append(f"# fmpp_tile Lanes 1, NumWords {a.words}; qflow {qflow_version()}: GrayWolf placement at density "
-                f"{os.environ.get('ASIC_PNR_DENSITY', '0.6')}, qrouter; the clock buffered by blifFanout; typical corner")
+                f"{chip.PNR_DENSITY}, qrouter; the clock buffered by blifFanout; typical corner")
     chip.write_csv(os.path.join(a.out, "chip_lane.csv"), head, COLS, [[r[c] for c in COLS] for r in rows])
     print(f"wrote {a.out}/chip_lane.csv")
     return 0
