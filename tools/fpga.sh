@@ -117,9 +117,9 @@ for r in "${runs[@]}"; do
     cp "$out/$name.s$best.report.json" "$out/$name.report.json"
   fi
   secs=$(( $(date +%s) - t0 ))
-  python3 - "$out" "$name" "$dev" "$pkg" "$b" "$w" "$placed" "$seed_list" "$rtl_sha" >> "$summary" <<'PY'
+  python3 - "$out" "$name" "$dev" "$pkg" "$b" "$w" "$placed" "$seed_list" "$rtl_sha" "$commit" >> "$summary" <<'PY'
 import json, re, sys
-out, name, dev, pkg, b, w, placed, seed_list, rtl_sha = sys.argv[1:]
+out, name, dev, pkg, b, w, placed, seed_list, rtl_sha, commit = sys.argv[1:]
 stat = open(f"{out}/{name}.stat").read()
 def cells(pattern):
     return sum(int(n) for c, n in re.findall(r"^\s+(SB_\w+)\s+(\d+)\s*$", stat, re.M) if re.fullmatch(pattern, c))
@@ -146,7 +146,7 @@ if placed == "1":
         if srcs and sinks:
             cfrom, cto = srcs[0], sinks[-1]
         with open(f"{out}/critical_{name}.txt", "w") as f:
-            f.write("# rtl-sha256 %s (tools/rtl_hash.py: the RTL measured)\n" % rtl_sha)
+            f.write("# rtl-sha256 %s (tools/rtl_hash.py: the RTL measured; tools/fpga.sh of commit %s)\n" % (rtl_sha, commit))
             f.write("Critical path report for clock" + last + "\n")
 print(",".join([dev, pkg, b, w, lcs, avail, str(luts), str(dffs), str(brams), ios, fmax, placed, crit, cfrom, cto,
                 seed_list]))
