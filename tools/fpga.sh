@@ -29,7 +29,9 @@
 # Usage: fpga.sh [DEVICE:PACKAGE:BLOCKSxWORDS ...]
 #   default: hx8k:ct256:1x8 hx8k:ct256:2x8 hx8k:ct256:3x8 up5k:sg48:1x8 up5k:sg48:2x8
 # Environment: FPGA_FREQ (target MHz for timing-driven placement, default 50),
-# FPGA_SEEDS (the placer seeds tried per run, default "1 2 3"; FPGA_SEED=N tries N only).
+# FPGA_SEEDS (the placer seeds tried per run, default "1 2 3"; FPGA_SEED=N tries N only),
+# FPGA_DEFINES (more macros for yosys's read_verilog, names separated by spaces, e.g. a
+# staged change's; the summary's first line then names them).
 # Placement is a randomised search: the same netlist routes a few MHz faster or slower
 # with another seed. Each run is placed and
 # routed with every seed, and the fastest is the run's result (its log, report and
@@ -48,6 +50,11 @@ pnr_opts=${FPGA_PNR_OPTS---placer-heap-timingweight 30}
 for s in $seeds; do
   [[ $s =~ ^[0-9]+$ ]] || { echo "fpga.sh: seed '$s' is not a number (FPGA_SEEDS)" >&2; exit 2; }
 done
+defines="-DFMPP_CARRY_CHAIN_ADDER -DFMPP_INDEXED_READ"
+for d in ${FPGA_DEFINES:-}; do
+  [[ $d =~ ^[A-Za-z_][A-Za-z0-9_]*$ ]] || { echo "fpga.sh: define '$d' is not a macro name (FPGA_DEFINES)" >&2; exit 2; }
+  defines="$defines -D$d"
+done
 for tool in yosys nextpnr-ice40 python3; do
   command -v "$tool" >/dev/null || { echo "fpga.sh: $tool not found (make deps installs yosys and nextpnr-ice40)" >&2; exit 2; }
 done
@@ -61,7 +68,7 @@ commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 summary=$(mktemp)
 trap 'rm -f "$summary"' EXIT
 {
-  echo "# FMPP on iCE40: FPGA_FREQ=$freq tools/fpga.sh ${runs[*]}"
+  echo "# FMPP on iCE40: ${FPGA_DEFINES:+FPGA_DEFINES='$FPGA_DEFINES' }FPGA_FREQ=$freq tools/fpga.sh ${runs[*]}"
   echo "# $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); synth_ice40 ${synth_opts:-(defaults)}; nextpnr ${pnr_opts:-(defaults)}; target ${freq} MHz, seeds $seeds (the fastest kept); commit $commit, $stamp, on $machine"
   echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"
   echo "device,package,blocks,words,lcs,lcs_avail,luts,dffs,brams,ios,fmax_mhz,placed,crit_ns,crit_from,crit_to,seeds"
@@ -76,7 +83,7 @@ for r in "${runs[@]}"; do
   dev=${BASH_REMATCH[1]}; pkg=${BASH_REMATCH[2]}; b=${BASH_REMATCH[3]}; w=${BASH_REMATCH[4]}
   name="${dev}_${b}x${w}"
   t0=$(date +%s)
-  if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv -DFMPP_CARRY_CHAIN_ADDER -DFMPP_INDEXED_READ $sources; \
+  if ! yosys -q -l "$out/$name.yosys.log" -p "read_verilog -sv $defines $sources; \
       chparam -set NumBlocks $b -set NumWords $w fmpp_fpga_top; \
       synth_ice40 -top fmpp_fpga_top $synth_opts; setattr -mod -unset keep_hierarchy; flatten; opt_clean; \
       write_json $out/$name.json; tee -o $out/$name.stat stat" >/dev/null 2>&1; then
