@@ -55,7 +55,7 @@ module fmpp_axil_slave_formal #(
     .rvalid_o (rvalid), .rready_i, .rdata_o (rdata), .rresp_o (rresp),
     .push_o (push), .push_entry_o (push_entry), .q_full_i, .q_empty_i,
     .rd_en_o (rd_en), .rd_kind_o (rd_kind), .rd_block_o (rd_block), .rd_word_o (rd_word),
-    .rd_flag_o (rd_flag), .rd_data_i, .resp_en_o (resp_en), .resp_any_i, .resp_count_i,
+    .rd_flag_o (rd_flag), .rd_data_i, .rd_late_i ('0), .resp_en_o (resp_en), .resp_any_i, .resp_count_i,
     .resp_first_i, .ovf_any_i, .mask_i, .instret_i, .gap_o (gap)
   );
 

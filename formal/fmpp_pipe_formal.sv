@@ -32,11 +32,12 @@ module fmpp_pipe_formal #(
   // The pipelined array under test.
   logic        pop, busy, any, ovf;
   logic [63:0] rd_data, instret;
-  logic [31:0] count, mask;
+  logic [31:0] count, mask, rd_late;
   logic [30:0] first;
   fmpp_array #(.NumBlocks(NumBlocks), .NumWords(NumWords)) u_dut (
     .clk_i, .rst_ni, .head_i, .head_valid_i, .pop_o (pop), .gap_i, .busy_o (busy),
     .rd_en_i, .rd_kind_i, .rd_block_i, .rd_word_i, .rd_flag_i, .rd_data_o (rd_data),
+    .rd_acc_i (1'b1), .rd_late_o (rd_late),  // every clock accepts (a read may meet a write: the RAM reads the old word)
     .resp_en_i, .resp_any_o (any), .resp_count_o (count), .resp_first_o (first), .ovf_any_o (ovf),
     .mask_o (mask), .instret_o (instret)
   );
@@ -123,10 +124,25 @@ module fmpp_pipe_formal #(
     assume (rd_kind_i != 2'd3);
   end
 
+  // A word read and what the reference answered, a clock ago (FMPP_BRAM_WORDS_HOST).
+  logic        f_word_q;
+  logic [63:0] f_ref_word_q;
+  always_ff @(posedge clk_i) begin
+    f_word_q     <= rst_ni && rd_en_i && rd_kind_i == fmpp_pkg::RK_WORD;
+    f_ref_word_q <= ref_rd_data;
+  end
+
   always @(*) begin
     if (!f_init && rst_ni) begin
       // p_read_equal: every word, flag and flag plane reads the same in both.
+`ifdef FMPP_BRAM_WORDS_HOST
+      // A word read answers a clock later (rd_late): what the reference read then.
+      p_read_equal: assert (rd_data == ((rd_en_i && rd_kind_i == fmpp_pkg::RK_WORD) ? 64'd0 : ref_rd_data));
+      p_late_equal: assert ({32'd0, rd_late} == (f_word_q ? f_ref_word_q : 64'd0));
+`else
       p_read_equal: assert (rd_data == ref_rd_data);
+      p_late_zero: assert (rd_late == '0);
+`endif
       // p_resp_equal: the responders and the overflow summary agree when the slave would read them.
       if (32'(f_resp_q) == fmpp_pkg::RespLatency)
         p_resp_equal: assert (any == ref_any && count == ref_count && first == ref_first && ovf == ref_ovf);

@@ -73,6 +73,7 @@ def jobs(root, out, quick):
     # (above) and the indexed one of simulators and the FPGA flow (FMPP_INDEXED_READ).
     if not quick:
         js.append(dict(js[-1], name="pipe_1x4_indexed", defines=["FMPP_INDEXED_READ"]))
+        js.append(dict(js[-1], name="pipe_1x4_bram", defines=["FMPP_INDEXED_READ", "FMPP_BRAM_WORDS", "FMPP_BRAM_WORDS_HOST", "FMPP_ONEHOT_SHIFT"]))
     # The pipelined array against the instruction set (fmpp_isa_ref.sv, word by word from
     # docs/isa.md): several lanes of one tile, and two tiles (65 blocks: the 64-lane tile
     # and a partial one), so that the networks between tiles are in the check.
@@ -80,6 +81,9 @@ def jobs(root, out, quick):
     for blocks, words, depth in ISA_SIZES_QUICK if quick else ISA_SIZES:
         js.append(dict(name=f"isa_{blocks}x{words}", top="fmpp_pipe_formal", src=isa_src,
                        params={"NumBlocks": blocks, "NumWords": words, "IsaRef": 1}, depth=depth, engine="sat"))
+        if blocks == 3 and not quick:
+            # The FPGA's words in block RAM (rtl/fmpp_tile.sv, FMPP_BRAM_WORDS: reads a clock ahead).
+            js.append(dict(js[-1], name=f"isa_{blocks}x{words}_bram", defines=["FMPP_INDEXED_READ", "FMPP_BRAM_WORDS", "FMPP_BRAM_WORDS_HOST", "FMPP_ONEHOT_SHIFT"]))
     for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
         js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal",
                        src=rtl + [frm("fmpp_axil_slave_formal.sv")],

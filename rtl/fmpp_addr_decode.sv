@@ -15,6 +15,8 @@ module fmpp_addr_decode #(
   output logic                       is_plane_o,   // PLANES window, mapped
   output logic                       is_flags_o,   // FLAGS window, mapped
   output logic                       is_word_o,    // WORDS window, mapped
+  output logic                       in_plane_o,   // PLANES window, mapped or not
+  output logic                       in_flags_o,   // FLAGS window, mapped or not
   output logic [fmpp_pkg::BlockIdxW-1:0] block_o,  // block (FLAGS, WORDS) or tile (PLANES)
   output logic [fmpp_pkg::WordIdxW-1:0]  word_o,
   output logic [fmpp_pkg::FlagIdxW-1:0]  flag_o
@@ -53,13 +55,25 @@ module fmpp_addr_decode #(
   assign word_bits   = off_words[BeatW +: WOW] & WOW'((1 << WIdxW) - 1);
   assign words_word  = 32'(word_bits);
 
+  // x < N for the constant N, as "no bit from the K-th up" (K = ceil(log2 N)) and a compare
+  // of the K bits below: LUTs, not the 32-bit carry chain of a wide compare (on the iCE40
+  // that chain stood on the host read's path from the address to the read data).
+  localparam int unsigned TK = (NumTiles > 1) ? $clog2(NumTiles) : 1;
+  localparam int unsigned BK = (NumBlocks > 1) ? $clog2(NumBlocks) : 1;
+  logic tile_ok, flags_ok, words_ok;
+  assign tile_ok  = (plane_tile >> TK) == '0 && {1'b0, plane_tile[TK-1:0]} < (TK + 1)'(NumTiles);
+  assign flags_ok = (flags_block >> BK) == '0 && {1'b0, flags_block[BK-1:0]} < (BK + 1)'(NumBlocks);
+  assign words_ok = (words_block >> BK) == '0 && {1'b0, words_block[BK-1:0]} < (BK + 1)'(NumBlocks);
+
   assign aligned_o  = addr_i[BeatW-1:0] == '0;
   assign is_reg_o   = addr_i[AW-1:12] == '0;
   assign reg_o      = addr_i[11:0];
-  assign is_plane_o = in_plane && plane_tile < NumTiles;
-  assign is_flags_o = in_flags && flags_block < NumBlocks;
-  assign is_word_o  = in_words && words_block < NumBlocks && words_word < NumWords;
+  assign is_plane_o = in_plane && tile_ok;
+  assign is_flags_o = in_flags && flags_ok;
+  assign is_word_o  = in_words && words_ok && {1'b0, word_bits} < (WOW + 1)'(NumWords);
   assign flag_o     = off_plane[FShift +: FIW];
+  assign in_plane_o = in_plane;
+  assign in_flags_o = in_flags;
 
   always_comb begin
     block_o = '0;

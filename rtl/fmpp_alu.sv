@@ -27,14 +27,19 @@ module fmpp_alu #(
 );
   logic [fmpp_pkg::WordW*Lanes-1:0] a, y;
   logic [Lanes-1:0] cin;
+  logic [fmpp_pkg::WordW*Lanes-1:0] r, sum;
 
   fmpp_alu_addend #(.Lanes(Lanes)) u_addend (
     .op_i(op_i), .imm_i(imm_i), .a_i(a_i), .b_i(b_i), .a_o(a), .y_o(y), .cin_o(cin)
   );
   fmpp_alu_exec #(.Lanes(Lanes)) u_exec (
     .op_i(op_i), .fn_i(fn_i), .bit_i_i(bit_i_i), .bit_j_i(bit_j_i), .a_i(a), .y_i(y), .cin_i(cin),
-    .d_i(d_i), .r_o(r_o), .carry_o(carry_o), .ovf_o(ovf_o), .wr_c_o(wr_c_o), .wr_v_o(wr_v_o), .ge_o(ge_o)
+    .d_i(d_i), .r_o(r), .sum_o(sum), .carry_o(carry_o), .ovf_o(ovf_o), .wr_c_o(wr_c_o), .wr_v_o(wr_v_o), .ge_o(ge_o)
   );
+  // Word D: the adder's sum for its operations (CMP's difference, which nothing writes), else
+  // the result of the others.
+  assign r_o = (op_i == fmpp_pkg::OP_ADD || op_i == fmpp_pkg::OP_SUB || op_i == fmpp_pkg::OP_CMP ||
+                op_i == fmpp_pkg::OP_DIVSTEP) ? sum : r;
 
 endmodule
 /* verilator lint_on MULTITOP */

@@ -10,7 +10,11 @@
 // it is exactly that), while computing all Lanes blocks at once. No signal ever
 // crosses lanes: blocks are independent, as in the paper's BPBP organisation.
 //
-// Purely combinational; the tile applies the predicate and writes the result.
+// Purely combinational; the tile applies the predicate and writes the result. The adder's
+// sum has an output of its own (sum_o; r_o is 0 for the adder's operations, but in the
+// simulation text, which computes the sum into r_o and copies it to sum_o), so that the
+// tile can let it in last, after every other choice of word D and of the forwarded A: the
+// sum is the latest signal of stage 3, and no multiplexer of the others lies behind it.
 // In synthesis the adder's carries come from a Sklansky parallel-prefix network
 // (fmpp_carry_level.sv, one module per level: log2(32) = 5 AND-OR levels instead of a
 // 32-bit ripple; simulators read a ripple, see below).
@@ -25,7 +29,9 @@
 // Plain `case` (distinct constant items, with default) for the reason given in
 // fmpp_tile.sv: every tile must compile to the same C++ body.
 module fmpp_alu_exec #(
-  parameter int unsigned Lanes = 64
+  parameter int unsigned Lanes = 64,
+  // 0: BITCOPY is not an operation of this ALU (r_o 0 for it): the tile copies the bit itself
+  parameter bit          HasBitcopy = 1'b1
 ) (
   input  logic [fmpp_pkg::F_OP_W-1:0]       op_i,      // fmpp_pkg::opcode_e
   input  logic [fmpp_pkg::FUNC_FN_W-1:0]    fn_i,      // FUNC: AND / OR / XOR
@@ -35,7 +41,8 @@ module fmpp_alu_exec #(
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  y_i,       // the addend (fmpp_alu_addend): word B for FUNC and ADD
   input  logic [Lanes-1:0]                  cin_i,     // the adder's carry-in per lane (fmpp_alu_addend)
   input  logic [fmpp_pkg::WordW*Lanes-1:0]  d_i,       // old value of word D (BITCOPY keeps its other bits)
-  output logic [fmpp_pkg::WordW*Lanes-1:0]  r_o,       // value for word D
+  output logic [fmpp_pkg::WordW*Lanes-1:0]  r_o,       // value for word D (FUNC, BITCOPY, LSHIFT, RSHIFT; else 0 but in simulation)
+  output logic [fmpp_pkg::WordW*Lanes-1:0]  sum_o,     // the adder's sum: word D for ADD, SUB, DIVSTEP (CMP: A - IMM)
   output logic [Lanes-1:0]                  carry_o,   // new C flag
   output logic [Lanes-1:0]                  ovf_o,     // signed overflow (ORed into V)
   output logic                              wr_c_o,    // this op writes C
@@ -69,6 +76,8 @@ module fmpp_alu_exec #(
   logic [Lanes-1:0]   cin;
   assign cin = cin_i;
 `ifdef FMPP_RIPPLE_ADDER
+  // The simulation text computes the sum into r_o (one output to clear, not two).
+  assign sum_o = r_o;
 `elsif FMPP_CARRY_CHAIN_ADDER
   logic [W*Lanes-1:0] carry;  // only the top two planes are used: out of bits 30 and 31
   logic [W*Lanes-1:0] sum;
@@ -85,6 +94,7 @@ module fmpp_alu_exec #(
     assign carry[(W-2)*Lanes + l] = a[W-1] ^ y[W-1] ^ s[W];  // the carry into the sign bit
   end
   assign carry[(W-2)*Lanes-1:0] = '0;
+  assign sum_o = sum;
 `else
   localparam int unsigned Levels = $clog2(W);  // of the carry network
   logic [W*Lanes-1:0] h, g0, carry;
@@ -102,6 +112,15 @@ module fmpp_alu_exec #(
     end
   end
   assign carry = g_level[Levels-1].g;
+  // Bit k's sum is its half sum with the carry into it (the carry-in, or bit k-1's out).
+  assign sum_o = h ^ {carry[(W-1)*Lanes-1:0], cin};
+`endif
+
+  // The sum as this text computes it (CMP's sign below).
+`ifdef FMPP_RIPPLE_ADDER
+`define FMPP_SUM r_o
+`else
+`define FMPP_SUM sum_o
 `endif
 
   always_comb begin
@@ -142,19 +161,16 @@ module fmpp_alu_exec #(
         ovf_o   = ovf_o ^ c;          // ... differs from the carry out: signed overflow
         carry_o = c;                  // SUB: 1 = no borrow (A >= B unsigned)
 `elsif FMPP_CARRY_CHAIN_ADDER
-        r_o     = sum;
         ovf_o   = carry[(W-2)*Lanes +: Lanes] ^ carry[(W-1)*Lanes +: Lanes];  // carry into the sign bit vs out of it
         carry_o = carry[(W-1)*Lanes +: Lanes];  // SUB: 1 = no borrow (A >= B unsigned)
 `else
-        // Bit k's sum is its half sum with the carry into it (the carry-in, or bit k-1's out).
-        r_o     = h ^ {carry[(W-1)*Lanes-1:0], cin};
         ovf_o   = carry[(W-2)*Lanes +: Lanes] ^ carry[(W-1)*Lanes +: Lanes];  // carry into the sign bit vs out of it
         carry_o = carry[(W-1)*Lanes +: Lanes];  // SUB: 1 = no borrow (A >= B unsigned)
 `endif
         if (op_i == fmpp_pkg::OP_CMP) begin
           // A - IMM >= 0 unless its sign is set without overflow or clear with it.
-          // (r_o, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
-          ge_o    = ~(r_o[(W-1)*Lanes +: Lanes] ^ ovf_o);
+          // (the sum, carry_o and ovf_o then hold A - IMM and its carries; nothing writes them.)
+          ge_o    = ~(`FMPP_SUM[(W-1)*Lanes +: Lanes] ^ ovf_o);
         end else begin
           // DIVSTEP: the shift A << 1 overflows where A[31] (not cin) differs from A[30].
           if (op_i == fmpp_pkg::OP_DIVSTEP) ovf_o = ovf_o | (~cin ^ a_i[(W-1)*Lanes +: Lanes]);
@@ -162,7 +178,7 @@ module fmpp_alu_exec #(
           wr_v_o  = 1'b1;
         end
       end
-      fmpp_pkg::OP_BITCOPY: begin
+      fmpp_pkg::OP_BITCOPY: if (HasBitcopy) begin
         // Select plane i of A, then replace plane j of D (a 32:1 mux and a decoder). The
         // plane is an indexed part-select: synthesis makes a balanced tree of 2:1 multiplexers
         // (5 levels), not a 32-deep priority chain; a simulator reads one slice.
@@ -188,6 +204,7 @@ module fmpp_alu_exec #(
   end
 
 `undef FMPP_RIPPLE_ADDER
+`undef FMPP_SUM
 
   /* verilator tracing_on */
 

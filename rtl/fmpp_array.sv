@@ -36,6 +36,8 @@ module fmpp_array #(
   input  logic [fmpp_pkg::WordIdxW-1:0]  rd_word_i,
   input  logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_i,
   output logic [63:0]          rd_data_o,
+  input  logic                 rd_acc_i,    // the read is accepted at this edge (FMPP_BRAM_WORDS_HOST)
+  output logic [31:0]          rd_late_o,   // the word read accepted a clock ago (FMPP_BRAM_WORDS_HOST; else 0)
 
   // Responders and summaries (the responder tree's top registers: valid RespLatency clocks
   // after resp_en_i rose with the flags settled)
@@ -89,6 +91,49 @@ module fmpp_array #(
   assign dc_rd_b = head_i.rd_b;
   assign dc_wr_d = head_i.wr_d;
   assign dc_ld_b = dc_rd_b || dc_op == fmpp_pkg::OP_CMP;
+  // The shift of word A in stage 2 (decoded here, so that the tiles' shifters take their
+  // selects from registers): SHR_A for ADD, SUB and RSHIFT; BITCOPY's source bit BIT_I,
+  // which brings that plane to plane 0; none for the others.
+  logic [fmpp_pkg::SHR_A_W-1:0] dc_shr;
+  always_comb begin
+    dc_shr = '0;
+    if (dc_op == fmpp_pkg::OP_ADD || dc_op == fmpp_pkg::OP_SUB || dc_op == fmpp_pkg::OP_RSHIFT) begin
+      dc_shr = dc_imm[fmpp_pkg::SHR_A_LSB +: fmpp_pkg::SHR_A_W];
+    end else if (dc_op == fmpp_pkg::OP_BITCOPY) begin
+      dc_shr = dc_imm[fmpp_pkg::BIT_I_LSB +: fmpp_pkg::BIT_I_W];
+    end
+  end
+`ifdef FMPP_ONEHOT_SHIFT
+  // FPGA synthesis: the shifter's selects for the tiles (fmpp_tile.sv), one-hot: the coarse
+  // shift by 8 x SHR[4:3] (dc_shc) and the fine one by SHR[2:0] (dc_shf); DIVSTEP doubles A
+  // instead (dc_shv, no shift).
+  logic [3:0] dc_shc;
+  logic [7:0] dc_shf;
+  logic       dc_shv;
+  assign dc_shv = dc_op == fmpp_pkg::OP_DIVSTEP;
+  assign dc_shc = dc_shv ? 4'd0 : 4'd1 << dc_shr[4:3];
+  assign dc_shf = dc_shv ? 8'd1 : 8'd1 << dc_shr[2:0];
+`endif
+  // Likewise the instruction's write of word D, one bit a kind ({BITCOPY, WRITES, FUNC/LSHIFT/
+  // RSHIFT, ADD/SUB/DIVSTEP}, none for other entries), and the ALU's opcode: the
+  // instruction's where the ALU serves it (any but BITCOPY, which the tile does itself), NOP
+  // for other entries.
+  logic [3:0]                  dc_wk;
+  logic [fmpp_pkg::F_OP_W-1:0] dc_aop;
+  always_comb begin
+    dc_wk  = '0;
+    dc_aop = fmpp_pkg::OP_NOP;
+    if (head_i.kind == fmpp_pkg::QE_INSTR) begin
+      case (dc_op)
+        fmpp_pkg::OP_ADD, fmpp_pkg::OP_SUB, fmpp_pkg::OP_DIVSTEP:   dc_wk[0] = 1'b1;
+        fmpp_pkg::OP_FUNC, fmpp_pkg::OP_LSHIFT, fmpp_pkg::OP_RSHIFT: dc_wk[1] = 1'b1;
+        fmpp_pkg::OP_WRITES:                                         dc_wk[2] = 1'b1;
+        fmpp_pkg::OP_BITCOPY:                                        dc_wk[3] = 1'b1;
+        default: ;
+      endcase
+      if (dc_op != fmpp_pkg::OP_BITCOPY) dc_aop = dc_op;
+    end
+  end
 
   // Stage registers: s2_* holds the entry in operand read, s3_* the entry executing.
   // s3_valid_q is the retire signal: the entry's effects land at the next clock edge
@@ -180,15 +225,30 @@ module fmpp_array #(
   // stage 3 sits at the tile. (The copies' processes are kept: yosys would merge copies that
   // have the same inputs into one.)
   localparam int unsigned GroupW    = fmpp_pkg::TreeGroup;
+  localparam int unsigned WIdxW     = (NumWords > 1) ? $clog2(NumWords) : 1;  // as the tile's
+  localparam int unsigned BlockHiW  = fmpp_pkg::BlockIdxW - fmpp_pkg::LaneIdxW;
   localparam int unsigned NumGroups = (NumTiles + GroupW - 1) / GroupW;
   logic top_flag_q;
   for (genvar g = 0; g < NumGroups; g++) begin : g_bc
     logic                         v2_q, v3_q, any3_q, ans_q, hold_g;
     logic                         rd_a2_q, ld_b2_q;  // the entry reads word A; loads the addend
+    logic [WIdxW-1:0]             a2_n;              // word A of stage 2 after the next edge
+    logic [WIdxW-1:0]             b2_n;
     logic [fmpp_pkg::F_A_W-1:0]   a2_q;
     logic [fmpp_pkg::F_B_W-1:0]   b2_q;
     logic [fmpp_pkg::F_OP_W-1:0]  op2_q, op3_q;
     logic [fmpp_pkg::F_IMM_W-1:0] imm2_q;
+    logic [fmpp_pkg::SHR_A_W-1:0] shr2_q;
+    // FPGA synthesis (FMPP_ONEHOT_SHIFT): stage 2's shifter selects as registers: the shift
+    // one-hots, coarse (shc2_q) and fine (shf2_q), and DIVSTEP's doubling (shv2_q).
+    logic [3:0]                   shc2_q;
+    logic [7:0]                   shf2_q;
+    logic                         shv2_q;
+`ifndef FMPP_ONEHOT_SHIFT
+    assign {shc2_q, shf2_q, shv2_q} = '0;
+`endif
+    logic [3:0]                   wk2_q;   // dc_wk of the entry
+    logic [fmpp_pkg::F_OP_W-1:0]  aop2_q;  // dc_aop of the entry
     fmpp_pkg::qkind_e             kind2_q, kind3_q;
     logic [fmpp_pkg::F_F_W-1:0]   f2_q;
     logic [fmpp_pkg::F_D_W-1:0]   d2_q;
@@ -196,6 +256,8 @@ module fmpp_array #(
     logic [fmpp_pkg::BlockIdxW-1:0] block2_q;
     logic [3:0]                   strb2_q;
     logic [CntW-1:0]              cnt_q;
+    assign a2_n = (pop && dc_rd_a) ? instr[fmpp_pkg::F_A_LSB +: WIdxW] : a2_q[WIdxW-1:0];
+    assign b2_n = (pop && dc_rd_b) ? instr[fmpp_pkg::F_B_LSB +: WIdxW] : b2_q[WIdxW-1:0];
     // The same hold as the centre's, from the group's own copies.
     assign hold_g = v3_q && kind3_q == fmpp_pkg::QE_INSTR && op3_q == fmpp_pkg::OP_FLAGOP && any3_q &&
                     32'(cnt_q) != AnyLat;
@@ -213,7 +275,11 @@ module fmpp_array #(
         {kind2_q, op2_q, f2_q, x2_q} <= {head_i.kind, dc_op, instr[fmpp_pkg::F_F_LSB +: fmpp_pkg::F_F_W],
                                          instr[fmpp_pkg::F_X_LSB +: fmpp_pkg::F_X_W]};
         {rd_a2_q, ld_b2_q}           <= {dc_rd_a, dc_ld_b};
-        {imm2_q, block2_q, strb2_q}  <= {dc_imm, head_i.block, head_i.strb};
+        {imm2_q, shr2_q, block2_q, strb2_q} <= {dc_imm, dc_shr, head_i.block, head_i.strb};
+`ifdef FMPP_ONEHOT_SHIFT
+        {shc2_q, shf2_q, shv2_q} <= {dc_shc, dc_shf, dc_shv};
+`endif
+        {wk2_q, aop2_q}                     <= {dc_wk, dc_aop};
         // The word fields keep the last entry's that used them (operand isolation).
         if (dc_rd_a) a2_q <= instr[fmpp_pkg::F_A_LSB +: fmpp_pkg::F_A_W];
         if (dc_rd_b) b2_q <= instr[fmpp_pkg::F_B_LSB +: fmpp_pkg::F_B_W];
@@ -234,8 +300,73 @@ module fmpp_array #(
     logic [fmpp_pkg::F_X_W-1:0]   x3_q;
     logic [fmpp_pkg::F_IMM_W-1:0] imm3_q;
     logic [fmpp_pkg::BlockIdxW-1:0] block3_q;
+    localparam int unsigned L3 = (t == NumTiles - 1) ? LastLanes : LaneW;  // the tile's lanes
+    logic [L3-1:0]                lsel3_q;  // block3_q's lane, one-hot (a window write's word line)
     logic [3:0]                   strb3_q;
     logic [31:0]                  tmask_q;
+    // Stage 3's write of word D and the forwarding of it into stage 2's A, decoded a clock
+    // ahead, so that the tile's write and forward multiplexers take their selects from
+    // registers. ws3_q: the write the executing entry makes in this tile, one bit each (0 where
+    // none executes): {a window write of one word here, BITCOPY, WRITES, FUNC/LSHIFT/RSHIFT,
+    // ADD/SUB/DIVSTEP}. fwd_a3_q: there is one, and the entry in stage 2 reads that word as A.
+    // Both follow the stages' own loads (stage 3 takes stage 2's entry unless it holds).
+    logic [4:0]                   ws3_q, ws2, ws3_n;
+    // aop3_q: the ALU's opcode, the executing entry's where it is an instruction the ALU
+    // serves (any but BITCOPY, which the tile does itself), NOP otherwise.
+    logic [fmpp_pkg::F_OP_W-1:0]  aop3_q;
+    logic                         fwd_a3_q, mv3;
+    logic [WIdxW-1:0]             d3_n;
+    logic [fmpp_pkg::F_F_W-1:0]   f3_n;  // F of the entry in stage 3 after the next edge
+    assign mv3 = g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g;  // stage 2's entry moves on
+    // The write in this tile of the entry in stage 2: an instruction's (the same in every
+    // tile), or a window write of one word of this tile.
+    assign ws2 = {g_bc[t / GroupW].kind2_q == fmpp_pkg::QE_WORD &&
+                  g_bc[t / GroupW].block2_q[fmpp_pkg::BlockIdxW-1:fmpp_pkg::LaneIdxW] ==
+                  BlockHiW'((t * fmpp_pkg::LaneW) >> fmpp_pkg::LaneIdxW), g_bc[t / GroupW].wk2_q};
+    assign ws3_n = g_bc[t / GroupW].hold_g ? ws3_q : (g_bc[t / GroupW].v2_q ? ws2 : '0);
+    assign d3_n  = mv3 ? g_bc[t / GroupW].d2_q[WIdxW-1:0] : d3_q[WIdxW-1:0];
+    assign f3_n  = mv3 ? g_bc[t / GroupW].f2_q : f3_q;
+    always_ff @(posedge clk_i) begin
+      if (!rst_ni) begin
+        {ws3_q, fwd_a3_q} <= '0;
+        aop3_q <= fmpp_pkg::OP_NOP;
+      end else begin
+        ws3_q    <= ws3_n;
+        if (!g_bc[t / GroupW].hold_g) aop3_q <= g_bc[t / GroupW].v2_q ? g_bc[t / GroupW].aop2_q : fmpp_pkg::OP_NOP;
+        fwd_a3_q <= ws3_n != '0 && g_bc[t / GroupW].a2_n == d3_n;
+      end
+    end
+    logic [fmpp_pkg::WordW-1:0]   wpl3_q;
+    logic [3:0]                   rk3_q;
+`ifndef VERILATOR
+    logic [fmpp_pkg::F_IMM_W-1:0] imm3_n;
+    logic [3:0]                   strb3_n;
+    logic [31:0]                  tmask_n;
+    logic [fmpp_pkg::F_OP_W-1:0]  aop3_n;
+    logic [fmpp_pkg::FUNC_FN_W-1:0] fn3_n;
+    assign aop3_n = g_bc[t / GroupW].hold_g ? aop3_q : (g_bc[t / GroupW].v2_q ? g_bc[t / GroupW].aop2_q : fmpp_pkg::OP_NOP);
+    assign fn3_n  = mv3 ? g_bc[t / GroupW].x2_q[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W]
+                        : x3_q[fmpp_pkg::FUNC_FN_LSB +: fmpp_pkg::FUNC_FN_W];
+    assign imm3_n  = mv3 ? g_bc[t / GroupW].imm2_q : imm3_q;
+    assign strb3_n = mv3 ? g_bc[t / GroupW].strb2_q : strb3_q;
+    assign tmask_n = (v3_q && kind3_q == fmpp_pkg::QE_INSTR && op3_q == fmpp_pkg::OP_MASKSET) ? imm3_q : tmask_q;
+    always_ff @(posedge clk_i) begin
+      for (int k = 0; k < fmpp_pkg::WordW; k++) begin
+        wpl3_q[k] <= rst_ni && (ws3_n[1] || (ws3_n[2] && !tmask_n[k]) || (ws3_n[4] && strb3_n[k / 8]) ||
+                                (ws3_n[3] && imm3_n[fmpp_pkg::BIT_J_LSB +: fmpp_pkg::BIT_J_W] == 5'(k)));
+      end
+      rk3_q <= '0;
+      if (rst_ni) begin
+        rk3_q[3] <= aop3_n == fmpp_pkg::OP_RSHIFT;
+        rk3_q[2] <= aop3_n == fmpp_pkg::OP_LSHIFT;
+        if (aop3_n == fmpp_pkg::OP_FUNC) begin
+          rk3_q[1:0] <= fn3_n == fmpp_pkg::FUNC_FN_AND ? 2'd1 : fn3_n == fmpp_pkg::FUNC_FN_OR ? 2'd2 : 2'd3;
+        end
+      end
+    end
+`else
+    assign {wpl3_q, rk3_q} = '0;
+`endif
     (* keep *) always_ff @(posedge clk_i) begin
       if (!rst_ni) begin
         {v3_q, tmask_q} <= '0;
@@ -248,6 +379,7 @@ module fmpp_array #(
       if (g_bc[t / GroupW].v2_q && !g_bc[t / GroupW].hold_g) begin
         {kind3_q, op3_q, f3_q, d3_q, x3_q} <= {g_bc[t / GroupW].kind2_q, g_bc[t / GroupW].op2_q,
                                                g_bc[t / GroupW].f2_q, g_bc[t / GroupW].d2_q, g_bc[t / GroupW].x2_q};
+        lsel3_q                           <= L3'(1) << g_bc[t / GroupW].block2_q[fmpp_pkg::LaneIdxW-1:0];
         {imm3_q, block3_q, strb3_q}       <= {g_bc[t / GroupW].imm2_q, g_bc[t / GroupW].block2_q,
                                                g_bc[t / GroupW].strb2_q};
       end
@@ -261,6 +393,7 @@ module fmpp_array #(
   logic [fmpp_pkg::LaneIdxW-1:0] t_sel_first [NumTiles];
   logic        t_ovf_any    [NumTiles];
   logic [63:0] t_rd_data    [NumTiles];
+  logic [31:0] t_rd_late    [NumTiles];
 
   for (genvar t = 0; t < NumTiles; t++) begin : g_tile
     localparam int unsigned Lanes = (t == NumTiles - 1) ? LastLanes : LaneW;
@@ -274,15 +407,33 @@ module fmpp_array #(
       .b_i          (g_bc[t / GroupW].b2_q),
       .opr_op_i     (g_bc[t / GroupW].op2_q),
       .opr_imm_i    (g_bc[t / GroupW].imm2_q),
+      .opr_shr_i    (g_bc[t / GroupW].shr2_q),
+      .opr_shc_i    (g_bc[t / GroupW].shc2_q),
+      .opr_shf_i    (g_bc[t / GroupW].shf2_q),
+      .opr_shv_i    (g_bc[t / GroupW].shv2_q),
+      .fwd_a_i      (g_t3[t].fwd_a3_q),
       .exec_i       (g_t3[t].v3_q),
+      .alu_op_i     (g_t3[t].aop3_q),
+      .ws_sum_i     (g_t3[t].ws3_q[0]),
+      .ws_alu_i     (g_t3[t].ws3_q[1]),
+      .ws_writes_i  (g_t3[t].ws3_q[2]),
+      .ws_bitcopy_i (g_t3[t].ws3_q[3]),
+      .ws_word_i    (g_t3[t].ws3_q[4]),
       .kind_i       (g_t3[t].kind3_q),
       .op_i         (g_t3[t].op3_q),
+      .f_nx_i       (g_t3[t].f3_n),
       .f_i          (g_t3[t].f3_q),
       .d_i          (g_t3[t].d3_q),
       .x_i          (g_t3[t].x3_q),
       .imm_i        (g_t3[t].imm3_q),
       .mask_i       (g_t3[t].tmask_q),
+      .wpl_i        (g_t3[t].wpl3_q),
+      .rk_i         (g_t3[t].rk3_q),
+      .a_nx_i       (6'(g_bc[t / GroupW].a2_n)),
+      .b_nx_i       (6'(g_bc[t / GroupW].b2_n)),
+      .d_nx_i       (6'(g_t3[t].d3_n)),
       .hw_block_i   (g_t3[t].block3_q),
+      .hw_lane_sel_i (g_t3[t].lsel3_q),
       .hw_strb_i    (g_t3[t].strb3_q),
       .hw_data_i    (g_t3[t].imm3_q),
       // The tiles write FLAGOP's "if any" only once the tree has answered (none while holding).
@@ -294,6 +445,8 @@ module fmpp_array #(
       .rd_word_i    (rd_word_i),
       .rd_flag_i    (rd_flag_i),
       .rd_data_o    (t_rd_data[t]),
+      .rd_acc_i     (rd_acc_i),
+      .rd_late_o    (t_rd_late[t]),
       .resp_en_i    (resp_en_i),
       .sel_any_o    (t_sel_any[t]),
       .sel_count_o  (t_sel_count[t]),
@@ -307,6 +460,13 @@ module fmpp_array #(
   always_comb begin
     rd_data_o = '0;
     for (int t = 0; t < NumTiles; t++) rd_data_o = rd_data_o | t_rd_data[t];
+    // In synthesis the tiles answer by the address alone and rd_en_i enters here, last
+    // (0 for any read but a mapped window's); simulators gate each tile instead.
+    if (!rd_en_i) rd_data_o = '0;
+  end
+  always_comb begin
+    rd_late_o = '0;
+    for (int t = 0; t < NumTiles; t++) rd_late_o = rd_late_o | t_rd_late[t];
   end
 
   // The reduction trees: each tile's answers are registered in the tile, a register per group

@@ -51,6 +51,7 @@ module fmpp_axil_slave #(
   output logic [fmpp_pkg::WordIdxW-1:0]  rd_word_o,
   output logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag_o,
   input  logic [63:0]                  rd_data_i,
+  input  logic [31:0]                  rd_late_i,   // a word read's data from the clock after its accept (else 0)
   output logic                         resp_en_o,
   input  logic                         resp_any_i,
   input  logic [fmpp_pkg::REG_RESP_COUNT_W-1:0] resp_count_i,
@@ -64,7 +65,7 @@ module fmpp_axil_slave #(
   localparam logic [1:0] RespSlvErr = 2'b10;
 
   // ---------------------------------------------------------------- write decode
-  logic        aw_aligned, aw_is_reg, aw_is_plane, aw_is_flags, aw_is_word;
+  logic        aw_aligned, aw_is_reg, aw_is_plane, aw_is_flags, aw_is_word, aw_in_plane, aw_in_flags;
   logic [11:0] aw_reg;
   logic [fmpp_pkg::BlockIdxW-1:0] aw_block;
   logic [fmpp_pkg::WordIdxW-1:0]  aw_word;
@@ -81,7 +82,9 @@ module fmpp_axil_slave #(
     .is_word_o  (aw_is_word),
     .block_o    (aw_block),
     .word_o     (aw_word),
-    .flag_o     (aw_flag)
+    .flag_o     (aw_flag),
+    .in_plane_o (aw_in_plane),
+    .in_flags_o (aw_in_flags)
   );
 
   fmpp_instr_check #(.NumWords(NumWords)) u_instr_check (
@@ -172,7 +175,7 @@ module fmpp_axil_slave #(
   assign w_ok         = w_push || w_ctrl || (w_at_error && w_strb_all);
 
   // ----------------------------------------------------------------- read decode
-  logic        ar_aligned, ar_is_reg, ar_is_plane, ar_is_flags, ar_is_word;
+  logic        ar_aligned, ar_is_reg, ar_is_plane, ar_is_flags, ar_is_word, ar_in_plane, ar_in_flags;
   logic [11:0] ar_reg;
   logic [fmpp_pkg::BlockIdxW-1:0] ar_block;
   logic [fmpp_pkg::WordIdxW-1:0]  ar_word;
@@ -188,7 +191,9 @@ module fmpp_axil_slave #(
     .is_word_o  (ar_is_word),
     .block_o    (ar_block),
     .word_o     (ar_word),
-    .flag_o     (ar_flag)
+    .flag_o     (ar_flag),
+    .in_plane_o (ar_in_plane),
+    .in_flags_o (ar_in_flags)
   );
 
   // The ERROR register (fmpp_err_reg) and CTRL.GAP. gap_q is public for the lockstep
@@ -227,7 +232,9 @@ module fmpp_axil_slave #(
   );
 
   assign rd_en_o    = arvalid_i && ar_aligned && (ar_is_plane || ar_is_flags || ar_is_word);
-  assign rd_kind_o  = ar_is_plane ? fmpp_pkg::RK_PLANE : (ar_is_flags ? fmpp_pkg::RK_FLAGS : fmpp_pkg::RK_WORD);
+  // The kind by the window alone (rd_en_o tells whether it is mapped): the tiles start their
+  // read before the range checks end.
+  assign rd_kind_o  = ar_in_plane ? fmpp_pkg::RK_PLANE : (ar_in_flags ? fmpp_pkg::RK_FLAGS : fmpp_pkg::RK_WORD);
   assign rd_block_o = ar_block;
   assign rd_word_o  = ar_word;
   assign rd_flag_o  = ar_flag;
@@ -268,7 +275,10 @@ module fmpp_axil_slave #(
   assign bresp_o      = bresp_q;
   assign rvalid_o     = rvalid_q;
   assign rresp_o      = rresp_q;
-  assign rdata_o      = rdata_q;
+  // A word read in the FPGA's block RAM (FMPP_BRAM_WORDS_HOST) reads 0 at the accept (the
+  // tiles leave it to rd_late_i) and its data joins here, from the RAM's output, which holds
+  // until the next accept: the same beat, the same data while it waits.
+  assign rdata_o      = rdata_q | {32'd0, rd_late_i};
   assign push_o       = w_accept && w_push;
   assign push_entry_o = w_entry;
   assign gap_o        = gap_q;
@@ -359,7 +369,7 @@ module fmpp_axil_slave #(
 `endif
 
   logic unused_prot;
-  assign unused_prot = ^{awprot_i, arprot_i, aw_flag, w_ctrl_v, w_error_v};
+  assign unused_prot = ^{awprot_i, arprot_i, aw_flag, w_ctrl_v, w_error_v, aw_in_plane, aw_in_flags};
 
   // Assertions
 `ifndef SYNTHESIS

@@ -31,19 +31,25 @@ module fmpp_instr_check #(
     for (int s = 0; s < fmpp_pkg::NumRsvSegs; s++) seg_set[s] = |(instr_i & fmpp_pkg::RsvSegMask[s*64 +: 64]);
   end
 
+  // The range checks as constant tables indexed by the field (a function of its few bits,
+  // which LUTs make in two levels), not compares, which FPGA synthesis puts on a carry chain
+  // (on the iCE40 that chain stood on the write's path from the bus to the queue's push).
+  localparam logic [63:0] WordOut = {64{1'b1}} << NumWords;   // bit w: w >= NumWords
+  localparam logic [31:0] OpKnown = ~({32{1'b1}} << fmpp_pkg::NumOpcodes);  // bit o: o < NumOpcodes
+
   always_comb begin
     logic known;
     int unsigned row;
-    known    = 32'(op) < fmpp_pkg::NumOpcodes;
+    known    = OpKnown[op];
     // The tables' row: an unknown opcode reads row 0 (and is illegal anyway), so no
     // part-select ever reaches past a table (the simulator would read beyond it).
     row      = known ? 32'(op) : 0;
     reserved = known ? fmpp_pkg::OpReserved[row*64 +: 64] : '1;
     legal_o  = known && ((seg_set & fmpp_pkg::RsvSegOps[row*fmpp_pkg::NumRsvSegs +: fmpp_pkg::NumRsvSegs]) == '0);
     // Used word fields (their bits are not reserved) must address a word of the block.
-    if (!reserved[fmpp_pkg::F_D_LSB] && 32'(d) >= NumWords) legal_o = 1'b0;
-    if (!reserved[fmpp_pkg::F_A_LSB] && 32'(a) >= NumWords) legal_o = 1'b0;
-    if (!reserved[fmpp_pkg::F_B_LSB] && 32'(b) >= NumWords) legal_o = 1'b0;
+    if (!reserved[fmpp_pkg::F_D_LSB] && WordOut[d]) legal_o = 1'b0;
+    if (!reserved[fmpp_pkg::F_A_LSB] && WordOut[a]) legal_o = 1'b0;
+    if (!reserved[fmpp_pkg::F_B_LSB] && WordOut[b]) legal_o = 1'b0;
     // The map's other rules, each a compare of a few bits against constants.
     for (int k = 0; k < fmpp_pkg::NumIllegal; k++) begin
       if ((instr_i & fmpp_pkg::IllegalMask[k*64 +: 64]) == fmpp_pkg::IllegalValue[k*64 +: 64]) legal_o = 1'b0;

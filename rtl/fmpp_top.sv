@@ -53,6 +53,7 @@ module fmpp_top #(
   logic [fmpp_pkg::WordIdxW-1:0]  rd_word;
   logic [fmpp_pkg::FlagIdxW-1:0]  rd_flag;
   logic [63:0]          rd_data;
+  logic [31:0]          rd_late;  // a word read answered a clock after its accept (FMPP_BRAM_WORDS_HOST)
   logic                 resp_any, ovf_any;
   logic [fmpp_pkg::REG_RESP_COUNT_W-1:0]    resp_count;
   logic [fmpp_pkg::REG_RESP_FIRST_W-1:0]    resp_first;
@@ -92,6 +93,7 @@ module fmpp_top #(
     .rd_word_o    (rd_word),
     .rd_flag_o    (rd_flag),
     .rd_data_i    (rd_data),
+    .rd_late_i    (rd_late),
     .resp_en_o    (resp_en),
     .resp_any_i   (resp_any),
     .resp_count_i (resp_count),
@@ -128,6 +130,8 @@ module fmpp_top #(
     .rd_word_i    (rd_word),
     .rd_flag_i    (rd_flag),
     .rd_data_o    (rd_data),
+    .rd_acc_i     (s_axil_arvalid_i && s_axil_arready_o),
+    .rd_late_o    (rd_late),
     .resp_en_i    (resp_en),
     .resp_any_o   (resp_any),
     .resp_count_o (resp_count),

@@ -33,6 +33,7 @@
 # A step that fails stops the flow with its name and the end of its log.
 #
 # Usage: asic.sh [--pnr BxW[,BxW...] | --no-pnr] [--energy BxW,BxW | --no-energy]
+#   (--pnr none and --energy none are --no-pnr and --no-energy)
 #                [--no-latch] [--no-chip] [--reuse] [BxW ...]
 #   default sizes: 1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32; default --pnr 1x8 (--pnr-until
 #   place stops after the placement: its wire estimate is timed, routing is skipped);
@@ -92,10 +93,12 @@ while [ $# -gt 0 ]; do
     *) sizes+=("$1"); shift ;;
   esac
 done
+# `none` (as the summary's first line writes an empty list) is --no-pnr / --no-energy.
+[ "${pnr_sizes[*]:-}" != none ] || pnr_sizes=()
+[ "${energy_sizes[*]:-}" != none ] || energy_sizes=()
 [ ${#sizes[@]} -gt 0 ] || sizes=(1x8 2x8 4x8 8x8 16x8 8x16 8x32 16x32)
-for s in "${sizes[@]}" "${pnr_sizes[@]}" "${energy_sizes[@]}"; do
-  [[ $s =~ ^[0-9]+x[0-9]+$ ]] || { echo "asic.sh: size '$s' is not BLOCKSxWORDS (e.g. 8x16)" >&2; exit 2; }
-done
+# Every size one the RTL can be (tools/flow_sizes.py: synthesis does not see its own check).
+"$py" "$root/tools/flow_sizes.py" asic.sh "${sizes[@]}" "${pnr_sizes[@]}" "${energy_sizes[@]}" || exit 2
 
 for tool in yosys sta "$qbin/blifFanout" "$py"; do
   command -v "$tool" >/dev/null || { echo "asic.sh: $tool not found (make asic-deps installs qflow, qflow-tech-osu018, opensta, graywolf, qrouter)" >&2; exit 2; }
@@ -122,7 +125,7 @@ commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 rtl_sha=$("$py" "$root/tools/rtl_hash.py" --root "$root") || exit 2
 sta_version=$(echo exit | sta -no_init 2>&1 | head -1 | sed 's/ Copyright.*//')
 {
-  echo "# FMPP standard cells: tools/asic.sh ${sizes[*]} --pnr ${pnr_sizes[*]:-none} --pnr-until $pnr_until --energy ${energy_sizes[*]:-none}"
+  echo "# FMPP standard cells: tools/asic.sh ${sizes[*]} --pnr $(IFS=,; echo "${pnr_sizes[*]:-none}") --pnr-until $pnr_until --energy $(IFS=,; echo "${energy_sizes[*]:-none}")"
   echo "# $(yosys -V | head -1); $sta_version; qflow $(dpkg-query -W -f='${Version}' qflow 2>/dev/null || echo '?'); OSU018 ($lib)"
   echo "# commit $commit, $stamp, on $machine"
   echo "# rtl-sha256 $rtl_sha (tools/rtl_hash.py: the RTL measured)"

@@ -53,6 +53,7 @@ import asic_chip_checks as ck  # noqa: E402
 import asic_chip_flow as fl  # noqa: E402
 import asic_chip_net as net  # noqa: E402
 import asic_chip_wires as wires  # noqa: E402
+import flow_sizes  # noqa: E402
 import asic_common as ac  # noqa: E402
 import rtl_hash  # noqa: E402
 
@@ -282,9 +283,26 @@ def main():
     a = ap.parse_args()
     if a.self_test:
         return self_test()
+    try:
+        if a.check:
+            n, words = flow_sizes.parse(a.check)  # TILESxWORDS: the tiles checked as blocks below
+            tiles = [n]
+        else:
+            if not all(x.isdigit() for x in a.tiles.split(",")):
+                raise ValueError(f"--tiles '{a.tiles}' is not a comma-separated list of tile counts (e.g. 1,4,16,64)")
+            tiles, words = [int(x) for x in a.tiles.split(",")], a.words
+        _, _, lane_w = flow_sizes.limits()
+        if not 1 <= a.lanes <= lane_w:
+            raise ValueError(f"--lanes {a.lanes} outside 1 .. {lane_w} (fmpp_pkg::LaneW)")
+        for n in tiles:
+            why = flow_sizes.check(n * lane_w, words)
+            if why:
+                raise ValueError(f"{n} tiles of {words} words: {why}")
+    except ValueError as e:
+        print(f"asic_chip.py: {e}", file=sys.stderr)
+        return 2
     if a.check:
         return main_check(a)
-    tiles = [int(x) for x in a.tiles.split(",")]
     os.makedirs(a.out, exist_ok=True)
     try:
         reps = wires.repeaters(a.out, LAYERS, fl.LEF)

@@ -40,8 +40,9 @@ set_load 0.05 [all_outputs]
 
 # The tile's ports by role (the names of fmpp_tile.sv): the broadcast, the host's read request
 # and the responder request (inputs); the responders' outputs.
-BCAST_PORTS = ("opr_a_en_i", "opr_b_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "exec_i", "kind_i", "op_i",
-               "f_i", "d_i", "x_i", "imm_i", "mask_i", "hw_block_i", "hw_strb_i", "hw_data_i")
+BCAST_PORTS = ("opr_a_en_i", "opr_b_en_i", "a_i", "b_i", "opr_op_i", "opr_imm_i", "opr_shr_i", "fwd_a_i", "exec_i",
+               "alu_op_i", "ws_sum_i", "ws_alu_i", "ws_writes_i", "ws_bitcopy_i", "ws_word_i", "kind_i", "op_i",
+               "f_i", "f_nx_i", "d_i", "x_i", "imm_i", "mask_i", "wpl_i", "rk_i", "hw_block_i", "hw_lane_sel_i", "hw_strb_i", "hw_data_i")
 RD_PORTS = ("rd_en_i", "rd_kind_i", "rd_block_i", "rd_word_i", "rd_flag_i")
 RESP_OUT = ("sel_any_o", "sel_count_o", "sel_first_o", "ovf_any_o")
 
@@ -69,6 +70,27 @@ dict for {key cells} $groups { set stub [concat $stub $cells] }
 set grp [flops {*u_array.g_bc* *u_array.g_any_q* *u_array.g_count_q* *u_array.g_first_q* *u_array.g_ovf_q*
                 *u_array.g_flag_q*}]
 set loc [flops *u_array.g_t3*]
+# A stage-3 copy whose only load is one tile's input port loses its name: yosys names its net
+# after the port (u_array.g_tile[N].u_tile.<port>). A flip-flop driving such a net whose
+# loads are all stand-in flip-flops of that one tile (u_tile.q_*) sits at its tile too.
+foreach n [get_nets -quiet *u_array.g_tile*.u_tile.*] {
+  if {[string match *u_tile.q_* [get_full_name $n]]} { continue }
+  set drv {}
+  set tiles [dict create]
+  foreach p [get_pins -quiet -of_objects $n] {
+    set c [get_cells -of_objects $p]
+    if {[get_property $p direction] == "output"} {
+      if {[get_property $c ref_name] == "DFFPOSX1"} { set drv $c }
+    } else {
+      foreach q [get_pins -quiet -of_objects $c -filter "direction == output"] {
+        foreach m [get_nets -quiet -of_objects $q] {
+          if {[regexp {u_array[.]g_tile.([0-9]+).[.]u_tile[.]q_} [get_full_name $m] -> k]} { dict set tiles $k 1 }
+        }
+      }
+    }
+  }
+  if {$drv ne "" && [dict size $tiles] == 1} { lappend loc $drv }
+}
 set core [delete_from_list [delete_from_list [delete_from_list [all_registers] $stub] $grp] $loc]
 set rdata [flops *s_axil_rdata_o*]
 dict for {key cells} $groups {

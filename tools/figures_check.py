@@ -4,8 +4,9 @@
     figures_check.py [--root DIR]     fails when a result file the docs quote was measured
                                       on other RTL than DIR's rtl/ (the ctest figures_fresh)
     figures_check.py --list           the result files, their role and who quotes them
-    figures_check.py --self-test      a copy of the tree with one line of rtl/ changed must
-                                      fail (the ctest figures_check_self_test)
+    figures_check.py --self-test      a copy of the tree with one line of rtl/ changed, a file
+                                      added to rtl/ or the map edited must fail (the ctest
+                                      figures_check_self_test)
 
 The figures of README.md and docs/ (clock in MHz, cells, area, energy) are made by
 tools/docs.py and fmpp-report from result files that the flows write: tools/asic.sh
@@ -21,7 +22,9 @@ result file is listed in SOURCES below with its role:
            docs/generated/area.md): not compared, but the label must be there.
 
 A result file under docs/asic/ or docs/data/ that SOURCES does not list fails the check too,
-so that a new one cannot be quoted unchecked. Editing one line of rtl/ therefore makes this
+so that a new one cannot be quoted unchecked; so do a file of rtl/ that the hash does not
+cover and a map (rtl/fmpp_map.json) that generates another package than rtl/fmpp_pkg.sv.
+Editing one line of rtl/ therefore makes this
 check fail until the flows are run again and their results copied into docs/ (the
 commands: docs/verification.md, "Figures and the RTL they were measured on").
 """
@@ -178,11 +181,41 @@ def expand(root, pattern):
                   if os.path.isfile(p))
 
 
+MAP = "rtl/fmpp_map.json"
+
+
+def rtl_outside_hash(root):
+    """Errors for what of rtl/ the hash would miss: a file it does not cover (rtl/ holds the
+    hardware alone; the map is read through the package generated from it), and a map
+    whose generated package is not rtl/fmpp_pkg.sv."""
+    errors = []
+    covered = set(rtl_hash.covered(root)) | {MAP}
+    for d, dirs, files in os.walk(os.path.join(root, "rtl")):
+        dirs.sort()
+        for name in sorted(files):
+            rel = os.path.relpath(os.path.join(d, name), root).replace(os.sep, "/")
+            if rel not in covered:
+                errors.append(f"{rel}: a file of rtl/ that the RTL hash does not cover (list it in rtl/fmpp.f, or "
+                              "keep it outside rtl/ if no hardware flow reads it)")
+    from mapgen.model import MapError, load
+    from mapgen.sv import gen_sv
+    pkg = os.path.join(root, "rtl", "fmpp_pkg.sv")
+    try:
+        with open(pkg, encoding="utf-8") as f:
+            same = f.read() == gen_sv(load(root))
+    except (MapError, OSError, ValueError, KeyError, TypeError, IndexError) as e:
+        return errors + [f"{MAP}: cannot be read into a package ({e})"]
+    if not same:
+        errors.append(f"{MAP}: generates another package than rtl/fmpp_pkg.sv: run tools/gen_map.py (the RTL hash "
+                      "then changes) and measure the figures again")
+    return errors
+
+
 def check(root):
     """(errors, notes) for the tree at root."""
     root = os.path.abspath(root)
     today = rtl_hash.rtl_hash(root)
-    errors, notes, listed = [], [], set()
+    errors, notes, listed = rtl_outside_hash(root), [], set()
     for pattern, role, quoted in SOURCES:
         files = expand(root, pattern)
         if not files and pattern in REQUIRED:
@@ -228,7 +261,9 @@ def report(root):
 
 def self_test():
     """On a copy of rtl/ and the result files: restamped with the copy's hash it passes; with
-    one line of rtl/fmpp_tile.sv changed it fails, naming every current file and both hashes."""
+    one line of rtl/fmpp_tile.sv changed it fails, naming every current file and both hashes; a
+    file added to rtl/, a map edited without its package, a result file unlisted or without a
+    hash and a figure typed by hand fail it too."""
     bad = []
     with tempfile.TemporaryDirectory() as d:
         shutil.copytree(os.path.join(ROOT, "rtl"), os.path.join(d, "rtl"))
@@ -271,6 +306,18 @@ def self_test():
         for rel in current:
             if not any(e.startswith(rel + ":") and h0 in e and h1 in e for e in errors):
                 bad.append(f"{rel}: not reported stale with both hashes after the edit")
+        # A file of rtl/ outside the hash, and a map edited without regenerating its package.
+        open(os.path.join(d, "rtl", "build.cmake"), "w").close()
+        with open(os.path.join(d, MAP), encoding="utf-8") as f:
+            m = json.load(f)
+        m["params"]["QueueDepth"]["value"] += 1
+        with open(os.path.join(d, MAP), "w", encoding="utf-8") as f:
+            json.dump(m, f)
+        errors, _, _ = check(d)
+        if not any(e.startswith("rtl/build.cmake:") and "does not cover" in e for e in errors):
+            bad.append("a file of rtl/ outside the hash is not reported")
+        if not any(e.startswith(MAP + ":") and "another package" in e for e in errors):
+            bad.append("a map edited without regenerating rtl/fmpp_pkg.sv is not reported")
         # A result file nobody lists, and one without a hash.
         open(os.path.join(d, "docs", "data", "fpga", "extra.csv"), "w").close()
         with open(os.path.join(d, "docs", "data", "synth", "summary.csv"), encoding="utf-8") as f:

@@ -8,7 +8,8 @@
 # The RTL is the synthesizable part of rtl/fmpp.f (tools/rtl_files.py --synth), read with
 # FMPP_CARRY_CHAIN_ADDER: the ALU's adder as one `+` per block, on the iCE40's carry chain
 # (rtl/fmpp_alu_exec.sv), and FMPP_INDEXED_READ: the tile's word reads as indexed
-# multiplexers, which LUTs make well (rtl/fmpp_tile.sv). Modules marked keep_hierarchy are
+# multiplexers, which LUTs make well (rtl/fmpp_tile.sv), and the FPGA's text (fpga_text
+# below: the tile's words in block RAM, the one-hot shifter). Modules marked keep_hierarchy are
 # mapped on their own, then flattened. The LUTs are mapped by ABC9 (synth_ice40 -abc9, which
 # knows the cells' delays) and nextpnr's placer weighs timing at 30 (--placer-heap-timingweight;
 # its default is 10): on the HX8K at 3 x 8 the two together route faster than the defaults
@@ -50,7 +51,12 @@ pnr_opts=${FPGA_PNR_OPTS---placer-heap-timingweight 30}
 for s in $seeds; do
   [[ $s =~ ^[0-9]+$ ]] || { echo "fpga.sh: seed '$s' is not a number (FPGA_SEEDS)" >&2; exit 2; }
 done
+# The FPGA's text of rtl/ (also the RTL regression's, make sim-fpga): the words in block RAM
+# with the host's word read from a read port of its own (FMPP_BRAM_WORDS,
+# FMPP_BRAM_WORDS_HOST) and stage 2's shifter as two one-hot stages (FMPP_ONEHOT_SHIFT).
+fpga_text="FMPP_BRAM_WORDS FMPP_BRAM_WORDS_HOST FMPP_ONEHOT_SHIFT"
 defines="-DFMPP_CARRY_CHAIN_ADDER -DFMPP_INDEXED_READ"
+for d in $fpga_text; do defines="$defines -D$d"; done
 for d in ${FPGA_DEFINES:-}; do
   [[ $d =~ ^[A-Za-z_][A-Za-z0-9_]*$ ]] || { echo "fpga.sh: define '$d' is not a macro name (FPGA_DEFINES)" >&2; exit 2; }
   defines="$defines -D$d"
@@ -58,6 +64,8 @@ done
 for tool in yosys nextpnr-ice40 python3; do
   command -v "$tool" >/dev/null || { echo "fpga.sh: $tool not found (make deps installs yosys and nextpnr-ice40)" >&2; exit 2; }
 done
+# Every size one the RTL can be (tools/flow_sizes.py: synthesis does not see its own check).
+python3 "$root/tools/flow_sizes.py" fpga.sh "${runs[@]##*:}" || exit 2
 mkdir -p "$out"
 sources="$("$root/tools/rtl_files.py" --root "$root" --synth --sep ' ') $root/fpga/fmpp_fpga_top.sv"
 stamp=$(date -u +%Y-%m-%dT%H:%M:%SZ)

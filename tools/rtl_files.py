@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reads rtl/fmpp.f, the one list of the FMPP's RTL source files (see its header).
 
-Every flow takes the RTL from here: CMake (rtl/CMakeLists.txt, tests/rtl_units), the lint,
+Every flow takes the RTL from here: CMake (backends/rtl/verilated/CMakeLists.txt, tests/rtl_units), the lint,
 synthesis, the iCE40 and standard-cell flows, formal and the moved-map test.
 
 Usage: rtl_files.py [--root DIR] [--list FILE] [--synth] [--relative] [--sep SEP]

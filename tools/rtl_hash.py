@@ -10,9 +10,11 @@ order of their paths relative to the repository root sorted as byte strings; for
 the hash is fed its relative path (UTF-8), a NUL byte, its length in bytes as a decimal
 number, a NUL byte, then its bytes. Every .sv file in rtl/ is in the list (the lint fails
 otherwise), so changing any byte of any RTL source, adding or removing one, or renaming one
-changes the hash. Build files (rtl/CMakeLists.txt, and rtl/fmpp_verilator.vlt, which only the
-Verilated models read) and the map (rtl/fmpp_map.json, read only
-through the fmpp_pkg.sv generated from it) are not covered.
+changes the hash. rtl/ holds nothing else but the map (rtl/fmpp_map.json, which the flows
+read only through the fmpp_pkg.sv generated from it): the build of the Verilated models and
+their directives live in backends/rtl/verilated/, and tools/figures_check.py fails on a file
+of rtl/ that the hash does not cover, and on a map whose generated package differs from
+rtl/fmpp_pkg.sv.
 
 The flows that measure the RTL (tools/asic.sh, tools/fpga.sh, tools/synth.sh) write the hash
 into their result files as a comment line `# rtl-sha256 <hex>`; tools/figures_check.py

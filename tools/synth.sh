@@ -28,6 +28,8 @@ out=${SYNTH_OUT:-$build/synth}
 for tool in yosys python3; do
   command -v "$tool" >/dev/null || { echo "synth.sh: $tool not found (make deps installs yosys)" >&2; exit 2; }
 done
+# Every size one the RTL can be (tools/flow_sizes.py: synthesis does not see its own check).
+python3 "$root/tools/flow_sizes.py" synth.sh "${sizes[@]}" || exit 2
 sources=$("$root/tools/rtl_files.py" --root "$root" --synth --sep ' ')
 top=$("$root/tools/rtl_files.py" --root "$root" --top)
 mkdir -p "$out"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CMake's compiler launcher for Verilator's C++ (rtl/CMakeLists.txt, FMPP_VERILATED_CXX):
+# CMake's compiler launcher for Verilator's C++ (backends/rtl/verilated/CMakeLists.txt, FMPP_VERILATED_CXX):
 # compiles with another compiler than the project's, with the same arguments.
 #   verilated_cxx.sh COMPILER [LAUNCHER...] -- PROJECT_COMPILER ARGS...
 # runs LAUNCHER... COMPILER ARGS... (LAUNCHER: ccache, when the build uses one).

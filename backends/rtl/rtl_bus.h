@@ -92,7 +92,7 @@ class RtlBus : public Bus {
 };
 
 // The Verilated configurations linked into this binary (generated per binary from
-// backends/rtl/rtl_factory.cpp.in by fmpp_rtl_factory() in rtl/CMakeLists.txt), in map order.
+// backends/rtl/rtl_factory.cpp.in by fmpp_rtl_factory() in backends/rtl/CMakeLists.txt), in map order.
 std::vector<std::string> rtl_configs();
 // The version of the Verilator that built them ("5.006 2023-01-22"; defined beside
 // rtl_configs(), so a binary without RTL configurations has none).

@@ -186,8 +186,9 @@ void write_fpga_section(const FpgaData& d, std::ostream& out) {
                         {"critical_from", ref.crit_from},
                         {"critical_to", ref.crit_to},
                         {"fmax", fixed(ref.fmax_mhz, 1)},
-                        {"small_fmax", fixed(small->fmax_mhz, 1)},
-                        {"small_blocks", std::to_string(small->blocks)},
+                        {"smaller", small == &ref ? std::string()
+                                                  : "; " + fixed(small->fmax_mhz, 1) + " MHz with " +
+                                                        std::to_string(small->blocks)},
                         {"above_or_below", above ? "above" : "below"},
                         {"factor", fixed(above ? ref.fmax_mhz / 50.0 : 50.0 / ref.fmax_mhz, 2)}});
 }
