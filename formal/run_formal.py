@@ -41,6 +41,16 @@ ISA_SIZES = [(3, 4, 6), (65, 2, 4)]
 ISA_SIZES_QUICK = [(2, 2, 6)]
 
 
+def fpga_text(root):
+    """The macros of the FPGA's text of the RTL: tools/fpga.sh's fpga_text line (one list,
+    there; the lint and make sim-fpga read it too), with the indexed word reads it builds on."""
+    with open(os.path.join(root, "tools", "fpga.sh"), encoding="utf-8") as f:
+        m = re.search(r'^fpga_text="(.*)"$', f.read(), re.M)
+    if not m:
+        sys.exit("run_formal.py: no fpga_text=\"...\" line in tools/fpga.sh")
+    return ["FMPP_INDEXED_READ"] + m.group(1).split()
+
+
 def jobs(root, out, quick):
     frm = lambda n: os.path.join(root, "formal", n)
     rtl = rtl_files.files(root=root) + [os.path.join(out, "fmpp_instr_ref.sv")]
@@ -73,7 +83,7 @@ def jobs(root, out, quick):
     # (above) and the indexed one of simulators and the FPGA flow (FMPP_INDEXED_READ).
     if not quick:
         js.append(dict(js[-1], name="pipe_1x4_indexed", defines=["FMPP_INDEXED_READ"]))
-        js.append(dict(js[-1], name="pipe_1x4_bram", defines=["FMPP_INDEXED_READ", "FMPP_BRAM_WORDS", "FMPP_BRAM_WORDS_HOST", "FMPP_ONEHOT_SHIFT"]))
+        js.append(dict(js[-1], name="pipe_1x4_bram", defines=fpga_text(root)))
     # The pipelined array against the instruction set (fmpp_isa_ref.sv, word by word from
     # docs/isa.md): several lanes of one tile, and two tiles (65 blocks: the 64-lane tile
     # and a partial one), so that the networks between tiles are in the check.
@@ -83,7 +93,7 @@ def jobs(root, out, quick):
                        params={"NumBlocks": blocks, "NumWords": words, "IsaRef": 1}, depth=depth, engine="sat"))
         if blocks == 3 and not quick:
             # The FPGA's words in block RAM (rtl/fmpp_tile.sv, FMPP_BRAM_WORDS: reads a clock ahead).
-            js.append(dict(js[-1], name=f"isa_{blocks}x{words}_bram", defines=["FMPP_INDEXED_READ", "FMPP_BRAM_WORDS", "FMPP_BRAM_WORDS_HOST", "FMPP_ONEHOT_SHIFT"]))
+            js.append(dict(js[-1], name=f"isa_{blocks}x{words}_bram", defines=fpga_text(root)))
     for blocks, words in ([(100, 10)] if quick else [(100, 10), (64, 32), (1, 2)]):
         js.append(dict(name=f"axil_slave_{blocks}x{words}", top="fmpp_axil_slave_formal",
                        src=rtl + [frm("fmpp_axil_slave_formal.sv")],

@@ -266,6 +266,28 @@ def write_csv(path, head, cols, rows):
             f.write(",".join(str(x) for x in r) + "\n")
 
 
+def size_error(a):
+    """Why the sizes of the arguments are none the RTL can be (tools/flow_sizes.py), or None."""
+    try:
+        if a.check:
+            n, words = flow_sizes.parse(a.check)  # TILESxWORDS: the tiles checked as blocks below
+            tiles = [n]
+        else:
+            if not all(x.isdigit() for x in a.tiles.split(",")):
+                raise ValueError(f"--tiles '{a.tiles}' is not a comma-separated list of tile counts (e.g. 1,4,16,64)")
+            tiles, words = [int(x) for x in a.tiles.split(",")], a.words
+    except ValueError as e:
+        return str(e)
+    _, _, lane_w = flow_sizes.limits()
+    if not 1 <= a.lanes <= lane_w:
+        return f"--lanes {a.lanes} outside 1 .. {lane_w} (fmpp_pkg::LaneW)"
+    for n in tiles:
+        why = flow_sizes.check(n * lane_w, words)
+        if why:
+            return f"{n} tiles of {words} words: {why}"
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default=os.path.join(os.environ.get("BUILD", os.path.join(ROOT, "build")), "asic", "chip"))
@@ -283,23 +305,9 @@ def main():
     a = ap.parse_args()
     if a.self_test:
         return self_test()
-    try:
-        if a.check:
-            n, words = flow_sizes.parse(a.check)  # TILESxWORDS: the tiles checked as blocks below
-            tiles = [n]
-        else:
-            if not all(x.isdigit() for x in a.tiles.split(",")):
-                raise ValueError(f"--tiles '{a.tiles}' is not a comma-separated list of tile counts (e.g. 1,4,16,64)")
-            tiles, words = [int(x) for x in a.tiles.split(",")], a.words
-        _, _, lane_w = flow_sizes.limits()
-        if not 1 <= a.lanes <= lane_w:
-            raise ValueError(f"--lanes {a.lanes} outside 1 .. {lane_w} (fmpp_pkg::LaneW)")
-        for n in tiles:
-            why = flow_sizes.check(n * lane_w, words)
-            if why:
-                raise ValueError(f"{n} tiles of {words} words: {why}")
-    except ValueError as e:
-        print(f"asic_chip.py: {e}", file=sys.stderr)
+    why = size_error(a)
+    if why:
+        print(f"asic_chip.py: {why}", file=sys.stderr)
         return 2
     if a.check:
         return main_check(a)
